@@ -1,0 +1,31 @@
+// Helpers shared by the sub-commands: NAME=VALUE parsing and model construction.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/core/parameters.h"
+#include "roadbrdf/models/model.h"
+
+namespace roadbrdf::cli {
+
+// "name=value" strings to a map; `what` names the flag in errors (e.g. "-p").
+std::map<std::string, double> parse_numeric_assignments(const std::vector<std::string>& items, const std::string& what);
+OptionSet parse_option_assignments(const std::vector<std::string>& items, const std::string& what);
+
+// A model with one parameter set, as given on the command line: MODEL -p ... --option ...
+struct ModelWithParameters {
+  std::unique_ptr<Model> model;
+  std::vector<double> parameters;
+};
+ModelWithParameters model_from_command_line(const std::string& name, const std::vector<std::string>& parameter_items,
+                                            const std::vector<std::string>& option_items);
+
+// Adds the usual "-p NAME=VALUE" and "--option NAME=VALUE" flags to a sub-command.
+void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,
+                     std::vector<std::string>& option_items);
+
+}  // namespace roadbrdf::cli

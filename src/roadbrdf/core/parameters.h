@@ -1,0 +1,64 @@
+// Declarations of model parameters and options: the single source of truth used by the
+// command line, the fitter, the Python module and the generated documentation.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace roadbrdf {
+
+// One continuous, fittable parameter of a model.
+struct ParameterInfo {
+  std::string name;         // as files and scripts spell it, e.g. "albedo"
+  std::string unit;         // "1" for dimensionless, "rad", "sr^-1"...
+  std::string description;  // one line, in the field's words
+  double default_value = 0.0;
+  double lower = 0.0;       // inclusive bounds
+  double upper = 1.0;
+  bool spectral = true;     // may vary with wavelength
+  // True for amplitudes the BRDF is linear in (albedo, k_d, k_s...): the fitter may solve them directly.
+  bool linear = false;
+};
+
+// One discrete choice of a model (profile, distribution, H-function...). Not fitted.
+struct OptionInfo {
+  std::string name;
+  std::string description;
+  std::vector<std::string> values;  // allowed values; empty means "a number" (e.g. a lobe count)
+  std::string default_value;
+};
+
+// Options as given by the user: name -> value.
+using OptionSet = std::map<std::string, std::string>;
+
+struct ModelDescription {
+  std::string name;         // CLI spelling, e.g. "oren-nayar"
+  std::string summary;      // one line
+  std::string citation;     // paper and equation the implementation follows
+  std::vector<ParameterInfo> parameters;
+  std::vector<OptionInfo> options;
+  OptionSet option_values;  // the resolved options (defaults filled in)
+  bool reciprocal = true;
+  bool energy_conserving = true;
+  bool has_delta = false;   // has an ideal specular part, handled separately from the smooth BRDF
+
+  // Index of a parameter by name, or nullopt.
+  std::optional<std::size_t> parameter_index(const std::string& parameter_name) const;
+  std::vector<double> default_parameters() const;
+};
+
+// Resolve user options against declared options: fills defaults, rejects unknown names and values.
+// Throws InputError with a message naming the model and the option.
+OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo>& declared,
+                          const OptionSet& given);
+
+// Read a numeric option (for options declared with empty `values`). Throws InputError.
+int integer_option(const std::string& model, const OptionSet& options, const std::string& name, int lo, int hi);
+
+// Check a parameter vector against the declared bounds; throws InputError naming the first
+// offending parameter.
+void check_parameters(const ModelDescription& description, const std::vector<double>& values);
+
+}  // namespace roadbrdf

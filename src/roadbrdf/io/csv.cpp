@@ -1,0 +1,102 @@
+#include "roadbrdf/io/csv.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include "roadbrdf/core/error.h"
+
+namespace roadbrdf {
+
+namespace {
+std::string_view trim(std::string_view s, std::size_t& offset) {
+  std::size_t b = 0;
+  while (b < s.size() && (s[b] == ' ' || s[b] == '\t' || s[b] == '\r')) ++b;
+  std::size_t e = s.size();
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == '\r')) --e;
+  offset = b;
+  return s.substr(b, e - b);
+}
+}  // namespace
+
+std::vector<CsvCell> split_cells(std::string_view line, char separator) {
+  std::vector<CsvCell> cells;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = line.find(separator, start);
+    const std::string_view raw = line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
+    std::size_t offset = 0;
+    const std::string_view text = trim(raw, offset);
+    cells.push_back({text, static_cast<long>(start + offset + 1)});
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return cells;
+}
+
+CsvReader::CsvReader(std::string path) : path_(std::move(path)), in_(path_) {
+  if (!in_) throw FileError(path_, 0, 0, "cannot open file for reading");
+}
+
+bool CsvReader::next_row(std::vector<CsvCell>& cells) {
+  while (std::getline(in_, line_)) {
+    ++line_number_;
+    std::size_t offset = 0;
+    const std::string_view text = trim(line_, offset);
+    if (text.empty()) continue;
+    if (text.front() == '#') {
+      comments_.emplace_back(text.substr(1));
+      continue;
+    }
+    cells = split_cells(line_);
+    return true;
+  }
+  return false;
+}
+
+double CsvReader::number(const CsvCell& cell, std::string_view what) const {
+  double value = 0.0;
+  const char* first = cell.text.data();
+  const char* last = first + cell.text.size();
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (cell.text.empty()) fail(cell.column, "empty cell where a " + std::string(what) + " was expected");
+  if (ec != std::errc() || ptr != last) {
+    fail(cell.column, "'" + std::string(cell.text) + "' is not a " + std::string(what));
+  }
+  if (!std::isfinite(value)) fail(cell.column, "'" + std::string(cell.text) + "' is not a finite " + std::string(what));
+  return value;
+}
+
+void CsvReader::fail(long column, const std::string& message) const {
+  throw FileError(path_, line_number_, column, message);
+}
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  std::random_device rd;
+  temporary_ = path_ + ".tmp" + std::to_string(rd() % 1000000);
+  out_.open(temporary_, std::ios::out | std::ios::trunc);
+  if (!out_) throw FileError(path_, 0, 0, "cannot open file for writing");
+  out_.precision(17);
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    out_.close();
+    std::error_code ec;
+    std::filesystem::remove(temporary_, ec);
+  }
+}
+
+void AtomicFile::commit() {
+  out_.flush();
+  if (!out_) throw FileError(path_, 0, 0, "write failed");
+  out_.close();
+  std::error_code ec;
+  std::filesystem::rename(temporary_, path_, ec);
+  if (ec) throw FileError(path_, 0, 0, "cannot rename temporary file into place: " + ec.message());
+  committed_ = true;
+}
+
+}  // namespace roadbrdf

@@ -1,0 +1,134 @@
+#include "roadbrdf/models/registry.h"
+
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/models/composite.h"
+// One include per model file (keep in display order).
+#include "roadbrdf/models/lambert.h"
+#include "roadbrdf/models/oren_nayar.h"
+// [model-includes]
+
+namespace roadbrdf {
+
+namespace {
+
+struct Entry {
+  std::string name;
+  std::function<std::unique_ptr<Model>(const OptionSet&)> make;
+};
+
+template <class M>
+Entry entry() {
+  return {M::kName, [](const OptionSet& options) { return std::make_unique<ModelAdapter<M>>(options); }};
+}
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> table = {
+      entry<Lambert>(),
+      entry<OrenNayar>(),
+      // [model-entries]
+  };
+  return table;
+}
+
+std::unique_ptr<Model> make_single(const std::string& name, const OptionSet& options) {
+  for (const auto& e : entries()) {
+    if (e.name == name) return e.make(options);
+  }
+  std::ostringstream msg;
+  msg << "unknown model '" << name << "' (known:";
+  for (const auto& e : entries()) msg << ' ' << e.name;
+  msg << "; combine with '+', e.g. oren-nayar+torrance-sparrow)";
+  throw InputError(msg.str());
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::string current;
+  for (char c : s) {
+    if (c == sep) {
+      parts.push_back(current);
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  parts.push_back(current);
+  return parts;
+}
+
+}  // namespace
+
+std::vector<std::string> model_names() {
+  std::vector<std::string> names;
+  for (const auto& e : entries()) names.push_back(e.name);
+  return names;
+}
+
+std::unique_ptr<Model> make_model(const std::string& name, const OptionSet& options) {
+  if (name.find('+') == std::string::npos) return make_single(name, options);
+
+  const std::vector<std::string> parts = split(name, '+');
+  std::vector<std::string> prefixes;
+  std::map<std::string, int> seen;
+  for (const auto& part : parts) {
+    if (part.empty()) throw InputError("empty component in composite model name '" + name + "'");
+    const int count = ++seen[part];
+    prefixes.push_back(count == 1 ? part : part + "#" + std::to_string(count));
+  }
+  // Distribute options: "prefix.option" to one component, plain "option" to all that declare it.
+  std::vector<OptionSet> component_options(parts.size());
+  std::set<std::string> used;
+  for (const auto& [key, value] : options) {
+    const auto dot = key.find('.');
+    if (dot != std::string::npos) {
+      const std::string prefix = key.substr(0, dot);
+      bool found = false;
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        if (prefixes[k] == prefix) {
+          component_options[k][key.substr(dot + 1)] = value;
+          found = true;
+        }
+      }
+      if (!found) throw InputError("option '" + key + "': no component '" + prefix + "' in model '" + name + "'");
+      continue;
+    }
+    bool found = false;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const auto declared = make_single(parts[k], {})->description().options;
+      for (const auto& o : declared) {
+        if (o.name == key) {
+          component_options[k][key] = value;
+          found = true;
+        }
+      }
+    }
+    if (!found) throw InputError("no component of model '" + name + "' has option '" + key + "'");
+  }
+  std::vector<std::unique_ptr<Model>> components;
+  for (std::size_t k = 0; k < parts.size(); ++k) components.push_back(make_single(parts[k], component_options[k]));
+  return std::make_unique<CompositeModel>(std::move(components), prefixes);
+}
+
+std::vector<double> parameters_from_assignments(const ModelDescription& description,
+                                                const std::map<std::string, double>& assignments) {
+  std::vector<double> values = description.default_parameters();
+  for (const auto& [key, value] : assignments) {
+    const auto index = description.parameter_index(key);
+    if (!index) {
+      std::ostringstream msg;
+      msg << "model '" << description.name << "' has no parameter '" << key << "' (parameters:";
+      for (const auto& p : description.parameters) msg << ' ' << p.name;
+      msg << ')';
+      throw InputError(msg.str());
+    }
+    values[*index] = value;
+  }
+  check_parameters(description, values);
+  return values;
+}
+
+}  // namespace roadbrdf
