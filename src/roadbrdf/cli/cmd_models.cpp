@@ -18,6 +18,7 @@ nlohmann::json describe_json(const ModelDescription& d) {
   j["citation"] = d.citation;
   j["reciprocal"] = d.reciprocal;
   j["energy_conserving"] = d.energy_conserving;
+  j["non_negative"] = d.non_negative;
   j["has_delta"] = d.has_delta;
   j["parameters"] = nlohmann::json::array();
   for (const auto& p : d.parameters) {

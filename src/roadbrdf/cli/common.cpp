@@ -53,6 +53,20 @@ ModelWithParameters model_from_command_line(const std::string& name, const std::
   return m;
 }
 
+SpectralModel spectral_model_from_command_line(const std::string& argument,
+                                               const std::vector<std::string>& parameter_items,
+                                               const std::vector<std::string>& option_items,
+                                               const std::string& fit_model) {
+  if (is_fit_file_argument(argument)) {
+    if (!parameter_items.empty() || !option_items.empty()) {
+      throw InputError("-p/--option cannot be combined with a fit file ('" + argument + "')");
+    }
+    return read_fit_file(argument, fit_model);
+  }
+  ModelWithParameters m = model_from_command_line(argument, parameter_items, option_items);
+  return SpectralModel(std::shared_ptr<const Model>(std::move(m.model)), std::move(m.parameters));
+}
+
 void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,
                      std::vector<std::string>& option_items) {
   command->add_option("-p,--parameter", parameter_items, "Model parameter NAME=VALUE (repeatable); defaults otherwise")

@@ -9,6 +9,7 @@
 
 #include "roadbrdf/core/parameters.h"
 #include "roadbrdf/models/model.h"
+#include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::cli {
 
@@ -23,6 +24,14 @@ struct ModelWithParameters {
 };
 ModelWithParameters model_from_command_line(const std::string& name, const std::vector<std::string>& parameter_items,
                                             const std::vector<std::string>& option_items);
+
+// A model or a fit file, as accepted by every command that takes "MODEL -p ... | FIT.json":
+// an argument ending in ".json" is a fit file (then -p/--option are refused), else a model name.
+// `fit_model` selects a fit inside the file (default: the best-ranked one).
+SpectralModel spectral_model_from_command_line(const std::string& argument,
+                                               const std::vector<std::string>& parameter_items,
+                                               const std::vector<std::string>& option_items,
+                                               const std::string& fit_model = "");
 
 // Adds the usual "-p NAME=VALUE" and "--option NAME=VALUE" flags to a sub-command.
 void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,

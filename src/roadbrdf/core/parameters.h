@@ -42,6 +42,7 @@ struct ModelDescription {
   OptionSet option_values;  // the resolved options (defaults filled in)
   bool reciprocal = true;
   bool energy_conserving = true;
+  bool non_negative = true;  // f >= 0 for every geometry and every parameter set inside the bounds
   bool has_delta = false;   // has an ideal specular part, handled separately from the smooth BRDF
 
   // Index of a parameter by name, or nullopt.

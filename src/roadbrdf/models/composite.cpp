@@ -19,6 +19,7 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
     name += (k ? "+" : "") + c.name;
     d.summary += (k ? " + " : " ") + c.summary;
     d.reciprocal = d.reciprocal && c.reciprocal;
+    d.non_negative = d.non_negative && c.non_negative;
     d.has_delta = d.has_delta || c.has_delta;
     const std::string& prefix = prefixes[k];
     d.parameters.push_back({prefix + ".weight", "1", "weight of the " + c.name + " component", 1.0, 0.0, 1.0e6,

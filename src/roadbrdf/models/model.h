@@ -122,7 +122,7 @@ class ModelAdapter final : public Model {
     d.name = M::kName;
     d.options = M::options();
     d.option_values = resolved;
-    d.has_delta = HasDeltaPart<M>;
+    d.has_delta = d.has_delta || HasDeltaPart<M>;
     return d;
   }
 
