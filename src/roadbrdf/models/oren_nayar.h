@@ -23,10 +23,13 @@ struct OrenNayar {
   static constexpr int kMaxParameters = 2;
   enum Parameter { kAlbedo = 0, kSigma = 1 };
 
-  // Largest sigma for which the full model stays non-negative at every geometry and albedo
-  // (the direct term's cos(dphi) C2 tan(beta) goes below -C1 near grazing forward geometries for
-  // rougher surfaces; checked by the non-negativity test). The qualitative form has no such limit.
-  static constexpr double kMaxSigmaFull = 0.6;
+  // Upper bound of sigma for the full model. The paper's fitted direct term goes negative near
+  // grazing forward geometries (cos(dphi) = -1, theta_i = theta_r -> 90 deg) once sigma exceeds
+  // about 0.67 rad (38 deg): there cos(dphi) C2 tan(beta) -> -(6/pi) C2_base, which overtakes C1.
+  // 0.65 rad keeps f >= 0 at every geometry and albedo (checked by the non-negativity test) and
+  // still covers the paper's fits (plaster 30 deg, white sand 35 deg). The qualitative form has
+  // no such limit.
+  static constexpr double kMaxSigmaFull = 0.65;
   static constexpr double kMaxSigmaQualitative = 1.5707963267948966;
 
   static std::vector<OptionInfo> options() {
