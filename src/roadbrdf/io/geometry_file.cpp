@@ -57,7 +57,7 @@ GeometryTable read_geometry_file(const std::string& path) {
                                                    table.header.size()));
     }
     double angles[4];
-    for (int k = 0; k < 4; ++k) angles[k] = reader.number(cells[angle_columns[k]], "angle in degrees");
+    for (int k = 0; k < 4; ++k) angles[k] = reader.number(cells[angle_columns[k]], "number (angle in degrees)");
     try {
       table.geometries.push_back(geometry_from_angle_values(table.convention, angles));
     } catch (const FileError&) {

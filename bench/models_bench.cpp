@@ -1,0 +1,79 @@
+// Batch evaluation speed of every registered model (issue 2):
+//   <model>/geometries:100000/wavelengths:1   and   <model>/geometries:1000/wavelengths:2151
+// items_per_second = BRDF evaluations per second on one core.
+// Run: build/bench/models_bench --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/models/registry.h"
+
+namespace {
+
+using namespace roadbrdf;
+
+std::vector<Geometry> random_geometries(std::size_t n) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Geometry> g;
+  g.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    g.push_back(geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)), 2 * kPi * u(rng)));
+  }
+  return g;
+}
+
+void bench_model(benchmark::State& state, const std::string& name, const OptionSet& options) {
+  const auto model = make_model(name, options);
+  const std::size_t n_geometries = static_cast<std::size_t>(state.range(0));
+  const std::size_t n_wavelengths = static_cast<std::size_t>(state.range(1));
+  const std::vector<Geometry> geometries = random_geometries(n_geometries);
+  // Default parameters, with the linear amplitudes varied a little across wavelengths.
+  const std::vector<double> defaults = model->description().default_parameters();
+  std::vector<double> params;
+  for (std::size_t w = 0; w < n_wavelengths; ++w) {
+    for (std::size_t q = 0; q < defaults.size(); ++q) {
+      const ParameterInfo& info = model->description().parameters[q];
+      double v = defaults[q];
+      if (info.linear) v = info.lower + (info.upper - info.lower) * (0.2 + 0.6 * double(w % 7) / 7.0);
+      if (!std::isfinite(v)) v = defaults[q];
+      params.push_back(v);
+    }
+  }
+  std::vector<double> out(n_geometries * n_wavelengths);
+  for (auto _ : state) {
+    model->evaluate_batch(geometries.data(), n_geometries, params.data(), n_wavelengths, out.data());
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * n_geometries * n_wavelengths));
+}
+
+struct Registration {
+  Registration() {
+    std::vector<std::pair<std::string, OptionSet>> variants;
+    for (const std::string& name : model_names()) variants.push_back({name, {}});
+    // The issue's reference configuration for torrance-sparrow, and the report's composites.
+    for (const std::string& name : model_names()) {
+      if (name == "torrance-sparrow") {
+        variants.push_back({name, {{"profile", "smith"}, {"distribution", "ggx"}}});
+        variants.push_back({"oren-nayar+torrance-sparrow", {}});
+        variants.push_back({"lambert+torrance-sparrow", {}});
+      }
+    }
+    for (const auto& [name, options] : variants) {
+      std::string label = name;
+      for (const auto& [k, v] : options) label += "," + k + "=" + v;
+      benchmark::RegisterBenchmark(label.c_str(), bench_model, name, options)
+          ->ArgNames({"geometries", "wavelengths"})
+          ->Args({100000, 1})
+          ->Args({1000, 2151})
+          ->Unit(benchmark::kMillisecond);
+    }
+  }
+} registration;
+
+}  // namespace
