@@ -1,0 +1,172 @@
+// pybind11 module `roadbrdf._roadbrdf`: the C++ core exposed to Python. The public, documented API
+// is the pure-Python package `roadbrdf` (python/roadbrdf/__init__.py), which wraps these functions.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "binding.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/models/registry.h"
+#include "roadbrdf/models/spectral_model.h"
+
+namespace py = pybind11;
+using namespace roadbrdf;
+
+namespace {
+
+py::dict parameter_dict(const ParameterInfo& p) {
+  py::dict d;
+  d["name"] = p.name;
+  d["unit"] = p.unit;
+  d["description"] = p.description;
+  d["default"] = p.default_value;
+  d["lower"] = p.lower;
+  d["upper"] = p.upper;
+  d["spectral"] = p.spectral;
+  d["linear"] = p.linear;
+  return d;
+}
+
+py::dict description_dict(const ModelDescription& md) {
+  py::dict d;
+  d["name"] = md.name;
+  d["summary"] = md.summary;
+  d["citation"] = md.citation;
+  d["reciprocal"] = md.reciprocal;
+  d["energy_conserving"] = md.energy_conserving;
+  d["non_negative"] = md.non_negative;
+  d["has_delta"] = md.has_delta;
+  py::list params;
+  for (const auto& p : md.parameters) params.append(parameter_dict(p));
+  d["parameters"] = params;
+  py::list options;
+  for (const auto& o : md.options) {
+    py::dict od;
+    od["name"] = o.name;
+    od["description"] = o.description;
+    od["values"] = o.values;
+    od["default"] = o.default_value;
+    options.append(od);
+  }
+  d["options"] = options;
+  d["option_values"] = md.option_values;
+  return d;
+}
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Evaluate at flattened, already-broadcast inputs: angles in degrees (n values each) and a
+// parameter matrix n x P. One C++ loop, no Python per element.
+Array evaluate_flat(const Model& model, const Array& theta_i, const Array& phi_i, const Array& theta_r,
+                    const Array& phi_r, const Array& parameters) {
+  const py::ssize_t n = theta_i.size();
+  const auto P = static_cast<py::ssize_t>(model.parameter_count());
+  if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || parameters.size() != n * P) {
+    throw InputError("internal: inputs of evaluate_flat do not have matching sizes");
+  }
+  Array out(n);
+  const double* ti = theta_i.data();
+  const double* pi = phi_i.data();
+  const double* tr = theta_r.data();
+  const double* pr = phi_r.data();
+  const double* p = parameters.data();
+  double* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    for (py::ssize_t k = 0; k < n; ++k) {
+      o[k] = model.evaluate(p + k * P, geometry_from_degrees(ti[k], pi[k], tr[k], pr[k]));
+    }
+  }
+  return out;
+}
+
+// Spectral model at flattened, broadcast inputs: angles in degrees and wavelengths in nm.
+Array evaluate_spectral_flat(const SpectralModel& model, const Array& theta_i, const Array& phi_i,
+                             const Array& theta_r, const Array& phi_r, const Array& wavelength) {
+  const py::ssize_t n = theta_i.size();
+  if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || wavelength.size() != n) {
+    throw InputError("internal: inputs of evaluate_flat do not have matching sizes");
+  }
+  Array out(n);
+  const double* ti = theta_i.data();
+  const double* pi = phi_i.data();
+  const double* tr = theta_r.data();
+  const double* pr = phi_r.data();
+  const double* wl = wavelength.data();
+  double* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    double last = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> p;
+    for (py::ssize_t k = 0; k < n; ++k) {
+      if (!(wl[k] == last)) {
+        p = model.parameters_at(wl[k]);
+        last = wl[k];
+      }
+      o[k] = model.model().evaluate(p.data(), geometry_from_degrees(ti[k], pi[k], tr[k], pr[k]));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_roadbrdf, m) {
+  m.doc() = "roadbrdf C++ core (use the `roadbrdf` package instead of this module)";
+
+  // InputError and FileError become roadbrdf.InputError (a ValueError) with the CLI's message.
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(e.what());
+    }
+  });
+
+  m.def("model_names", &model_names, "Names of the single (non-composite) models.");
+
+  py::class_<Model, std::shared_ptr<Model>>(m, "Model")
+      .def_property_readonly("name", &Model::name)
+      .def_property_readonly("description", [](const Model& model) { return description_dict(model.description()); })
+      .def_property_readonly("parameter_names",
+                             [](const Model& model) {
+                               std::vector<std::string> names;
+                               for (const auto& p : model.description().parameters) names.push_back(p.name);
+                               return names;
+                             })
+      .def("evaluate_flat", &evaluate_flat)
+      .def("check_parameters", [](const Model& model, const std::vector<double>& values) {
+        check_parameters(model.description(), values);
+      })
+      .def("delta_reflectance", [](const Model& model, const std::vector<double>& p, double cos_theta_i) {
+        return model.delta_reflectance(p.data(), cos_theta_i);
+      });
+
+  m.def(
+      "make_model",
+      [](const std::string& name, const OptionSet& options) { return std::shared_ptr<Model>(make_model(name, options)); },
+      py::arg("name"), py::arg("options") = OptionSet{});
+
+  py::class_<SpectralModel>(m, "SpectralModel")
+      .def_property_readonly("model", [](const SpectralModel& s) { return std::const_pointer_cast<Model>(s.model_ptr()); })
+      .def_property_readonly("wavelengths", &SpectralModel::wavelengths)
+      .def_property_readonly("is_spectral", &SpectralModel::is_spectral)
+      .def("parameters_at", &SpectralModel::parameters_at)
+      .def("evaluate_flat", &evaluate_spectral_flat);
+  m.def("read_fit_file", &read_fit_file, py::arg("path"), py::arg("model") = "");
+
+  m.def("road_to_zenith_azimuth", [](double gamma, double alpha, double beta, double delta) {
+    const Geometry g = geometry_from_road_angles({gamma, alpha, beta, delta});
+    return py::make_tuple(rad_to_deg(g.theta_i), rad_to_deg(g.phi_i), rad_to_deg(g.theta_r), rad_to_deg(g.phi_r));
+  });
+
+  roadbrdf::python::bind_extensions(m);
+}

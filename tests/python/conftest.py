@@ -1,0 +1,26 @@
+import os
+import pathlib
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture
+def cli():
+    """Run the roadbrdf program (path from $ROADBRDF_CLI, set by ctest) and return stdout."""
+    exe = os.environ.get("ROADBRDF_CLI", str(ROOT / "build" / "roadbrdf"))
+
+    def run(*args, check=True):
+        result = subprocess.run([exe, *map(str, args)], capture_output=True, text=True)
+        if check and result.returncode != 0:
+            raise AssertionError(f"roadbrdf {' '.join(map(str, args))} failed: {result.stderr}")
+        return result
+
+    return run
+
+
+@pytest.fixture
+def root():
+    return ROOT

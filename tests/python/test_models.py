@@ -1,0 +1,63 @@
+import math
+
+import numpy as np
+import pytest
+
+import roadbrdf
+
+
+def test_model_metadata_matches_cli(cli):
+    import json
+    from_cli = json.loads(cli("models", "--json").stdout)
+    from_python = roadbrdf.models()
+    assert [m["name"] for m in from_cli] == [m["name"] for m in from_python]
+    for a, b in zip(from_cli, from_python):
+        assert [p["name"] for p in a["parameters"]] == [p["name"] for p in b["parameters"]]
+        assert [(p["lower"], p["upper"], p["default"]) for p in a["parameters"]] == \
+               [(p["lower"], p["upper"], p["default"]) for p in b["parameters"]]
+
+
+def test_lambert_closed_form_and_broadcasting():
+    m = roadbrdf.Model("lambert")
+    theta_r = np.linspace(0, 89, 7)
+    albedo = np.array([[0.1], [0.5]])
+    f = m.evaluate(30, 0, theta_r, 180, albedo=albedo)
+    assert f.shape == (2, 7)
+    np.testing.assert_allclose(f, np.broadcast_to(albedo / math.pi, (2, 7)), rtol=0, atol=1e-15)
+    assert isinstance(m(0, 0, 0, 0), float)
+
+
+@pytest.mark.parametrize("name", roadbrdf.model_names())
+def test_python_equals_cli(cli, name):
+    m = roadbrdf.Model(name)
+    for ti, pi, tr, pr in [(0, 0, 0, 0), (30, 0, 45, 180), (60, 10, 20, 100), (80, 0, 80, 0)]:
+        expected = float(cli("eval", name, "--theta-i", ti, "--phi-i", pi, "--theta-r", tr, "--phi-r", pr).stdout)
+        assert m.evaluate(ti, pi, tr, pr) == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
+def test_composite_parameters_by_dict():
+    m = roadbrdf.Model("lambert+lambert")
+    f = m.evaluate(10, 0, 10, 180, params={"lambert.albedo": 0.2, "lambert#2.albedo": 0.4,
+                                           "lambert#2.weight": 0.5})
+    assert f == pytest.approx((0.2 + 0.5 * 0.4) / math.pi, abs=1e-15)
+
+
+def test_errors_raise_with_cli_messages(cli):
+    with pytest.raises(roadbrdf.InputError, match="unknown model 'nope'"):
+        roadbrdf.Model("nope")
+    with pytest.raises(ValueError, match="outside its bounds"):
+        roadbrdf.Model("lambert").evaluate(0, 0, 0, 0, albedo=2.0)
+    with pytest.raises(roadbrdf.InputError, match="no parameter 'rho'"):
+        roadbrdf.Model("lambert").evaluate(0, 0, 0, 0, rho=0.5)
+    with pytest.raises(roadbrdf.InputError, match="outside the zenith range"):
+        roadbrdf.Model("lambert").evaluate(95, 0, 0, 0)
+    r = cli("eval", "nope", "--theta-i", 0, "--phi-i", 0, "--theta-r", 0, "--phi-r", 0, check=False)
+    assert "unknown model 'nope'" in r.stderr
+
+
+def test_road_angle_conversion_matches_core():
+    ti, pi, tr, pr = roadbrdf.road_to_zenith_azimuth(60, 1, 0, 0)
+    assert (float(ti), float(tr)) == (60.0, 89.0)
+    assert float(pr) - float(pi) == pytest.approx(180.0)
+    assert roadbrdf._roadbrdf.road_to_zenith_azimuth(35, 12, 45, 20) == pytest.approx(
+        tuple(float(x) for x in roadbrdf.road_to_zenith_azimuth(35, 12, 45, 20)))
