@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/models/registry.h"
 
@@ -27,20 +28,83 @@ struct Variant {
   std::string label;
 };
 
+// Every combination of a model's enumerated option values (numeric options keep their default).
+std::vector<OptionSet> option_combinations(const ModelDescription& d) {
+  std::vector<OptionSet> combos = {{}};
+  for (const OptionInfo& o : d.options) {
+    if (o.values.empty()) continue;
+    std::vector<OptionSet> next;
+    for (const OptionSet& c : combos) {
+      for (const std::string& v : o.values) {
+        OptionSet e = c;
+        e[o.name] = v;
+        next.push_back(e);
+      }
+    }
+    combos = next;
+  }
+  return combos;
+}
+
 // Defaults, then each enumerated option set to each of its non-default values (one at a time).
+// Where a value is only valid together with other non-default options (e.g. a distribution that
+// needs another masking profile), the first valid combination containing it is used.
 std::vector<Variant> all_variants() {
   std::vector<Variant> variants;
   for (const std::string& name : model_names()) {
     const ModelDescription d = make_model(name)->description();
     variants.push_back({name, {}, name});
+    const std::vector<OptionSet> combos = option_combinations(d);
     for (const OptionInfo& o : d.options) {
       for (const std::string& v : o.values) {
         if (v == o.default_value) continue;
-        variants.push_back({name, {{o.name, v}}, name + "_" + o.name + "_" + v});
+        OptionSet chosen = {{o.name, v}};
+        bool valid = true;
+        try {
+          make_model(name, chosen);
+        } catch (const InputError&) {
+          valid = false;
+          for (const OptionSet& c : combos) {
+            if (c.at(o.name) != v) continue;
+            try {
+              make_model(name, c);
+              chosen = c;
+              valid = true;
+              break;
+            } catch (const InputError&) {
+            }
+          }
+        }
+        if (!valid) continue;  // a value valid in no combination would be a bug caught below
+        std::string label = name;
+        for (const auto& [key, value] : chosen) label += "_" + key + "_" + value;
+        variants.push_back({name, chosen, label});
       }
     }
   }
   return variants;
+}
+
+TEST(ModelVariants, EveryOptionValueIsUsableInSomeCombination) {
+  for (const std::string& name : model_names()) {
+    const ModelDescription d = make_model(name)->description();
+    const std::vector<OptionSet> combos = option_combinations(d);
+    for (const OptionInfo& o : d.options) {
+      for (const std::string& v : o.values) {
+        bool usable = false;
+        for (const OptionSet& c : combos) {
+          if (c.at(o.name) != v) continue;
+          try {
+            make_model(name, c);
+            usable = true;
+            break;
+          } catch (const InputError&) {
+          }
+        }
+        EXPECT_TRUE(usable) << name << " option " << o.name << "=" << v << " is valid in no combination";
+      }
+    }
+  }
 }
 
 void PrintTo(const Variant& v, std::ostream* os) { *os << v.label; }

@@ -9,6 +9,15 @@
 // One include per model file (keep in display order).
 #include "roadbrdf/models/lambert.h"
 #include "roadbrdf/models/oren_nayar.h"
+#include "roadbrdf/models/ashikhmin_shirley.h"
+#include "roadbrdf/models/lafortune.h"
+#include "roadbrdf/models/retro_phong.h"
+#include "roadbrdf/models/simonot.h"
+#include "roadbrdf/models/torrance_sparrow.h"
+#include "roadbrdf/models/kelemen_szirmay_kalos.h"
+#include "roadbrdf/models/burley.h"
+#include "roadbrdf/models/hapke.h"
+#include "roadbrdf/models/ross_li.h"
 // [model-includes]
 
 namespace roadbrdf {
@@ -29,6 +38,15 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       entry<Lambert>(),
       entry<OrenNayar>(),
+      entry<AshikhminShirley>(),
+      entry<Simonot>(),
+      entry<Lafortune>(),
+      entry<RetroPhong>(),
+      entry<TorranceSparrow>(),
+      entry<KelemenSzirmayKalos>(),
+      entry<Burley>(),
+      entry<Hapke>(),
+      entry<RossLi>(),
       // [model-entries]
   };
   return table;

@@ -1,0 +1,136 @@
+// Flat interface over a Lambertian background ("interfaced Lambertian" facet).
+//
+// L. Simonot, "Photometric model of diffuse surfaces described as a distribution of interfaced
+// Lambertian facets", Appl. Opt. 48(30):5793-5801 (2009): the BRDF of one facet, i.e. a flat
+// dielectric interface (relative index eta = eta_1 / eta_0) over a Lambertian background of intrinsic
+// reflectance rho, with all the multiple reflections between background and interface summed.
+// Report section 3.3, eq. 3.19:
+//
+//   f = f_d + f_s
+//   f_d = rho (eta_0/eta_1)^2 (1 - R01(theta_i)) (1 - R01(theta_r)) / (pi (1 - rho r10))
+//   f_s = R01(theta_i) delta(w_r - mirror(w_i)) / cos(theta_r)        (ideal specular part)
+//   1 - r10 = (eta_0/eta_1)^2 (1 - r01),   r01 = int_0^{pi/2} R01(theta) sin(2 theta) d theta
+//
+// R01 is the exact unpolarised Fresnel reflectance (fresnel.h). The report's r01 integral lacks the
+// d theta (reference README "known errors"); it is the hemispherical (Lambertian-illumination)
+// reflectance of the interface seen from medium 0, r01 = int_0^1 R01(mu) 2 mu d mu, evaluated here by a
+// fixed 64-node Gauss-Legendre rule in mu = cos(theta) so that it is differentiable in eta (Jets pass
+// through). The integrand is analytic on [0, 1] for eta >= 1 (branch points at mu = +-i sqrt(eta^2 - 1)),
+// so the rule is accurate to rounding for eta in the bounds (checked against the closed form of the
+// diffuse Fresnel reflectance in the tests).
+//
+// Only the flat facet is implemented (the report's eq. 3.19); Simonot's distribution of rough
+// interfaced facets (roughness parameter) is not. The smooth part f_d is returned by operator(); the
+// ideal specular part by delta_reflectance() = R01(theta_i).
+//
+// Energy: the directional albedo is R01(theta_i) + (1 - R01(theta_i)) rho (1 - r10) / (1 - rho r10),
+// <= 1 for rho <= 1 and = 1 for rho = 1 (a flat interface over a white Lambertian absorbs nothing).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/core/parameters.h"
+#include "roadbrdf/models/fresnel.h"
+
+namespace roadbrdf {
+
+namespace simonot_detail {
+
+inline constexpr int kQuadratureNodes = 64;
+
+// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n from the usual asymptotic
+// initial guess; Abramowitz & Stegun 25.4.29). Computed once.
+struct GaussLegendre01 {
+  std::array<double, kQuadratureNodes> x{};
+  std::array<double, kQuadratureNodes> w{};
+  GaussLegendre01() {
+    const int n = kQuadratureNodes;
+    for (int i = 0; i < n; ++i) {
+      double t = std::cos(kPi * (i + 0.75) / (n + 0.5));
+      double dp = 1.0;
+      for (int iteration = 0; iteration < 100; ++iteration) {
+        double p0 = 1.0, p1 = t;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (t * p1 - p0) / (t * t - 1.0);
+        const double step = p1 / dp;
+        t -= step;
+        if (std::fabs(step) < 1e-16) break;
+      }
+      x[i] = 0.5 * (1.0 - t);
+      w[i] = 1.0 / ((1.0 - t * t) * dp * dp);  // = 0.5 * 2 / ((1 - t^2) P_n'(t)^2)
+    }
+  }
+};
+
+inline const GaussLegendre01& gauss_legendre_01() {
+  static const GaussLegendre01 rule;
+  return rule;
+}
+
+// r01 = int_0^1 R01(mu, eta) 2 mu d mu: reflectance of the interface under Lambertian illumination
+// from medium 0 (Simonot 2009; report section 3.3 with the missing d theta restored).
+template <typename T>
+T hemispherical_fresnel(const T& eta) {
+  const GaussLegendre01& rule = gauss_legendre_01();
+  T sum(0.0);
+  for (int k = 0; k < kQuadratureNodes; ++k) {
+    sum += (2.0 * rule.w[k] * rule.x[k]) * fresnel_dielectric(T(rule.x[k]), eta);
+  }
+  return sum;
+}
+
+}  // namespace simonot_detail
+
+struct Simonot {
+  static constexpr const char* kName = "simonot";
+  static constexpr int kMaxParameters = 2;
+  enum Parameter { kAlbedo = 0, kIor = 1 };
+
+  static std::vector<OptionInfo> options() { return {}; }
+  static ModelDescription describe(const OptionSet&) {
+    ModelDescription d;
+    d.summary = "Flat dielectric interface over a Lambertian background (Simonot interfaced Lambertian facet), "
+                "with ideal specular part";
+    d.citation = "Simonot, Appl. Opt. 48(30):5793 (2009), flat interfaced Lambertian facet; report eq. 3.19 "
+                 "(r01 integral with d theta restored)";
+    d.parameters = {
+        {"albedo", "1", "intrinsic reflectance rho of the Lambertian background under the interface", 0.5, 0.0, 1.0,
+         true, false},
+        {"ior", "1", "relative refractive index eta_1/eta_0 of the binder (medium 1) to the upper medium 0",
+         1.5, 1.0, 3.0, true, false},
+    };
+    d.reciprocal = true;
+    d.energy_conserving = true;  // albedo = R01 + (1 - R01) rho (1 - r10)/(1 - rho r10) <= 1 for rho <= 1
+    d.non_negative = true;
+    d.has_delta = true;
+    return d;
+  }
+  explicit Simonot(const OptionSet&) {}
+
+  template <typename T>
+  T operator()(const T* p, const Geometry& g) const {
+    const T& rho = p[kAlbedo];
+    const T& eta = p[kIor];
+    const T inv_eta2 = 1.0 / (eta * eta);  // (eta_0 / eta_1)^2
+    const T ti = 1.0 - fresnel_dielectric(T(g.cos_theta_i()), eta);
+    const T tr = 1.0 - fresnel_dielectric(T(g.cos_theta_r()), eta);
+    const T r01 = simonot_detail::hemispherical_fresnel(eta);
+    const T r10 = 1.0 - inv_eta2 * (1.0 - r01);
+    return rho * inv_eta2 * ti * tr / (kPi * (1.0 - rho * r10));
+  }
+
+  // Ideal specular part: R01(theta_i), the Fresnel reflectance of the flat interface.
+  double delta_reflectance(const double* p, double cos_theta_i) const {
+    return fresnel_dielectric(cos_theta_i, p[kIor]);
+  }
+};
+
+}  // namespace roadbrdf

@@ -1,0 +1,194 @@
+// Torrance-Sparrow / Cook-Torrance microfacet specular reflector:
+//   f = k_s F(theta'_i) G D(theta_h) / (4 cos theta_i cos theta_r)
+// Report eq. 3.7; Walter, Marschner, Li, Torrance, EGSR 2007, eq. 20 (with D normalised so that
+// int D cos dw = 1, eq. 4); Torrance & Sparrow, JOSA 57(9) 1967; Cook & Torrance, ACM TOG 1(1) 1982.
+//
+// Options
+//   profile      v-cavity: G = min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(l.h)) (Cook & Torrance 1982;
+//                report eq. 3.3 with its corrected G2 term, see reference README "known errors");
+//                smith: G from Lambda (report eq. 3.10; Heitz 2014 eqs. 98-99).
+//   masking      height-correlated (Heitz 2014 eq. 99, report eq. 3.10) | uncorrelated (G1 G1,
+//                Walter 2007 eq. 23); smith only.
+//   distribution gaussian (report eq. 3.4, sigma of the facet angle in rad; v-cavity only, no closed
+//                Smith Lambda exists) | beckmann (eq. 3.8) | ggx (eq. 3.14).
+//   fresnel      exact-dielectric (eq. 2.14) | schlick (eq. 2.15 with F0 = ((n-1)/(n+1))^2) |
+//                exact-conductor (eq. 2.14, n + ik) | schlick-conductor (eq. 2.16) | none (F = 1).
+//   lambda       exact (report eq. 3.12, erf form) | rational (eq. 3.13, Walter eq. 27); Beckmann+Smith only.
+// Everything is evaluated from the Geometry's vectors: no trigonometry (except the Gaussian D's acos).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/core/parameters.h"
+#include "roadbrdf/models/fresnel.h"
+#include "roadbrdf/models/microfacet.h"
+
+namespace roadbrdf {
+
+struct TorranceSparrow {
+  static constexpr const char* kName = "torrance-sparrow";
+  static constexpr int kMaxParameters = 4;
+  enum Parameter { kKs = 0, kRoughness = 1, kIor = 2, kExtinction = 3 };
+
+  enum class Profile { kVCavity, kSmith };
+  enum class Distribution { kGaussian, kBeckmann, kGgx };
+  enum class Fresnel { kExactDielectric, kSchlick, kExactConductor, kSchlickConductor, kNone };
+
+  static std::vector<OptionInfo> options() {
+    return {
+        {"profile", "microfacet profile: v-cavity (Torrance-Sparrow / Cook-Torrance G) or smith (Lambda-based G)",
+         {"smith", "v-cavity"}, "smith"},
+        {"masking", "Smith masking-shadowing: height-correlated 1/(1+L_i+L_r) or uncorrelated G1 G1 (smith only)",
+         {"height-correlated", "uncorrelated"}, "height-correlated"},
+        {"distribution", "normal distribution: gaussian (v-cavity only), beckmann, ggx",
+         {"ggx", "beckmann", "gaussian"}, "ggx"},
+        {"fresnel", "Fresnel term at the local angle theta'_i",
+         {"exact-dielectric", "schlick", "exact-conductor", "schlick-conductor", "none"}, "exact-dielectric"},
+        {"lambda", "Beckmann Smith Lambda: exact erf form or the rational approximation (beckmann+smith only)",
+         {"exact", "rational"}, "exact"},
+    };
+  }
+
+  struct Resolved {
+    Profile profile = Profile::kSmith;
+    bool height_correlated = true;
+    Distribution distribution = Distribution::kGgx;
+    Fresnel fresnel = Fresnel::kExactDielectric;
+    bool rational_lambda = false;
+  };
+
+  // Interpret (already resolved) options; throws InputError for combinations that make no sense.
+  static Resolved interpret(const OptionSet& o) {
+    Resolved r;
+    r.profile = o.at("profile") == "v-cavity" ? Profile::kVCavity : Profile::kSmith;
+    r.height_correlated = o.at("masking") == "height-correlated";
+    const std::string& d = o.at("distribution");
+    r.distribution = d == "gaussian" ? Distribution::kGaussian : d == "beckmann" ? Distribution::kBeckmann
+                                                                                : Distribution::kGgx;
+    const std::string& f = o.at("fresnel");
+    r.fresnel = f == "schlick"             ? Fresnel::kSchlick
+                : f == "exact-conductor"   ? Fresnel::kExactConductor
+                : f == "schlick-conductor" ? Fresnel::kSchlickConductor
+                : f == "none"              ? Fresnel::kNone
+                                           : Fresnel::kExactDielectric;
+    r.rational_lambda = o.at("lambda") == "rational";
+    if (r.profile == Profile::kSmith && r.distribution == Distribution::kGaussian) {
+      throw InputError(
+          "torrance-sparrow: distribution=gaussian has no Smith masking function; use profile=v-cavity "
+          "(or distribution=beckmann, the Gaussian-slope distribution, with profile=smith)");
+    }
+    if (r.rational_lambda && !(r.profile == Profile::kSmith && r.distribution == Distribution::kBeckmann)) {
+      throw InputError("torrance-sparrow: lambda=rational applies only to profile=smith with distribution=beckmann");
+    }
+    if (!r.height_correlated && r.profile != Profile::kSmith) {
+      throw InputError("torrance-sparrow: masking=uncorrelated applies only to profile=smith");
+    }
+    return r;
+  }
+
+  static bool is_conductor(Fresnel f) { return f == Fresnel::kExactConductor || f == Fresnel::kSchlickConductor; }
+
+  static ModelDescription describe(const OptionSet& options) {
+    const Resolved r = interpret(options);
+    ModelDescription d;
+    d.summary = "Torrance-Sparrow / Cook-Torrance microfacet specular reflection";
+    d.citation =
+        "Report eq. 3.7; Walter et al., EGSR 2007, eq. 20 (Smith: Heitz, JCGT 3(2) 2014, eqs. 98-99; "
+        "v-cavity: Cook & Torrance, ACM TOG 1982)";
+    d.parameters.push_back({"ks", "1", "specular weight k_s multiplying F G D / (4 cos_i cos_r)", 1.0, 0.0, 1.0, true,
+                            true});
+    if (r.distribution == Distribution::kGaussian) {
+      d.parameters.push_back({"roughness", "rad",
+                              "sigma: standard deviation of the facet angle theta_m (Gaussian, report eq. 3.4)", 0.2,
+                              0.002, 1.2, false, false});
+    } else {
+      d.parameters.push_back({"roughness", "1",
+                              std::string("alpha: RMS slope of the microfacets (") +
+                                  (r.distribution == Distribution::kBeckmann ? "Beckmann" : "GGX") +
+                                  " width parameter, dimensionless; ~ tan of a facet angle)",
+                              0.2, 0.002, 2.0, false, false});
+    }
+    if (r.fresnel == Fresnel::kNone) {
+      // no optical constants
+    } else if (is_conductor(r.fresnel)) {
+      d.parameters.push_back({"ior", "1", "real part n of the complex relative refractive index n + ik", 1.0, 0.02,
+                              10.0, true, false});
+      d.parameters.push_back({"k", "1", "extinction coefficient k of the relative refractive index n + ik", 6.5, 0.0,
+                              20.0, true, false});
+    } else {
+      d.parameters.push_back({"ior", "1", "relative refractive index n of the facets (real; e.g. 1.5 for bitumen/glass)",
+                              1.5, 1.0, 3.0, true, false});
+    }
+    d.energy_conserving = true;  // single scattering with normalised D and G <= 1, F <= 1, ks <= 1
+    return d;
+  }
+
+  explicit TorranceSparrow(const OptionSet& options) : r_(interpret(options)) {}
+
+  template <typename T>
+  T fresnel(const T* p, double cos_ih) const {
+    switch (r_.fresnel) {
+      case Fresnel::kExactDielectric:
+        return fresnel_dielectric(T(cos_ih), p[kIor]);
+      case Fresnel::kSchlick:
+        return fresnel_schlick(T(cos_ih), fresnel_f0(p[kIor]));
+      case Fresnel::kExactConductor:
+        return fresnel_conductor(T(cos_ih), p[kIor], p[kExtinction]);
+      case Fresnel::kSchlickConductor:
+        return fresnel_schlick_conductor(T(cos_ih), p[kIor], p[kExtinction]);
+      case Fresnel::kNone:
+        break;
+    }
+    return T(1.0);
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Geometry& g) const {
+    const microfacet::HalfVector h = microfacet::half_vector_of(g);
+    if (!h.valid) return T(0.0);
+    const double ci = g.wi.z;
+    const double cr = g.wr.z;
+    const T& alpha = p[kRoughness];
+
+    T d(0.0);
+    switch (r_.distribution) {
+      case Distribution::kGgx:
+        d = microfacet::ggx_d(h.cos_h, alpha);
+        break;
+      case Distribution::kBeckmann:
+        d = microfacet::beckmann_d(h.cos_h, alpha);
+        break;
+      case Distribution::kGaussian:
+        d = microfacet::gaussian_d(h.cos_h, alpha);
+        break;
+    }
+
+    T g_over_cos;
+    if (r_.profile == Profile::kVCavity) {
+      g_over_cos = T(microfacet::vcavity_g_over_cos(ci, cr, h.cos_h, h.cos_ih));
+    } else {
+      T li, lr;
+      if (r_.distribution == Distribution::kGgx) {
+        li = microfacet::ggx_cos_lambda(ci, alpha);
+        lr = microfacet::ggx_cos_lambda(cr, alpha);
+      } else if (r_.rational_lambda) {
+        li = microfacet::beckmann_cos_lambda_rational(ci, alpha);
+        lr = microfacet::beckmann_cos_lambda_rational(cr, alpha);
+      } else {
+        li = microfacet::beckmann_cos_lambda(ci, alpha);
+        lr = microfacet::beckmann_cos_lambda(cr, alpha);
+      }
+      g_over_cos = microfacet::smith_g2_over_cos(ci, cr, li, lr, r_.height_correlated);
+    }
+    return p[kKs] * fresnel(p, h.cos_ih) * d * g_over_cos * 0.25;
+  }
+
+ private:
+  Resolved r_;
+};
+
+}  // namespace roadbrdf
