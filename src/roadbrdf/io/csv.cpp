@@ -36,6 +36,28 @@ std::vector<CsvCell> split_cells(std::string_view line, char separator) {
   return cells;
 }
 
+std::vector<CsvCell> split_whitespace(std::string_view line) {
+  std::vector<CsvCell> cells;
+  std::size_t k = 0;
+  while (k < line.size()) {
+    while (k < line.size() && (line[k] == ' ' || line[k] == '\t' || line[k] == '\r')) ++k;
+    if (k >= line.size()) break;
+    const std::size_t b = k;
+    while (k < line.size() && line[k] != ' ' && line[k] != '\t' && line[k] != '\r') ++k;
+    cells.push_back({line.substr(b, k - b), static_cast<long>(b + 1)});
+  }
+  return cells;
+}
+
+bool parse_finite_double(std::string_view text, double& value) {
+  if (text.empty()) return false;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (*first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  return ec == std::errc() && ptr == last && std::isfinite(value);
+}
+
 CsvReader::CsvReader(std::string path) : path_(std::move(path)), in_(path_) {
   if (!in_) throw FileError(path_, 0, 0, "cannot open file for reading");
 }
@@ -48,6 +70,7 @@ bool CsvReader::next_row(std::vector<CsvCell>& cells) {
     if (text.empty()) continue;
     if (text.front() == '#') {
       comments_.emplace_back(text.substr(1));
+      comment_lines_.push_back(line_number_);
       continue;
     }
     cells = split_cells(line_);

@@ -28,6 +28,8 @@ class CsvReader {
   const std::string& path() const { return path_; }
   long line_number() const { return line_number_; }
   std::vector<std::string>& comments() { return comments_; }
+  // Line number of each entry of comments() (same order).
+  const std::vector<long>& comment_lines() const { return comment_lines_; }
 
   // Parse a cell as a finite double; throws FileError naming file, line, column and the text.
   double number(const CsvCell& cell, std::string_view what = "number") const;
@@ -39,10 +41,15 @@ class CsvReader {
   std::string line_;
   long line_number_ = 0;
   std::vector<std::string> comments_;
+  std::vector<long> comment_lines_;
 };
 
 // Split a line on a separator, trimming spaces; columns are 1-based.
 std::vector<CsvCell> split_cells(std::string_view line, char separator = ',');
+// Split a line on runs of spaces/tabs (for whitespace-separated tables); columns are 1-based.
+std::vector<CsvCell> split_whitespace(std::string_view line);
+// Parse a whole cell as a finite double (leading '+' allowed); false otherwise.
+bool parse_finite_double(std::string_view text, double& value);
 
 // Write a file atomically: the content goes to a temporary file in the same directory, which is
 // renamed over `path` only once complete, so a crash never leaves a half-written file.

@@ -1,0 +1,78 @@
+// roadbrdf calibrate SAMPLE.csv --reference REF.csv [--dark DARK.csv] --panel-reflectance RHO.txt
+//                    [--panel-brf BRF.txt] -o DATA.csv
+// f = (L_s - L_dark)/(L_ref - L_dark) * rho_ref(lambda)/pi (io/calibration.h).
+#include <fmt/core.h>
+
+#include <iostream>
+#include <optional>
+
+#include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/io/calibration.h"
+#include "roadbrdf/io/dataset_io.h"
+
+namespace roadbrdf::cli {
+
+namespace {
+
+struct CalibrateArgs {
+  std::string sample, reference, dark, panel, panel_brf;
+  std::optional<double> brf_start, brf_step;
+  std::string format = "wide";
+  std::string output;
+};
+
+void run(const CalibrateArgs& a) {
+  DatasetReadOptions radiance;
+  radiance.any_units = true;
+  CalibrationInput in;
+  in.sample = read_dataset(a.sample, radiance);
+  in.reference = read_dataset(a.reference, radiance);
+  if (!a.dark.empty()) in.dark = read_dataset(a.dark, radiance);
+  in.panel_reflectance = read_spectrum(a.panel);
+  if (!a.panel_brf.empty()) {
+    SpectrumReadOptions o;
+    o.first_wavelength = a.brf_start;
+    o.step = a.brf_step;
+    in.panel_brf = read_spectrum(a.panel_brf, o);
+  } else if (a.brf_start || a.brf_step) {
+    throw InputError("--panel-brf-start/--panel-brf-step need --panel-brf");
+  }
+  SpectralDataset out = calibrate(in);
+  out.metadata["sample_radiance"] = a.sample;
+  out.metadata["reference_radiance"] = a.reference;
+  if (!a.dark.empty()) out.metadata["dark"] = a.dark;
+  const DatasetFormat format = dataset_format_from_string(a.format);
+  if (a.output.empty() || a.output == "-") {
+    write_dataset(out, std::cout, format);
+  } else {
+    write_dataset(out, a.output, format);
+  }
+}
+
+}  // namespace
+
+void register_calibrate_command(CLI::App& app) {
+  static CalibrateArgs args;
+  auto* c = app.add_subcommand(
+      "calibrate",
+      "BRDF from sample and reference-panel radiances: f = (L_s - L_dark)/(L_ref - L_dark) x rho_ref/pi");
+  c->add_option("sample", args.sample, "Sample radiances, dataset CSV (any units; sigma_<nm> columns optional)")
+      ->required();
+  c->add_option("--reference", args.reference,
+                "Reference-panel radiances: same geometries as the sample, or a single row used for every geometry")
+      ->required();
+  c->add_option("--dark", args.dark, "Dark signal: same geometries, or a single row (default: none)");
+  c->add_option("--panel-reflectance", args.panel,
+                "Calibrated panel reflectance rho_ref: wavelength [nm], value [, sigma] (e.g. Spectralon_Num4.txt)")
+      ->required();
+  c->add_option("--panel-brf", args.panel_brf,
+                "Measured BRF of the panel at the measurement geometry (replaces rho_ref: non-Lambertian correction)");
+  c->add_option("--panel-brf-start", args.brf_start, "First wavelength of a one-column --panel-brf file [nm]");
+  c->add_option("--panel-brf-step", args.brf_step, "Wavelength step of a one-column --panel-brf file [nm]");
+  c->add_option("--format", args.format, "Output format: wide (default) or long");
+  c->add_option("-o,--output", args.output, "Output BRDF dataset CSV (default: standard output)");
+  c->callback([] { run(args); });
+}
+
+}  // namespace roadbrdf::cli

@@ -1,0 +1,68 @@
+// roadbrdf check DATA.csv [--json]: quality report (io/quality.h).
+#include <fmt/core.h>
+
+#include <iostream>
+
+#include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/io/calibration.h"
+#include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/quality.h"
+
+namespace roadbrdf::cli {
+
+namespace {
+
+struct CheckArgs {
+  std::string data;
+  bool json = false;
+  bool average_duplicates = false;
+  std::string panel;
+  QualityOptions options;
+};
+
+void run(CheckArgs& a) {
+  DatasetReadOptions read;
+  read.allow_missing = true;  // counted in the report
+  read.average_duplicates = a.average_duplicates;
+  const SpectralDataset d = read_dataset(a.data, read);
+  QualityOptions o = a.options;
+  if (!a.panel.empty()) o.panel_reflectance = read_spectrum(a.panel);
+  const QualityReport r = check_dataset(d, o);
+  if (a.json) {
+    nlohmann::json j = quality_report_json(d, r);
+    j["file"] = a.data;
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << a.data << '\n' << quality_report_text(d, r);
+  }
+}
+
+}  // namespace
+
+void register_check_command(CLI::App& app) {
+  static CheckArgs args;
+  auto* c = app.add_subcommand("check",
+                               "Quality report of a dataset: angular coverage, negative/missing values, reciprocity, "
+                               "noisy bands, outlier geometries, reference-panel validation");
+  c->add_option("data", args.data, "Dataset CSV (wide or long)")->required();
+  c->add_flag("--json", args.json, "Machine-readable report");
+  c->add_flag("--average-duplicates", args.average_duplicates, "Average rows with the same geometry (else an error)");
+  c->add_option("--panel-reflectance", args.panel,
+                "The dataset is a reference panel: compare it with rho/pi, rho from this file (wavelength [nm], "
+                "reflectance [, sigma])");
+  c->add_option("--tolerance", args.options.angle_tolerance_deg, "Angle tolerance of reciprocity pairs [deg]");
+  c->add_flag("--exact-reciprocity", args.options.exact_reciprocity,
+              "Pair geometries by exchanged directions (default: exchanged zenith angles, same |dphi|: isotropic)");
+  c->add_option("--reciprocity-threshold", args.options.reciprocity_threshold,
+                "Relative disagreement above which a reciprocity pair is flagged");
+  c->add_option("--snr-threshold", args.options.snr_threshold, "Signal-to-noise ratio below which a band is noisy");
+  c->add_option("--noise-window", args.options.noise_window, "Wavelengths on each side pooled in the noise estimate");
+  c->add_option("--neighbours", args.options.neighbours, "Angular neighbours compared with each geometry");
+  c->add_option("--outlier-threshold", args.options.outlier_threshold, "Robust score above which a geometry is an outlier");
+  c->add_option("--outlier-min-ratio", args.options.outlier_min_ratio,
+                "Minimum ratio to the neighbours' median for an outlier");
+  c->callback([] { run(args); });
+}
+
+}  // namespace roadbrdf::cli

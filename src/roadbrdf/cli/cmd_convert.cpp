@@ -1,0 +1,96 @@
+// roadbrdf convert INPUT [--from wide|long|curet|alta] [--to wide|long] -o OUT.csv
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/io/alta.h"
+#include "roadbrdf/io/curet.h"
+#include "roadbrdf/io/dataset_io.h"
+
+namespace roadbrdf::cli {
+
+namespace {
+
+struct ConvertArgs {
+  std::string input;
+  std::string from = "auto";
+  std::string to = "wide";
+  std::string curet_table;
+  int sample = -1;
+  double wavelength = 0.0;
+  std::string alta_output;
+  bool exclude_grazing = false;
+  bool average_duplicates = false;
+  std::string convention;
+  std::string output;
+};
+
+void run(const ConvertArgs& a) {
+  SpectralDataset d;
+  if (a.from == "auto" || a.from == "wide" || a.from == "long") {
+    DatasetReadOptions o;
+    o.average_duplicates = a.average_duplicates;
+    d = read_dataset(a.input, o);
+  } else if (a.from == "curet") {
+    if (a.sample < 0) {
+      std::string list;
+      for (int s : curet_sample_numbers(a.input)) list += fmt::format("{}{}", list.empty() ? "" : " ", s);
+      throw InputError("give --sample N for a CUReT file (samples present: " + list + ")");
+    }
+    const std::string table = a.curet_table.empty()
+                                  ? (std::filesystem::path(a.input).parent_path() / "table.txt").string()
+                                  : a.curet_table;
+    CuretReadOptions o;
+    if (a.wavelength > 0) o.nominal_wavelength_nm = a.wavelength;
+    d = read_curet(a.input, table, a.sample, o);
+  } else if (a.from == "alta") {
+    AltaReadOptions o;
+    o.wavelength_nm = a.wavelength;
+    o.assumed_output = a.alta_output;
+    o.exclude_grazing = a.exclude_grazing;
+    o.average_duplicates = a.average_duplicates;
+    d = read_alta(a.input, o);
+  } else {
+    throw InputError("--from: unknown format '" + a.from + "' (auto, wide, long, curet, alta)");
+  }
+  if (a.convention == "road") {
+    d.convention = AngleConvention::kRoad;
+  } else if (a.convention == "zenith") {
+    d.convention = AngleConvention::kZenithAzimuth;
+  } else if (!a.convention.empty()) {
+    throw InputError("--convention: expected zenith or road, got '" + a.convention + "'");
+  }
+  const DatasetFormat format = dataset_format_from_string(a.to);
+  if (a.output.empty() || a.output == "-") {
+    write_dataset(d, std::cout, format);
+  } else {
+    write_dataset(d, a.output, format);
+  }
+}
+
+}  // namespace
+
+void register_convert_command(CLI::App& app) {
+  static ConvertArgs args;
+  auto* c = app.add_subcommand("convert", "Convert a dataset between wide/long CSV, and from CUReT or ALTA files");
+  c->add_option("input", args.input, "Input file (for CUReT: abrdf.dat)")->required();
+  c->add_option("--from", args.from, "Input format: auto (wide or long CSV), wide, long, curet, alta");
+  c->add_option("--to", args.to, "Output format: wide (default) or long");
+  c->add_option("--curet-table", args.curet_table, "CUReT geometry table (default: table.txt next to the input)");
+  c->add_option("--sample", args.sample, "CUReT sample number (first column of abrdf.dat)");
+  c->add_option("--wavelength", args.wavelength,
+                "Wavelength [nm] to store single-channel data at (ALTA: required; CUReT: default 550)");
+  c->add_option("--alta-output", args.alta_output,
+                "ALTA output unit when the file lacks #PARAM_OUT: INV_STERADIAN or INV_STERADIAN_COSINE_FACTOR");
+  c->add_flag("--exclude-grazing", args.exclude_grazing,
+              "ALTA BRDF x cos(theta_v): leave out (and report) rows at grazing view, which cannot be converted");
+  c->add_flag("--average-duplicates", args.average_duplicates, "Average rows with the same geometry (else an error)");
+  c->add_option("--convention", args.convention, "Angle columns of the output: zenith or road (default: as read)");
+  c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");
+  c->callback([] { run(args); });
+}
+
+}  // namespace roadbrdf::cli

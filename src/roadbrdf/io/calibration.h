@@ -1,0 +1,49 @@
+// Gonioreflectometer calibration against a reference panel (report section 5.2):
+//   f(geometry, lambda) = (L_sample - L_dark) / (L_ref - L_dark) * rho_ref(lambda) / pi
+// optionally with the panel's measured reflectance factor instead of the Lambertian rho_ref:
+//   f = (L_sample - L_dark) / (L_ref - L_dark) * BRF_panel(lambda) / pi
+// (the correction factor BRF_panel / rho_ref is recorded in the metadata).
+// rho_ref (and BRF_panel) are interpolated linearly onto the sample wavelengths; extrapolation is refused.
+// First-order uncertainty propagation with independent inputs, written with c = rho/pi, N = L_s - L_d,
+// D = L_ref - L_d:  df/dL_s = c/D,  df/dL_ref = -c N/D^2,  df/dL_d = c (N - D)/D^2,  df/drho = N/(pi D).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/io/dataset.h"
+
+namespace roadbrdf {
+
+// A tabulated spectrum: wavelength [nm], value, optional standard uncertainty.
+struct Spectrum {
+  std::vector<double> wavelengths;
+  std::vector<double> values;
+  std::vector<double> sigma;  // empty or same size
+  std::string source;
+};
+
+struct SpectrumReadOptions {
+  // For one-column files (values only, e.g. BRF_i10_e0.txt): wavelength of the first line and step [nm].
+  std::optional<double> first_wavelength;
+  std::optional<double> step;
+};
+
+// Read "wavelength value [sigma]" lines, separated by spaces, tabs or commas; '#' comments; an
+// optional non-numeric header line. Wavelengths must be strictly increasing. Throws FileError.
+Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& options = {});
+
+struct CalibrationInput {
+  SpectralDataset sample;            // sample radiances (any unit), N geometries
+  SpectralDataset reference;         // reference-panel radiances: same geometries, or a single row used for all
+  std::optional<SpectralDataset> dark;  // dark signal: same geometries, or a single row; none = 0
+  Spectrum panel_reflectance;        // rho_ref(lambda), dimensionless (e.g. Spectralon 8deg/h calibration)
+  std::optional<Spectrum> panel_brf; // optional measured BRF of the panel at the measurement geometry
+};
+
+// The calibrated BRDF [sr^-1] with propagated uncertainties. Throws InputError (mismatched
+// wavelengths or geometries, reference not above dark, extrapolation).
+SpectralDataset calibrate(const CalibrationInput& input);
+
+}  // namespace roadbrdf

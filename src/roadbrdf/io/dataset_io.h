@@ -1,0 +1,75 @@
+// Reading and writing spectral BRDF datasets (SpectralDataset, io/dataset.h) as CSV.
+//
+// Wide CSV (the default):
+//   # free comment lines
+//   # sample: bitumen            <- "# key: value" lines before the header are metadata
+//   # units: sr^-1               <- optional; only sr^-1 (BRDF) is accepted by read_dataset
+//   theta_i,phi_i,theta_r,phi_r,400,410,...,sigma_400,sigma_410,...
+//   (or gamma,alpha,beta,delta for the road convention; all angles in degrees)
+//   Each wavelength column is named by its value in nm; the wavelengths must be strictly
+//   increasing. The optional sigma_<nm> block holds standard uncertainties [sr^-1] and must list
+//   exactly the same wavelengths in the same order.
+//
+// Long CSV: the four angle columns plus wavelength,brdf[,sigma]; one row per (geometry, wavelength).
+//   Every geometry must have every wavelength exactly once.
+//
+// Both are streamed line by line. Every problem is reported as FileError (file:line:column and
+// the offending text); nothing is dropped silently. Negative BRDF values are kept, counted and
+// reported as a warning (measurement noise is real).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/io/dataset.h"
+
+namespace roadbrdf {
+
+enum class DatasetFormat { kWide, kLong };
+
+struct DatasetReadOptions {
+  // Two rows with the same four angles: error (default), or average them (sigma of the mean
+  // = sqrt(sum sigma^2)/n when sigmas are given; the count is recorded in metadata
+  // "averaged_duplicate_rows").
+  bool average_duplicates = false;
+  // Empty cells and "nan"/"NA" in BRDF columns: error (default), or kept as NaN (missing value,
+  // counted in the warning). Angles and wavelengths can never be missing.
+  bool allow_missing = false;
+  // Accept any "# units:" metadata (e.g. radiances read by `calibrate`); otherwise only sr^-1.
+  bool any_units = false;
+  // Where warnings go (negative values, missing values, averaged duplicates). Default: standard
+  // error, prefixed by "roadbrdf: warning: ".
+  std::function<void(const std::string&)> warn;
+};
+
+// Counts found while reading (also in the warnings).
+struct DatasetReadStats {
+  std::size_t negative_values = 0;
+  std::size_t missing_values = 0;
+  std::size_t averaged_duplicate_rows = 0;
+};
+
+// Read a wide or long CSV dataset: the format is detected from the header (a "wavelength" column
+// means long). Throws FileError.
+SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options = {});
+SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options, DatasetReadStats& stats);
+
+// Write wide or long CSV atomically (temporary file, then rename). Angles are written in the
+// dataset's convention, values with round-trip precision. Metadata keys become "# key: value"
+// lines ("units: sr^-1" is always written). Throws InputError / FileError.
+void write_dataset(const SpectralDataset& dataset, const std::string& path, DatasetFormat format = DatasetFormat::kWide);
+// Same to a stream (e.g. standard output).
+void write_dataset(const SpectralDataset& dataset, std::ostream& out, DatasetFormat format = DatasetFormat::kWide);
+
+// Parse "wide" / "long". Throws InputError.
+DatasetFormat dataset_format_from_string(const std::string& name);
+
+// The four angles (degrees) of a geometry in a convention, in the column order of that convention.
+void angle_values_of_geometry(const Geometry& g, AngleConvention convention, double out[4]);
+
+// Check the dataset's internal consistency (sizes, increasing wavelengths); throws InputError.
+void validate_dataset(const SpectralDataset& dataset);
+
+}  // namespace roadbrdf

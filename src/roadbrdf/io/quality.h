@@ -1,0 +1,103 @@
+// Quality report of a spectral BRDF dataset (`roadbrdf check`).
+//
+// - Angular coverage: incidence zenith angles, viewing zenith angles (and road observation angles
+//   alpha = 90 - theta_r), azimuth planes (beta = 180 - |dphi| folded to [0, 180]), forward
+//   (cos dphi < 0) / backward (cos dphi > 0) / in-plane counts.
+// - Negative and missing (NaN) values.
+// - Reciprocity: pairs (a, b) with theta_i(a) = theta_r(b), theta_r(a) = theta_i(b) and the same
+//   |dphi| (isotropic matching, default) or with w_i(a) = w_r(b), w_r(a) = w_i(b) (exact), within
+//   `angle_tolerance_deg`; disagreement = |sum_j (f_a - f_b)| / sum_j (|f_a| + |f_b|)/2 (spectrally
+//   integrated, so that random noise averages out), plus the largest per-wavelength value.
+// - Noisy spectral bands: the noise of each spectrum is estimated from its roughness along
+//   wavelength, r_j = f_j - (linear interpolation of f_(j-1), f_(j+1) at lambda_j); for white noise
+//   of standard deviation s and equal steps, var(r_j) = 1.5 s^2. Per wavelength,
+//   noise_j = 1.4826 * median_(geometries, +-window) |r| / sqrt(1.5) (robust), signal_j = median over
+//   geometries of |f_j|, and wavelengths with signal/noise < `snr_threshold` are flagged; adjacent
+//   flagged wavelengths form bands.
+// - Outlier geometries: the log spectral mean of each geometry is predicted from its `neighbours`
+//   nearest geometries in the isotropic angular coordinates (theta_i, theta_r cos dphi,
+//   theta_r |sin dphi|) [deg] by a local least-squares fit (quadratic without cross terms with
+//   >= 12 neighbours, linear with >= 5, else their median);
+//   residual = log(f / prediction), score = |residual - median| / (1.4826 * MAD of all residuals);
+//   flagged when score > `outlier_threshold` and the ratio exceeds `outlier_min_ratio`. Sharp
+//   physical peaks: a bright geometry within `specular_cone_deg` of the mirror direction is
+//   listed as a specular peak instead, and such geometries do not enter the other predictions.
+//   Remaining limitation: strong grazing-angle curvature on a coarse grid can still be flagged.
+// - Reference panel: with a panel reflectance rho(lambda), every value against rho/pi.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "roadbrdf/io/calibration.h"
+#include "roadbrdf/io/dataset.h"
+
+namespace roadbrdf {
+
+struct QualityOptions {
+  double angle_tolerance_deg = 0.5;
+  bool exact_reciprocity = false;        // match directions, not (theta_i, theta_r, |dphi|)
+  double reciprocity_threshold = 0.10;   // relative disagreement above which a pair is flagged
+  double snr_threshold = 20.0;
+  int noise_window = 2;                  // +- wavelengths pooled in the noise estimate
+  int neighbours = 16;
+  double outlier_threshold = 6.0;
+  double outlier_min_ratio = 1.6;
+  double neighbour_max_distance_deg = 40.0;
+  // Geometries whose w_r is within this angle of the mirror direction of w_i: a bright value there
+  // is reported as a specular peak, not an outlier, and they are not used to predict the others.
+  double specular_cone_deg = 25.0;
+  std::optional<Spectrum> panel_reflectance;  // validate a reference panel measured as a sample
+};
+
+struct ReciprocityPair {
+  std::size_t a = 0, b = 0;          // geometry indices
+  double disagreement = 0.0;         // spectrally integrated relative difference
+  double max_disagreement = 0.0;     // largest per-wavelength relative difference
+  bool flagged = false;
+};
+
+struct OutlierGeometry {
+  std::size_t index = 0;
+  double ratio = 1.0;   // spectral mean / median of the neighbours' spectral means
+  double score = 0.0;
+};
+
+struct NoisyBand {
+  double lower_nm = 0.0, upper_nm = 0.0;
+  double min_snr = 0.0;
+};
+
+struct PanelValidation {
+  std::vector<double> mean_relative_deviation;  // per geometry: mean over wavelengths of (f - rho/pi)/(rho/pi)
+  std::vector<double> max_abs_relative_deviation;
+  double overall_mean = 0.0;
+  double overall_max_abs = 0.0;
+};
+
+struct QualityReport {
+  std::size_t geometry_count = 0, wavelength_count = 0;
+  double wavelength_min = 0.0, wavelength_max = 0.0;
+  std::vector<double> incidence_angles_deg;   // distinct theta_i (0.01 deg)
+  std::vector<double> viewing_angles_deg;     // distinct theta_r
+  std::vector<double> azimuth_planes_deg;     // distinct beta = 180 - |dphi| in [0, 180]
+  std::size_t forward = 0, backward = 0, perpendicular = 0, normal_or_grazing = 0, in_plane = 0;
+  std::size_t negative_values = 0, missing_values = 0;
+  std::vector<ReciprocityPair> reciprocity;
+  std::size_t reciprocity_flagged = 0;
+  std::vector<double> snr;  // per wavelength
+  std::vector<NoisyBand> noisy_bands;
+  std::vector<OutlierGeometry> outliers;
+  std::vector<OutlierGeometry> specular_peaks;  // bright near-specular geometries (not outliers)
+  std::optional<PanelValidation> panel;
+};
+
+QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions& options = {});
+
+nlohmann::json quality_report_json(const SpectralDataset& dataset, const QualityReport& report);
+std::string quality_report_text(const SpectralDataset& dataset, const QualityReport& report);
+
+}  // namespace roadbrdf
