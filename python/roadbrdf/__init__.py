@@ -18,7 +18,9 @@ import numpy as np
 
 from . import _roadbrdf
 
-__all__ = ["InputError", "Model", "SpectralModel", "models", "model_names", "read_fit", "road_to_zenith_azimuth"]
+__all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "models", "model_names", "read_fit",
+           "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable", "read_rtable",
+           "road_to_zenith_azimuth"]
 
 InputError = _roadbrdf.InputError
 
@@ -185,3 +187,136 @@ def read_fit(path: str, model: str | None = None) -> SpectralModel:
     """Read a fit file written by ``roadbrdf fit`` as a spectral model: the best-ranked fit, or the
     fit of ``model`` (its name as in the file, e.g. ``"oren-nayar+torrance-sparrow"``)."""
     return SpectralModel(_roadbrdf.read_fit_file(str(path), model or ""))
+
+
+class Dataset:
+    """A spectral BRDF dataset: N geometries x M wavelengths.
+
+    Attributes
+    ----------
+    angles : ndarray (N, 4)
+        theta_i, phi_i, theta_r, phi_r [deg] of each geometry.
+    wavelengths : ndarray (M,)
+        [nm], strictly increasing.
+    brdf : ndarray (N, M)
+        [sr^-1].
+    sigma : ndarray (N, M) or None
+        standard uncertainty [sr^-1].
+    metadata : dict
+        "sample", "instrument", "units" and free keys (the "# key: value" lines of a CSV file).
+    convention : "zenith" or "road"
+        angle columns used when the dataset is written.
+    """
+
+    def __init__(self, angles, wavelengths, brdf, sigma=None, metadata=None, convention="zenith"):
+        self.angles = np.asarray(angles, dtype=float).reshape(-1, 4)
+        self.wavelengths = np.asarray(wavelengths, dtype=float).reshape(-1)
+        self.brdf = np.asarray(brdf, dtype=float).reshape(self.angles.shape[0], self.wavelengths.size)
+        self.sigma = None if sigma is None else np.asarray(sigma, dtype=float).reshape(self.brdf.shape)
+        self.metadata = dict(metadata or {})
+        self.convention = convention
+
+    @classmethod
+    def _from_dict(cls, d):
+        return cls(d["angles"], d["wavelengths"], d["brdf"], d["sigma"], d["metadata"], d["convention"])
+
+    @property
+    def theta_i(self):
+        return self.angles[:, 0]
+
+    @property
+    def phi_i(self):
+        return self.angles[:, 1]
+
+    @property
+    def theta_r(self):
+        return self.angles[:, 2]
+
+    @property
+    def phi_r(self):
+        return self.angles[:, 3]
+
+    def __len__(self):
+        return self.angles.shape[0]
+
+    def __repr__(self):
+        name = self.metadata.get("sample", "")
+        return (f"roadbrdf.Dataset({name!r}: {len(self)} geometries x {self.wavelengths.size} wavelengths "
+                f"{self.wavelengths[0]:g}-{self.wavelengths[-1]:g} nm)") if self.wavelengths.size else "roadbrdf.Dataset()"
+
+    def write(self, path, format="wide"):
+        """Write as wide (default) or long CSV, atomically (see :func:`write_dataset`)."""
+        write_dataset(self, path, format)
+
+
+def read_dataset(path, average_duplicates=False, allow_missing=False) -> Dataset:
+    """Read a wide or long CSV dataset (the format is detected from the header).
+
+    Duplicate geometries are an error unless ``average_duplicates``; missing values (empty, nan,
+    NA) are an error unless ``allow_missing`` (then kept as NaN). Negative values are kept and
+    reported with a :class:`UserWarning`. Malformed files raise InputError naming file:line:column.
+    """
+    return Dataset._from_dict(_roadbrdf.read_dataset(str(path), average_duplicates, allow_missing))
+
+
+def write_dataset(dataset: Dataset, path, format="wide"):
+    """Write a dataset as ``"wide"`` or ``"long"`` CSV, atomically (temporary file, then rename)."""
+    _roadbrdf.write_dataset(np.ascontiguousarray(dataset.angles), np.ascontiguousarray(dataset.wavelengths),
+                            np.ascontiguousarray(dataset.brdf),
+                            None if dataset.sigma is None else np.ascontiguousarray(dataset.sigma),
+                            {str(k): str(v) for k, v in dataset.metadata.items()}, dataset.convention,
+                            str(path), format)
+
+
+def read_curet(abrdf_path, table_path, sample: int) -> Dataset:
+    """One sample of the CUReT BRDF database (``abrdf.dat`` + ``table.txt``), grey, stored at a
+    nominal wavelength recorded in the metadata."""
+    return Dataset._from_dict(_roadbrdf.read_curet(str(abrdf_path), str(table_path), int(sample)))
+
+
+def read_alta(path, wavelength, assumed_output="", exclude_grazing=False) -> Dataset:
+    """An ALTA text-format BRDF file (BRDF x cos theta_v output is divided by cos theta_v).
+    ``wavelength`` [nm] is required (ALTA files carry none)."""
+    return Dataset._from_dict(_roadbrdf.read_alta(str(path), float(wavelength), assumed_output, exclude_grazing))
+
+
+class RTable(dict):
+    """A road r-table: a dict with ``r`` (29 x 20 array of reduced luminance coefficients in sr^-1,
+    NaN where the table is not defined; rows tan(gamma), columns beta), ``tan_gamma``,
+    ``beta_deg``, ``alpha_deg``, ``name``, and the summary figures ``Q0``, ``S1``, ``S2``, ``Qd`` [sr^-1
+    except S1, S2], ``class`` (R system) and ``classes`` (R, N, C). Files store 1e4 r."""
+
+    def write(self, path, format="csv"):
+        """Write as ``"csv"``, ``"rtb"`` (DIALux) or ``"radiance"``, atomically."""
+        _roadbrdf.write_rtable(np.ascontiguousarray(self["r"]), self["name"], self["alpha_deg"], str(path), format)
+
+
+def rtable(model, params: dict | None = None, alpha=1.0, illuminant="A", wavelength=None, band=None) -> RTable:
+    """Standard r-table (29 tan(gamma) x 20 beta) of a model or a spectral model at observation angle
+    ``alpha`` [deg] (CIE: 1).
+
+    ``model`` is a :class:`Model` (with ``params``), a :class:`SpectralModel` (e.g. :func:`read_fit`),
+    or a fit file path. A spectral model is reduced to one BRDF per geometry photometrically
+    (V(lambda) x ``illuminant`` "A", "D65" or a lamp CSV file), or at one ``wavelength`` [nm], or
+    averaged over ``band`` = (lo, hi) [nm].
+    """
+    if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
+        model = read_fit(model)
+    if isinstance(model, SpectralModel):
+        if params:
+            raise InputError("params cannot be combined with a spectral model")
+        return RTable(_roadbrdf.rtable_from_spectral(model._spectral, float(alpha), illuminant, wavelength,
+                                                     None if band is None else (float(band[0]), float(band[1]))))
+    given = dict(params or {})
+    names = model.parameter_names
+    unknown = [k for k in given if k not in names]
+    if unknown:
+        raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
+    values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
+    return RTable(_roadbrdf.rtable_from_model(model._model, values, float(alpha)))
+
+
+def read_rtable(path, format=None, alpha=1.0, scale=1e4) -> RTable:
+    """Read an r-table file (csv, rtb or radiance; format from the extension unless given).
+    Zero cells are read as missing (NaN), never as zero reflectance."""
+    return RTable(_roadbrdf.read_rtable(str(path), format, float(alpha), float(scale)))

@@ -2,7 +2,13 @@
 
 namespace roadbrdf::python {
 
-// Each part of the library adds its bindings here as it lands.
-void bind_extensions(pybind11::module_& m) { (void)m; }
+void bind_io(pybind11::module_& m);
+void bind_photometry(pybind11::module_& m);
+
+// Each part of the library adds its bindings here.
+void bind_extensions(pybind11::module_& m) {
+  bind_io(m);
+  bind_photometry(m);
+}
 
 }  // namespace roadbrdf::python

@@ -1,0 +1,132 @@
+// Python bindings of measurement I/O: datasets as numpy arrays plus metadata.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+#include "binding.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/io/alta.h"
+#include "roadbrdf/io/curet.h"
+#include "roadbrdf/io/dataset_io.h"
+
+namespace py = pybind11;
+
+namespace roadbrdf::python {
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+Array matrix(const std::vector<double>& values, std::size_t rows, std::size_t columns) {
+  Array out({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(columns)});
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+py::dict dataset_to_dict(const SpectralDataset& d) {
+  const std::size_t n = d.geometry_count();
+  Array angles({static_cast<py::ssize_t>(n), py::ssize_t{4}});
+  double* a = angles.mutable_data();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Geometry& g = d.geometries[k];
+    a[4 * k + 0] = rad_to_deg(g.theta_i);
+    a[4 * k + 1] = rad_to_deg(g.phi_i);
+    a[4 * k + 2] = rad_to_deg(g.theta_r);
+    a[4 * k + 3] = rad_to_deg(g.phi_r);
+  }
+  py::dict out;
+  out["angles"] = angles;  // theta_i, phi_i, theta_r, phi_r [deg]
+  out["wavelengths"] = Array(static_cast<py::ssize_t>(d.wavelengths.size()), d.wavelengths.data());
+  out["brdf"] = matrix(d.brdf, n, d.wavelength_count());
+  out["sigma"] = d.has_sigma() ? py::object(matrix(d.sigma, n, d.wavelength_count())) : py::object(py::none());
+  out["metadata"] = d.metadata;
+  out["convention"] = d.convention == AngleConvention::kRoad ? "road" : "zenith";
+  return out;
+}
+
+SpectralDataset dataset_from_arrays(const Array& angles, const Array& wavelengths, const Array& brdf,
+                                    const py::object& sigma, const std::map<std::string, std::string>& metadata,
+                                    const std::string& convention) {
+  SpectralDataset d;
+  if (angles.ndim() != 2 || angles.shape(1) != 4) throw InputError("angles must be an N x 4 array (deg)");
+  const auto n = static_cast<std::size_t>(angles.shape(0));
+  const auto m = static_cast<std::size_t>(wavelengths.size());
+  if (brdf.ndim() != 2 || static_cast<std::size_t>(brdf.shape(0)) != n || static_cast<std::size_t>(brdf.shape(1)) != m) {
+    throw InputError("brdf must be an N x M array (N geometries, M wavelengths)");
+  }
+  const double* a = angles.data();
+  for (std::size_t k = 0; k < n; ++k) {
+    d.geometries.push_back(geometry_from_degrees(a[4 * k], a[4 * k + 1], a[4 * k + 2], a[4 * k + 3]));
+  }
+  d.wavelengths.assign(wavelengths.data(), wavelengths.data() + m);
+  d.brdf.assign(brdf.data(), brdf.data() + n * m);
+  if (!sigma.is_none()) {
+    const Array s = sigma.cast<Array>();
+    if (static_cast<std::size_t>(s.size()) != n * m) throw InputError("sigma must have the shape of brdf");
+    d.sigma.assign(s.data(), s.data() + n * m);
+  }
+  d.metadata = metadata;
+  if (convention == "road") {
+    d.convention = AngleConvention::kRoad;
+  } else if (convention == "zenith") {
+    d.convention = AngleConvention::kZenithAzimuth;
+  } else {
+    throw InputError("convention must be 'zenith' or 'road', got '" + convention + "'");
+  }
+  validate_dataset(d);
+  return d;
+}
+
+std::function<void(const std::string&)> python_warning() {
+  return [](const std::string& message) {
+    py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 3);
+  };
+}
+
+}  // namespace
+
+void bind_io(py::module_& m) {
+  m.def(
+      "read_dataset",
+      [](const std::string& path, bool average_duplicates, bool allow_missing) {
+        DatasetReadOptions options;
+        options.average_duplicates = average_duplicates;
+        options.allow_missing = allow_missing;
+        options.warn = python_warning();
+        return dataset_to_dict(read_dataset(path, options));
+      },
+      py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = false);
+  m.def(
+      "write_dataset",
+      [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
+         const std::map<std::string, std::string>& metadata, const std::string& convention, const std::string& path,
+         const std::string& format) {
+        write_dataset(dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention), path,
+                      dataset_format_from_string(format));
+      });
+  m.def(
+      "read_curet",
+      [](const std::string& abrdf, const std::string& table, int sample) {
+        CuretReadOptions options;
+        options.warn = python_warning();
+        return dataset_to_dict(read_curet(abrdf, table, sample, options));
+      },
+      py::arg("abrdf_path"), py::arg("table_path"), py::arg("sample"));
+  m.def(
+      "read_alta",
+      [](const std::string& path, double wavelength, const std::string& assumed_output, bool exclude_grazing) {
+        AltaReadOptions options;
+        options.wavelength_nm = wavelength;
+        options.assumed_output = assumed_output;
+        options.exclude_grazing = exclude_grazing;
+        options.warn = python_warning();
+        return dataset_to_dict(read_alta(path, options));
+      },
+      py::arg("path"), py::arg("wavelength"), py::arg("assumed_output") = "", py::arg("exclude_grazing") = false);
+}
+
+}  // namespace roadbrdf::python
