@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf::cli {
@@ -61,7 +62,7 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
     if (!parameter_items.empty() || !option_items.empty()) {
       throw InputError("-p/--option cannot be combined with a fit file ('" + argument + "')");
     }
-    return read_fit_file(argument, fit_model);
+    return mixing::read_spectral_model_file(argument, fit_model);  // a fit file or a MIX.json
   }
   ModelWithParameters m = model_from_command_line(argument, parameter_items, option_items);
   return SpectralModel(std::shared_ptr<const Model>(std::move(m.model)), std::move(m.parameters));

@@ -26,7 +26,8 @@ ModelWithParameters model_from_command_line(const std::string& name, const std::
                                             const std::vector<std::string>& option_items);
 
 // A model or a fit file, as accepted by every command that takes "MODEL -p ... | FIT.json":
-// an argument ending in ".json" is a fit file (then -p/--option are refused), else a model name.
+// an argument ending in ".json" is a fit file or a MIX.json (then -p/--option are refused), else a
+// model name.
 // `fit_model` selects a fit inside the file (default: the best-ranked one).
 SpectralModel spectral_model_from_command_line(const std::string& argument,
                                                const std::vector<std::string>& parameter_items,

@@ -70,9 +70,9 @@ SpectralModel read_fit_file(const std::string& path, const std::string& model_na
     for (const auto& fit : j.at("fits")) {
       if (fit.at("model").get<std::string>() != wanted) continue;
       OptionSet options;
-      for (const auto& [key, value] : fit.value("options", nlohmann::json::object()).items()) {
-        options[key] = value.get<std::string>();
-      }
+      // Keep the options object alive: iterating items() of a temporary would dangle.
+      const nlohmann::json fit_options = fit.value("options", nlohmann::json::object());
+      for (const auto& [key, value] : fit_options.items()) options[key] = value.get<std::string>();
       std::shared_ptr<const Model> model = make_model(wanted, options);
       const auto wavelengths = fit.at("wavelengths").get<std::vector<double>>();
       const auto& parameters = fit.at("parameters");

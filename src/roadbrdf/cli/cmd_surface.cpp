@@ -1,0 +1,241 @@
+// roadbrdf surface FORMULATION.json [--size 60mm] [--cell 0.1] [--seed S] [--matrix-level F | --target-mpd MM]
+//                  [--preview FILE.png] -o SURFACE.json
+// roadbrdf surface MATERIAL (--flat | --gaussian-slopes SIGMA) [-p NAME=VALUE] [--option NAME=VALUE] -o SURFACE.json
+// roadbrdf render SURFACE.json --grid GRID.csv [--wavelengths A:B:STEP] [--samples N] [--acceptance DEG]
+//                 [--seed S] [--threads T] [--max-bounces K] -o DATA.csv
+// Virtual road samples and the virtual gonioreflectometer (issue 9; src/roadbrdf/surface/).
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/geometry_file.h"
+#include "roadbrdf/io/resample.h"
+#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/models/spectral_model.h"
+#include "roadbrdf/surface/generate.h"
+#include "roadbrdf/surface/height_field.h"
+#include "roadbrdf/surface/render.h"
+
+namespace roadbrdf::cli {
+
+namespace {
+
+struct SurfaceArgs {
+  std::string input;
+  std::string size = "60mm";
+  double cell = 0.1;
+  std::uint64_t seed = 1;
+  std::optional<double> matrix_level;
+  std::optional<double> target_mpd;
+  std::string preview;
+  bool flat = false;
+  std::optional<double> gaussian_slopes;
+  int cells = 0;
+  std::vector<std::string> parameter_items, option_items;
+  std::string output;
+};
+
+double parse_length_mm(const std::string& text) {
+  std::string t = text;
+  double scale = 1.0;
+  if (t.size() > 2 && t.substr(t.size() - 2) == "mm") {
+    t = t.substr(0, t.size() - 2);
+  } else if (t.size() > 2 && t.substr(t.size() - 2) == "cm") {
+    t = t.substr(0, t.size() - 2);
+    scale = 10.0;
+  }
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(t, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != t.size() || !(v > 0.0)) throw InputError("--size: expected a length such as 60mm, got '" + text + "'");
+  return v * scale;
+}
+
+surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
+  surface::MaterialSpec m;
+  if (is_fit_file_argument(a.input)) {
+    if (!a.parameter_items.empty() || !a.option_items.empty()) {
+      throw InputError("-p/--option apply to a model, not to a fit file");
+    }
+    read_fit_file(a.input);  // fail early on a bad file
+    m.name = std::filesystem::path(a.input).stem().string();
+    m.fit = a.input;
+    m.fit_path = a.input;
+  } else {
+    // Validate the model, its options and parameters now.
+    const ModelWithParameters mp = model_from_command_line(a.input, a.parameter_items, a.option_items);
+    m.name = a.input;
+    m.model = a.input;
+    m.parameters = parse_numeric_assignments(a.parameter_items, "-p");
+    m.options = parse_option_assignments(a.option_items, "--option");
+    (void)mp;
+  }
+  return m;
+}
+
+void print_statistics(const surface::HeightField& f, const surface::TextureStatistics& s) {
+  fmt::print("surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny, f.cell_size_mm,
+             f.size_x_mm(), f.size_y_mm());
+  fmt::print("MPD {:.3f} mm (ISO 13473-1 style, baseline = sample period), ETD {:.3f} mm, rms height {:.3f} mm, "
+             "area ratio {:.3f}\n",
+             s.mpd_mm, s.etd_mm, s.rms_height_mm, s.surface_area_ratio);
+  fmt::print("{:<40} {:>12} {:>12}\n", "material", "area frac.", "true area");
+  for (std::size_t k = 0; k < f.materials.size(); ++k) {
+    fmt::print("{:<40} {:>12.4f} {:>12.4f}\n", f.materials[k].name, s.exposed_area_fraction[k],
+               s.exposed_true_area_fraction[k]);
+  }
+}
+
+void run_surface(const SurfaceArgs& a) {
+  if (a.output.empty()) throw InputError("give the output file with -o SURFACE.json");
+  if (a.flat && a.gaussian_slopes) throw InputError("--flat and --gaussian-slopes exclude each other");
+  surface::HeightField field;
+  if (a.flat || a.gaussian_slopes) {
+    const surface::MaterialSpec m = material_from_argument(a);
+    const int n = a.cells > 0 ? a.cells : (a.flat ? 16 : 128);
+    if (a.flat) {
+      field = surface::make_flat(m, n, a.cell);
+    } else {
+      field = surface::make_gaussian_slope_surface(m, *a.gaussian_slopes, n, a.cell, a.seed);
+    }
+  } else {
+    if (!a.parameter_items.empty() || !a.option_items.empty()) {
+      throw InputError("-p/--option are for --flat and --gaussian-slopes surfaces");
+    }
+    std::ifstream in(a.input);
+    if (!in) throw FileError(a.input, 0, 0, "cannot open the formulation file");
+    std::stringstream text;
+    text << in.rdbuf();
+    // Fit files are needed only to render: they may not exist yet (warned below).
+    const mixing::Formulation formulation = mixing::parse_formulation(text.str(), a.input, false);
+    const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
+    surface::GeneratorSettings s;
+    s.size_mm = parse_length_mm(a.size);
+    s.cell_size_mm = a.cell;
+    s.seed = a.seed;
+    if (a.matrix_level && a.target_mpd) throw InputError("--matrix-level and --target-mpd exclude each other");
+    if (a.matrix_level) s.matrix_level = *a.matrix_level;
+    s.target_mpd_mm = a.target_mpd;
+    const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
+    field = sample.field;
+    for (const auto& note : sample.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
+    for (const auto& m : field.materials) {
+      if (!m.fit_path.empty() && !std::filesystem::exists(m.fit_path)) {
+        fmt::print(stderr, "roadbrdf: warning: fit file of '{}' does not exist yet: {} (needed by render)\n", m.name,
+                   m.fit_path);
+      }
+    }
+    fmt::print("{}\n", field.description);
+  }
+  const surface::TextureStatistics stats = surface::texture_statistics(field);
+  surface::write_surface(field, a.output, &stats);
+  print_statistics(field, stats);
+  if (!a.preview.empty()) {
+    surface::write_preview_png(field, a.preview);
+    fmt::print("wrote {}\n", a.preview);
+  }
+  fmt::print("wrote {}\n", a.output);
+}
+
+struct RenderArgs {
+  std::string surface;
+  std::string grid;
+  std::string wavelengths;
+  long samples = 4096;
+  double acceptance = 1.0;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  int max_bounces = 0;
+  std::string format = "wide";
+  std::string output;
+};
+
+void run_render(const RenderArgs& a) {
+  if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
+  const surface::HeightField field = surface::read_surface(a.surface);
+  const GeometryTable grid = read_geometry_file(a.grid);
+  const std::vector<double> wavelengths =
+      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
+  surface::RenderSettings s;
+  s.samples = a.samples;
+  s.acceptance_half_angle_deg = a.acceptance;
+  s.seed = a.seed;
+  s.threads = a.threads;
+  s.max_bounces = a.max_bounces;
+  SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s);
+  data.convention = grid.convention;
+  write_dataset(data, a.output, dataset_format_from_string(a.format));
+  double max_rel = 0.0;
+  for (std::size_t k = 0; k < data.brdf.size(); ++k) {
+    if (data.brdf[k] > 0.0) max_rel = std::max(max_rel, data.sigma[k] / data.brdf[k]);
+  }
+  fmt::print("rendered {}: {} geometries x {} wavelengths, {} paths each, acceptance {} deg; largest relative "
+             "standard error {:.3g}\nwrote {}\n",
+             a.surface, data.geometry_count(), data.wavelength_count(), a.samples, a.acceptance, max_rel, a.output);
+}
+
+}  // namespace
+
+void register_surface_command(CLI::App& app) {
+  static SurfaceArgs args;
+  auto* c = app.add_subcommand(
+      "surface",
+      "Build a virtual road sample (periodic height field + material map) from a formulation, or a validation "
+      "surface (--flat, --gaussian-slopes) of one material");
+  c->add_option("input", args.input,
+                "Formulation file (JSON), or with --flat/--gaussian-slopes the material: MODEL (with -p) or FIT.json")
+      ->required();
+  c->add_option("--size", args.size, "Side of the periodic sample, e.g. 60mm (default 60mm)");
+  c->add_option("--cell", args.cell, "Grid spacing [mm] (default 0.1)")->check(CLI::Range(0.005, 10.0));
+  c->add_option("--seed", args.seed, "Random seed (default 1)");
+  c->add_option("--matrix-level", args.matrix_level,
+                "Mastic level as a fraction of the slab thickness (largest grain size), default 0.7")
+      ->check(CLI::Range(0.0, 1.0));
+  c->add_option("--target-mpd", args.target_mpd, "Choose the mastic level so that the MPD is this [mm]");
+  c->add_option("--preview", args.preview, "Write a PNG of the height map coloured by material");
+  c->add_flag("--flat", args.flat, "Flat sample z = 0 of one material (validation)");
+  c->add_option("--gaussian-slopes,--vgrooves", args.gaussian_slopes,
+                "Isotropic random rough surface of one material with facet slope angle sigma [rad] (validation; "
+                "compare with oren-nayar sigma)");
+  c->add_option("--cells", args.cells, "Cells per side of a validation surface (default 16 flat, 128 rough)")
+      ->check(CLI::Range(2, 4096));
+  add_model_flags(c, args.parameter_items, args.option_items);
+  c->add_option("-o,--output", args.output, "Output SURFACE.json (format: src/roadbrdf/surface/height_field.h)")
+      ->required();
+  c->callback([] { run_surface(args); });
+
+  static RenderArgs rargs;
+  auto* r = app.add_subcommand(
+      "render",
+      "Virtual gonioreflectometer: path-trace a SURFACE at the geometries of a grid; writes a dataset with the Monte "
+      "Carlo standard error as sigma");
+  r->add_option("surface", rargs.surface, "SURFACE.json written by `roadbrdf surface`")->required();
+  r->add_option("--grid", rargs.grid, "Geometry table (CSV, theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta)")
+      ->required();
+  r->add_option("--wavelengths", rargs.wavelengths,
+                "Wavelengths START:STOP:STEP [nm] (default: those of the materials' fits, or 550)");
+  r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096)")->check(CLI::Range(2L, 1L << 40));
+  r->add_option("--acceptance", rargs.acceptance, "Detector acceptance half-angle [deg] (1 or 5 typical; default 1)")
+      ->check(CLI::Range(0.0, 45.0));
+  r->add_option("--seed", rargs.seed, "Random seed (default 1); each geometry has its own streams");
+  r->add_option("--threads", rargs.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
+  r->add_option("--max-bounces", rargs.max_bounces, "Limit the number of surface interactions (0 = unlimited)")
+      ->check(CLI::Range(0, 1000));
+  r->add_option("--format", rargs.format, "Output CSV layout: wide | long (default wide)")
+      ->check(CLI::IsMember({"wide", "long"}));
+  r->add_option("-o,--output", rargs.output, "Output dataset (CSV)")->required();
+  r->callback([] { run_render(rargs); });
+}
+
+}  // namespace roadbrdf::cli

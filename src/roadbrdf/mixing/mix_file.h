@@ -1,0 +1,62 @@
+// MIX.json: what `roadbrdf mix` writes, and how a mixture is read back as a SpectralModel.
+//
+// {
+//   "format": "roadbrdf-mix", "version": 1,
+//   "units": { ... one description per quantity ... },
+//   "formulation": { "name": "F1", "file": "<path>", "components": [ { "name", "kind", "mass_percent",
+//                    "density_g_cm3", "d_eff_mm" (used D, null if not needed), "coarse", "end_member" } ] },
+//   "end_members": [ { "name": "bitumen", "fit": "<resolved fit file>", "fit_model": "" ,
+//                      "model": "oren-nayar", "options": { "form": "full" } } ],
+//   "data": "<measured mixture CSV>" | null, "folds": K | null,
+//   "best": "<method with the lowest held-out RMSE>" | null (no data),
+//   "methods": [ {
+//       "method": "areal" | "fitted" | "mastic" | "hapke" | "shadowed",
+//       "description": "...",
+//       "model": "mixture-linear" | "mixture-hapke" | "mixture-shadowed",   (mixing/mixture_model.h)
+//       "end_members": ["bitumen", ...],          // the mixture's end-members, in parameter order
+//       "coarse": [false, true, ...],             // coarse flags (used by mixture-shadowed)
+//       "wavelengths": [nm, ...],                 // [] when no end-member depends on wavelength
+//       "parameters": { "<parameter name>": [value per wavelength (one value when [])], ... },
+//       "weights": { "<end-member>": value },     // summary (see MixResult::weights)
+//       "formulation_weights": { ... } | null, "weight_distance": x | null, "weight_sum": x | null,
+//       "settings": { "binder_coverage": ..., "shadowing": ..., ... },
+//       "notes": [ "..." ],
+//       "comparison": null | { "folds", "rmse", "relative_rmse", "rmse_in_sample", "relative_rmse_in_sample",
+//                              "albedo", "albedo_reference", "albedo_difference" }
+//   } ]
+// }
+// The "parameters" block has exactly the schema of a fit file's fit (models/spectral_model.h), with the
+// mixture's parameter names (weight.<end-member>, ssa.<end-member>, shadowing, <end-member>.<parameter>).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "roadbrdf/mixing/mixing.h"
+
+namespace roadbrdf::mixing {
+
+struct MixFileContent {
+  const MixInputs* inputs = nullptr;
+  std::vector<MixResult> results;
+  std::vector<Comparison> comparisons;  // empty without data; else one per result, same order
+  std::string data_path;
+  int folds = 0;
+};
+
+// Write atomically. Throws InputError / FileError.
+void write_mix_file(const std::string& path, const MixFileContent& content);
+
+// Read one method of a MIX.json as a spectral model ("" = the file's "best", else its first method).
+// End-member models are rebuilt with make_model(model, options). Throws FileError.
+SpectralModel read_mix_file(const std::string& path, const std::string& method = "");
+
+// True when a JSON file is a MIX.json ("format": "roadbrdf-mix").
+bool is_mix_file(const std::string& path);
+
+// A fit file or a MIX.json as a spectral model: `selection` names the fit's model (fit file) or the
+// method (mix file); "" = the file's best. The one call a command needs to accept mixtures wherever
+// it accepts FIT.json (e.g. in cli/common.cpp spectral_model_from_command_line).
+SpectralModel read_spectral_model_file(const std::string& path, const std::string& selection = "");
+
+}  // namespace roadbrdf::mixing

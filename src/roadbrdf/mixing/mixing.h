@@ -1,0 +1,160 @@
+// Mixing: predict the BRDF of a road formulation from the fitted BRDFs of its components (issue 6;
+// report sections 1.1, 5.1 and 6.2; domain notes section 2).
+//
+// End-members. The optical inputs are the distinct fit files of a formulation (a component's own
+// measured BRDF, or the mastic that contains it, e.g. the filler and the 0/2 fines in "mastic 1").
+// Components sharing a fit file are one end-member; their weights add up. An end-member is named
+// after its fit file (file name without ".fit.json"/".json").
+//
+// Methods (each returns a MixtureModel, mixture_model.h, with a per-wavelength parameter table):
+//  areal     Areal (checkerboard) mixing f = sum a_k f_k with area fractions from the formulation:
+//            - granular components (aggregate, filler) expose projected area in proportion to
+//              M_k / (rho_k D_k): a sphere of diameter D and density rho has projected area per unit
+//              mass pi D^2/4 / (rho pi D^3/6) = 3 / (2 rho D), so fine grains expose far more area per
+//              kilogram (D = effective_diameter_mm(), formulation.h);
+//            - binder and pigment cover a fraction c of the surface ("binder coverage"), shared in
+//              proportion to their volumes M/rho; the granular components share 1 - c.
+//              Default c = volume fraction of binder + pigment in the formulation (Delesse's
+//              principle: on a plane section, area fraction = volume fraction); set it in the
+//              formulation ("binder_coverage") or with MixSettings::binder_coverage (0 = clean
+//              aggregates, 1 = everything coated).
+//  fitted    The same form with weights fitted to a measured mixed sample by non-negative least
+//            squares (Lawson-Hanson), one weight set for all wavelengths (default) or one per
+//            wavelength, optionally constrained to sum to one. Reports the distance to the areal
+//            weights: half the L1 distance between the normalised fitted weights and the areal
+//            weights (0 = same proportions, 1 = disjoint), and the sum of the fitted weights.
+//  mastic    The report's structure: the measured mastic (binder + fines + filler + pigment, i.e.
+//            every component that is not a coarse aggregate) plus the coarse aggregate classes
+//            (aggregates with d_min >= coarse_min_size_mm), areal mixing between them. The mastic's
+//            area fraction m defaults to the volume fraction of its constituents (Delesse); the
+//            coarse classes share 1 - m in proportion to M/(rho D). Needs the formulation's "mastic".
+//  hapke     Intimate mixing (Hapke 1981 eq. 17): w_k of every end-member inverted from its white-sky
+//            albedo with the IMSA-H1 forward model (hapke_imsa.h), mixed with cross-section weights
+//            M_k/(rho_k D_k) (Q_E = 1: grains much larger than the wavelength; binder and pigment
+//            without a size class use binder_film_thickness_mm as D: a film of thickness t has area
+//            per unit mass 1/(rho t)); effective phase terms mixed with weights c_k w_k; see
+//            MixtureModel kind "hapke".
+//  shadowed  Nonlinear fitted mixing: MixtureModel kind "shadowed" (the coarse aggregates shadow the
+//            matrix at grazing angles through a shared term exp(-s (tan theta_i + tan theta_r))). The
+//            end-members are those of the mastic method (matrix = the measured mastic) when the
+//            formulation has a "mastic", else the components' fits (matrix = binder and fines);
+//            "formulation_weights" are then the mastic or the areal weights.
+//            with one weight set for all wavelengths and s fitted with Ceres to the measured mixture
+//            (weights >= 0, 0 <= s <= 100; started from the NNLS weights and s = 0, 0.1, 0.3, 1, 3;
+//            the lowest cost is kept). Coarse end-members: fit files used only by coarse aggregates.
+//
+// Wavelengths: with data, the data's wavelengths (each must lie inside every end-member's range); without,
+// the union of the end-members' tabulated wavelengths inside their common range (or no wavelength
+// dependence when no end-member is spectral).
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/io/dataset.h"
+#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/mixing/mixture_model.h"
+#include "roadbrdf/models/spectral_model.h"
+
+namespace roadbrdf::mixing {
+
+// Loads a fit file (resolved path, selected fit) as a spectral model; default: read_fit_file.
+using FitLoader = std::function<SpectralModel(const std::string& path, const std::string& fit_model)>;
+
+struct EndMember {
+  std::string name;                      // from the fit file's name
+  std::string fit_path;                  // resolved path
+  std::string fit_model;                 // selected fit ("" = best)
+  std::shared_ptr<const SpectralModel> model;
+  std::vector<std::size_t> components;   // indices of the formulation components using it
+  bool is_mastic = false;                // the formulation's "mastic" fit
+};
+
+struct MixInputs {
+  Formulation formulation;
+  std::vector<EndMember> end_members;  // the components' distinct fits, then the mastic's if separate
+};
+
+// Load every distinct fit file of the formulation (errors name the formulation key).
+MixInputs load_mix_inputs(const Formulation& formulation, const FitLoader& loader = {});
+
+enum class Method { kAreal, kFitted, kMastic, kHapke, kShadowed };
+std::string to_string(Method method);
+Method method_from_string(const std::string& text);  // throws InputError
+std::vector<Method> all_methods();
+bool method_needs_data(Method method);  // fitted, shadowed
+std::string method_description(Method method);
+
+struct MixSettings {
+  std::optional<double> binder_coverage;       // overrides the formulation (areal)
+  std::optional<double> mastic_area_fraction;  // overrides the formulation (mastic)
+  bool per_wavelength = false;                 // fitted: one NNLS per wavelength
+  bool sum_to_one = false;                     // fitted, shadowed: weights sum to one
+  std::vector<double> wavelengths;             // output grid [nm]; empty: automatic (see above)
+};
+
+struct MixResult {
+  Method method = Method::kAreal;
+  std::string description;
+  std::shared_ptr<const MixtureModel> mixture;
+  std::shared_ptr<const SpectralModel> model;  // the mixture with its parameter table
+  std::vector<std::string> end_members;        // names, in the mixture's order
+  std::vector<std::string> end_member_fits;    // resolved fit paths, same order
+  // Weights per end-member: areal fractions; fitted (mean over wavelengths when per wavelength);
+  // hapke: normalised cross-section weights c_k.
+  std::vector<double> weights;
+  // Areal formulation weights of the same end-members (fitted, shadowed): what the fit is compared to.
+  std::vector<double> formulation_weights;
+  double weight_distance = std::numeric_limits<double>::quiet_NaN();  // see "fitted" above
+  double weight_sum = std::numeric_limits<double>::quiet_NaN();
+  std::map<std::string, double> settings;  // binder_coverage, mastic_area_fraction, shadowing...
+  std::vector<std::string> notes;
+};
+
+// Run one method. Methods that need data (fitted, shadowed) use `data`, restricted to the geometry
+// indices `training` when given (cross-validation). Throws InputError.
+MixResult mix(const MixInputs& inputs, Method method, const MixSettings& settings,
+              const SpectralDataset* data = nullptr, const std::vector<std::size_t>* training = nullptr);
+
+// Values of a spectral model at the given geometries and wavelengths: N x M, geometry-major.
+std::vector<double> evaluate_spectral(const SpectralModel& model, const std::vector<Geometry>& geometries,
+                                      const std::vector<double>& wavelengths);
+
+// White-sky albedo (hapke_imsa.h quadrature) of a spectral model at each wavelength (or once when
+// `wavelengths` is empty and the model is not spectral).
+std::vector<double> spectral_white_sky_albedo(const SpectralModel& model, const std::vector<double>& wavelengths);
+
+// Non-negative least squares min |A x - b|^2, x >= 0, from the normal equations G = A^T A
+// (K x K row-major) and h = A^T b (Lawson & Hanson 1974, ch. 23 active-set algorithm).
+std::vector<double> nnls_normal(const std::vector<double>& G, const std::vector<double>& h, std::size_t K);
+
+inline constexpr std::size_t kAlbedoWavelengths = 24;
+
+struct Comparison {
+  Method method = Method::kAreal;
+  int folds = 0;
+  double rmse = 0.0;                     // held-out (k-fold over geometries) [sr^-1]
+  double relative_rmse = 0.0;            // held-out rmse / mean |measured|
+  double rmse_in_sample = 0.0;           // all geometries used for fitting and evaluation
+  double relative_rmse_in_sample = 0.0;
+  double albedo = 0.0;                   // mean of the mixture's white-sky albedo over the data's
+                                         // wavelengths (at most kAlbedoWavelengths, evenly spaced in index)
+  double albedo_reference = std::numeric_limits<double>::quiet_NaN();   // same for the reference fit
+  double albedo_difference = std::numeric_limits<double>::quiet_NaN();  // albedo - albedo_reference
+  MixResult result;                      // fitted on every geometry
+};
+
+// Compare a method with measured data: k-fold cross-validation over geometries (folds >= 2;
+// geometries shuffled with a fixed seed; methods without fitted parameters predict every fold the
+// same), in-sample errors, albedo, and the albedo difference to `reference` (e.g. the fit of the
+// measured mixed sample) when given.
+Comparison compare_method(const MixInputs& inputs, Method method, const MixSettings& settings,
+                          const SpectralDataset& data, int folds, unsigned seed = 1,
+                          const SpectralModel* reference = nullptr);
+
+}  // namespace roadbrdf::mixing

@@ -1,0 +1,263 @@
+#include "roadbrdf/mixing/mixture_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/mixing/hapke_imsa.h"
+
+namespace roadbrdf::mixing {
+
+std::string to_string(MixtureKind kind) {
+  switch (kind) {
+    case MixtureKind::kLinear: return "linear";
+    case MixtureKind::kHapke: return "hapke";
+    case MixtureKind::kShadowed: return "shadowed";
+  }
+  return "?";
+}
+
+MixtureKind mixture_kind_from_string(const std::string& text) {
+  if (text == "linear") return MixtureKind::kLinear;
+  if (text == "hapke") return MixtureKind::kHapke;
+  if (text == "shadowed") return MixtureKind::kShadowed;
+  throw InputError("unknown mixture kind '" + text + "' (linear, hapke, shadowed)");
+}
+
+ModelDescription MixtureModel::make_description(MixtureKind kind,
+                                                const std::vector<std::shared_ptr<const Model>>& components,
+                                                const std::vector<std::string>& names) {
+  if (components.empty()) throw InputError("a mixture needs at least one end-member");
+  if (names.size() != components.size()) throw InputError("mixture: one name per end-member is needed");
+  ModelDescription d;
+  d.name = "mixture-" + to_string(kind);
+  d.citation = kind == MixtureKind::kHapke ? "Hapke 1981 (JGR 86:3039) eq. 17 intimate mixing, IMSA with H1; see mixing/mixture_model.h"
+                                           : "areal mixing; see mixing/mixture_model.h";
+  d.summary = kind == MixtureKind::kLinear  ? "areal (linear) mixture of end-member BRDFs"
+              : kind == MixtureKind::kHapke ? "intimate (Hapke) mixture of end-member BRDFs"
+                                            : "areal mixture with shadowing of the matrix by coarse aggregates";
+  const std::size_t K = components.size();
+  for (std::size_t k = 0; k < K; ++k) {
+    d.parameters.push_back({"weight." + names[k], "1",
+                            kind == MixtureKind::kHapke ? "cross-section weight M/(rho D) of " + names[k] + " (normalised)"
+                                                        : "area fraction of " + names[k],
+                            1.0 / K, 0.0, 1e3, true, kind == MixtureKind::kLinear});
+  }
+  if (kind == MixtureKind::kHapke) {
+    for (std::size_t k = 0; k < K; ++k) {
+      d.parameters.push_back({"ssa." + names[k], "1", "single-scattering albedo w of " + names[k] +
+                                                          " (inverted from its white-sky albedo, IMSA H1)",
+                              0.5, 0.0, 1.0, true, false});
+    }
+  }
+  if (kind == MixtureKind::kShadowed) {
+    d.parameters.push_back({"shadowing", "1",
+                            "shadowing coefficient s: matrix lit-and-seen fraction exp(-s (tan theta_i + tan theta_r))",
+                            0.0, 0.0, 100.0, false, false});
+  }
+  bool reciprocal = true, non_negative = kind != MixtureKind::kHapke;
+  for (std::size_t k = 0; k < K; ++k) {
+    const ModelDescription& c = components[k]->description();
+    for (const ParameterInfo& p : c.parameters) {
+      ParameterInfo q = p;
+      q.name = names[k] + "." + p.name;
+      q.linear = false;
+      d.parameters.push_back(q);
+    }
+    reciprocal = reciprocal && c.reciprocal;
+    non_negative = non_negative && c.non_negative;
+    d.has_delta = d.has_delta || c.has_delta;
+  }
+  d.reciprocal = reciprocal;
+  d.non_negative = non_negative;
+  d.energy_conserving = false;  // weights are free (fitted mixtures need not sum to one)
+  return d;
+}
+
+MixtureModel::MixtureModel(MixtureKind kind, std::vector<std::shared_ptr<const Model>> components,
+                           std::vector<std::string> names, std::vector<bool> coarse)
+    : Model(make_description(kind, components, names)),
+      kind_(kind),
+      components_(std::move(components)),
+      names_(std::move(names)),
+      coarse_(std::move(coarse)) {
+  if (coarse_.empty()) coarse_.assign(components_.size(), false);
+  if (coarse_.size() != components_.size()) throw InputError("mixture: one coarse flag per end-member is needed");
+  const std::size_t K = components_.size();
+  std::size_t offset = K + (kind_ == MixtureKind::kHapke ? K : 0) + (kind_ == MixtureKind::kShadowed ? 1 : 0);
+  for (std::size_t k = 0; k < K; ++k) {
+    offsets_.push_back(offset);
+    offset += components_[k]->parameter_count();
+    max_component_parameters_ = std::max(max_component_parameters_, components_[k]->parameter_count());
+  }
+}
+
+double MixtureModel::shadowing_factor(double s, const Geometry& g) {
+  if (s <= 0.0) return 1.0;
+  const double ci = std::max(g.cos_theta_i(), 1e-300);
+  const double cr = std::max(g.cos_theta_r(), 1e-300);
+  const double ti = std::sqrt(std::max(0.0, 1.0 - ci * ci)) / ci;
+  const double tr = std::sqrt(std::max(0.0, 1.0 - cr * cr)) / cr;
+  return std::exp(-s * (ti + tr));
+}
+
+double MixtureModel::combine(const double* p, const Geometry& g, const double* f, double* d_df) const {
+  const std::size_t K = components_.size();
+  switch (kind_) {
+    case MixtureKind::kLinear: {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < K; ++k) {
+        sum += p[k] * f[k];
+        if (d_df) d_df[k] = p[k];
+      }
+      return sum;
+    }
+    case MixtureKind::kHapke: {
+      double total = 0.0;
+      for (std::size_t k = 0; k < K; ++k) total += p[k];
+      if (!(total > 0.0)) throw InputError("hapke mixture: the cross-section weights sum to zero");
+      const double mu0 = g.cos_theta_i(), mu = g.cos_theta_r();
+      double linear = 0.0, w_mix = 0.0, ms_components = 0.0;
+      for (std::size_t k = 0; k < K; ++k) {
+        const double c = p[k] / total;
+        const double w = p[K + k];
+        linear += c * f[k];
+        w_mix += c * w;
+        ms_components += c * w * hapke_h1(mu0, w) * hapke_h1(mu, w);
+        if (d_df) d_df[k] = c;
+      }
+      const double ms_mix = w_mix * hapke_h1(mu0, w_mix) * hapke_h1(mu, w_mix);
+      const double denominator = 4.0 * kPi * (mu0 + mu);
+      return denominator > 0.0 ? linear + (ms_mix - ms_components) / denominator : linear;
+    }
+    case MixtureKind::kShadowed: {
+      double a_matrix = 0.0, a_coarse = 0.0;
+      for (std::size_t k = 0; k < K; ++k) (coarse_[k] ? a_coarse : a_matrix) += p[k];
+      // Without coarse end-members S does not enter; with coarse weights all zero the matrix is still
+      // attenuated by S (the limit of the fitted form; nothing replaces the hidden area).
+      const bool any_coarse = std::find(coarse_.begin(), coarse_.end(), true) != coarse_.end();
+      const double S = any_coarse ? shadowing_factor(p[K], g) : 1.0;
+      const double boost = a_coarse > 0.0 ? 1.0 + (1.0 - S) * a_matrix / a_coarse : 1.0;
+      double sum = 0.0;
+      for (std::size_t k = 0; k < K; ++k) {
+        const double e = p[k] * (coarse_[k] ? boost : S);
+        sum += e * f[k];
+        if (d_df) d_df[k] = e;
+      }
+      return sum;
+    }
+  }
+  return 0.0;
+}
+
+double MixtureModel::evaluate(const double* params, const Geometry& g) const {
+  const std::size_t K = components_.size();
+  double f[64];
+  std::vector<double> big;
+  double* values = f;
+  if (K > 64) {
+    big.resize(K);
+    values = big.data();
+  }
+  for (std::size_t k = 0; k < K; ++k) values[k] = components_[k]->evaluate(params + offsets_[k], g);
+  return combine(params, g, values, nullptr);
+}
+
+double MixtureModel::evaluate_with_gradient(const double* params, const Geometry& g, double* gradient) const {
+  const std::size_t K = components_.size();
+  const std::size_t n = parameter_count();
+  std::vector<double> f(K), e(K), component_gradient(max_component_parameters_);
+  std::fill(gradient, gradient + n, 0.0);
+  for (std::size_t k = 0; k < K; ++k) {
+    f[k] = components_[k]->evaluate_with_gradient(params + offsets_[k], g, component_gradient.data());
+    for (std::size_t q = 0; q < components_[k]->parameter_count(); ++q) gradient[offsets_[k] + q] = component_gradient[q];
+  }
+  const double value = combine(params, g, f.data(), e.data());
+  for (std::size_t k = 0; k < K; ++k) {
+    for (std::size_t q = 0; q < components_[k]->parameter_count(); ++q) gradient[offsets_[k] + q] *= e[k];
+  }
+  // Mixture-level parameters: the linear kind is analytic, the others by central differences of
+  // combine() with the end-member values held (one-sided at the bounds).
+  const std::size_t m = mixing_parameter_count();
+  if (kind_ == MixtureKind::kLinear) {
+    for (std::size_t k = 0; k < K; ++k) gradient[k] = f[k];
+    return value;
+  }
+  std::vector<double> p(params, params + n);
+  for (std::size_t q = 0; q < m; ++q) {
+    const ParameterInfo& info = description_.parameters[q];
+    const double x = params[q];
+    const double h = 1e-6 * std::max(1.0, std::fabs(x));
+    const double up = std::min(info.upper, x + h), down = std::max(info.lower, x - h);
+    if (!(up > down)) continue;
+    p[q] = up;
+    const double f_up = combine(p.data(), g, f.data(), nullptr);
+    p[q] = down;
+    const double f_down = combine(p.data(), g, f.data(), nullptr);
+    p[q] = x;
+    gradient[q] = (f_up - f_down) / (up - down);
+  }
+  return value;
+}
+
+void MixtureModel::evaluate_batch(const Geometry* geometries, std::size_t n_geometries, const double* params,
+                                  std::size_t n_sets, double* out) const {
+  const std::size_t K = components_.size();
+  const std::size_t n_params = parameter_count();
+  // End-member values for every geometry and set, then combine.
+  std::vector<std::vector<double>> component_values(K);
+  for (std::size_t k = 0; k < K; ++k) {
+    const std::size_t pk = components_[k]->parameter_count();
+    std::vector<double> sets(n_sets * pk);
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      std::copy(params + s * n_params + offsets_[k], params + s * n_params + offsets_[k] + pk, sets.begin() + s * pk);
+    }
+    component_values[k].resize(n_geometries * n_sets);
+    components_[k]->evaluate_batch(geometries, n_geometries, sets.data(), n_sets, component_values[k].data());
+  }
+  std::vector<double> f(K);
+  for (std::size_t n = 0; n < n_geometries; ++n) {
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      for (std::size_t k = 0; k < K; ++k) f[k] = component_values[k][n * n_sets + s];
+      out[n * n_sets + s] = combine(params + s * n_params, geometries[n], f.data(), nullptr);
+    }
+  }
+}
+
+void MixtureModel::evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries,
+                                                const double* params, double* values, double* jacobian) const {
+  const std::size_t n_params = parameter_count();
+  for (std::size_t n = 0; n < n_geometries; ++n) {
+    values[n] = evaluate_with_gradient(params, geometries[n], jacobian + n * n_params);
+  }
+}
+
+double MixtureModel::delta_reflectance(const double* params, double cos_theta_i) const {
+  if (!description_.has_delta) return 0.0;
+  const std::size_t K = components_.size();
+  std::vector<double> r(K), e(K);
+  for (std::size_t k = 0; k < K; ++k) r[k] = components_[k]->delta_reflectance(params + offsets_[k], cos_theta_i);
+  // Weights at the mirror geometry; the hapke multiple-scattering term has no delta part.
+  const double theta = std::acos(std::clamp(cos_theta_i, 0.0, 1.0));
+  const Geometry mirror = geometry_from_radians(theta, 0.0, theta, kPi);
+  std::vector<double> unit(K, 0.0);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < K; ++k) {
+    std::fill(unit.begin(), unit.end(), 0.0);
+    unit[k] = 1.0;
+    double base = 0.0;
+    if (kind_ == MixtureKind::kHapke) {
+      double total = 0.0;
+      for (std::size_t j = 0; j < K; ++j) total += params[j];
+      base = params[k] / total;
+    } else {
+      // combine() is linear in f with no constant term for these kinds.
+      base = combine(params, mirror, unit.data(), nullptr);
+    }
+    sum += base * r[k];
+  }
+  return sum;
+}
+
+}  // namespace roadbrdf::mixing

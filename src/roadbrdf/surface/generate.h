@@ -1,0 +1,89 @@
+// Virtual sample generation (issue 9): coarse aggregates of each size class of a formulation as
+// random convex grains set in a mastic matrix, rasterised into a periodic height field with a
+// material map (height_field.h). Also simple analytic surfaces for validation.
+//
+// Model of a road surface layer (assumptions, stated in the SURFACE file's description):
+//  - Volume fractions: the solid volume of a component is M/rho (mass fraction over solid density);
+//    the coarse class k (aggregate with d_min >= coarse_min_size_mm, formulation.h) occupies
+//    phi_k = (M_k/rho_k) / sum_j (M_j/rho_j) of the mix (air voids neglected). Everything else
+//    (binder, fines, filler, pigment) is the mastic matrix, with the formulation's "mastic" fit.
+//  - Layer: a periodic slab of side L and thickness T = the largest d_max of the coarse classes.
+//    Grains are placed by random sequential addition, largest class first, centres uniform in
+//    x, y (periodic) and z uniform such that the grain lies inside [0, T] (the roller's plane
+//    z = T bounds the tops; a grain taller than T touches it and reaches below 0), until each class's grain volume reaches phi_k L^2 T or
+//    `max_failures` consecutive placements are rejected (jamming: random sequential addition of
+//    convex grains jams near 30-40 % volume, below the ~55-60 % of a compacted mix; the achieved
+//    fractions are reported).
+//  - Grains: ellipsoids, uniformly random orientation, semi-axes a >= b >= c with intermediate
+//    diameter 2b = d (the sieve size), b/a ~ U(0.6, 0.9) (elongation), c/b ~ U(0.5, 0.85)
+//    (flatness); d distributed so that the class's mass is uniform over [d_min, d_max]
+//    (number density ~ d^-3).
+//  - Non-overlap: a pair is accepted only if the projections of the two ellipsoids on the line
+//    joining their centres are disjoint (support function h(u) = sqrt(u^T A u); a separating axis,
+//    so accepted grains never overlap; some touching-but-disjoint pairs are rejected).
+//  - Matrix: the mastic fills everything below the level z_m = matrix_level T; the surface is
+//    z = max(z_m, top of the highest grain), and a cell's material is the grain's class where a
+//    grain pokes out of the matrix at the cell centre, else the mastic. The level sets the
+//    texture depth; with `target_mpd_mm` the level is found by bisection so that the MPD
+//    (height_field.h) matches.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/surface/height_field.h"
+
+namespace roadbrdf::surface {
+
+struct GrainClass {
+  MaterialSpec material;          // the class's material (its name is the component name)
+  double d_min_mm = 2.0, d_max_mm = 6.0;
+  double volume_fraction = 0.2;   // phi_k, target fraction of the slab volume
+};
+
+struct SampleRecipe {
+  std::string name;
+  MaterialSpec matrix;             // material index 0
+  std::vector<GrainClass> classes; // material indices 1..K
+};
+
+// Recipe from a formulation (volume fractions as above). Throws InputError when the formulation
+// has no coarse class or no mastic fit.
+SampleRecipe recipe_from_formulation(const mixing::Formulation& formulation);
+
+struct GeneratorSettings {
+  double size_mm = 60.0;           // period L
+  double cell_size_mm = 0.1;       // grid spacing h
+  std::uint64_t seed = 1;
+  double matrix_level = 0.7;       // z_m / T
+  std::optional<double> target_mpd_mm;  // overrides matrix_level (bisection)
+  long max_failures = 5000;        // consecutive rejected placements before a class is declared jammed
+  double elongation_min = 0.6, elongation_max = 0.9;  // b/a
+  double flatness_min = 0.5, flatness_max = 0.85;     // c/b
+};
+
+struct GeneratedSample {
+  HeightField field;
+  std::vector<double> target_volume_fraction;    // per class
+  std::vector<double> achieved_volume_fraction;  // per class (grain volume / slab volume)
+  std::vector<long> grain_count;                 // per class
+  double slab_thickness_mm = 0.0;
+  double matrix_level_mm = 0.0;
+  std::vector<std::string> notes;                // jamming etc.
+};
+
+GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSettings& settings);
+
+// Validation surface: an isotropic random rough surface of one material whose facet slopes are
+// close to Gaussian, with rms slope tan(sigma) along every direction of the plane (sigma [rad]:
+// the Oren-Nayar roughness, standard deviation of the facet slope angle, for small angles).
+// Built by spectral synthesis on the periodic grid (sum of `waves` cosines with wave vectors of
+// the grid's lattice in an annulus of 6-14 cells wavelength and random phases), then scaled so
+// that the rms of the finite-difference slopes of the mesh along x and y is tan(sigma).
+HeightField make_gaussian_slope_surface(const MaterialSpec& material, double sigma_rad, int n = 128,
+                                        double cell_size_mm = 0.1, std::uint64_t seed = 1, int waves = 256);
+
+}  // namespace roadbrdf::surface

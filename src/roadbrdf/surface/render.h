@@ -1,0 +1,135 @@
+// Virtual gonioreflectometer: Monte Carlo path tracing of a virtual road sample (issue 9).
+//
+// Set-up. The sample is a periodic height field (height_field.h) lit by a collimated source in the
+// direction w_i = (theta_i, phi_i) giving irradiance E_perp on a plane perpendicular to the beam,
+// i.e. E = E_perp cos(theta_i) per unit area of the mean plane. A far-field detector looks from the
+// direction w_r = (theta_r, phi_r) with a finite acceptance cone of half-angle Delta (solid angle
+// Omega = 2 pi (1 - cos Delta)). Because the sample is periodic, the footprint is the whole
+// period: every point of it is equivalent and there are no edges (this replaces the "central
+// footprint away from the edges" of a finite sample).
+//
+// Quantity estimated. The detector reports the radiance leaving the sample averaged over the
+// footprint A (mean-plane area) and uniformly over the directions of its cone,
+//     Lbar = (1/Omega) int_cone (1/A) int_A L(x(y), w) dA(y) dw,
+// where x(y) is the first surface point seen along -w through the mean-plane point y (the parallel
+// beam of sight lines through A covers each projected surface point once, because the sample is
+// periodic). The virtual measurement is
+//     f_est(w_i, w_r) = Lbar / (E_perp cos theta_i),
+// which is the cone-averaged BRDF (1/Omega) int_cone f_eff(w_i, w) dw of the sample. For a flat
+// sample of one material it is exactly the cone average of that material's BRDF; for Delta -> 0 it
+// is the BRDF. Cone directions below the horizon see nothing (contribute 0; keep theta_r + Delta
+// <= 90 deg for a meaningful value).
+//
+// Estimator. One sample = one path started from the detector: w uniform in the cone (pdf 1/Omega),
+// y uniform in the period (pdf 1/A), so (Omega A) Lbar / (Omega A) = E[L(x, w)] and
+//     f_est = E[ L(x, w) / (E_perp cos theta_i) ].
+// L(x, w) is expanded along the path x_1 = x, x_2, ... (normals n_k, materials m_k):
+//   - next-event estimation towards the source at every vertex: the collimated source is a delta
+//     light, its reflected radiance at x_k is f_mk(w_i, w_out) E_perp (n_k . w_i)^+ V(x_k, w_i), so
+//     the contribution per unit E_perp cos theta_i is beta_k f_mk(w_i, w_out) (n_k . w_i)^+ V / cos theta_i
+//     (V: shadow ray along w_i, 1 if it escapes the height field);
+//   - continuation: w_new drawn cosine-weighted about n_k (pdf (n.w)/pi), throughput
+//     beta_{k+1} = beta_k f_mk(w_new, w_out) (n.w_new) / pdf = beta_k pi f_mk(w_new, w_out);
+//     a material with an ideal specular (delta) part R takes the mirror direction with probability
+//     1/2 (weight R / (1/2)) and the diffuse branch otherwise (weight pi f / (1/2));
+//   - Russian roulette from vertex `rr_start_bounce` on: survival q = min(0.95, max_lambda |beta|),
+//     beta /= q (unbiased; the 0.95 cap guarantees termination for non-absorbing materials).
+// The source can never be hit by a continuation ray (delta light), so the estimator has no
+// double counting. One geometric path serves every wavelength: the sampling does not depend on
+// wavelength and the throughput is carried per wavelength (spectral estimates are correlated,
+// which is fine for a BRDF dataset).
+// Delta parts, single bounce: the mirror spike source -> mirror facet -> detector is a delta-delta
+// event that a detector path cannot find; when a material has a delta part, each sample adds one
+// source-side sample of it (render.cpp, specular_spike: y uniform, first hit along -w_i, mirror
+// direction w_s, value R V 1[w_s in cone] / (Omega cos theta_s)); it needs a cone (Delta > 0).
+// Limitation: longer paths that start with a mirror bounce from the source (source -> mirror ->
+// diffuse -> ... -> detector, "caustics") are not estimated; detector-side paths through delta
+// parts (detector -> ... -> mirror -> ... -> NEE) are.
+//
+// Uncertainty: the standard error of the mean of the N per-path values, sqrt(s^2 / N), per
+// wavelength. Seeds: every block of `paths_per_block` paths of geometry g has its own random
+// stream derived from (seed, g, block), so results do not depend on the number of threads.
+// Ray traversal: exact, over the periodic grid (2-D DDA), with the two planar triangles of each
+// cell; the height along the ray is piecewise linear in each cell, so hits are found exactly.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/io/dataset.h"
+#include "roadbrdf/models/model.h"
+#include "roadbrdf/surface/height_field.h"
+
+namespace roadbrdf::surface {
+
+// A material ready for rendering: a model and one parameter set per wavelength.
+struct RenderMaterial {
+  std::string name;
+  std::shared_ptr<const Model> model;
+  std::vector<double> parameters;  // wavelengths x parameter_count, row-major
+  bool has_delta = false;
+};
+
+// Load the materials of a height field at the given wavelengths (fit files are read; model
+// materials use their fixed parameters at every wavelength). Throws InputError / FileError.
+std::vector<RenderMaterial> load_materials(const HeightField& field, const std::vector<double>& wavelengths);
+
+// Wavelengths to render by default: those of the first spectral material inside the range common
+// to all spectral materials; {550} when no material is spectral.
+std::vector<double> default_wavelengths(const HeightField& field);
+
+struct RenderSettings {
+  long samples = 4096;                     // paths per geometry
+  double acceptance_half_angle_deg = 1.0;  // detector cone half-angle Delta; 0 = ideal direction
+  std::uint64_t seed = 1;
+  int threads = 0;                         // 0 = hardware concurrency
+  int rr_start_bounce = 3;                 // Russian roulette from this vertex on (1-based)
+  int max_bounces = 0;                     // 0 = unlimited; 1 = single scattering (direct light only)
+  long paths_per_block = 1024;
+};
+
+struct Estimate {
+  std::vector<double> mean;            // per wavelength
+  std::vector<double> standard_error;  // per wavelength
+  long paths = 0;
+};
+
+class Renderer {
+ public:
+  Renderer(const HeightField& field, std::vector<RenderMaterial> materials, std::size_t wavelength_count);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Cone-averaged BRDF [sr^-1] at one geometry (see above); `stream` selects the random streams
+  // (the geometry's index in a dataset).
+  Estimate brdf(const Geometry& g, const RenderSettings& settings, std::uint64_t stream = 0) const;
+  // Directional-hemispherical reflectance (albedo) for incidence (theta_i, phi_i) [rad]: the same
+  // path estimator with the detector direction drawn cosine-weighted over the hemisphere, value pi * f.
+  Estimate directional_albedo(double theta_i, double phi_i, const RenderSettings& settings,
+                              std::uint64_t stream = 0) const;
+  // Many geometries, in parallel (blocks of paths over threads).
+  std::vector<Estimate> brdf(const std::vector<Geometry>& geometries, const RenderSettings& settings) const;
+
+  struct Hit {
+    double t = 0.0;
+    Vec3 p, n;
+    int material = 0;
+  };
+  // First intersection of the ray o + t d (t > 0, d unit) with the surface; false if it escapes.
+  bool intersect(const Vec3& o, const Vec3& d, Hit& hit) const;
+
+  struct Impl;  // implementation detail (render.cpp)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// Render a dataset: geometries x wavelengths, sigma = Monte Carlo standard error, metadata
+// describing the virtual instrument.
+SpectralDataset render_dataset(const HeightField& field, const std::vector<Geometry>& geometries,
+                               const std::vector<double>& wavelengths, const RenderSettings& settings);
+
+}  // namespace roadbrdf::surface
