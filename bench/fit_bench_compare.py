@@ -1,0 +1,36 @@
+"""Compare roadbrdf and scipy fits of the benchmark (per-wavelength final costs 1/2 sum r^2, times).
+Usage: fit_bench_compare.py ROADBRDF_FIT.json SCIPY.json"""
+import json
+import sys
+
+
+def main():
+    rb = json.load(open(sys.argv[1]))["fits"][0]
+    sp = json.load(open(sys.argv[2]))
+    index = {round(w, 6): i for i, w in enumerate(rb["wavelengths"])}
+    worse, better, n = 0, 0, 0
+    worst = 0.0
+    for w, c in zip(sp["wavelengths"], sp["cost"]):
+        cr = rb["cost"][index[round(w, 6)]]
+        n += 1
+        rel = (cr - c) / c
+        worst = max(worst, rel)
+        if rel > 1e-6:
+            worse += 1
+        elif rel < -1e-6:
+            better += 1
+    stride = sp.get("stride", 1)
+    t_rb, c_rb = rb["seconds"], rb["cpu_seconds"]
+    t_sp, c_sp = sp["seconds"] * stride, sp["cpu_seconds"] * stride  # extrapolated when STRIDE > 1
+    note = " (extrapolated from every %d-th wavelength)" % stride if stride > 1 else ""
+    print("roadbrdf fit: %.3f s wall, %.3f s CPU for %d wavelengths" % (t_rb, c_rb, len(rb["wavelengths"])))
+    print("scipy fit:    %.3f s wall, %.3f s CPU%s" % (t_sp, c_sp, note))
+    print("speed-up:     %.1fx wall, %.1fx CPU" % (t_sp / t_rb, c_sp / c_rb))
+    print("total cost roadbrdf %.6e, scipy %.6e (same wavelengths)" % (
+        sum(rb["cost"][index[round(w, 6)]] for w in sp["wavelengths"]), sum(sp["cost"])))
+    print("wavelengths where roadbrdf's cost is worse by > 1e-6 relative: %d, better: %d, max relative excess %.2e"
+          % (worse, better, worst))
+
+
+if __name__ == "__main__":
+    main()

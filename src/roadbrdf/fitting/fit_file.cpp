@@ -1,0 +1,162 @@
+#include "roadbrdf/fitting/fit_file.h"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <limits>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/io/csv.h"
+
+namespace roadbrdf {
+
+namespace {
+
+// NaN / inf are not JSON: write null.
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+template <class F>
+nlohmann::json per_wavelength(const FitResult& fit, F get) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& w : fit.wavelengths) a.push_back(get(w));
+  return a;
+}
+
+}  // namespace
+
+nlohmann::json fit_to_json(const FitResult& fit) {
+  using nlohmann::json;
+  json j;
+  j["model"] = fit.model;
+  j["options"] = json::object();
+  for (const auto& [k, v] : fit.options) j["options"][k] = v;
+  j["mode"] = fit.joint ? "joint" : "per-wavelength";
+  j["wavelengths"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.wavelength); });
+  const std::size_t p = fit.parameter_names.size();
+  j["parameters"] = json::object();
+  j["stderr"] = json::object();
+  j["parameter_units"] = json::object();
+  for (std::size_t k = 0; k < p; ++k) {
+    const std::string& name = fit.parameter_names[k];
+    j["parameters"][name] = per_wavelength(fit, [k](const WavelengthFit& w) { return number(w.parameters[k]); });
+    j["stderr"][name] = per_wavelength(fit, [k](const WavelengthFit& w) { return number(w.standard_errors[k]); });
+    j["parameter_units"][name] = fit.parameter_units[k];
+  }
+  j["parameter_order"] = fit.parameter_names;
+  j["correlation"] = per_wavelength(fit, [p](const WavelengthFit& w) {
+    json m = json::array();
+    for (std::size_t a = 0; a < p; ++a) {
+      json row = json::array();
+      for (std::size_t b = 0; b < p; ++b) row.push_back(number(w.correlation[a * p + b]));
+      m.push_back(row);
+    }
+    return m;
+  });
+  j["fixed"] = fit.fixed;
+  j["shared"] = fit.shared;
+  j["loss"] = to_string(fit.settings.loss);
+  j["robust"] = to_string(fit.settings.robust);
+  j["robust_scale"] = fit.settings.robust == RobustLoss::kNone ? json(nullptr) : json(fit.settings.robust_scale);
+  j["sigma_weights"] = fit.settings.use_sigma;
+  j["solid_angle_weights"] = fit.settings.solid_angle_weights;
+  j["multistart"] = fit.settings.multistart;
+  j["seed"] = fit.settings.seed;
+  j["rmse"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.rmse); });
+  j["relative_rmse"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.relative_rmse); });
+  j["max_relative_error"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.max_relative_error); });
+  j["r_squared"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.r_squared); });
+  j["chi2"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.chi2); });
+  j["aic"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.aic); });
+  j["bic"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.bic); });
+  j["cost"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.cost); });
+  j["iterations"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.iterations); });
+  j["converged"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.converged); });
+  j["status"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.status); });
+  j["covariance_ok"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.covariance_ok); });
+  j["covariance_message"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.covariance_message); });
+  j["at_bounds"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.at_bounds); });
+  j["points"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.points); });
+  j["free_parameters"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.free_parameters); });
+  j["start_index"] = per_wavelength(fit, [](const WavelengthFit& w) { return json(w.start_index); });
+  j["rmse_total"] = number(fit.rmse_total);
+  j["relative_rmse_total"] = number(fit.relative_rmse_total);
+  j["max_relative_error_total"] = number(fit.max_relative_error_total);
+  j["chi2_total"] = number(fit.chi2_total);
+  j["aic_total"] = number(fit.aic_total);
+  j["bic_total"] = number(fit.bic_total);
+  j["points_total"] = fit.points_total;
+  j["free_parameters_total"] = fit.free_parameters_total;
+  j["wavelength_count"] = fit.wavelengths.size();
+  j["converged_count"] = fit.converged_count;
+  j["at_bound_count"] = fit.at_bound_count;
+  j["covariance_failures"] = fit.covariance_failures;
+  if (fit.joint) {
+    j["joint_iterations"] = fit.joint_iterations;
+    j["joint_status"] = fit.joint_status;
+  }
+  j["seconds"] = fit.seconds;
+  j["cpu_seconds"] = fit.cpu_seconds;
+  return j;
+}
+
+std::size_t best_fit_index(const std::vector<FitResult>& fits) {
+  if (fits.empty()) throw InputError("no fit to rank");
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < fits.size(); ++i) {
+    if (fits[i].bic_total < fits[best].bic_total) best = i;
+  }
+  return best;
+}
+
+void write_fit_file(const std::string& path, const std::vector<FitResult>& fits) {
+  using nlohmann::json;
+  json j;
+  j["format"] = "roadbrdf-fit";
+  j["version"] = 1;
+  j["best"] = fits[best_fit_index(fits)].model;
+  j["best_criterion"] = "bic_total";
+  j["units"] = {
+      {"wavelengths", "nm"},
+      {"parameters", "see parameter_units"},
+      {"stderr", "standard error, unit of the parameter; null = fixed or covariance undefined"},
+      {"correlation", "1, p x p per wavelength in parameter_order"},
+      {"rmse", "sr^-1, root mean square of fitted - measured BRDF"},
+      {"relative_rmse", "1, rmse / mean |measured|"},
+      {"max_relative_error", "1, max |fitted - measured| / |measured|"},
+      {"r_squared", "1, coefficient of determination of the BRDF"},
+      {"chi2", "sum of squared loss residuals (weights applied, no robust function)"},
+      {"aic", "n ln(chi2/n) + 2k"},
+      {"bic", "n ln(chi2/n) + k ln n"},
+      {"cost", "Ceres final cost 1/2 sum rho(r^2)"},
+      {"seconds", "s, wall time of the fit"},
+      {"cpu_seconds", "s, process CPU time of the fit (all threads)"},
+  };
+  j["fits"] = json::array();
+  for (const auto& f : fits) j["fits"].push_back(fit_to_json(f));
+  AtomicFile out(path);
+  out.stream() << j.dump(1) << '\n';
+  out.commit();
+}
+
+void write_residuals(std::ostream& out, const SpectralDataset& data, const std::vector<const Model*>& models,
+                     const std::vector<FitResult>& fits) {
+  out << "# roadbrdf fit residuals: angles in degrees, wavelength in nm, BRDF in sr^-1; residual = fitted - measured\n";
+  out << "theta_i,phi_i,theta_r,phi_r,wavelength,model,measured,fitted,residual\n";
+  const std::size_t N = data.geometry_count(), M = data.wavelength_count();
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const std::vector<double> f = fitted_values(*models[i], data, fits[i]);
+    for (std::size_t g = 0; g < N; ++g) {
+      const Geometry& geo = data.geometries[g];
+      const std::string angles = fmt::format("{:.10g},{:.10g},{:.10g},{:.10g}", rad_to_deg(geo.theta_i),
+                                             rad_to_deg(geo.phi_i), rad_to_deg(geo.theta_r), rad_to_deg(geo.phi_r));
+      for (std::size_t w = 0; w < M; ++w) {
+        const double y = data.value(g, w), v = f[g * M + w];
+        out << angles << ',' << fmt::format("{:.10g}", data.wavelengths[w]) << ',' << fits[i].model << ','
+            << fmt::format("{:.17g},{:.17g},{:.17g}", y, v, v - y) << '\n';
+      }
+    }
+  }
+}
+
+}  // namespace roadbrdf

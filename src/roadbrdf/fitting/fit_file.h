@@ -1,0 +1,44 @@
+// Fit files (JSON) and residual tables written by `roadbrdf fit`.
+//
+// The fit file follows the schema of models/spectral_model.h (read back by read_fit_file):
+// {
+//   "format": "roadbrdf-fit", "version": 1,
+//   "best": model name with the lowest total BIC, "best_criterion": "bic_total",
+//   "units": { key: unit/description, ... },
+//   "fits": [ {
+//     "model", "options" {name: value}, "wavelengths" [nm],
+//     "parameters" {name: [per wavelength]}, "stderr" {name: [per wavelength, null = undefined]},
+//     "parameter_units" {name: unit}, "fixed" [names], "shared" [names], "mode": "per-wavelength" | "joint",
+//     "loss", "robust", "robust_scale", "sigma_weights", "solid_angle_weights", "multistart", "seed",
+//     "correlation" [per wavelength: p x p nested lists, null = undefined],
+//     "rmse", "relative_rmse", "max_relative_error", "r_squared", "chi2", "aic", "bic", "cost",
+//     "iterations", "converged", "status", "covariance_ok", "covariance_message", "at_bounds",
+//     "points", "free_parameters", "start_index"   (all per wavelength),
+//     "rmse_total", "relative_rmse_total", "max_relative_error_total", "chi2_total", "aic_total",
+//     "bic_total", "points_total", "free_parameters_total", "converged_count", "wavelength_count",
+//     "at_bound_count", "covariance_failures", "seconds" } ]
+// }
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/fitting/fit.h"
+
+namespace roadbrdf {
+
+nlohmann::json fit_to_json(const FitResult& fit);
+
+// Index of the fit with the lowest total BIC (ties: the first). Throws InputError if empty.
+std::size_t best_fit_index(const std::vector<FitResult>& fits);
+
+// Write the fit file atomically.
+void write_fit_file(const std::string& path, const std::vector<FitResult>& fits);
+
+// Residual table (long CSV): theta_i,phi_i,theta_r,phi_r [deg],wavelength [nm],model,measured,fitted,residual [sr^-1].
+void write_residuals(std::ostream& out, const SpectralDataset& data, const std::vector<const Model*>& models,
+                     const std::vector<FitResult>& fits);
+
+}  // namespace roadbrdf
