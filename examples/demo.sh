@@ -29,3 +29,35 @@ done < examples/report-parameter-sets.txt
 for model in $("$rb" models --json | /usr/bin/python3 -c 'import json,sys; print(" ".join(m["name"] for m in json.load(sys.stdin)))'); do
   evaluate_row "$model (defaults)" "$model"
 done
+
+section "2. Measurements: quality check of a measured sample and calibration with a real Spectralon panel"
+"$rb" check data/examples/mixed/F1.csv | head -n 25
+"$rb" calibrate data/examples/calibration/sample-radiance.csv \
+    --reference data/examples/calibration/reference-radiance.csv --dark data/examples/calibration/dark.csv \
+    --panel-reflectance data/third-party/spectralon/Spectralon_Num4.txt -o "$out/soreze-calibrated.csv"
+echo "calibrated BRDF written to $out/soreze-calibrated.csv"
+
+section "3. Fitting every single-material sample and mastic (models ranked by BIC)"
+mkdir -p "$out/fits" "$out/formulations"
+fit_sample() {  # name file
+  local name="$1" file="$2"
+  echo "-- $name"
+  "$rb" fit "$file" --model oren-nayar --model oren-nayar+torrance-sparrow --model hapke \
+      --fix oren-nayar.weight=1 --fix torrance-sparrow.weight=1 --multistart 8 -o "$out/fits/$name.fit.json" 2>/dev/null \
+      | sed -n '2,99p'
+}
+for f in data/examples/single/*.csv data/examples/mastics/*.csv; do
+  fit_sample "$(basename "$f" .csv)" "$f"
+done
+for k in 1 2 3 4; do
+  "$rb" fit "data/examples/mixed/F$k.csv" --model oren-nayar+torrance-sparrow \
+      --fix oren-nayar.weight=1 --fix torrance-sparrow.weight=1 --multistart 8 -o "$out/fits/F$k-measured.fit.json" >/dev/null 2>&1
+done
+
+section "4. Mixing: predicting F1-F4 from their components, compared with the measured mixtures"
+cp data/examples/formulations/F*.json "$out/formulations/"
+for k in 1 2 3 4; do
+  echo "-- F$k"
+  "$rb" mix "$out/formulations/F$k.json" --data "data/examples/mixed/F$k.csv" --method all \
+      --reference "$out/fits/F$k-measured.fit.json" -o "$out/F$k.mix.json" 2>/dev/null
+done

@@ -20,7 +20,7 @@ from . import _roadbrdf
 
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "models", "model_names", "read_fit",
            "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable", "read_rtable",
-           "road_to_zenith_azimuth"]
+           "fit", "spectral_model_from_fit", "road_to_zenith_azimuth"]
 
 InputError = _roadbrdf.InputError
 
@@ -320,3 +320,68 @@ def read_rtable(path, format=None, alpha=1.0, scale=1e4) -> RTable:
     """Read an r-table file (csv, rtb or radiance; format from the extension unless given).
     Zero cells are read as missing (NaN), never as zero reflectance."""
     return RTable(_roadbrdf.read_rtable(str(path), format, float(alpha), float(scale)))
+
+
+def fit(data, models, options: dict | None = None, shared=(), fix: dict | None = None, start: dict | None = None,
+        loss="plain", robust="none", use_sigma=True, solid_angle_weights=False, multistart=1, seed=1,
+        wavelengths="", threads=1, output=None) -> dict:
+    """Fit one or more models to a dataset, exactly as ``roadbrdf fit`` does.
+
+    Parameters
+    ----------
+    data : Dataset or path
+        The measured spectral BRDF.
+    models : str or list of str
+        Model names, e.g. ``["oren-nayar", "oren-nayar+torrance-sparrow"]``.
+    options : dict
+        Model options, applied to every model that declares them (e.g. ``{"distribution": "beckmann"}``).
+    shared : list of str, or "auto"
+        Joint spectral mode: parameters shared by all wavelengths (Schur-complement solve).
+    fix, start : dict
+        Parameters held at a value / starting values, ``{name: value}``.
+    loss : "plain" | "relative" | "log" | "cosine"
+    robust : "none" | "huber:SCALE" | "cauchy:SCALE"
+    use_sigma : bool
+        Weights 1/sigma^2 when the data have uncertainties.
+    multistart : int
+        Starting points (Latin hypercube over the nonlinear parameters, seeded by ``seed``).
+    wavelengths : str
+        Subset, ``"400:1000:10"`` or a comma list [nm].
+    output : path, optional
+        Also write the fit file (JSON).
+
+    Returns
+    -------
+    dict
+        The fit file's content: ``best`` and ``fits`` (per model: ``model``, ``options``, ``wavelengths``,
+        ``parameters`` {name: list per wavelength}, ``stderr``, ``rmse``, ``rmse_total``, AIC/BIC, ...).
+        Use :func:`spectral_model_from_fit` (or :func:`read_fit` on ``output``) to evaluate it.
+    """
+    import json
+    d = data if isinstance(data, Dataset) else read_dataset(data)
+    if isinstance(models, str):
+        models = [models]
+    if isinstance(shared, str):
+        shared = [s for s in shared.split(",") if s]
+    text = _roadbrdf.fit(np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths),
+                         np.ascontiguousarray(d.brdf), None if d.sigma is None else np.ascontiguousarray(d.sigma),
+                         {str(k): str(v) for k, v in d.metadata.items()}, d.convention, list(models),
+                         {str(k): str(v) for k, v in (options or {}).items()}, list(shared),
+                         {k: float(v) for k, v in (fix or {}).items()}, {k: float(v) for k, v in (start or {}).items()},
+                         loss, robust, bool(use_sigma), bool(solid_angle_weights), int(multistart), int(seed),
+                         str(wavelengths), int(threads), "" if output is None else str(output))
+    return json.loads(text)
+
+
+def spectral_model_from_fit(fit_result: dict, model: str | None = None) -> SpectralModel:
+    """The spectral model of a fit result returned by :func:`fit` (the best fit, or ``model``)."""
+    import json
+    import os
+    import tempfile
+    fd, path = tempfile.mkstemp(suffix=".json")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            json.dump(fit_result, fh)
+        return read_fit(path, model)
+    finally:
+        os.remove(path)

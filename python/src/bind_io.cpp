@@ -48,7 +48,15 @@ py::dict dataset_to_dict(const SpectralDataset& d) {
   return out;
 }
 
-SpectralDataset dataset_from_arrays(const Array& angles, const Array& wavelengths, const Array& brdf,
+std::function<void(const std::string&)> python_warning() {
+  return [](const std::string& message) {
+    py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 3);
+  };
+}
+
+}  // namespace
+
+SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray& wavelengths, const DoubleArray& brdf,
                                     const py::object& sigma, const std::map<std::string, std::string>& metadata,
                                     const std::string& convention) {
   SpectralDataset d;
@@ -65,7 +73,7 @@ SpectralDataset dataset_from_arrays(const Array& angles, const Array& wavelength
   d.wavelengths.assign(wavelengths.data(), wavelengths.data() + m);
   d.brdf.assign(brdf.data(), brdf.data() + n * m);
   if (!sigma.is_none()) {
-    const Array s = sigma.cast<Array>();
+    const DoubleArray s = sigma.cast<DoubleArray>();
     if (static_cast<std::size_t>(s.size()) != n * m) throw InputError("sigma must have the shape of brdf");
     d.sigma.assign(s.data(), s.data() + n * m);
   }
@@ -80,14 +88,6 @@ SpectralDataset dataset_from_arrays(const Array& angles, const Array& wavelength
   validate_dataset(d);
   return d;
 }
-
-std::function<void(const std::string&)> python_warning() {
-  return [](const std::string& message) {
-    py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 3);
-  };
-}
-
-}  // namespace
 
 void bind_io(py::module_& m) {
   m.def(
