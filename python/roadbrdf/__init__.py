@@ -20,7 +20,7 @@ from . import _roadbrdf
 
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "models", "model_names", "read_fit",
            "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable", "read_rtable",
-           "fit", "spectral_model_from_fit", "road_to_zenith_azimuth"]
+           "fit", "spectral_model_from_fit", "mix", "road_to_zenith_azimuth"]
 
 InputError = _roadbrdf.InputError
 
@@ -184,9 +184,10 @@ class SpectralModel:
 
 
 def read_fit(path: str, model: str | None = None) -> SpectralModel:
-    """Read a fit file written by ``roadbrdf fit`` as a spectral model: the best-ranked fit, or the
-    fit of ``model`` (its name as in the file, e.g. ``"oren-nayar+torrance-sparrow"``)."""
-    return SpectralModel(_roadbrdf.read_fit_file(str(path), model or ""))
+    """Read a fit file written by ``roadbrdf fit`` (or a MIX.json written by ``roadbrdf mix``) as a
+    spectral model: the best-ranked fit, or the fit of ``model`` (its name as in the file, e.g.
+    ``"oren-nayar+torrance-sparrow"``; for a MIX.json, the method, e.g. ``"shadowed"``)."""
+    return SpectralModel(_roadbrdf.read_spectral_model_file(str(path), model or ""))
 
 
 class Dataset:
@@ -385,3 +386,20 @@ def spectral_model_from_fit(fit_result: dict, model: str | None = None) -> Spect
         return read_fit(path, model)
     finally:
         os.remove(path)
+
+
+def mix(formulation, data=None, method="all", folds=5, seed=1, per_wavelength=False, sum_to_one=False,
+        binder_coverage=None, mastic_fraction=None, reference=None, output=None) -> dict:
+    """Predict the BRDF of a road formulation from its components' fits, as ``roadbrdf mix`` does.
+
+    ``formulation``: a formulation JSON file (see docs/mixing.md); ``data``: the measured mixture
+    (CSV path) to compare the methods on held-out geometries (``folds``-fold); ``method``: areal,
+    fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
+    the albedo difference). Returns the MIX.json content (per method: weights, parameters, and the
+    comparison when ``data`` is given); ``read_fit(output, method)`` evaluates a method's mixture.
+    """
+    import json
+    text = _roadbrdf.mix(str(formulation), "" if data is None else str(data), method, int(folds), int(seed),
+                         bool(per_wavelength), bool(sum_to_one), binder_coverage, mastic_fraction,
+                         "" if reference is None else str(reference), "" if output is None else str(output))
+    return json.loads(text)
