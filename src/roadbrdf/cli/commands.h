@@ -7,6 +7,17 @@ namespace roadbrdf::cli {
 
 void register_models_command(CLI::App& app);
 void register_eval_command(CLI::App& app);
+void register_rtable_command(CLI::App& app);
+void register_fit_command(CLI::App& app);
+void register_simulate_command(CLI::App& app);
+void register_check_command(CLI::App& app);
+void register_resample_command(CLI::App& app);
+void register_calibrate_command(CLI::App& app);
+void register_convert_command(CLI::App& app);
+void register_mix_command(CLI::App& app);
+void register_surface_command(CLI::App& app);  // also registers "render"
+void register_albedo_command(CLI::App& app);
+void register_plot_command(CLI::App& app);
 // [command-declarations]
 
 }  // namespace roadbrdf::cli

@@ -16,6 +16,17 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "roadbrdf 0.1.0");
   roadbrdf::cli::register_models_command(app);
   roadbrdf::cli::register_eval_command(app);
+  roadbrdf::cli::register_rtable_command(app);
+  roadbrdf::cli::register_fit_command(app);
+  roadbrdf::cli::register_simulate_command(app);
+  roadbrdf::cli::register_check_command(app);
+  roadbrdf::cli::register_resample_command(app);
+  roadbrdf::cli::register_calibrate_command(app);
+  roadbrdf::cli::register_convert_command(app);
+  roadbrdf::cli::register_mix_command(app);
+  roadbrdf::cli::register_surface_command(app);
+  roadbrdf::cli::register_albedo_command(app);
+  roadbrdf::cli::register_plot_command(app);
   // [command-registrations]
   try {
     app.parse(argc, argv);

@@ -1,0 +1,587 @@
+#include "roadbrdf/albedo/hemisphere.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <cstdio>
+#include <cstdlib>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/models/composite.h"
+
+namespace roadbrdf::albedo {
+
+double SpectralIntegral::max_error() const {
+  double e = 0.0;
+  for (double x : error) e = std::max(e, x);
+  return e;
+}
+
+const KronrodRule& kronrod15() {
+  // QUADPACK qk15 (Piessens, de Doncker-Kapenga, Ueberhuber, Kahaner 1983): abscissae and weights of
+  // the 15-point Kronrod rule and of the embedded 7-point Gauss rule on [-1, 1].
+  static const KronrodRule rule = [] {
+    const double xgk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
+                           0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
+                           0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+                           0.207784955007898467600689403773245, 0.0};
+    const double wgk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
+                           0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
+                           0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+                           0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
+    const double wg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+                          0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+    KronrodRule r{};
+    for (int k = 0; k < 8; ++k) {
+      // ascending order: index k is -xgk[k], index 14 - k is +xgk[k]
+      r.x[k] = -xgk[k];
+      r.x[14 - k] = xgk[k];
+      r.wk[k] = r.wk[14 - k] = wgk[k];
+      const double g = (k % 2 == 1) ? wg[k / 2] : 0.0;
+      r.wg[k] = r.wg[14 - k] = g;
+    }
+    return r;
+  }();
+  return rule;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Isotropy
+
+namespace {
+
+bool isotropic_strided(const Model& model, const double* params, std::size_t stride, std::size_t n_sets) {
+  if (const auto* composite = dynamic_cast<const CompositeModel*>(&model)) {
+    for (std::size_t k = 0; k < composite->component_count(); ++k) {
+      if (!isotropic_strided(composite->component(k), params + composite->weight_index(k) + 1, stride, n_sets)) {
+        return false;
+      }
+    }
+    return true;
+  }
+  const ModelDescription& d = model.description();
+  if (d.name == "lafortune") {
+    const auto it = d.option_values.find("isotropic");
+    return it == d.option_values.end() || it->second != "no";
+  }
+  if (d.name == "ashikhmin-shirley") {
+    const auto nu = d.parameter_index("nu");
+    const auto nv = d.parameter_index("nv");
+    if (!nu || !nv) return false;
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      if (params[s * stride + *nu] != params[s * stride + *nv]) return false;
+    }
+  }
+  return true;
+}
+
+// Evaluates batches of geometries for all parameter sets and accumulates weighted sums per target row.
+class Accumulator {
+ public:
+  Accumulator(const Model& model, const double* params, std::size_t n_sets)
+      : model_(model), params_(params), n_sets_(n_sets) {}
+
+  // Queue one geometry: its values are added with weight w1 to acc1[row] and w2 to acc2[row] (acc2 may be null).
+  void add(const Geometry& g, std::size_t row, double w1, double w2) {
+    geometries_.push_back(g);
+    rows_.push_back(row);
+    w1_.push_back(w1);
+    w2_.push_back(w2);
+    if (geometries_.size() == kChunk) flush();
+  }
+  void set_targets(double* acc1, double* acc2) {
+    flush();
+    acc1_ = acc1;
+    acc2_ = acc2;
+  }
+  void flush() {
+    if (geometries_.empty()) return;
+    const std::size_t n = geometries_.size();
+    out_.resize(n * n_sets_);
+    model_.evaluate_batch(geometries_.data(), n, params_, n_sets_, out_.data());
+    for (std::size_t k = 0; k < n; ++k) {
+      const double* f = out_.data() + k * n_sets_;
+      double* a1 = acc1_ + rows_[k] * n_sets_;
+      const double w1 = w1_[k];
+      for (std::size_t s = 0; s < n_sets_; ++s) a1[s] += w1 * f[s];
+      if (acc2_ != nullptr && w2_[k] != 0.0) {
+        double* a2 = acc2_ + rows_[k] * n_sets_;
+        const double w2 = w2_[k];
+        for (std::size_t s = 0; s < n_sets_; ++s) a2[s] += w2 * f[s];
+      }
+    }
+    count_ += n;
+    geometries_.clear();
+    rows_.clear();
+    w1_.clear();
+    w2_.clear();
+  }
+  std::size_t count() const { return count_ + geometries_.size(); }
+
+ private:
+  static constexpr std::size_t kChunk = 48;
+  const Model& model_;
+  const double* params_;
+  std::size_t n_sets_;
+  std::vector<Geometry> geometries_;
+  std::vector<std::size_t> rows_;
+  std::vector<double> w1_, w2_;
+  std::vector<double> out_;
+  double* acc1_ = nullptr;
+  double* acc2_ = nullptr;
+  std::size_t count_ = 0;
+};
+
+void check_finite(const std::vector<double>& values, const Model& model, double theta_s) {
+  for (double v : values) {
+    if (!std::isfinite(v)) {
+      throw InputError("model '" + model.name() + "' returned a non-finite BRDF while integrating at sun zenith " +
+                       std::to_string(rad_to_deg(theta_s)) + " deg");
+    }
+  }
+}
+
+// One Gauss-Kronrod node in mu with its own azimuth trapezoid (iterated integration: every mu node's
+// azimuthal integral is refined independently, so only the nodes that see the specular lobe pay for it).
+struct MuNode {
+  double mu = 0.0;
+  double theta = 0.0;
+  double wk = 0.0;           // Kronrod weight x half-length x mu
+  double wg = 0.0;           // Gauss weight x half-length x mu (0 for Kronrod-only nodes)
+  int n = 4;                 // trapezoid intervals over the azimuth range
+  std::vector<double> t;     // azimuth integral with n intervals, per set
+  std::vector<double> tc;    // with n/2 intervals
+  std::vector<double> err;   // wk |t - tc|: this node's azimuthal error contribution, per set
+};
+
+struct Panel {
+  double a = 0.0, b = 1.0;   // mu range
+  MuNode nodes[15];
+  std::vector<double> q, err_mu;  // per set: K15 value and |K15 - G7|
+};
+
+class BlackSkyIntegrator {
+ public:
+  BlackSkyIntegrator(const Model& model, const double* params, std::size_t n_sets, double theta_s, double phi_s,
+                     bool isotropic)
+      : model_(model),
+        params_(params),
+        n_sets_(n_sets),
+        theta_s_(theta_s),
+        phi_s_(phi_s),
+        isotropic_(isotropic),
+        acc_(model, params, n_sets) {
+    if (!(theta_s >= 0.0 && theta_s < kPi / 2)) {
+      throw InputError("sun zenith " + std::to_string(rad_to_deg(theta_s)) + " deg is outside [0, 90) deg");
+    }
+    // Sub-intervals of the relative azimuth, split at the specular plane (pi) and at pi/2.
+    // Isotropic: the integrand is even about dphi = 0 and pi, so [0, pi] counts twice.
+    starts_ = isotropic_ ? std::vector<double>{0.0, 0.5 * kPi} : std::vector<double>{0.0, 0.5 * kPi, kPi, 1.5 * kPi};
+    factor_ = isotropic_ ? 2.0 : 1.0;
+    n0_ = 8;  // smallest n for which the n/2 rule is exact for constants (sin^4 has frequency 2)
+  }
+
+  static auto constant_n(int n) {
+    return [n](double) { return n; };
+  }
+  // Azimuth sub-interval [start, start + pi/2] mapped from t in [0, 1] by Sidi's sin^4 transformation
+  //   dphi = (pi/2) psi(t),  psi(t) = t - 2 sin(2 pi t)/(3 pi) + sin(4 pi t)/(12 pi),  psi'(t) = (8/3) sin^4(pi t):
+  // the transformed integrand and its first three derivatives vanish at both ends, so the trapezoid
+  // rule in t converges as O(h^6) even though the integrand has kinks at the sub-interval ends
+  // (Oren-Nayar's max(0, cos dphi) and |cos dphi| at dphi = pi/2) and is not periodic on them.
+  // The end nodes have weight 0 and are never evaluated; doubling n reuses every node.
+  static double azimuth_offset(double t) {
+    return 0.5 * kPi * (t - 2.0 * std::sin(2.0 * kPi * t) / (3.0 * kPi) + std::sin(4.0 * kPi * t) / (12.0 * kPi));
+  }
+  double azimuth_weight(double t, int n) const {
+    const double s = std::sin(kPi * t);
+    return factor_ * 0.5 * kPi * (8.0 / 3.0) * s * s * s * s / n;
+  }
+
+  // Panel with fresh nodes; node j gets n_of(mu_j) azimuth intervals (a power of 2 times n0).
+  template <class NOf>
+  Panel make_panel(double a, double b, NOf n_of) {
+    const KronrodRule& r = kronrod15();
+    Panel p;
+    p.a = a;
+    p.b = b;
+    const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+    std::vector<double> t(15 * n_sets_, 0.0), tc(15 * n_sets_, 0.0);
+    acc_.set_targets(t.data(), tc.data());
+    for (int j = 0; j < 15; ++j) {
+      MuNode& node = p.nodes[j];
+      node.mu = mid + half * r.x[j];
+      node.theta = std::acos(std::clamp(node.mu, 0.0, 1.0));
+      node.wk = half * r.wk[j] * node.mu;
+      node.wg = half * r.wg[j] * node.mu;
+      const int n = n_of(node.mu);
+      node.n = n;
+      for (int k = 1; k < n; ++k) {
+        const double tk = static_cast<double>(k) / n;
+        const double w = azimuth_weight(tk, n);
+        const double wc = (k % 2 == 0) ? azimuth_weight(tk, n / 2) : 0.0;
+        for (const double start : starts_) {
+          acc_.add(geometry_from_radians(theta_s_, phi_s_, node.theta, phi_s_ + start + azimuth_offset(tk)),
+                   static_cast<std::size_t>(j), w, wc);
+        }
+      }
+    }
+    acc_.flush();
+    for (int j = 0; j < 15; ++j) {
+      MuNode& node = p.nodes[j];
+      node.t.assign(t.begin() + static_cast<std::ptrdiff_t>(j * n_sets_),
+                    t.begin() + static_cast<std::ptrdiff_t>((j + 1) * n_sets_));
+      node.tc.assign(tc.begin() + static_cast<std::ptrdiff_t>(j * n_sets_),
+                     tc.begin() + static_cast<std::ptrdiff_t>((j + 1) * n_sets_));
+      node_error(node);
+    }
+    panel_sums(p);
+    return p;
+  }
+
+  void node_error(MuNode& node) {
+    node.err.resize(n_sets_);
+    for (std::size_t s = 0; s < n_sets_; ++s) node.err[s] = node.wk * std::fabs(node.t[s] - node.tc[s]);
+  }
+
+  void panel_sums(Panel& p) {
+    p.q.assign(n_sets_, 0.0);
+    p.err_mu.assign(n_sets_, 0.0);
+    std::vector<double> qg(n_sets_, 0.0);
+    for (const MuNode& node : p.nodes) {
+      for (std::size_t s = 0; s < n_sets_; ++s) {
+        p.q[s] += node.wk * node.t[s];
+        qg[s] += node.wg * node.t[s];
+      }
+    }
+    for (std::size_t s = 0; s < n_sets_; ++s) p.err_mu[s] = std::fabs(p.q[s] - qg[s]);
+    check_finite(p.q, model_, theta_s_);
+  }
+
+  // Double the number of azimuth intervals of one node, reusing its nodes.
+  void refine_azimuth(MuNode& node) {
+    const int n2 = 2 * node.n;
+    node.tc = node.t;
+    for (double& v : node.t) v *= 0.5;
+    acc_.set_targets(node.t.data(), nullptr);
+    for (int k = 1; k < n2; k += 2) {
+      const double t = static_cast<double>(k) / n2;
+      const double w = azimuth_weight(t, n2);
+      for (const double start : starts_) {
+        acc_.add(geometry_from_radians(theta_s_, phi_s_, node.theta, phi_s_ + start + azimuth_offset(t)), 0, w, 0.0);
+      }
+    }
+    acc_.flush();
+    node.n = n2;
+    node_error(node);
+  }
+
+  std::vector<Panel> initial_panels() {
+    const double mu_s = std::cos(theta_s_);
+    std::vector<Panel> panels;
+    if (mu_s > 1e-12 && mu_s < 1.0 - 1e-12) {
+      panels.push_back(make_panel(0.0, mu_s, constant_n(n0_)));
+      panels.push_back(make_panel(mu_s, 1.0, constant_n(n0_)));
+    } else {
+      panels.push_back(make_panel(0.0, 1.0, constant_n(n0_)));
+    }
+    return panels;
+  }
+
+  SpectralIntegral collect(const std::vector<Panel>& panels, bool converged) {
+    SpectralIntegral result;
+    result.converged = converged;
+    result.value.assign(n_sets_, 0.0);
+    result.error.assign(n_sets_, 0.0);
+    for (const Panel& p : panels) {
+      for (std::size_t s = 0; s < n_sets_; ++s) {
+        result.value[s] += p.q[s];
+        result.error[s] += p.err_mu[s];
+      }
+      for (const MuNode& node : p.nodes) {
+        for (std::size_t s = 0; s < n_sets_; ++s) result.error[s] += node.err[s];
+      }
+    }
+    const double mu_s = std::cos(theta_s_);
+    const std::size_t n_params = model_.parameter_count();
+    for (std::size_t s = 0; s < n_sets_; ++s) {
+      result.value[s] += model_.delta_reflectance(params_ + s * n_params, mu_s);
+    }
+    result.geometries = acc_.count();
+    return result;
+  }
+
+  SpectralIntegral run(const QuadratureSettings& settings) {
+    std::vector<Panel> panels = initial_panels();
+    bool converged = true;
+    // Per-set summed error estimate, kept up to date incrementally.
+    std::vector<double> total(n_sets_, 0.0);
+    auto add_panel = [&](const Panel& p, double sign) {
+      for (std::size_t s = 0; s < n_sets_; ++s) total[s] += sign * p.err_mu[s];
+      for (const MuNode& node : p.nodes) {
+        for (std::size_t s = 0; s < n_sets_; ++s) total[s] += sign * node.err[s];
+      }
+    };
+    for (const Panel& p : panels) add_panel(p, 1.0);
+    std::size_t steps = 0;
+    while (n_sets_ > 0) {
+      if (++steps % 64 == 0) {  // limit the drift of the incremental sums
+        std::fill(total.begin(), total.end(), 0.0);
+        for (const Panel& p : panels) add_panel(p, 1.0);
+      }
+      const std::size_t worst =
+          static_cast<std::size_t>(std::max_element(total.begin(), total.end()) - total.begin());
+      if (total[worst] <= settings.tolerance) break;
+      if (acc_.count() >= settings.max_geometries) {
+        converged = false;
+        break;
+      }
+      // The largest single contribution of the worst set: a panel's mu error or a node's azimuth error.
+      std::size_t target_panel = 0;
+      int target_node = -1;  // -1: the panel's mu error
+      double largest = -1.0;
+      for (std::size_t i = 0; i < panels.size(); ++i) {
+        if (panels[i].err_mu[worst] > largest) {
+          largest = panels[i].err_mu[worst];
+          target_panel = i;
+          target_node = -1;
+        }
+        for (int j = 0; j < 15; ++j) {
+          if (panels[i].nodes[j].err[worst] > largest) {
+            largest = panels[i].nodes[j].err[worst];
+            target_panel = i;
+            target_node = j;
+          }
+        }
+      }
+      Panel& p = panels[target_panel];
+      if (target_node >= 0 && p.nodes[target_node].n < (1 << 16)) {
+        add_panel(p, -1.0);
+        refine_azimuth(p.nodes[target_node]);
+        panel_sums(p);
+        add_panel(p, 1.0);
+      } else if (p.b - p.a > 1e-9) {
+        add_panel(p, -1.0);
+        // The children's nodes start with the azimuth resolution of the parent's nearest node.
+        const Panel parent = std::move(p);
+        auto inherited = [&parent](double mu) {
+          int best = 0;
+          for (int j = 1; j < 15; ++j) {
+            if (std::fabs(parent.nodes[j].mu - mu) < std::fabs(parent.nodes[best].mu - mu)) best = j;
+          }
+          return parent.nodes[best].n;
+        };
+        const double a = parent.a, b = parent.b, m = 0.5 * (a + b);
+        panels[target_panel] = make_panel(a, m, inherited);
+        panels.push_back(make_panel(m, b, inherited));
+        add_panel(panels[target_panel], 1.0);
+        add_panel(panels.back(), 1.0);
+      } else {
+        converged = false;
+        break;
+      }
+    }
+    return collect(panels, converged);
+  }
+
+  SpectralIntegral run_fixed(int mu_panels, int phi_intervals) {
+    const double mu_s = std::cos(theta_s_);
+    std::vector<Panel> panels;
+    auto split = [&](double a, double b) {
+      for (int i = 0; i < mu_panels; ++i) {
+        panels.push_back(make_panel(a + (b - a) * i / mu_panels, a + (b - a) * (i + 1) / mu_panels,
+                                    constant_n(std::max(2, phi_intervals))));
+      }
+    };
+    if (mu_s > 1e-12 && mu_s < 1.0 - 1e-12) {
+      split(0.0, mu_s);
+      split(mu_s, 1.0);
+    } else {
+      split(0.0, 1.0);
+    }
+    SpectralIntegral result = collect(panels, false);
+    std::fill(result.error.begin(), result.error.end(), 0.0);
+    return result;
+  }
+
+ private:
+  const Model& model_;
+  const double* params_;
+  std::size_t n_sets_;
+  double theta_s_, phi_s_;
+  bool isotropic_;
+  std::vector<double> starts_;
+  double factor_ = 2.0;
+  int n0_ = 8;
+  Accumulator acc_;
+};
+
+}  // namespace
+
+namespace {
+
+// Outer adaptive Gauss-Kronrod integral  int_0^1 2 mu F(mu) dmu  of an inner spectral integral F.
+template <class Inner>
+SpectralIntegral integrate_cosine_weighted(std::size_t n_sets, const QuadratureSettings& settings, Inner inner) {
+  const KronrodRule& r = kronrod15();
+  struct OuterPanel {
+    double a, b;
+    std::vector<double> q, err;
+  };
+  SpectralIntegral result;
+  std::size_t geometries = 0;
+  bool converged = true;
+  auto make = [&](double a, double b) {
+    OuterPanel p{a, b, std::vector<double>(n_sets, 0.0), std::vector<double>(n_sets, 0.0)};
+    std::vector<double> qg(n_sets, 0.0), inner_err(n_sets, 0.0);
+    const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+    for (int j = 0; j < 15; ++j) {
+      const double mu = mid + half * r.x[j];
+      // Inner tolerance tol / (4 mu): the inner errors then add at most (tol/2) (b - a) to the outer
+      // estimate (sum_j w_j 2 mu_j tol/(4 mu_j) = tol/2 (b - a)), and grazing nodes, whose black-sky
+      // integrals of specular lobes are the costliest, get the loosest tolerance.
+      const SpectralIntegral f = inner(mu, std::min(0.05, settings.tolerance / (4.0 * mu)));
+      geometries += f.geometries;
+      converged = converged && f.converged;
+      const double wk = half * r.wk[j] * 2.0 * mu, wg = half * r.wg[j] * 2.0 * mu;
+      for (std::size_t s = 0; s < n_sets; ++s) {
+        p.q[s] += wk * f.value[s];
+        qg[s] += wg * f.value[s];
+        inner_err[s] += wk * f.error[s];
+      }
+    }
+    for (std::size_t s = 0; s < n_sets; ++s) p.err[s] = std::fabs(p.q[s] - qg[s]) + inner_err[s];
+    return p;
+  };
+  std::vector<OuterPanel> panels;
+  panels.push_back(make(0.0, 1.0));
+  std::vector<double> total(n_sets);
+  while (true) {
+    std::fill(total.begin(), total.end(), 0.0);
+    for (const auto& p : panels) {
+      for (std::size_t s = 0; s < n_sets; ++s) total[s] += p.err[s];
+    }
+    std::size_t worst = 0;
+    for (std::size_t s = 1; s < n_sets; ++s) {
+      if (total[s] > total[worst]) worst = s;
+    }
+    if (n_sets == 0 || total[worst] <= settings.tolerance) break;
+    if (geometries >= settings.max_geometries || panels.size() > 200) {
+      converged = false;
+      break;
+    }
+    std::size_t target = 0;
+    for (std::size_t i = 1; i < panels.size(); ++i) {
+      if (panels[i].err[worst] > panels[target].err[worst]) target = i;
+    }
+    const double a = panels[target].a, b = panels[target].b, m = 0.5 * (a + b);
+    panels[target] = make(a, m);
+    panels.push_back(make(m, b));
+  }
+  result.value.assign(n_sets, 0.0);
+  result.error.assign(n_sets, 0.0);
+  for (const auto& p : panels) {
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      result.value[s] += p.q[s];
+      result.error[s] += p.err[s];
+    }
+  }
+  result.geometries = geometries;
+  result.converged = converged;
+  return result;
+}
+
+}  // namespace
+
+bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) {
+  return isotropic_strided(model, params, model.parameter_count(), n_sets);
+}
+
+SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                           double phi_s, const QuadratureSettings& settings) {
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets));
+  return integrator.run(settings);
+}
+
+SpectralIntegral black_sky_fixed(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                 double phi_s, int mu_panels, int phi_intervals) {
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets));
+  return integrator.run_fixed(std::max(1, mu_panels), phi_intervals);
+}
+
+SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params, std::size_t n_sets,
+                                        double theta_s, const QuadratureSettings& settings) {
+  if (is_isotropic(model, params, n_sets)) return black_sky(model, params, n_sets, theta_s, 0.0, settings);
+  // Periodic trapezoid in the sun azimuth, doubled until |T_N - T_N/2| + inner errors <= tolerance.
+  QuadratureSettings inner = settings;
+  inner.tolerance = 0.5 * settings.tolerance;
+  SpectralIntegral result;
+  std::vector<SpectralIntegral> samples;  // at phi = 2 pi k / n
+  int n = 4;
+  for (int k = 0; k < n; ++k) samples.push_back(black_sky(model, params, n_sets, theta_s, 2.0 * kPi * k / n, inner));
+  auto mean_of = [&](int stride) {
+    std::vector<double> m(n_sets, 0.0), e(n_sets, 0.0);
+    int count = 0;
+    for (std::size_t k = 0; k < samples.size(); k += static_cast<std::size_t>(stride)) {
+      for (std::size_t s = 0; s < n_sets; ++s) {
+        m[s] += samples[k].value[s];
+        e[s] += samples[k].error[s];
+      }
+      ++count;
+    }
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      m[s] /= count;
+      e[s] /= count;
+    }
+    return std::make_pair(m, e);
+  };
+  while (true) {
+    auto [fine, inner_err] = mean_of(1);
+    auto [coarse, unused] = mean_of(2);
+    result.value = fine;
+    result.error.assign(n_sets, 0.0);
+    double worst = 0.0;
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      result.error[s] = std::fabs(fine[s] - coarse[s]) + inner_err[s];
+      worst = std::max(worst, result.error[s]);
+    }
+    std::size_t geometries = 0;
+    bool converged = true;
+    for (const auto& x : samples) {
+      geometries += x.geometries;
+      converged = converged && x.converged;
+    }
+    result.geometries = geometries;
+    result.converged = converged;
+    if (worst <= settings.tolerance) break;
+    if (n >= 256 || geometries >= settings.max_geometries) {
+      result.converged = false;
+      break;
+    }
+    // Double: interleave new samples at odd positions.
+    std::vector<SpectralIntegral> doubled;
+    for (int k = 0; k < n; ++k) {
+      doubled.push_back(std::move(samples[static_cast<std::size_t>(k)]));
+      doubled.push_back(black_sky(model, params, n_sets, theta_s, 2.0 * kPi * (2 * k + 1) / (2 * n), inner));
+    }
+    samples = std::move(doubled);
+    n *= 2;
+  }
+  return result;
+}
+
+SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
+                           const QuadratureSettings& settings) {
+  const bool isotropic = is_isotropic(model, params, n_sets);
+  return integrate_cosine_weighted(n_sets, settings, [&](double mu, double tolerance) {
+    QuadratureSettings inner = settings;
+    inner.tolerance = tolerance;
+    const double theta = std::acos(mu);
+    return isotropic ? black_sky(model, params, n_sets, theta, 0.0, inner)
+                     : black_sky_azimuth_mean(model, params, n_sets, theta, inner);
+  });
+}
+
+}  // namespace roadbrdf::albedo

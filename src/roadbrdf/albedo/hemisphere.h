@@ -1,0 +1,90 @@
+// Hemispherical integrals of a BRDF: black-sky (directional-hemispherical) and white-sky
+// (bi-hemispherical) albedo, for many parameter sets (wavelengths) at once.
+//
+// Definitions (report eqs. 2.21 and 2.22; eqs. 2.17/2.18 miss the cos(theta_r) sin(theta_r) factor,
+// see the reference README "known errors"):
+//   alpha_bs(theta_s, phi_s) = int_{2pi} f_r(w_s, w_r) cos(theta_r) dw_r  (+ R(theta_s) of an ideal specular part)
+//   alpha_ws = (1/pi) int_{2pi} alpha_bs(w_i) cos(theta_i) dw_i  = 2 int_0^1 alpha_bs(mu) mu dmu  (isotropic)
+//
+// Quadrature (deterministic, adaptive, one set of geometries for every parameter set):
+//   - mu = cos(theta_r) on [0, 1]: composite 15-point Gauss-Kronrod panels (the 7-point Gauss-Legendre
+//     rule is embedded; |K15 - G7| is the error estimate). The initial panels are split at the specular
+//     direction mu = cos(theta_s) (also where Oren-Nayar's min/max(theta_i, theta_r) has its kink).
+//   - relative azimuth dphi = phi_r - phi_s: split at pi/2 and at the specular plane pi (and 3pi/2 for
+//     anisotropic models, which use all of [0, 2 pi); isotropic models use [0, pi] twice, the integrand
+//     being even about 0 and pi). On each quarter, the trapezoid rule after Sidi's sin^4 transformation
+//     (dense nodes at the quarter ends, O(h^6) although Oren-Nayar has kinks at dphi = pi/2). Each mu
+//     node has its own azimuth count; doubling it reuses every node; |T_N - T_N/2| is its estimate.
+//     (Deviation from the "periodic trapezoid": the plain periodic trapezoid is only O(h^2) at
+//     Oren-Nayar's |cos dphi| kinks and needed 256-1024 intervals at grazing incidence.)
+//   - Adaptivity: while the summed error estimate of the worst parameter set exceeds the tolerance, the
+//     panel contributing most to it is refined in the direction of its larger estimate: its mu panel is
+//     bisected (children inherit the azimuth counts of the nearest parent nodes), or one node's azimuth
+//     count doubled. Both estimates are those of the coarser rule, so the
+//     reported error bounds the returned (finer) value conservatively for smooth integrands.
+//   - Ideal specular (delta) parts are added analytically: Model::delta_reflectance(p, cos theta_s).
+//   - White-sky: outer 15-point Gauss-Kronrod panels in mu_i (adaptive, same |K15 - G7| estimate) of
+//     black-sky values, node j computed to tolerance tol/(4 mu_j) (their weighted sum adds <= tol/2);
+//     for anisotropic models each black-sky value is first averaged over the sun azimuth with an
+//     adaptive periodic trapezoid.
+//   - Known limits: near-mirror lobes (microfacet roughness ~0.01) exhaust max_geometries before the
+//     tolerance (converged = false, error estimate reported); white-sky of specular lobes spends most
+//     of its evaluations at grazing incidence.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "roadbrdf/models/model.h"
+
+namespace roadbrdf::albedo {
+
+struct QuadratureSettings {
+  double tolerance = 1e-5;                  // absolute, on every parameter set (wavelength)
+  std::size_t max_geometries = 400'000;     // safety stop per black-sky integral (each geometry covers all sets)
+};
+
+// One integral for n parameter sets (e.g. one per wavelength).
+struct SpectralIntegral {
+  std::vector<double> value;  // per parameter set
+  std::vector<double> error;  // error estimate per parameter set (absolute)
+  bool converged = true;      // false if max_geometries stopped the refinement first
+  std::size_t geometries = 0; // distinct BRDF geometries evaluated (each for all parameter sets)
+  double max_error() const;
+};
+
+// True unless the model (or a component of a composite) is ashikhmin-shirley with nu != nv in some
+// parameter set, or lafortune with option isotropic=no. `params`: n_sets x parameter_count(), row-major.
+bool is_isotropic(const Model& model, const double* params, std::size_t n_sets);
+
+// Black-sky albedo at sun zenith theta_s and azimuth phi_s [rad] (phi_s matters only for anisotropic
+// models). theta_s must be in [0, pi/2).
+SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                           double phi_s = 0.0, const QuadratureSettings& settings = {});
+
+// Black-sky albedo averaged over the sun azimuth (1/2pi) int alpha_bs(theta_s, phi_s) dphi_s; equal to
+// black_sky() for isotropic models.
+SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params, std::size_t n_sets,
+                                        double theta_s, const QuadratureSettings& settings = {});
+
+// White-sky albedo.
+SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
+                           const QuadratureSettings& settings = {});
+
+// Non-adaptive black-sky rule, for convergence studies: `mu_panels` equal K15 panels on each side of
+// the specular mu (G7 sub-rule unused) times the transformed trapezoid with `phi_intervals` intervals
+// on each azimuth quarter. No error estimate (error = 0, converged = false).
+SpectralIntegral black_sky_fixed(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                 double phi_s, int mu_panels, int phi_intervals);
+
+// The 15-point Gauss-Kronrod rule on [-1, 1] with its embedded 7-point Gauss-Legendre rule (QUADPACK
+// qk15 constants): nodes x[0..14] ascending, weights wk; wg[j] is the Gauss weight of node j (0 for
+// the 8 Kronrod-only nodes, the odd indices 1, 3, ..., 13 are the Gauss nodes).
+struct KronrodRule {
+  double x[15];
+  double wk[15];
+  double wg[15];
+};
+const KronrodRule& kronrod15();
+
+}  // namespace roadbrdf::albedo

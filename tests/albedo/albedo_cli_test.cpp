@@ -1,0 +1,48 @@
+// roadbrdf albedo: JSON keys and a closed-form value (Lambert: every albedo equals the parameter).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+std::string run(const std::string& args, int& status) {
+  std::string out;
+  FILE* pipe = popen((std::string(ROADBRDF_CLI) + " " + args + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  status = pclose(pipe);
+  return out;
+}
+
+TEST(AlbedoCli, JsonKeysAndLambertValues) {
+  int status = 0;
+  const std::string out =
+      run("albedo lambert -p albedo=0.42 --sun-zenith 0:60:30 --atmosphere spectrl2:aod=0.2 --json", status);
+  ASSERT_EQ(status, 0) << out;
+  const auto j = nlohmann::json::parse(out);
+  for (const char* key : {"wavelengths", "black_sky", "white_sky", "blue_sky", "diffuse_fraction", "broadband",
+                          "black_sky_error", "white_sky_error", "units"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  ASSERT_EQ(j["black_sky"].size(), 3u);
+  EXPECT_NEAR(j["black_sky"][1][0].get<double>(), 0.42, 1e-12);
+  EXPECT_NEAR(j["white_sky"][0].get<double>(), 0.42, 1e-12);
+  EXPECT_NEAR(j["broadband"]["blue_sky"][2].get<double>(), 0.42, 1e-12);
+  const double d = j["diffuse_fraction"][0][0].get<double>();
+  EXPECT_GT(d, 0.0);
+  EXPECT_LT(d, 1.0);
+}
+
+TEST(AlbedoCli, RejectsBadInput) {
+  int status = 0;
+  run("albedo lambert --sun-zenith 95", status);
+  EXPECT_NE(status, 0);
+  run("albedo lambert --diffuse-fraction 0.2 --atmosphere spectrl2", status);
+  EXPECT_NE(status, 0);
+  run("albedo lambert --atmosphere spectrl2:bogus=1", status);
+  EXPECT_NE(status, 0);
+}
+
+}  // namespace
