@@ -61,3 +61,47 @@ for k in 1 2 3 4; do
   "$rb" mix "$out/formulations/F$k.json" --data "data/examples/mixed/F$k.csv" --method all \
       --reference "$out/fits/F$k-measured.fit.json" -o "$out/F$k.mix.json" 2>/dev/null
 done
+
+section "5. Solar albedo of the measured F1 (fit) and of its best mixing prediction"
+"$rb" albedo "$out/fits/F1-measured.fit.json" --sun-zenith 0:60:30 --atmosphere spectrl2 \
+    --spectrum astm-g173-global --json -o "$out/F1-albedo.json"
+/usr/bin/python3 - "$out/F1-albedo.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+b = r["broadband"]
+fmt = lambda x: ", ".join(f"{v:.4f}" for v in (x if isinstance(x, list) else [x]))
+print(f"F1 measured: solar black-sky albedo at sun zenith 0/30/60 deg: {fmt(b['black_sky'])}")
+print(f"             white-sky: {fmt(b['white_sky'])};  blue-sky (SPECTRL2 clear sky): {fmt(b['blue_sky'])}")
+PY
+"$rb" albedo "$out/F1.mix.json" --sun-zenith 30 --spectrum astm-g173-global --json -o "$out/F1-mix-albedo.json"
+/usr/bin/python3 - "$out/F1-mix-albedo.json" <<'PY'
+import json, sys
+b = json.load(open(sys.argv[1]))["broadband"]
+fmt = lambda x: ", ".join(f"{v:.4f}" for v in (x if isinstance(x, list) else [x]))
+print(f"F1 predicted by the best mixing method: black-sky (30 deg) {fmt(b['black_sky'])}, white-sky {fmt(b['white_sky'])}")
+PY
+
+section "6. Road photometry: r-table of the measured F1 and of the mixture, Q0, S1 and class"
+"$rb" rtable "$out/fits/F1-measured.fit.json" --illuminant A --format rtb -o "$out/F1.rtb"
+"$rb" rtable "$out/F1.mix.json" --illuminant A --format csv -o "$out/F1-mix-rtable.csv"
+"$rb" rtable --import "$out/F1.rtb" --compare "$out/F1-mix-rtable.csv" | grep -E '^# (Q0|S1|class|compared)'
+
+section "7. Virtual road surface: F1 built from its formulation and measured by the virtual gonioreflectometer"
+"$rb" surface "$out/formulations/F1.json" --size 30mm --cell 0.2 --seed 1 --preview "$out/F1-surface.png" \
+    -o "$out/F1-surface.json"
+printf 'theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,30,180\n30,0,30,0\n60,0,60,180\n60,0,60,0\n' > "$out/small-grid.csv"
+"$rb" render "$out/F1-surface.json" --grid "$out/small-grid.csv" --wavelengths 550:650:100 --samples 2048 \
+    -o "$out/F1-virtual.csv"
+echo "virtual F1 (550 and 650 nm, with Monte Carlo standard errors) written to $out/F1-virtual.csv"
+
+section "8. Figures"
+"$rb" plot spectral data/examples/mixed/F1.csv data/examples/mixed/F2.csv data/examples/mixed/F3.csv \
+    data/examples/mixed/F4.csv --geometry 40,0,40,180 -o "$out/fig-spectral-F1-F4.png"
+"$rb" plot hemisphere "$out/fits/bitumen.fit.json" --theta-i 45 --wavelength 550 -o "$out/fig-hemisphere-bitumen.png"
+"$rb" plot plane --model "$out/fits/lazard.fit.json" --data data/examples/single/lazard.csv --theta-i 40 \
+    --wavelength 550 -o "$out/fig-plane-lazard.png"
+"$rb" plot fit data/examples/single/bitumen.csv "$out/fits/bitumen.fit.json" -o "$out/fig-fit-bitumen.png"
+"$rb" plot albedo "$out/F1-albedo.json" -o "$out/fig-albedo-F1.png"
+"$rb" plot rtable "$out/F1.rtb" -o "$out/fig-rtable-F1.png"
+
+section "Done: outputs in $out"

@@ -243,9 +243,11 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None)
     measured = d.brdf[:, wl_index]
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.3))
     ax = axes[0]
-    ax.plot(measured, predicted, "o", ms=4)
-    lim = [0, max(np.nanmax(measured), np.nanmax(predicted)) * 1.05]
-    ax.plot(lim, lim, "k--", lw=0.8, label="1:1")
+    positive = (measured > 0) & (predicted > 0)
+    ax.loglog(measured[positive], predicted[positive], "o", ms=4)
+    lo = min(measured[positive].min(), predicted[positive].min()) * 0.8
+    hi = max(measured[positive].max(), predicted[positive].max()) * 1.25
+    ax.plot([lo, hi], [lo, hi], "k--", lw=0.8, label="1:1")
     ax.set_xlabel("measured " + _UNIT)
     ax.set_ylabel("fitted " + _UNIT)
     ax.set_title(f"{chosen} at {wl:g} nm")
@@ -292,7 +294,7 @@ def albedo(result, title=None, output=None):
     if result.get("blue_sky") is not None:
         blue = np.asarray(result["blue_sky"], dtype=float)
         blue = blue[0] if blue.ndim > 1 else blue
-        ax.plot(wl, blue, "b--", lw=1.4, label="blue-sky")
+        ax.plot(wl, blue, "b--", lw=1.4, label=f"blue-sky, sun zenith {zen[0]:g}°")
     ax.set_xlabel("wavelength [nm]")
     ax.set_ylabel("albedo [1]")
     ax.legend(fontsize=7)
