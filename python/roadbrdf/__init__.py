@@ -20,7 +20,7 @@ from . import _roadbrdf
 
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "models", "model_names", "read_fit",
            "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable", "read_rtable",
-           "fit", "spectral_model_from_fit", "mix", "road_to_zenith_azimuth"]
+           "fit", "spectral_model_from_fit", "mix", "albedo", "road_to_zenith_azimuth"]
 
 InputError = _roadbrdf.InputError
 
@@ -403,3 +403,39 @@ def mix(formulation, data=None, method="all", folds=5, seed=1, per_wavelength=Fa
                          bool(per_wavelength), bool(sum_to_one), binder_coverage, mastic_fraction,
                          "" if reference is None else str(reference), "" if output is None else str(output))
     return json.loads(text)
+
+
+def albedo(model, params: dict | None = None, sun_zenith=30.0, sun_azimuth=None, azimuth_mean=False,
+           diffuse_fraction=None, atmosphere=None, spectrum=None, wavelengths=None, illuminant=None,
+           tolerance=1e-5) -> dict:
+    """Black-sky, white-sky and blue-sky albedo, as ``roadbrdf albedo --json`` computes them.
+
+    ``model``: a :class:`Model` (with ``params``), a :class:`SpectralModel`, or a fit / MIX.json file.
+    ``sun_zenith`` [deg]: a number or a list; ``diffuse_fraction``: a number in [0, 1] or a CSV file
+    (wavelength_nm, diffuse_fraction); ``atmosphere``: e.g. ``"spectrl2:aod=0.2"`` (SPECTRL2 clear sky);
+    ``spectrum``: broadband weighting ``"astm-g173-global"`` (default), ``"astm-g173-direct"`` or a CSV
+    file; ``illuminant``: also the luminous albedo under "A", "D65" or a lamp file.
+
+    Returns a dict: ``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky`` [zenith][wavelength],
+    ``white_sky`` [wavelength], ``blue_sky``, ``diffuse_fraction``, their ``*_error`` estimates,
+    ``broadband`` (solar-weighted values), ``luminous``, ``units`` and ``notes``.
+    """
+    import json
+    zeniths = [float(z) for z in np.atleast_1d(sun_zenith)]
+    common = (zeniths, None if sun_azimuth is None else float(sun_azimuth), bool(azimuth_mean),
+              "" if diffuse_fraction is None else str(diffuse_fraction), atmosphere or "", spectrum or "",
+              [] if wavelengths is None else [float(w) for w in np.atleast_1d(wavelengths)], illuminant or "",
+              float(tolerance))
+    if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
+        model = read_fit(model)
+    if isinstance(model, SpectralModel):
+        if params:
+            raise InputError("params cannot be combined with a spectral model")
+        return json.loads(_roadbrdf.albedo_spectral(model._spectral, *common))
+    given = dict(params or {})
+    names = model.parameter_names
+    unknown = [k for k in given if k not in names]
+    if unknown:
+        raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
+    values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
+    return json.loads(_roadbrdf.albedo_model(model._model, values, *common))

@@ -63,3 +63,32 @@ def test_standard_rtable_s1_and_round_trip(root, tmp_path, cli):
     from_cli = json.loads(cli("rtable", "--import", root / "data/third-party/rtables/r3-table.dat", "--json").stdout)
     assert from_cli["S1"] == pytest.approx(t["S1"], rel=1e-12)
     assert from_cli["Q0"] == pytest.approx(t["Q0"], rel=1e-12)
+
+
+def test_albedo_lambert_and_cli_agreement(cli, tmp_path):
+    r = roadbrdf.albedo(roadbrdf.Model("lambert"), {"albedo": 0.3}, sun_zenith=[0, 60], diffuse_fraction=0.25)
+    assert r["black_sky"][0][0] == pytest.approx(0.3, abs=1e-12)
+    assert r["white_sky"][0] == pytest.approx(0.3, abs=1e-12)
+    assert r["blue_sky"][1][0] == pytest.approx(0.3, abs=1e-12)
+    import json
+    from_cli = json.loads(cli("albedo", "oren-nayar", "-p", "sigma=0.5", "--sun-zenith", "0,40", "--json").stdout)
+    from_py = roadbrdf.albedo(roadbrdf.Model("oren-nayar"), {"sigma": 0.5}, sun_zenith=[0, 40])
+    assert from_py["black_sky"] == from_cli["black_sky"]
+    assert from_py["white_sky"] == from_cli["white_sky"]
+
+
+def test_albedo_and_fit_figures_render(root, tmp_path):
+    import roadbrdf.plot as rplot
+    data = root / "data/examples/single/lazard.csv"
+    fit_path = tmp_path / "lazard.fit.json"
+    roadbrdf.fit(data, ["oren-nayar", "lambert"], output=fit_path)
+    fig = rplot.fit_quality(data, fit_path, output=tmp_path / "fit.png")
+    assert (tmp_path / "fit.png").stat().st_size > 10000
+    d = roadbrdf.read_dataset(data)
+    k = int(np.argmin(np.abs(d.wavelengths - 550)))
+    np.testing.assert_array_equal(fig.roadbrdf_data["measured"], d.brdf[:, k])
+    result = roadbrdf.albedo(fit_path, sun_zenith=[0, 30, 60], atmosphere="spectrl2", wavelengths=[450, 550, 650])
+    fig = rplot.albedo(result, output=tmp_path / "albedo.png")
+    assert (tmp_path / "albedo.png").stat().st_size > 10000
+    # Black-sky of a rough diffuse surface changes little with sun zenith; all values are albedos.
+    assert all(0 < v < 1 for row in result["black_sky"] for v in row)

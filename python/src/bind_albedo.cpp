@@ -1,0 +1,52 @@
+// Python binding of albedo: the same report as `roadbrdf albedo --json`.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+
+#include "binding.h"
+#include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/error.h"
+
+namespace py = pybind11;
+
+namespace roadbrdf::python {
+
+namespace {
+
+std::string report_text(const SpectralModel& model, const std::vector<double>& sun_zenith,
+                        std::optional<double> sun_azimuth, bool azimuth_mean, const std::string& diffuse_fraction,
+                        const std::string& atmosphere, const std::string& spectrum,
+                        const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
+  albedo::AlbedoRequest request;
+  request.sun_zenith_deg = sun_zenith;
+  request.sun_azimuth_deg = sun_azimuth;
+  request.azimuth_mean = azimuth_mean;
+  request.diffuse_fraction = diffuse_fraction;
+  request.atmosphere = atmosphere;
+  request.spectrum = spectrum;
+  request.wavelengths = wavelengths;
+  request.illuminant = illuminant;
+  request.tolerance = tolerance;
+  py::gil_scoped_release release;
+  return albedo::compute_albedo(model, request).dump();
+}
+
+}  // namespace
+
+void bind_albedo(py::module_& m) {
+  m.def("albedo_spectral", &report_text);
+  m.def("albedo_model",
+        [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters,
+           const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
+           const std::string& diffuse_fraction, const std::string& atmosphere, const std::string& spectrum,
+           const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
+          check_parameters(model->description(), parameters);
+          const SpectralModel sm(std::const_pointer_cast<const Model>(model), parameters);
+          return report_text(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum,
+                             wavelengths, illuminant, tolerance);
+        });
+}
+
+}  // namespace roadbrdf::python

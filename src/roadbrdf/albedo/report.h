@@ -1,0 +1,38 @@
+// Everything `roadbrdf albedo` computes for one model or fit, as one JSON document: black-sky
+// (per sun zenith), white-sky and blue-sky albedo per wavelength with error estimates, diffuse
+// fractions, broadband (solar-weighted) and luminous values. Used by the command line and the
+// Python module alike (report eqs. 2.19-2.22; keys documented in docs/albedo.md and under "units").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/models/spectral_model.h"
+
+namespace roadbrdf::albedo {
+
+struct AlbedoRequest {
+  std::vector<double> sun_zenith_deg = {30.0};  // each in [0, 90)
+  std::optional<double> sun_azimuth_deg;        // anisotropic models (default 0)
+  bool azimuth_mean = false;                    // anisotropic models: average black-sky over the sun azimuth
+  // Diffuse fraction D for blue-sky: "" (none), a number in [0, 1], or a CSV wavelength_nm,diffuse_fraction.
+  std::string diffuse_fraction;
+  // "" or "spectrl2[:aod=...,water=...,...]" (D(lambda) and broadband weights from SPECTRL2).
+  std::string atmosphere;
+  // Broadband weighting: "" (ASTM G173 global, or SPECTRL2 with an atmosphere), "astm-g173-global",
+  // "astm-g173-direct" or a CSV file wavelength_nm,irradiance.
+  std::string spectrum;
+  std::vector<double> wavelengths;  // [nm] of a fit file; empty: its own
+  std::string illuminant;           // "" or A, D65, a file: also the luminous (V(lambda)-weighted) albedo
+  double tolerance = 1e-5;          // absolute quadrature tolerance per value
+};
+
+// Throws InputError for inconsistent requests.
+nlohmann::json compute_albedo(const SpectralModel& model, const AlbedoRequest& request);
+
+// The CSV table `roadbrdf albedo` prints without --json (per wavelength, then broadband lines).
+std::string albedo_table(const nlohmann::json& report);
+
+}  // namespace roadbrdf::albedo
