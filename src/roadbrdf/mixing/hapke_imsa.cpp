@@ -5,44 +5,15 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/quadrature.h"
 
 namespace roadbrdf::mixing {
 
 namespace {
 
-// Gauss-Legendre nodes and weights on (0, 1) (Newton on the Legendre recurrence).
-void gauss_legendre_01(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.resize(n);
-  w.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int iter = 0; iter < 100; ++iter) {
-      double p0 = 1.0, p1 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-      }
-      dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::fabs(dz) < 1e-15) break;
-    }
-    x[i] = 0.5 * (1.0 - z);
-    w[i] = 1.0 / ((1.0 - z * z) * dp * dp);  // (2 / ((1 - z^2) P'^2)) / 2
-  }
-}
-
-struct MuRule {
-  std::vector<double> x, w;
-};
-const MuRule& mu_rule() {
-  static const MuRule rule = [] {
-    MuRule r;
-    gauss_legendre_01(kQuadratureMu, r.x, r.w);
-    return r;
-  }();
+// Gauss-Legendre rule on [0, 1] in mu, computed once.
+const QuadratureRule& mu_rule() {
+  static const QuadratureRule rule = gauss_legendre(kQuadratureMu, 0.0, 1.0);
   return rule;
 }
 
@@ -61,17 +32,17 @@ double imsa_isotropic_brdf(double w, double mu0, double mu) {
 const HemisphereRule& white_sky_rule() {
   static const HemisphereRule rule = [] {
     HemisphereRule r;
-    const MuRule& m = mu_rule();
+    const QuadratureRule& m = mu_rule();
     const double dphi = kPi / kQuadraturePhi;
     for (int a = 0; a < kQuadratureMu; ++a) {
       for (int b = 0; b < kQuadratureMu; ++b) {
         for (int c = 0; c < kQuadraturePhi; ++c) {
           const double phi = (c + 0.5) * dphi;
-          r.geometries.push_back(geometry_from_radians(std::acos(m.x[a]), 0.0, std::acos(m.x[b]), phi));
+          r.geometries.push_back(geometry_from_radians(std::acos(m.nodes[a]), 0.0, std::acos(m.nodes[b]), phi));
           // 2 * (mu0 w0) * (mu w) * 2 (both halves of the azimuth) * dphi
-          r.weights.push_back(4.0 * m.x[a] * m.w[a] * m.x[b] * m.w[b] * dphi);
-          r.mu0.push_back(m.x[a]);
-          r.mu.push_back(m.x[b]);
+          r.weights.push_back(4.0 * m.nodes[a] * m.weights[a] * m.nodes[b] * m.weights[b] * dphi);
+          r.mu0.push_back(m.nodes[a]);
+          r.mu.push_back(m.nodes[b]);
         }
       }
     }
@@ -90,11 +61,11 @@ std::vector<double> white_sky_albedo(const Model& model, const double* params, s
     for (std::size_t s = 0; s < n_sets; ++s) albedo[s] += rule.weights[g] * values[g * n_sets + s];
   }
   if (model.description().has_delta) {
-    const MuRule& m = mu_rule();
+    const QuadratureRule& m = mu_rule();
     const std::size_t p = model.parameter_count();
     for (std::size_t s = 0; s < n_sets; ++s) {
       for (int a = 0; a < kQuadratureMu; ++a) {
-        albedo[s] += 2.0 * m.w[a] * m.x[a] * model.delta_reflectance(params + s * p, m.x[a]);
+        albedo[s] += 2.0 * m.weights[a] * m.nodes[a] * model.delta_reflectance(params + s * p, m.nodes[a]);
       }
     }
   }
@@ -102,11 +73,11 @@ std::vector<double> white_sky_albedo(const Model& model, const double* params, s
 }
 
 double imsa_white_sky_albedo(double w) {
-  const MuRule& m = mu_rule();
+  const QuadratureRule& m = mu_rule();
   double sum = 0.0;
   for (int a = 0; a < kQuadratureMu; ++a) {
     for (int b = 0; b < kQuadratureMu; ++b) {
-      sum += m.x[a] * m.w[a] * m.x[b] * m.w[b] * imsa_isotropic_brdf(w, m.x[a], m.x[b]);
+      sum += m.nodes[a] * m.weights[a] * m.nodes[b] * m.weights[b] * imsa_isotropic_brdf(w, m.nodes[a], m.nodes[b]);
     }
   }
   return 2.0 * 2.0 * kPi * sum;

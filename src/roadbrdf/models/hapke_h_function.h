@@ -38,6 +38,7 @@
 #include <limits>
 
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/quadrature.h"
 
 namespace roadbrdf::hapke {
 
@@ -79,35 +80,12 @@ struct ExactHRule {
   std::array<double, kExactMaxLevels + 1> breakpoint{};
 };
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton iteration on the three-term recurrence).
-inline void gauss_legendre(std::array<double, kExactNodes>& nodes, std::array<double, kExactNodes>& weights) {
-  constexpr int n = kExactNodes;
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int iter = 0; iter < 100; ++iter) {
-      double p0 = 1.0;
-      double p1 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-      }
-      dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::fabs(dz) < 1e-16) break;
-    }
-    nodes[i] = z;
-    weights[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
-
 inline const ExactHRule& exact_h_rule() {
   static const ExactHRule rule = [] {
     ExactHRule r;
-    std::array<double, kExactNodes> z{}, wz{};
-    gauss_legendre(z, wz);
+    const QuadratureRule unit = gauss_legendre(kExactNodes);  // on [-1, 1]
+    const std::vector<double>& z = unit.nodes;
+    const std::vector<double>& wz = unit.weights;
     for (int k = 0; k <= kExactMaxLevels; ++k) r.breakpoint[k] = std::ldexp(0.5 * kPi, -k);
     for (int k = 0; k < kExactMaxLevels; ++k) {
       const double lo = r.breakpoint[k + 1], hi = r.breakpoint[k];

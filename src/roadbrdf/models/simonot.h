@@ -33,6 +33,7 @@
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/quadrature.h"
 #include "roadbrdf/core/parameters.h"
 #include "roadbrdf/models/fresnel.h"
 
@@ -42,36 +43,9 @@ namespace simonot_detail {
 
 inline constexpr int kQuadratureNodes = 64;
 
-// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n from the usual asymptotic
-// initial guess; Abramowitz & Stegun 25.4.29). Computed once.
-struct GaussLegendre01 {
-  std::array<double, kQuadratureNodes> x{};
-  std::array<double, kQuadratureNodes> w{};
-  GaussLegendre01() {
-    const int n = kQuadratureNodes;
-    for (int i = 0; i < n; ++i) {
-      double t = std::cos(kPi * (i + 0.75) / (n + 0.5));
-      double dp = 1.0;
-      for (int iteration = 0; iteration < 100; ++iteration) {
-        double p0 = 1.0, p1 = t;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (t * p1 - p0) / (t * t - 1.0);
-        const double step = p1 / dp;
-        t -= step;
-        if (std::fabs(step) < 1e-16) break;
-      }
-      x[i] = 0.5 * (1.0 - t);
-      w[i] = 1.0 / ((1.0 - t * t) * dp * dp);  // = 0.5 * 2 / ((1 - t^2) P_n'(t)^2)
-    }
-  }
-};
-
-inline const GaussLegendre01& gauss_legendre_01() {
-  static const GaussLegendre01 rule;
+// Gauss-Legendre rule on [0, 1] in mu, computed once.
+inline const QuadratureRule& mu_rule() {
+  static const QuadratureRule rule = gauss_legendre(kQuadratureNodes, 0.0, 1.0);
   return rule;
 }
 
@@ -79,10 +53,10 @@ inline const GaussLegendre01& gauss_legendre_01() {
 // from medium 0 (Simonot 2009; report section 3.3 with the missing d theta restored).
 template <typename T>
 T hemispherical_fresnel(const T& eta) {
-  const GaussLegendre01& rule = gauss_legendre_01();
+  const QuadratureRule& rule = mu_rule();
   T sum(0.0);
   for (int k = 0; k < kQuadratureNodes; ++k) {
-    sum += (2.0 * rule.w[k] * rule.x[k]) * fresnel_dielectric(T(rule.x[k]), eta);
+    sum += (2.0 * rule.weights[k] * rule.nodes[k]) * fresnel_dielectric(T(rule.nodes[k]), eta);
   }
   return sum;
 }
