@@ -45,6 +45,9 @@ struct Prepared {
   std::size_t m = 0;          // wavelengths
   FitLoss loss = FitLoss::kPlain;
   const Geometry* geometries = nullptr;
+  // Geometry-only data of `geometries` (Model::prepare), built once and shared by every wavelength,
+  // iteration and thread.
+  std::shared_ptr<const PreparedGeometries> prepared_geometries;
   std::vector<double> y;      // M x N (wavelength-major: y[w * n + g]) for contiguous access
   std::vector<double> mult;   // M x N multiplier of the loss residual (sqrt solid angle / sigma [/ |y|] [* c])
   std::vector<double> cos_i;  // N
@@ -63,9 +66,9 @@ struct Prepared {
     const double* yw = y.data() + w * n;
     const double* mw = mult.data() + w * n;
     if (jac != nullptr) {
-      model->evaluate_batch_with_gradient(geometries, n, params, scratch_f, scratch_j);
+      model->evaluate_prepared_with_gradient(*prepared_geometries, params, scratch_f, scratch_j);
     } else {
-      model->evaluate_batch(geometries, n, params, 1, scratch_f);
+      model->evaluate_prepared(*prepared_geometries, params, scratch_f);
     }
     for (std::size_t g = 0; g < n; ++g) {
       const double f = scratch_f[g];
@@ -217,7 +220,7 @@ void solve_amplitudes(const Prepared& d, const Layout& L, std::size_t w, std::ve
   if (k == 0) return;
   const std::size_t n = d.n, p = d.p;
   std::vector<double> f(n), J(n * p);
-  d.model->evaluate_batch_with_gradient(d.geometries, n, x.data(), f.data(), J.data());
+  d.model->evaluate_prepared_with_gradient(*d.prepared_geometries, x.data(), f.data(), J.data());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
   Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(k));
   const double* yw = d.y.data() + w * n;
@@ -304,7 +307,7 @@ void fix_coordinates(ceres::Problem& problem, double* block, int size, const std
 void fill_statistics(const Prepared& d, std::size_t w, WavelengthFit& out) {
   const std::size_t n = d.n;
   std::vector<double> f(n), r(n);
-  d.model->evaluate_batch(d.geometries, n, out.parameters.data(), 1, f.data());
+  d.model->evaluate_prepared(*d.prepared_geometries, out.parameters.data(), f.data());
   std::vector<double> scratch(n);
   d.residuals(w, out.parameters.data(), r.data(), nullptr, scratch.data(), nullptr, false);
   const double* yw = d.y.data() + w * n;
@@ -1016,6 +1019,7 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     throw InputError("the robust loss scale must be positive");
   }
   d.geometries = data.geometries.data();
+  d.prepared_geometries = model.prepare(d.geometries, N);
   d.y.resize(N * M);
   d.mult.resize(N * M);
   d.lin_weight.resize(N * M);

@@ -112,6 +112,63 @@ void CompositeModel::evaluate_batch_with_gradient(const Geometry* geometries, st
   }
 }
 
+struct CompositeModel::Prepared final : PreparedGeometries {
+  Prepared(const CompositeModel& owner, const Geometry* geometries, std::size_t count)
+      : PreparedGeometries(geometries, count), composite(&owner) {
+    for (const auto& c : owner.components_) parts.push_back(c->prepare(geometries, count));
+  }
+  const CompositeModel* composite;                         // the model that built it
+  std::vector<std::unique_ptr<PreparedGeometries>> parts;  // one per component
+};
+
+std::unique_ptr<PreparedGeometries> CompositeModel::prepare(const Geometry* geometries, std::size_t count) const {
+  return std::make_unique<Prepared>(*this, geometries, count);
+}
+
+const CompositeModel::Prepared* CompositeModel::own_prepared(const PreparedGeometries& prepared) const {
+  const auto* own = dynamic_cast<const Prepared*>(&prepared);
+  return own != nullptr && own->composite == this ? own : nullptr;
+}
+
+// Same arithmetic as evaluate_batch with one parameter set, on the components' prepared geometries.
+void CompositeModel::evaluate_prepared(const PreparedGeometries& prepared, const double* params,
+                                       double* values) const {
+  const Prepared* own = own_prepared(prepared);
+  if (own == nullptr) return Model::evaluate_prepared(prepared, params, values);
+  const std::size_t n_geometries = prepared.size();
+  std::fill(values, values + n_geometries, 0.0);
+  std::vector<double> vk(n_geometries);
+  for (std::size_t k = 0; k < components_.size(); ++k) {
+    const double* p = params + offsets_[k];
+    components_[k]->evaluate_prepared(*own->parts[k], p + 1, vk.data());
+    for (std::size_t n = 0; n < n_geometries; ++n) values[n] += p[0] * vk[n];
+  }
+}
+
+// Same arithmetic as evaluate_batch_with_gradient, on the components' prepared geometries.
+void CompositeModel::evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params,
+                                                     double* values, double* jacobian) const {
+  const Prepared* own = own_prepared(prepared);
+  if (own == nullptr) return Model::evaluate_prepared_with_gradient(prepared, params, values, jacobian);
+  const std::size_t n_params = parameter_count();
+  const std::size_t n_geometries = prepared.size();
+  std::fill(values, values + n_geometries, 0.0);
+  std::vector<double> vk(n_geometries);
+  std::vector<double> jk;
+  for (std::size_t k = 0; k < components_.size(); ++k) {
+    const std::size_t nk = components_[k]->parameter_count();
+    const double* p = params + offsets_[k];
+    jk.resize(n_geometries * nk);
+    components_[k]->evaluate_prepared_with_gradient(*own->parts[k], p + 1, vk.data(), jk.data());
+    for (std::size_t n = 0; n < n_geometries; ++n) {
+      values[n] += p[0] * vk[n];
+      double* row = jacobian + n * n_params + offsets_[k];
+      row[0] = vk[n];
+      for (std::size_t j = 0; j < nk; ++j) row[1 + j] = p[0] * jk[n * nk + j];
+    }
+  }
+}
+
 double CompositeModel::delta_reflectance(const double* params, double cos_theta_i) const {
   double r = 0.0;
   for (std::size_t k = 0; k < components_.size(); ++k) {

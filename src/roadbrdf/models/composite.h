@@ -26,6 +26,10 @@ class CompositeModel final : public Model {
                       double* out) const override;
   void evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries, const double* params,
                                     double* values, double* jacobian) const override;
+  std::unique_ptr<PreparedGeometries> prepare(const Geometry* geometries, std::size_t count) const override;
+  void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const override;
+  void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params, double* values,
+                                       double* jacobian) const override;
   double delta_reflectance(const double* params, double cos_theta_i) const override;
 
   std::size_t component_count() const { return components_.size(); }
@@ -36,6 +40,10 @@ class CompositeModel final : public Model {
  private:
   static ModelDescription make_description(const std::vector<std::unique_ptr<Model>>& components,
                                            const std::vector<std::string>& prefixes);
+  // The components' prepared geometries (see prepare()).
+  struct Prepared;
+  const Prepared* own_prepared(const PreparedGeometries& prepared) const;
+
   std::vector<std::unique_ptr<Model>> components_;
   std::vector<std::size_t> offsets_;
 };

@@ -39,6 +39,22 @@ T fresnel_dielectric(const T& cos_i, const T& eta) {
   return 0.5 * (r.rs + r.rp);
 }
 
+// fresnel_dielectric for a cosine that is plain data (a geometry quantity, not differentiated): the
+// same values as fresnel_dielectric(T(cos_i), eta), without the ceres::Jet arithmetic on a constant.
+template <typename T>
+T fresnel_dielectric_at(double cos_i, const T& eta) {
+  using std::sqrt;
+  const double c = clamp_value(cos_i, 0.0, 1.0);
+  const T sin2_t = T(1.0 - c * c) / (eta * eta);
+  if (scalar_value(sin2_t) >= 1.0) return T(1.0);  // total internal reflection: rs = rp = 1
+  const T cos_t = sqrt(1.0 - sin2_t);
+  const T eta_cos_t = eta * cos_t;
+  const T eta_cos_i = eta * c;
+  const T rs = sqr((c - eta_cos_t) / (c + eta_cos_t));
+  const T rp = sqr((eta_cos_i - cos_t) / (eta_cos_i + cos_t));
+  return 0.5 * (rs + rp);
+}
+
 // Exact conductor Fresnel reflectance for a complex relative index eta + i k (report eq. 2.14,
 // conductor case, in the a/b form of Cook & Torrance 1982 / Born & Wolf). k = 0 reduces to the
 // dielectric case for eta >= 1.

@@ -223,12 +223,32 @@ T beckmann_cos_lambda_rational(double cos_t, const T& alpha) {
 
 // GGX exact (Walter 2007 eq. 34 / Heitz 2014 eq. 86; report eq. 3.15):
 // Lambda = (-1 + sqrt(1 + alpha^2 tan^2)) / 2  =>  cos Lambda = (sqrt(cos^2 + alpha^2 sin^2) - cos) / 2.
+// The geometry-only inputs of ggx_cos_lambda (clamped cos, cos^2, sin^2), precomputable per direction.
+struct GgxLambdaGeometry {
+  double c = 0.0;
+  double c2 = 0.0;
+  double s2 = 0.0;
+};
+inline GgxLambdaGeometry ggx_lambda_geometry(double cos_t) {
+  GgxLambdaGeometry q;
+  q.c = std::fmin(std::fmax(cos_t, 0.0), 1.0);
+  q.c2 = q.c * q.c;
+  q.s2 = std::fmax(0.0, 1.0 - q.c2);
+  return q;
+}
+// Same value as ggx_cos_lambda(q, alpha) with alpha2 = alpha * alpha (shared by both directions).
+template <typename T>
+T ggx_cos_lambda_from_alpha2(const GgxLambdaGeometry& q, const T& alpha2) {
+  using std::sqrt;
+  return 0.5 * (sqrt(q.c2 + alpha2 * q.s2) - q.c);
+}
+template <typename T>
+T ggx_cos_lambda(const GgxLambdaGeometry& q, const T& alpha) {
+  return ggx_cos_lambda_from_alpha2(q, alpha * alpha);
+}
 template <typename T>
 T ggx_cos_lambda(double cos_t, const T& alpha) {
-  using std::sqrt;
-  const double c = std::fmin(std::fmax(cos_t, 0.0), 1.0);
-  const double s2 = std::fmax(0.0, 1.0 - c * c);
-  return 0.5 * (sqrt(c * c + alpha * alpha * s2) - c);
+  return ggx_cos_lambda(ggx_lambda_geometry(cos_t), alpha);
 }
 
 // Smith G1(w) / cos(theta) = 1 / (cos (1 + Lambda)) (Heitz 2014 eq. 43, microfacet-independent

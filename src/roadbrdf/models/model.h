@@ -10,6 +10,18 @@
 //   template <typename T> T operator()(const T* p, const Geometry& g) const;   // smooth BRDF [sr^-1]
 // and optionally, for an ideal specular (delta) part f = R(theta_i) delta(w_r - mirror(w_i)) / cos(theta_r):
 //   double delta_reflectance(const double* p, double cos_theta_i) const;
+// and optionally, to compute geometry-only quantities (trigonometry, half vector...) once per geometry
+// instead of once per evaluation (see HasPreparedGeometry below):
+//   struct Prepared { ... };                                          // plain data
+//   Prepared prepare(const Geometry& g) const;
+//   template <typename T> T operator()(const T* p, const Prepared& g) const;
+// The Geometry overload of operator() must then return exactly operator()(p, prepare(g)), so that both
+// paths give the same values bit for bit. A model with Prepared may also split off its parameter-only
+// quantities, computed once per parameter set by the batch paths (see HasCoefficients below):
+//   template <typename T> struct Coefficients { ... };
+//   template <typename T> Coefficients<T> coefficients(const T* p) const;
+//   template <typename T> T operator()(const Coefficients<T>& k, const Prepared& g) const;
+// with operator()(p, g) returning exactly operator()(coefficients(p), g).
 //
 // operator() is templated on the scalar so that the fitter differentiates it with ceres::Jet.
 // Geometry is plain double: angles are data, parameters are unknowns.
@@ -17,6 +29,7 @@
 
 #include <ceres/jet.h>
 
+#include <concepts>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -26,6 +39,27 @@
 #include "roadbrdf/core/parameters.h"
 
 namespace roadbrdf {
+
+// Geometry-only data of a set of geometries, computed once by Model::prepare() and then reused by
+// Model::evaluate_prepared() / evaluate_prepared_with_gradient() for any number of parameter sets
+// (the fitter evaluates the same geometries at every wavelength and iteration). The base class only
+// remembers the geometries; models that precompute something derive from it. It refers to the
+// geometries passed to prepare(), which must outlive it, and is immutable once built: several threads
+// may share one.
+class PreparedGeometries {
+ public:
+  PreparedGeometries(const Geometry* geometries, std::size_t count) : geometries_(geometries), count_(count) {}
+  virtual ~PreparedGeometries() = default;
+  PreparedGeometries(const PreparedGeometries&) = delete;
+  PreparedGeometries& operator=(const PreparedGeometries&) = delete;
+
+  const Geometry* geometries() const { return geometries_; }
+  std::size_t size() const { return count_; }
+
+ private:
+  const Geometry* geometries_;
+  std::size_t count_;
+};
 
 class Model {
  public:
@@ -50,6 +84,24 @@ class Model {
   virtual void evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries,
                                             const double* params, double* values, double* jacobian) const = 0;
 
+  // Geometry-only data of `count` geometries for the evaluate_prepared*() calls below (see
+  // PreparedGeometries). The default keeps only the geometries.
+  virtual std::unique_ptr<PreparedGeometries> prepare(const Geometry* geometries, std::size_t count) const {
+    return std::make_unique<PreparedGeometries>(geometries, count);
+  }
+
+  // evaluate_batch() for one parameter set at prepared geometries: values[n] = f(params, geometries[n]).
+  // Same values as evaluate_batch(prepared.geometries(), prepared.size(), params, 1, values).
+  virtual void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const {
+    evaluate_batch(prepared.geometries(), prepared.size(), params, 1, values);
+  }
+
+  // evaluate_batch_with_gradient() at prepared geometries (same values and Jacobian).
+  virtual void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params,
+                                               double* values, double* jacobian) const {
+    evaluate_batch_with_gradient(prepared.geometries(), prepared.size(), params, values, jacobian);
+  }
+
   // Reflectance R(theta_i) of the ideal specular part (0 when the model has none).
   virtual double delta_reflectance(const double* /*params*/, double /*cos_theta_i*/) const { return 0.0; }
 
@@ -61,6 +113,30 @@ class Model {
 template <class M>
 concept HasDeltaPart = requires(const M& m, const double* p, double c) {
   { m.delta_reflectance(p, c) } -> std::convertible_to<double>;
+};
+
+// A model struct with geometry-only precomputation (see the top of this file).
+template <class M>
+concept HasPreparedGeometry = requires(const M& m, const double* p, const Geometry& g, const typename M::Prepared& pg) {
+  { m.prepare(g) } -> std::same_as<typename M::Prepared>;
+  { m(p, pg) } -> std::convertible_to<double>;
+};
+
+// A model struct with prepared geometry and parameter-only coefficients (see the top of this file).
+template <class M>
+concept HasCoefficients =
+    HasPreparedGeometry<M> && requires(const M& m, const double* p, const typename M::Prepared& pg) {
+      { m(m.coefficients(p), pg) } -> std::convertible_to<double>;
+    };
+
+// What ModelAdapter keeps per geometry: M::Prepared, or the Geometry itself for models without it.
+template <class M>
+struct PreparedGeometryOf {
+  using type = Geometry;
+};
+template <HasPreparedGeometry M>
+struct PreparedGeometryOf<M> {
+  using type = typename M::Prepared;
 };
 
 template <class M>
@@ -80,11 +156,12 @@ class ModelAdapter final : public Model {
     return f.a;
   }
 
+  // Each geometry is prepared once and evaluated for all parameter sets.
   void evaluate_batch(const Geometry* geometries, std::size_t n_geometries, const double* params,
                       std::size_t n_sets, double* out) const override {
     const std::size_t n_params = parameter_count();
     for (std::size_t n = 0; n < n_geometries; ++n) {
-      const Geometry& g = geometries[n];
+      const auto& g = prepare_one(geometries[n]);
       double* row = out + n * n_sets;
       for (std::size_t s = 0; s < n_sets; ++s) row[s] = model_(params + s * n_params, g);
     }
@@ -96,9 +173,45 @@ class ModelAdapter final : public Model {
     Jet p[M::kMaxParameters];
     for (std::size_t k = 0; k < n_params; ++k) p[k] = Jet(params[k], static_cast<int>(k));
     for (std::size_t n = 0; n < n_geometries; ++n) {
-      const Jet f = model_(p, geometries[n]);
+      const Jet f = model_(p, prepare_one(geometries[n]));
       values[n] = f.a;
       for (std::size_t k = 0; k < n_params; ++k) jacobian[n * n_params + k] = f.v[static_cast<int>(k)];
+    }
+  }
+
+  std::unique_ptr<PreparedGeometries> prepare(const Geometry* geometries, std::size_t count) const override {
+    return std::make_unique<Prepared>(*this, geometries, count);
+  }
+
+  void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const override {
+    const auto* own = dynamic_cast<const Prepared*>(&prepared);
+    if (own == nullptr || own->adapter != this) return Model::evaluate_prepared(prepared, params, values);
+    if constexpr (HasCoefficients<M>) {
+      const auto k = model_.coefficients(params);
+      for (std::size_t n = 0; n < own->size(); ++n) values[n] = model_(k, own->at(n));
+    } else {
+      for (std::size_t n = 0; n < own->size(); ++n) values[n] = model_(params, own->at(n));
+    }
+  }
+
+  void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params, double* values,
+                                       double* jacobian) const override {
+    const auto* own = dynamic_cast<const Prepared*>(&prepared);
+    if (own == nullptr || own->adapter != this) {
+      return Model::evaluate_prepared_with_gradient(prepared, params, values, jacobian);
+    }
+    const std::size_t n_params = parameter_count();
+    Jet p[M::kMaxParameters];
+    for (std::size_t k = 0; k < n_params; ++k) p[k] = Jet(params[k], static_cast<int>(k));
+    auto store = [&](std::size_t n, const Jet& f) {
+      values[n] = f.a;
+      for (std::size_t k = 0; k < n_params; ++k) jacobian[n * n_params + k] = f.v[static_cast<int>(k)];
+    };
+    if constexpr (HasCoefficients<M>) {
+      const auto coefficients = model_.coefficients(p);
+      for (std::size_t n = 0; n < own->size(); ++n) store(n, model_(coefficients, own->at(n)));
+    } else {
+      for (std::size_t n = 0; n < own->size(); ++n) store(n, model_(p, own->at(n)));
     }
   }
 
@@ -114,6 +227,36 @@ class ModelAdapter final : public Model {
 
  private:
   using Jet = ceres::Jet<double, M::kMaxParameters>;
+  using GeometryData = typename PreparedGeometryOf<M>::type;
+
+  // M::Prepared by value, or a reference to the geometry itself.
+  decltype(auto) prepare_one(const Geometry& g) const {
+    if constexpr (HasPreparedGeometry<M>) {
+      return model_.prepare(g);
+    } else {
+      return (g);
+    }
+  }
+
+  // M::Prepared of every geometry (models without it: the geometries are used directly).
+  struct Prepared final : PreparedGeometries {
+    Prepared(const ModelAdapter& owner, const Geometry* geometries, std::size_t count)
+        : PreparedGeometries(geometries, count), adapter(&owner) {
+      if constexpr (HasPreparedGeometry<M>) {
+        data.reserve(count);
+        for (std::size_t n = 0; n < count; ++n) data.push_back(owner.model_.prepare(geometries[n]));
+      }
+    }
+    const GeometryData& at(std::size_t n) const {
+      if constexpr (HasPreparedGeometry<M>) {
+        return data[n];
+      } else {
+        return geometries()[n];
+      }
+    }
+    const ModelAdapter* adapter;  // the adapter that built it
+    std::vector<GeometryData> data;
+  };
 
   ModelAdapter(const OptionSet& resolved, int) : Model(describe_resolved(resolved)), model_(resolved) {}
 

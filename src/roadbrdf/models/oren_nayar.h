@@ -51,30 +51,78 @@ struct OrenNayar {
   }
   explicit OrenNayar(const OptionSet& options) : full_(options.at("form") == "full") {}
 
-  template <typename T>
-  T operator()(const T* p, const Geometry& g) const {
-    using std::sin;
-    using std::tan;
-    const T& rho = p[kAlbedo];
-    const T s2 = sqr(p[kSigma]);
+  // Geometry-only factors of eqs. 30, 32 and 37 (alpha = max, beta = min of the zenith angles),
+  // computed once per geometry (model.h, "prepared geometry").
+  struct Prepared {
+    double c = 0.0;                       // cos(dphi)
+    double tan_beta = 0.0;                // qualitative B factor: max(0, cos dphi) sin(alpha) tan(beta)
+    double qualitative_b = 0.0;
+    double sin_alpha = 0.0;               // C2 factor for cos(dphi) >= 0
+    double sin_alpha_minus_cube = 0.0;    // C2 factor otherwise: sin(alpha) - (2 beta / pi)^3
+    double c3_geometry = 0.0;             // (4 alpha beta / pi^2)^2
+    double c3_weight = 0.0;               // (1 - |cos dphi|) tan((alpha + beta) / 2)
+    double interreflection = 0.0;         // 1 - cos(dphi) (2 beta / pi)^2
+  };
+
+  Prepared prepare(const Geometry& g) const {
+    Prepared q;
     const double alpha = std::fmax(g.theta_i, g.theta_r);
     const double beta = std::fmin(g.theta_i, g.theta_r);
     const double c = g.cos_delta_phi;
-    const double tan_beta = std::tan(beta);
-    if (!full_) {
-      const T a = 1.0 - 0.5 * s2 / (s2 + 0.33);
-      const T b = 0.45 * s2 / (s2 + 0.09);
-      return rho * kInvPi * (a + b * (std::fmax(0.0, c) * std::sin(alpha) * tan_beta));
-    }
+    q.c = c;
+    q.tan_beta = std::tan(beta);
+    q.sin_alpha = std::sin(alpha);
+    q.qualitative_b = std::fmax(0.0, c) * q.sin_alpha * q.tan_beta;
     const double two_beta_over_pi = 2.0 * beta / kPi;
-    const T c1 = 1.0 - 0.5 * s2 / (s2 + 0.33);
-    const double sin_alpha = std::sin(alpha);
-    const T c2_base = 0.45 * s2 / (s2 + 0.09);
-    const T c2 = c >= 0.0 ? T(c2_base * sin_alpha) : T(c2_base * (sin_alpha - ipow(two_beta_over_pi, 3)));
-    const T c3 = 0.125 * s2 / (s2 + 0.09) * sqr(4.0 * alpha * beta / (kPi * kPi));
-    const T direct = rho * kInvPi *
-                     (c1 + c * tan_beta * c2 + (1.0 - std::fabs(c)) * std::tan(0.5 * (alpha + beta)) * c3);
-    const T interreflection = 0.17 * sqr(rho) * kInvPi * s2 / (s2 + 0.13) * (1.0 - c * sqr(two_beta_over_pi));
+    q.sin_alpha_minus_cube = q.sin_alpha - ipow(two_beta_over_pi, 3);
+    q.c3_geometry = sqr(4.0 * alpha * beta / (kPi * kPi));
+    q.c3_weight = (1.0 - std::fabs(c)) * std::tan(0.5 * (alpha + beta));
+    q.interreflection = 1.0 - c * sqr(two_beta_over_pi);
+    return q;
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Geometry& g) const {
+    return (*this)(p, prepare(g));
+  }
+
+  // Parameter-only factors, computed once per parameter set (model.h, "coefficients").
+  template <typename T>
+  struct Coefficients {
+    T rho_over_pi;      // rho / pi
+    T c1;               // full: C1 of eq. 30; qualitative: A of eq. 32
+    T c2_base;          // full: C2 without its geometric factor; qualitative: B of eq. 32
+    T c3_base;          // C3 without its geometric factor
+    T interreflection;  // eq. 37 without its geometric factor
+  };
+
+  template <typename T>
+  Coefficients<T> coefficients(const T* p) const {
+    const T& rho = p[kAlbedo];
+    const T s2 = sqr(p[kSigma]);
+    Coefficients<T> k{};
+    k.rho_over_pi = rho * kInvPi;
+    k.c1 = 1.0 - 0.5 * s2 / (s2 + 0.33);
+    k.c2_base = 0.45 * s2 / (s2 + 0.09);
+    if (full_) {
+      k.c3_base = 0.125 * s2 / (s2 + 0.09);
+      k.interreflection = 0.17 * sqr(rho) * kInvPi * s2 / (s2 + 0.13);
+    }
+    return k;
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Prepared& g) const {
+    return (*this)(coefficients(p), g);
+  }
+
+  template <typename T>
+  T operator()(const Coefficients<T>& k, const Prepared& g) const {
+    if (!full_) return k.rho_over_pi * (k.c1 + k.c2_base * g.qualitative_b);
+    const T c2 = g.c >= 0.0 ? T(k.c2_base * g.sin_alpha) : T(k.c2_base * g.sin_alpha_minus_cube);
+    const T c3 = k.c3_base * g.c3_geometry;
+    const T direct = k.rho_over_pi * (k.c1 + g.c * g.tan_beta * c2 + g.c3_weight * c3);
+    const T interreflection = k.interreflection * g.interreflection;
     return direct + interreflection;
   }
 

@@ -18,7 +18,10 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <vector>
+
+#include <ceres/jet.h>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
@@ -129,13 +132,43 @@ struct TorranceSparrow {
 
   explicit TorranceSparrow(const OptionSet& options) : r_(interpret(options)) {}
 
+  // The microfacet factors D and G / (cos_i cos_r) depend on the roughness alone, and the dielectric
+  // Fresnel factors on the index alone. For ceres::Jet they are differentiated with one-component Jets
+  // and then lifted to T by the chain rule, dF = F'(x) dx: a quarter of the derivative arithmetic of the
+  // 4-parameter Jet, and the same numbers, since every Jet operation acts on each derivative component
+  // separately (bit for bit with the unit seeds of ModelAdapter).
+  template <typename T>
+  using SingleVariable = std::conditional_t<std::is_same_v<T, double>, double, ceres::Jet<double, 1>>;
+
+  // x as the single variable of a one-parameter function.
+  template <typename T>
+  static SingleVariable<T> single(const T& x) {
+    if constexpr (std::is_same_v<T, double>) {
+      return x;
+    } else {
+      return ceres::Jet<double, 1>(x.a, 0);
+    }
+  }
+
+  // f(x), computed by a one-parameter function of single(x), as T.
+  template <typename T>
+  static T lift(const SingleVariable<T>& f, const T& x) {
+    if constexpr (std::is_same_v<T, double>) {
+      return f;
+    } else {
+      return T(f.a, f.v[0] * x.v);
+    }
+  }
+
   template <typename T>
   T fresnel(const T* p, double cos_ih) const {
     switch (r_.fresnel) {
       case Fresnel::kExactDielectric:
-        return fresnel_dielectric(T(cos_ih), p[kIor]);
-      case Fresnel::kSchlick:
-        return fresnel_schlick(T(cos_ih), fresnel_f0(p[kIor]));
+        return lift(fresnel_dielectric_at(cos_ih, single(p[kIor])), p[kIor]);
+      case Fresnel::kSchlick: {
+        using S = SingleVariable<T>;
+        return lift(fresnel_schlick(S(cos_ih), fresnel_f0(single(p[kIor]))), p[kIor]);
+      }
       case Fresnel::kExactConductor:
         return fresnel_conductor(T(cos_ih), p[kIor], p[kExtinction]);
       case Fresnel::kSchlickConductor:
@@ -146,15 +179,39 @@ struct TorranceSparrow {
     return T(1.0);
   }
 
+  // Geometry-only quantities, computed once per geometry (model.h, "prepared geometry").
+  struct Prepared {
+    microfacet::HalfVector h;
+    double ci = 0.0;  // cos theta_i
+    double cr = 0.0;  // cos theta_r
+    microfacet::GgxLambdaGeometry ggx_i, ggx_r;  // GGX Smith Lambda inputs of w_i and w_r
+  };
+
+  Prepared prepare(const Geometry& g) const {
+    Prepared q;
+    q.h = microfacet::half_vector_of(g);
+    q.ci = g.wi.z;
+    q.cr = g.wr.z;
+    q.ggx_i = microfacet::ggx_lambda_geometry(q.ci);
+    q.ggx_r = microfacet::ggx_lambda_geometry(q.cr);
+    return q;
+  }
+
   template <typename T>
   T operator()(const T* p, const Geometry& g) const {
-    const microfacet::HalfVector h = microfacet::half_vector_of(g);
-    if (!h.valid) return T(0.0);
-    const double ci = g.wi.z;
-    const double cr = g.wr.z;
-    const T& alpha = p[kRoughness];
+    return (*this)(p, prepare(g));
+  }
 
-    T d(0.0);
+  template <typename T>
+  T operator()(const T* p, const Prepared& g) const {
+    const microfacet::HalfVector& h = g.h;
+    if (!h.valid) return T(0.0);
+    const double ci = g.ci;
+    const double cr = g.cr;
+    using S = SingleVariable<T>;
+    const S alpha = single(p[kRoughness]);
+
+    S d(0.0);
     switch (r_.distribution) {
       case Distribution::kGgx:
         d = microfacet::ggx_d(h.cos_h, alpha);
@@ -167,14 +224,15 @@ struct TorranceSparrow {
         break;
     }
 
-    T g_over_cos;
+    S g_over_cos;
     if (r_.profile == Profile::kVCavity) {
-      g_over_cos = T(microfacet::vcavity_g_over_cos(ci, cr, h.cos_h, h.cos_ih));
+      g_over_cos = S(microfacet::vcavity_g_over_cos(ci, cr, h.cos_h, h.cos_ih));
     } else {
-      T li, lr;
+      S li, lr;
       if (r_.distribution == Distribution::kGgx) {
-        li = microfacet::ggx_cos_lambda(ci, alpha);
-        lr = microfacet::ggx_cos_lambda(cr, alpha);
+        const S alpha2 = alpha * alpha;
+        li = microfacet::ggx_cos_lambda_from_alpha2(g.ggx_i, alpha2);
+        lr = microfacet::ggx_cos_lambda_from_alpha2(g.ggx_r, alpha2);
       } else if (r_.rational_lambda) {
         li = microfacet::beckmann_cos_lambda_rational(ci, alpha);
         lr = microfacet::beckmann_cos_lambda_rational(cr, alpha);
@@ -184,7 +242,7 @@ struct TorranceSparrow {
       }
       g_over_cos = microfacet::smith_g2_over_cos(ci, cr, li, lr, r_.height_correlated);
     }
-    return p[kKs] * fresnel(p, h.cos_ih) * d * g_over_cos * 0.25;
+    return p[kKs] * fresnel(p, h.cos_ih) * lift(d, p[kRoughness]) * lift(g_over_cos, p[kRoughness]) * 0.25;
   }
 
  private:
