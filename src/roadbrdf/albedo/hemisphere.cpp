@@ -143,8 +143,8 @@ void check_finite(const std::vector<double>& values, const Model& model, double 
   }
 }
 
-// One Gauss-Kronrod node in mu with its own azimuth trapezoid (iterated integration: every mu node's
-// azimuthal integral is refined independently, so only the nodes that see the specular lobe pay for it).
+// One Gauss-Kronrod node in mu (or, mirror-polar, in s) with its azimuth trapezoid (iterated
+// integration; the nodes of one panel share their azimuth count, see run()).
 struct MuNode {
   double mu = 0.0;
   double theta = 0.0;
@@ -165,13 +165,14 @@ struct Panel {
 class BlackSkyIntegrator {
  public:
   BlackSkyIntegrator(const Model& model, const double* params, std::size_t n_sets, double theta_s, double phi_s,
-                     bool isotropic)
+                     bool isotropic, bool mirror_polar = false)
       : model_(model),
         params_(params),
         n_sets_(n_sets),
         theta_s_(theta_s),
         phi_s_(phi_s),
         isotropic_(isotropic),
+        polar_(mirror_polar),
         acc_(model, params, n_sets) {
     if (!(theta_s >= 0.0 && theta_s < kPi / 2)) {
       throw InputError("sun zenith " + std::to_string(rad_to_deg(theta_s)) + " deg is outside [0, 90) deg");
@@ -181,6 +182,36 @@ class BlackSkyIntegrator {
     starts_ = isotropic_ ? std::vector<double>{0.0, 0.5 * kPi} : std::vector<double>{0.0, 0.5 * kPi, kPi, 1.5 * kPi};
     factor_ = isotropic_ ? 2.0 : 1.0;
     n0_ = 8;  // smallest n for which the n/2 rule is exact for constants (sin^4 has frequency 2)
+    // Mirror-polar frame: e3 = mirror direction (theta_s, phi_s + pi), e1 = towards the normal in the
+    // plane of incidence, e2 = e3 x e1 (horizontal).
+    const double ct = std::cos(theta_s), st = std::sin(theta_s);
+    const double cp = std::cos(phi_s + kPi), sp = std::sin(phi_s + kPi);
+    e3_[0] = st * cp; e3_[1] = st * sp; e3_[2] = ct;
+    e1_[0] = -ct * cp; e1_[1] = -ct * sp; e1_[2] = st;
+    e2_[0] = -sp; e2_[1] = cp; e2_[2] = 0.0;
+  }
+
+  // One quadrature point: outer coordinate x of `node` (mu, or the scaled polar angle s) and azimuth
+  // angle a (relative azimuth dphi, or the polar azimuth psi about the mirror direction); `w` is the
+  // azimuth weight, multiplied here by the Jacobian of the mirror-polar map.
+  void add_point(const MuNode& node, double a, std::size_t row, double w, double wc) {
+    if (!polar_) {
+      acc_.add(geometry_from_radians(theta_s_, phi_s_, node.theta, phi_s_ + a), row, w, wc);
+      return;
+    }
+    // w_r = cos(rho) e3 + sin(rho) (cos(psi) e1 + sin(psi) e2), rho = s rho_max(psi), where rho_max is
+    // the horizon: z = cos(rho) cos(theta_s) + sin(rho) cos(psi) sin(theta_s) = 0.
+    const double cpsi = std::cos(a), spsi = std::sin(a);
+    const double ct = std::cos(theta_s_), st = std::sin(theta_s_);
+    const double rho_max = std::atan2(ct, -st * cpsi);
+    const double rho = node.mu * rho_max;
+    const double cr = std::cos(rho), sr = std::sin(rho);
+    double v[3];
+    for (int i = 0; i < 3; ++i) v[i] = cr * e3_[i] + sr * (cpsi * e1_[i] + spsi * e2_[i]);
+    const double z = std::clamp(v[2], 0.0, 1.0);
+    const double jac = z * sr * rho_max;  // cos(theta_r) dOmega = z sin(rho) rho_max ds dpsi
+    const double phi_r = std::atan2(v[1], v[0]);
+    acc_.add(geometry_from_radians(theta_s_, phi_s_, std::acos(z), phi_r), row, w * jac, wc * jac);
   }
 
   static auto constant_n(int n) {
@@ -214,8 +245,9 @@ class BlackSkyIntegrator {
       MuNode& node = p.nodes[j];
       node.mu = mid + half * r.x[j];
       node.theta = std::acos(std::clamp(node.mu, 0.0, 1.0));
-      node.wk = half * r.wk[j] * node.mu;
-      node.wg = half * r.wg[j] * node.mu;
+      const double cosine = polar_ ? 1.0 : node.mu;  // polar: the cosine is in the azimuth weight
+      node.wk = half * r.wk[j] * cosine;
+      node.wg = half * r.wg[j] * cosine;
       const int n = n_of(node.mu);
       node.n = n;
       for (int k = 1; k < n; ++k) {
@@ -223,8 +255,7 @@ class BlackSkyIntegrator {
         const double w = azimuth_weight(tk, n);
         const double wc = (k % 2 == 0) ? azimuth_weight(tk, n / 2) : 0.0;
         for (const double start : starts_) {
-          acc_.add(geometry_from_radians(theta_s_, phi_s_, node.theta, phi_s_ + start + azimuth_offset(tk)),
-                   static_cast<std::size_t>(j), w, wc);
+          add_point(node, start + azimuth_offset(tk), static_cast<std::size_t>(j), w, wc);
         }
       }
     }
@@ -270,7 +301,7 @@ class BlackSkyIntegrator {
       const double t = static_cast<double>(k) / n2;
       const double w = azimuth_weight(t, n2);
       for (const double start : starts_) {
-        acc_.add(geometry_from_radians(theta_s_, phi_s_, node.theta, phi_s_ + start + azimuth_offset(t)), 0, w, 0.0);
+        add_point(node, start + azimuth_offset(t), 0, w, 0.0);
       }
     }
     acc_.flush();
@@ -278,10 +309,34 @@ class BlackSkyIntegrator {
     node_error(node);
   }
 
+  // Outer breakpoints. Polar: s graded geometrically towards the mirror direction (s = 2^-k), so a
+  // lobe of any width down to ~1e-4 rad starts on panels of its own size.
+  std::vector<double> breakpoints() const {
+    std::vector<double> b;
+    if (polar_) {
+      b.push_back(0.0);
+      for (int k = kPolarLevels; k >= 0; --k) b.push_back(std::ldexp(1.0, -k));
+      return b;
+    }
+    const double mu_s = std::cos(theta_s_);
+    b.push_back(0.0);
+    if (mu_s > 1e-12 && mu_s < 1.0 - 1e-12) b.push_back(mu_s);
+    b.push_back(1.0);
+    return b;
+  }
+
+  // Restrict the outer mu to [0, cos(theta_s)] and halve the delta part (white-sky by reciprocity).
+  void set_lower_triangle() { lower_ = true; }
+
   std::vector<Panel> initial_panels() {
     const double mu_s = std::cos(theta_s_);
     std::vector<Panel> panels;
-    if (mu_s > 1e-12 && mu_s < 1.0 - 1e-12) {
+    if (lower_) {
+      panels.push_back(make_panel(0.0, mu_s, constant_n(n0_)));
+    } else if (polar_) {
+      const std::vector<double> b = breakpoints();
+      for (std::size_t i = 0; i + 1 < b.size(); ++i) panels.push_back(make_panel(b[i], b[i + 1], constant_n(n0_)));
+    } else if (mu_s > 1e-12 && mu_s < 1.0 - 1e-12) {
       panels.push_back(make_panel(0.0, mu_s, constant_n(n0_)));
       panels.push_back(make_panel(mu_s, 1.0, constant_n(n0_)));
     } else {
@@ -307,7 +362,7 @@ class BlackSkyIntegrator {
     const double mu_s = std::cos(theta_s_);
     const std::size_t n_params = model_.parameter_count();
     for (std::size_t s = 0; s < n_sets_; ++s) {
-      result.value[s] += model_.delta_reflectance(params_ + s * n_params, mu_s);
+      result.value[s] += (lower_ ? 0.5 : 1.0) * model_.delta_reflectance(params_ + s * n_params, mu_s);
     }
     result.geometries = acc_.count();
     return result;
@@ -359,20 +414,18 @@ class BlackSkyIntegrator {
       Panel& p = panels[target_panel];
       if (target_node >= 0 && p.nodes[target_node].n < (1 << 16)) {
         add_panel(p, -1.0);
-        refine_azimuth(p.nodes[target_node]);
+        // All nodes of a panel share one azimuth count and are refined together, so the
+        // azimuth-integrated integrand is a smooth function of the outer variable on the panel. (Counts
+        // per node made the nodes' differing azimuth errors look like noise in mu, which the K15 - G7
+        // estimate cannot resolve: near-mirror lobes then never converged.)
+        for (MuNode& node : p.nodes) refine_azimuth(node);
         panel_sums(p);
         add_panel(p, 1.0);
       } else if (p.b - p.a > 1e-9) {
         add_panel(p, -1.0);
-        // The children's nodes start with the azimuth resolution of the parent's nearest node.
+        // The children start with the parent's azimuth count.
         const Panel parent = std::move(p);
-        auto inherited = [&parent](double mu) {
-          int best = 0;
-          for (int j = 1; j < 15; ++j) {
-            if (std::fabs(parent.nodes[j].mu - mu) < std::fabs(parent.nodes[best].mu - mu)) best = j;
-          }
-          return parent.nodes[best].n;
-        };
+        auto inherited = [&parent](double) { return parent.nodes[0].n; };
         const double a = parent.a, b = parent.b, m = 0.5 * (a + b);
         panels[target_panel] = make_panel(a, m, inherited);
         panels.push_back(make_panel(m, b, inherited));
@@ -387,7 +440,6 @@ class BlackSkyIntegrator {
   }
 
   SpectralIntegral run_fixed(int mu_panels, int phi_intervals) {
-    const double mu_s = std::cos(theta_s_);
     std::vector<Panel> panels;
     auto split = [&](double a, double b) {
       for (int i = 0; i < mu_panels; ++i) {
@@ -395,12 +447,8 @@ class BlackSkyIntegrator {
                                     constant_n(std::max(2, phi_intervals))));
       }
     };
-    if (mu_s > 1e-12 && mu_s < 1.0 - 1e-12) {
-      split(0.0, mu_s);
-      split(mu_s, 1.0);
-    } else {
-      split(0.0, 1.0);
-    }
+    const std::vector<double> b = breakpoints();
+    for (std::size_t i = 0; i + 1 < b.size(); ++i) split(b[i], b[i + 1]);
     SpectralIntegral result = collect(panels, false);
     std::fill(result.error.begin(), result.error.end(), 0.0);
     return result;
@@ -412,6 +460,10 @@ class BlackSkyIntegrator {
   std::size_t n_sets_;
   double theta_s_, phi_s_;
   bool isotropic_;
+  bool polar_ = false;
+  bool lower_ = false;
+  static constexpr int kPolarLevels = 13;
+  double e1_[3], e2_[3], e3_[3];
   std::vector<double> starts_;
   double factor_ = 2.0;
   int n0_ = 8;
@@ -501,8 +553,34 @@ bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) 
 
 SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s,
                            double phi_s, const QuadratureSettings& settings) {
-  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets));
+  const bool isotropic = is_isotropic(model, params, n_sets);
+  // First the (mu, dphi) rule with a quarter of the budget; if a sharp lobe keeps it from converging,
+  // the mirror-polar rule, and the result with the smaller error estimate.
+  QuadratureSettings first = settings;
+  first.max_geometries = std::max<std::size_t>(1, settings.max_geometries / 4);
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, isotropic);
+  SpectralIntegral a = integrator.run(first);
+  if (a.converged) return a;
+  QuadratureSettings second = settings;
+  second.max_geometries = settings.max_geometries - std::min(settings.max_geometries, a.geometries);
+  BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true);
+  SpectralIntegral b = polar.run(second);
+  const std::size_t total = a.geometries + b.geometries;
+  SpectralIntegral& best = (b.converged || b.max_error() < a.max_error()) ? b : a;
+  best.geometries = total;
+  return std::move(best);
+}
+
+SpectralIntegral black_sky_mirror_polar(const Model& model, const double* params, std::size_t n_sets,
+                                        double theta_s, double phi_s, const QuadratureSettings& settings) {
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true);
   return integrator.run(settings);
+}
+
+SpectralIntegral black_sky_mirror_polar_fixed(const Model& model, const double* params, std::size_t n_sets,
+                                              double theta_s, double phi_s, int s_panels, int psi_intervals) {
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true);
+  return integrator.run_fixed(std::max(1, s_panels), psi_intervals);
 }
 
 SpectralIntegral black_sky_fixed(const Model& model, const double* params, std::size_t n_sets, double theta_s,
@@ -572,9 +650,56 @@ SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params
   return result;
 }
 
+namespace {
+
+// True if f(w_i, w_r) = f(w_r, w_i) (Helmholtz reciprocity) to ~1e-10 relative at a fixed set of
+// scattered geometries, for every parameter set.
+bool is_reciprocal(const Model& model, const double* params, std::size_t n_sets) {
+  std::vector<Geometry> g;
+  for (int k = 0; k < 24; ++k) {
+    // deterministic scattered angles (golden-ratio sequences), zeniths in (0, 88) deg
+    const double u1 = std::fmod(0.5 + 0.6180339887498949 * k, 1.0), u2 = std::fmod(0.25 + 0.7548776662466927 * k, 1.0);
+    const double u3 = std::fmod(0.1 + 0.5698402909980532 * k, 1.0);
+    const double ti = u1 * 88.0 * kDegree, tr = u2 * 88.0 * kDegree, dphi = u3 * 2.0 * kPi;
+    g.push_back(geometry_from_radians(ti, 0.3, tr, 0.3 + dphi));
+    g.push_back(geometry_from_radians(tr, 0.3 + dphi, ti, 0.3));
+  }
+  std::vector<double> out(g.size() * n_sets);
+  model.evaluate_batch(g.data(), g.size(), params, n_sets, out.data());
+  for (std::size_t k = 0; k < g.size(); k += 2) {
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      const double a = out[k * n_sets + s], b = out[(k + 1) * n_sets + s];
+      if (!std::isfinite(a) || !std::isfinite(b) || std::fabs(a - b) > 1e-10 * (std::fabs(a) + std::fabs(b)) + 1e-300) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
                            const QuadratureSettings& settings) {
   const bool isotropic = is_isotropic(model, params, n_sets);
+  if (isotropic && is_reciprocal(model, params, n_sets)) {
+    // Reciprocity: int int_{mu_r > mu_i} = int int_{mu_r < mu_i}, so the inner integral runs over
+    // mu_r in [0, mu_i] only and counts twice. Grazing mu_i (the costly black-sky integrals of lobes
+    // near the horizon) then integrate over a thin band only, and Oren-Nayar's kink at
+    // theta_r = theta_i lies on the boundary.
+    return integrate_cosine_weighted(n_sets, settings, [&](double mu, double tolerance) {
+      QuadratureSettings inner = settings;
+      inner.tolerance = 0.5 * tolerance;
+      BlackSkyIntegrator integrator(model, params, n_sets, std::acos(mu), 0.0, true);
+      integrator.set_lower_triangle();
+      SpectralIntegral r = integrator.run(inner);
+      for (std::size_t s = 0; s < n_sets; ++s) {
+        r.value[s] *= 2.0;
+        r.error[s] *= 2.0;
+      }
+      return r;
+    });
+  }
   return integrate_cosine_weighted(n_sets, settings, [&](double mu, double tolerance) {
     QuadratureSettings inner = settings;
     inner.tolerance = tolerance;
