@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
 
-.PHONY: deps configure build demo test bench clean
+.PHONY: deps configure build build-app demo test bench clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -17,7 +17,11 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The program and the Python module only (what the demo runs).
+build-app: configure
+	cmake --build $(BUILD) -j $(JOBS) --target roadbrdf _roadbrdf
+
+demo: build-app
 	bash examples/demo.sh $(BUILD)
 
 test: build

@@ -23,8 +23,8 @@ namespace ksk {
 void specular_albedo_parts(Distribution d, double mu, double alpha, double* a_out, double* b_out) {
   const int kNodesTheta = 20;
   const int kNodesPhi = 20;
-  const microfacet::QuadratureRule& rt = microfacet::gauss_legendre_01(kNodesTheta);
-  const microfacet::QuadratureRule& rp = microfacet::gauss_legendre_01(kNodesPhi);
+  const QuadratureRule& rt = microfacet::gauss_legendre_01(kNodesTheta);
+  const QuadratureRule& rp = microfacet::gauss_legendre_01(kNodesPhi);
   mu = std::fmin(std::fmax(mu, 0.0), 1.0);
   const double theta_i = std::acos(mu);
   const double sin_i = std::sqrt(std::fmax(0.0, 1.0 - mu * mu));
@@ -44,8 +44,8 @@ void specular_albedo_parts(Distribution d, double mu, double alpha, double* a_ou
   for (std::size_t seg = 0; seg + 1 < breaks.size(); ++seg) {
     const double t0 = breaks[seg];
     const double t1 = breaks[seg + 1];
-    for (std::size_t it = 0; it < rt.x.size(); ++it) {
-      const double th = t0 + (t1 - t0) * rt.x[it];
+    for (std::size_t it = 0; it < rt.nodes.size(); ++it) {
+      const double th = t0 + (t1 - t0) * rt.nodes[it];
       const double ch = std::cos(th);
       const double sh = std::sin(th);
       const double ph = halfway_density(d, ch, alpha);
@@ -60,8 +60,8 @@ void specular_albedo_parts(Distribution d, double mu, double alpha, double* a_ou
       }
       if (phi_max <= 0.0) continue;
       double inner_a = 0.0, inner_b = 0.0;
-      for (std::size_t ip = 0; ip < rp.x.size(); ++ip) {
-        const double p = phi_max * rp.x[ip];
+      for (std::size_t ip = 0; ip < rp.nodes.size(); ++ip) {
+        const double p = phi_max * rp.nodes[ip];
         const double lh = sin_i * sh * std::cos(p) + mu * ch;
         if (lh <= 0.0) continue;
         const double cr = 2.0 * lh * ch - mu;
@@ -69,10 +69,10 @@ void specular_albedo_parts(Distribution d, double mu, double alpha, double* a_ou
         const double k = cr / lh;
         const double m = 1.0 - lh;
         const double w = (m * m) * (m * m) * m;
-        inner_a += rp.w[ip] * k * (1.0 - w);
-        inner_b += rp.w[ip] * k * w;
+        inner_a += rp.weights[ip] * k * (1.0 - w);
+        inner_b += rp.weights[ip] * k * w;
       }
-      const double weight = rt.w[it] * (t1 - t0) * sh * ph * 2.0 * phi_max;
+      const double weight = rt.weights[it] * (t1 - t0) * sh * ph * 2.0 * phi_max;
       sum_a += weight * inner_a;
       sum_b += weight * inner_b;
     }
@@ -91,7 +91,7 @@ AlbedoTable build_table(Distribution d) {
   t.b.resize(t.a.size());
   t.a_avg.resize(AlbedoTable::kAlpha);
   t.b_avg.resize(AlbedoTable::kAlpha);
-  const microfacet::QuadratureRule& rmu = microfacet::gauss_legendre_01(24);
+  const QuadratureRule& rmu = microfacet::gauss_legendre_01(24);
   for (int ia = 0; ia < AlbedoTable::kAlpha; ++ia) {
     const double alpha = std::exp(t.log_alpha_min + ia * t.log_alpha_step);
     for (int im = 0; im < AlbedoTable::kMu; ++im) {
@@ -101,11 +101,11 @@ AlbedoTable build_table(Distribution d) {
     }
     // rho_bar = 2 int_0^1 rho_s(mu) mu dmu, by its own Gauss-Legendre rule (not from the table).
     double avg_a = 0.0, avg_b = 0.0;
-    for (std::size_t k = 0; k < rmu.x.size(); ++k) {
+    for (std::size_t k = 0; k < rmu.nodes.size(); ++k) {
       double a = 0.0, b = 0.0;
-      specular_albedo_parts(d, rmu.x[k], alpha, &a, &b);
-      avg_a += 2.0 * rmu.w[k] * rmu.x[k] * a;
-      avg_b += 2.0 * rmu.w[k] * rmu.x[k] * b;
+      specular_albedo_parts(d, rmu.nodes[k], alpha, &a, &b);
+      avg_a += 2.0 * rmu.weights[k] * rmu.nodes[k] * a;
+      avg_b += 2.0 * rmu.weights[k] * rmu.nodes[k] * b;
     }
     t.a_avg[static_cast<std::size_t>(ia)] = avg_a;
     t.b_avg[static_cast<std::size_t>(ia)] = avg_b;

@@ -22,15 +22,12 @@
 #include <ceres/jet.h>
 
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/quadrature.h"
 
 namespace roadbrdf {
 namespace microfacet {
 
-// Gauss-Legendre rule on [0, 1] (nodes and weights); computed once per n, cached. Thread-safe.
-struct QuadratureRule {
-  std::vector<double> x;
-  std::vector<double> w;
-};
+// Gauss-Legendre rule on [0, 1] (core/quadrature.h); computed once per n, cached. Thread-safe.
 const QuadratureRule& gauss_legendre_01(int n);
 
 inline constexpr double kSqrtPi = 1.7724538509055160273;
@@ -160,9 +157,9 @@ T gaussian_normalisation(const T& sigma) {
   const T theta_max = scalar_value(sigma) * 9.0 < kPi / 2 ? T(9.0 * sigma) : T(kPi / 2);
   const T inv_two_s2 = 0.5 / (sigma * sigma);
   T sum(0.0);
-  for (std::size_t k = 0; k < rule.x.size(); ++k) {
-    const T theta = theta_max * rule.x[k];
-    sum += rule.w[k] * exp(-theta * theta * inv_two_s2) * sin(2.0 * theta);
+  for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+    const T theta = theta_max * rule.nodes[k];
+    sum += rule.weights[k] * exp(-theta * theta * inv_two_s2) * sin(2.0 * theta);
   }
   // 2 pi * int cos sin = pi * int sin(2 theta)
   return 1.0 / (kPi * theta_max * sum);
