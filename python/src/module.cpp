@@ -13,6 +13,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 
@@ -21,43 +22,9 @@ using namespace roadbrdf;
 
 namespace {
 
-py::dict parameter_dict(const ParameterInfo& p) {
-  py::dict d;
-  d["name"] = p.name;
-  d["unit"] = p.unit;
-  d["description"] = p.description;
-  d["default"] = p.default_value;
-  d["lower"] = p.lower;
-  d["upper"] = p.upper;
-  d["spectral"] = p.spectral;
-  d["linear"] = p.linear;
-  return d;
-}
-
-py::dict description_dict(const ModelDescription& md) {
-  py::dict d;
-  d["name"] = md.name;
-  d["summary"] = md.summary;
-  d["citation"] = md.citation;
-  d["reciprocal"] = md.reciprocal;
-  d["energy_conserving"] = md.energy_conserving;
-  d["non_negative"] = md.non_negative;
-  d["has_delta"] = md.has_delta;
-  py::list params;
-  for (const auto& p : md.parameters) params.append(parameter_dict(p));
-  d["parameters"] = params;
-  py::list options;
-  for (const auto& o : md.options) {
-    py::dict od;
-    od["name"] = o.name;
-    od["description"] = o.description;
-    od["values"] = o.values;
-    od["default"] = o.default_value;
-    options.append(od);
-  }
-  d["options"] = options;
-  d["option_values"] = md.option_values;
-  return d;
+// Metadata as a Python dict, through the same JSON as `roadbrdf models --json`.
+py::object description_dict(const ModelDescription& md) {
+  return py::module_::import("json").attr("loads")(description_to_json(md).dump());
 }
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;

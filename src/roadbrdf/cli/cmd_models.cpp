@@ -5,39 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf::cli {
 
 namespace {
-
-nlohmann::json describe_json(const ModelDescription& d) {
-  nlohmann::json j;
-  j["name"] = d.name;
-  j["summary"] = d.summary;
-  j["citation"] = d.citation;
-  j["reciprocal"] = d.reciprocal;
-  j["energy_conserving"] = d.energy_conserving;
-  j["non_negative"] = d.non_negative;
-  j["has_delta"] = d.has_delta;
-  j["parameters"] = nlohmann::json::array();
-  for (const auto& p : d.parameters) {
-    j["parameters"].push_back({{"name", p.name},
-                               {"unit", p.unit},
-                               {"description", p.description},
-                               {"default", p.default_value},
-                               {"lower", p.lower},
-                               {"upper", p.upper},
-                               {"spectral", p.spectral},
-                               {"linear", p.linear}});
-  }
-  j["options"] = nlohmann::json::array();
-  for (const auto& o : d.options) {
-    j["options"].push_back(
-        {{"name", o.name}, {"description", o.description}, {"values", o.values}, {"default", o.default_value}});
-  }
-  return j;
-}
 
 // Markdown reference of every model, generated from the same metadata (docs/models.md).
 void print_markdown() {
@@ -73,7 +46,7 @@ void print_markdown() {
 void run(bool as_json) {
   if (as_json) {
     nlohmann::json all = nlohmann::json::array();
-    for (const auto& name : model_names()) all.push_back(describe_json(make_model(name)->description()));
+    for (const auto& name : model_names()) all.push_back(description_to_json(make_model(name)->description()));
     std::cout << all.dump(2) << '\n';
     return;
   }

@@ -1,0 +1,34 @@
+#include "roadbrdf/models/description_json.h"
+
+namespace roadbrdf {
+
+nlohmann::json description_to_json(const ModelDescription& d) {
+  nlohmann::json j;
+  j["name"] = d.name;
+  j["summary"] = d.summary;
+  j["citation"] = d.citation;
+  j["reciprocal"] = d.reciprocal;
+  j["energy_conserving"] = d.energy_conserving;
+  j["non_negative"] = d.non_negative;
+  j["has_delta"] = d.has_delta;
+  j["parameters"] = nlohmann::json::array();
+  for (const auto& p : d.parameters) {
+    j["parameters"].push_back({{"name", p.name},
+                               {"unit", p.unit},
+                               {"description", p.description},
+                               {"default", p.default_value},
+                               {"lower", p.lower},
+                               {"upper", p.upper},
+                               {"spectral", p.spectral},
+                               {"linear", p.linear}});
+  }
+  j["options"] = nlohmann::json::array();
+  for (const auto& o : d.options) {
+    j["options"].push_back(
+        {{"name", o.name}, {"description", o.description}, {"values", o.values}, {"default", o.default_value}});
+  }
+  j["option_values"] = d.option_values;
+  return j;
+}
+
+}  // namespace roadbrdf

@@ -1,0 +1,16 @@
+// A model's metadata as JSON: the one serialisation used by `roadbrdf models --json` and the
+// Python module (roadbrdf.models(), Model.description).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "roadbrdf/core/parameters.h"
+
+namespace roadbrdf {
+
+// Keys: name, summary, citation, reciprocal, energy_conserving, non_negative, has_delta,
+// parameters [{name, unit, description, default, lower, upper, spectral, linear}],
+// options [{name, description, values, default}], option_values {name: value}.
+nlohmann::json description_to_json(const ModelDescription& description);
+
+}  // namespace roadbrdf
