@@ -93,6 +93,11 @@ printf 'theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,30,180\n30,0,30,0\n60,0,60
 "$rb" render "$out/F1-surface.json" --grid "$out/small-grid.csv" --wavelengths 550:650:100 --samples 2048 \
     -o "$out/F1-virtual.csv"
 echo "virtual F1 (550 and 650 nm, with Monte Carlo standard errors) written to $out/F1-virtual.csv"
+echo "-- the mixing methods judged against the virtual F1 (its shadowing and interreflections are real):"
+"$rb" render "$out/F1-surface.json" --grid data/examples/grid/cerema-like-grid.csv --wavelengths 450:850:200 \
+    --samples 4096 -o "$out/F1-virtual-grid.csv"
+"$rb" mix "$out/formulations/F1.json" --data "$out/F1-virtual-grid.csv" --method all -o "$out/F1-virtual.mix.json" \
+    2>/dev/null | tail -n 8
 
 section "8. Figures"
 "$rb" plot spectral data/examples/mixed/F1.csv data/examples/mixed/F2.csv data/examples/mixed/F3.csv \
