@@ -1,4 +1,5 @@
 // The roadbrdf program: models and eval sub-commands, error messages and exit codes.
+#include "support/cli.h"
 #include <gtest/gtest.h>
 
 #include <array>
@@ -12,20 +13,8 @@
 
 namespace {
 
-struct Result {
-  int status;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& arguments) {
-  const std::string command = std::string(ROADBRDF_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
+using Result = roadbrdf::test::CliResult;
+Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("roadbrdf_cli_test_" + name)).string();

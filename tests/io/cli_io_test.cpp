@@ -1,4 +1,5 @@
 // End-to-end runs of the measurement sub-commands through build/roadbrdf.
+#include "support/cli.h"
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -16,20 +17,8 @@ namespace {
 const std::string kCli = ROADBRDF_CLI;
 const std::string kData = ROADBRDF_DATA_DIR;
 
-struct Result {
-  int status;
-  std::string out;
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = kCli + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int status = pclose(p);
-  return {WEXITSTATUS(status), out};
-}
+using Result = roadbrdf::test::CliResult;
+Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
 std::string tmp(const std::string& name) { return (std::filesystem::path(testing::TempDir()) / ("roadbrdf_cli_io_" + name)).string(); }
 
@@ -38,7 +27,7 @@ TEST(CliIo, SimulateCheckResampleConvert) {
   std::ofstream(grid) << "theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,0,0\n30,0,30,180\n30,0,60,90\n60,0,30,90\n";
   const std::string data = tmp("lambert.csv");
   Result r = run("simulate lambert -p albedo=0.5 --grid " + grid + " --wavelengths 400:700:10 --noise relative=0.01 --seed 4 -o " + data);
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.status, 0) << r.output;
   const SpectralDataset d = read_dataset(data);
   EXPECT_EQ(d.geometry_count(), 5u);
   EXPECT_EQ(d.wavelength_count(), 31u);
@@ -46,15 +35,15 @@ TEST(CliIo, SimulateCheckResampleConvert) {
   EXPECT_EQ(d.metadata.at("seed"), "4");
 
   r = run("check " + data + " --json");
-  ASSERT_EQ(r.status, 0) << r.out;
-  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
   EXPECT_EQ(j["geometries"], 5);
   EXPECT_EQ(j["reciprocity"]["pairs"], 2);  // (0,30)<->(30,0) and (30,60,|dphi| 90)<->(60,30)
   EXPECT_EQ(j["negative_values"], 0);
 
   const std::string resampled = tmp("resampled.csv");
   r = run("resample " + data + " --wavelengths 400:700:100 -o " + resampled);
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.status, 0) << r.output;
   const SpectralDataset rs = read_dataset(resampled);
   EXPECT_EQ(rs.wavelengths, (std::vector<double>{450, 550, 650}));
   // Band average = trapezoid mean of the 11 samples of each band (independent computation).
@@ -66,14 +55,14 @@ TEST(CliIo, SimulateCheckResampleConvert) {
 
   const std::string long_file = tmp("long.csv");
   r = run("convert " + data + " --to long --convention road -o " + long_file);
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.status, 0) << r.output;
   const SpectralDataset back = read_dataset(long_file);
   EXPECT_EQ(back.convention, AngleConvention::kRoad);
   EXPECT_EQ(back.brdf, d.brdf);
 
   const std::string curet = tmp("curet.csv");
   r = run("convert " + kData + "/third-party/curet/abrdf.dat --from curet --sample 45 -o " + curet);
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(read_dataset(curet).geometry_count(), 205u);
 }
 
@@ -82,7 +71,7 @@ TEST(CliIo, ErrorsNameFileLineColumn) {
   std::ofstream(bad) << "theta_i,phi_i,theta_r,phi_r,500\n0,0,30,180,oops\n";
   const Result r = run("check " + bad);
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find(bad + ":2:12: 'oops'"), std::string::npos) << r.out;
+  EXPECT_NE(r.output.find(bad + ":2:12: 'oops'"), std::string::npos) << r.output;
 }
 
 }  // namespace

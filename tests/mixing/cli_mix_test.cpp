@@ -1,5 +1,6 @@
 // The `roadbrdf mix` command: formulation + fit files + measured mixture -> comparison table and
 // MIX.json, read back as a spectral model.
+#include "support/cli.h"
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,20 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace roadbrdf;
 
-struct Result {
-  int status;
-  std::string output;
-};
-
-Result run(const std::string& arguments) {
-  const std::string command = std::string(ROADBRDF_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
+using Result = roadbrdf::test::CliResult;
+Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
 const std::vector<double> kWavelengths = {400, 500, 600, 700};
 // Albedo spectra of the three end-members (linearly independent over the four wavelengths, so that

@@ -14,6 +14,7 @@
 //   - the closed forms of B(g), the Henyey-Greenstein and Legendre phase functions, and their
 //     normalisation and mean cosine (1/4pi) int p dOmega = 1, <cos Theta> = xi;
 //   - central finite differences for the gradients.
+#include "support/reference_quadrature.h"
 #include "roadbrdf/models/hapke.h"
 
 #include <gtest/gtest.h>
@@ -35,30 +36,7 @@
 namespace roadbrdf {
 namespace {
 
-// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n; written here, independent of the
-// library's rule).
-void gauss_legendre_01(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(n, 0.0);
-  w.assign(n, 0.0);
-  for (int k = 0; k < n; ++k) {
-    double z = std::cos(kPi * (k + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-      }
-      dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::fabs(dz) < 1e-16) break;
-    }
-    x[k] = 0.5 * (z + 1.0);
-    w[k] = 1.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
+using roadbrdf::test::gauss_legendre_01;  // independent of the library's rule
 
 struct TableRow {
   double w = 0.0;

@@ -7,6 +7,7 @@
 //   - the published MODIS black-sky polynomial, within its known fit error, and the independent
 //     quadrature values of domain notes section 3;
 //   - closed forms at the nadir and at the hot spot, derived by hand from the kernel formulas.
+#include "support/reference_quadrature.h"
 #include "roadbrdf/models/ross_li.h"
 
 #include <gtest/gtest.h>
@@ -21,28 +22,7 @@
 namespace roadbrdf {
 namespace {
 
-void gauss_legendre_01(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(n, 0.0);
-  w.assign(n, 0.0);
-  for (int k = 0; k < n; ++k) {
-    double z = std::cos(kPi * (k + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-      }
-      dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::fabs(dz) < 1e-16) break;
-    }
-    x[k] = 0.5 * (z + 1.0);
-    w[k] = 1.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
+using roadbrdf::test::gauss_legendre_01;  // independent of the library's rule
 
 // Black-sky kernel albedos (1/pi) int K(theta_s, w_v) cos(theta_v) dw_v, through the model's BRDF
 // (parameters (0, 1, 0) give K_vol/pi, (0, 0, 1) give K_geo/pi): Gauss-Legendre in mu_v and in
