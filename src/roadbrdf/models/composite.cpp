@@ -1,6 +1,7 @@
 #include "roadbrdf/models/composite.h"
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 namespace roadbrdf {
@@ -96,13 +97,15 @@ void CompositeModel::evaluate_batch_with_gradient(const Geometry* geometries, st
                                                   const double* params, double* values, double* jacobian) const {
   const std::size_t n_params = parameter_count();
   std::fill(values, values + n_geometries, 0.0);
-  std::vector<double> vk(n_geometries);
-  std::vector<double> jk;
+  // Scratch without zero-initialisation (every entry is written by the component).
+  const std::unique_ptr<double[]> vk(new double[n_geometries]);
+  std::size_t max_nk = 0;
+  for (const auto& c : components_) max_nk = std::max(max_nk, c->parameter_count());
+  const std::unique_ptr<double[]> jk(new double[n_geometries * max_nk]);
   for (std::size_t k = 0; k < components_.size(); ++k) {
     const std::size_t nk = components_[k]->parameter_count();
     const double* p = params + offsets_[k];
-    jk.resize(n_geometries * nk);
-    components_[k]->evaluate_batch_with_gradient(geometries, n_geometries, p + 1, vk.data(), jk.data());
+    components_[k]->evaluate_batch_with_gradient(geometries, n_geometries, p + 1, vk.get(), jk.get());
     for (std::size_t n = 0; n < n_geometries; ++n) {
       values[n] += p[0] * vk[n];
       double* row = jacobian + n * n_params + offsets_[k];
@@ -137,10 +140,11 @@ void CompositeModel::evaluate_prepared(const PreparedGeometries& prepared, const
   if (own == nullptr) return Model::evaluate_prepared(prepared, params, values);
   const std::size_t n_geometries = prepared.size();
   std::fill(values, values + n_geometries, 0.0);
-  std::vector<double> vk(n_geometries);
+  // Scratch without zero-initialisation (every entry is written by the component).
+  const std::unique_ptr<double[]> vk(new double[n_geometries]);
   for (std::size_t k = 0; k < components_.size(); ++k) {
     const double* p = params + offsets_[k];
-    components_[k]->evaluate_prepared(*own->parts[k], p + 1, vk.data());
+    components_[k]->evaluate_prepared(*own->parts[k], p + 1, vk.get());
     for (std::size_t n = 0; n < n_geometries; ++n) values[n] += p[0] * vk[n];
   }
 }
@@ -153,13 +157,15 @@ void CompositeModel::evaluate_prepared_with_gradient(const PreparedGeometries& p
   const std::size_t n_params = parameter_count();
   const std::size_t n_geometries = prepared.size();
   std::fill(values, values + n_geometries, 0.0);
-  std::vector<double> vk(n_geometries);
-  std::vector<double> jk;
+  // Scratch without zero-initialisation (every entry is written by the component).
+  const std::unique_ptr<double[]> vk(new double[n_geometries]);
+  std::size_t max_nk = 0;
+  for (const auto& c : components_) max_nk = std::max(max_nk, c->parameter_count());
+  const std::unique_ptr<double[]> jk(new double[n_geometries * max_nk]);
   for (std::size_t k = 0; k < components_.size(); ++k) {
     const std::size_t nk = components_[k]->parameter_count();
     const double* p = params + offsets_[k];
-    jk.resize(n_geometries * nk);
-    components_[k]->evaluate_prepared_with_gradient(*own->parts[k], p + 1, vk.data(), jk.data());
+    components_[k]->evaluate_prepared_with_gradient(*own->parts[k], p + 1, vk.get(), jk.get());
     for (std::size_t n = 0; n < n_geometries; ++n) {
       values[n] += p[0] * vk[n];
       double* row = jacobian + n * n_params + offsets_[k];
