@@ -151,7 +151,7 @@ class WavelengthCost final : public ceres::CostFunction {
 class FreeWavelengthCost final : public ceres::CostFunction {
  public:
   FreeWavelengthCost(const Prepared& d, std::size_t w, std::vector<double> full, std::vector<std::size_t> free)
-      : d_(d), w_(w), full_(std::move(full)), free_(std::move(free)), f_(d.n), j_(d.n * d.p), r_jac_(d.n * d.p) {
+      : d_(d), w_(w), full_(std::move(full)), free_(std::move(free)), f_(d.n), j_(d.n * d.p) {
     set_num_residuals(static_cast<int>(d.n));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(free_.size()));
   }
@@ -164,10 +164,15 @@ class FreeWavelengthCost final : public ceres::CostFunction {
       const std::size_t n = d_.n, p = d_.p, nf = free_.size();
       const double* yw = d_.y.data() + w_ * n;
       const double* mw = d_.mult.data() + w_ * n;
-      if (jac != nullptr) {
+      // Ceres evaluates a candidate point without the Jacobian and, when it accepts the step, asks
+      // for the Jacobian at the same point. The model's values and gradients are therefore computed
+      // together at every new point and kept: the Jacobian request then costs no model evaluation.
+      bool same_point = cached_;
+      for (std::size_t i = 0; i < nf && same_point; ++i) same_point = cached_x_[i] == parameters[0][i];
+      if (!same_point) {
         d_.model->evaluate_prepared_with_gradient(*d_.prepared_geometries, full_.data(), f_.data(), j_.data());
-      } else {
-        d_.model->evaluate_prepared(*d_.prepared_geometries, full_.data(), f_.data());
+        cached_x_.assign(parameters[0], parameters[0] + nf);
+        cached_ = true;
       }
       for (std::size_t g = 0; g < n; ++g) {
         if (!std::isfinite(f_[g])) return false;
@@ -182,6 +187,8 @@ class FreeWavelengthCost final : public ceres::CostFunction {
       }
       return true;
     }
+    cached_ = false;
+    if (jac != nullptr) r_jac_.resize(d_.n * d_.p);
     if (!d_.residuals(w_, full_.data(), residuals, jac != nullptr ? r_jac_.data() : nullptr, f_.data(), j_.data())) {
       return false;
     }
@@ -202,6 +209,8 @@ class FreeWavelengthCost final : public ceres::CostFunction {
   mutable std::vector<double> full_;
   std::vector<std::size_t> free_;
   mutable std::vector<double> f_, j_, r_jac_;
+  mutable std::vector<double> cached_x_;  // free parameters of the values in f_ and gradients in j_
+  mutable bool cached_ = false;
 };
 
 // Joint cost of one wavelength: blocks [shared, local]; full parameter k comes from
