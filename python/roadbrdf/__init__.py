@@ -389,19 +389,23 @@ def spectral_model_from_fit(fit_result: dict, model: str | None = None) -> Spect
 
 
 def mix(formulation, data=None, method="all", folds=5, seed=1, per_wavelength=False, sum_to_one=False,
-        binder_coverage=None, mastic_fraction=None, reference=None, output=None) -> dict:
+        binder_coverage=None, mastic_fraction=None, reference=None, output=None, use_sigma=True,
+        residuals=None) -> dict:
     """Predict the BRDF of a road formulation from its components' fits, as ``roadbrdf mix`` does.
 
     ``formulation``: a formulation JSON file (see docs/mixing.md); ``data``: the measured mixture
     (CSV path) to compare the methods on held-out geometries (``folds``-fold); ``method``: areal,
     fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
-    the albedo difference). Returns the MIX.json content (per method: weights, parameters, and the
+    the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
+    sigma (False = ``--no-sigma``); ``residuals``: CSV path for the held-out residuals (``--residuals``,
+    needs ``data``). Returns the MIX.json content (per method: weights, parameters, and the
     comparison when ``data`` is given); ``read_fit(output, method)`` evaluates a method's mixture.
     """
     import json
     text = _roadbrdf.mix(str(formulation), "" if data is None else str(data), method, int(folds), int(seed),
                          bool(per_wavelength), bool(sum_to_one), binder_coverage, mastic_fraction,
-                         "" if reference is None else str(reference), "" if output is None else str(output))
+                         "" if reference is None else str(reference), "" if output is None else str(output),
+                         bool(use_sigma), "" if residuals is None else str(residuals))
     return json.loads(text)
 
 

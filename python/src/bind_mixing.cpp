@@ -13,6 +13,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/mixing/residual_file.h"
 
 namespace py = pybind11;
 
@@ -27,7 +28,8 @@ void bind_mixing(py::module_& m) {
       "mix",
       [](const std::string& formulation_path, const std::string& data_path, const std::string& method, int folds,
          unsigned seed, bool per_wavelength, bool sum_to_one, std::optional<double> binder_coverage,
-         std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output) {
+         std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output,
+         bool use_sigma, const std::string& residuals) {
         using namespace mixing;
         const Formulation formulation = read_formulation(formulation_path);
         const MixInputs inputs = load_mix_inputs(formulation);
@@ -36,6 +38,8 @@ void bind_mixing(py::module_& m) {
         settings.mastic_area_fraction = mastic_fraction;
         settings.per_wavelength = per_wavelength;
         settings.sum_to_one = sum_to_one;
+        settings.use_sigma = use_sigma;
+        if (!residuals.empty() && data_path.empty()) throw InputError("residuals needs data (held-out residuals)");
         const bool all = method == "all";
         const std::vector<Method> methods = all ? all_methods() : std::vector<Method>{method_from_string(method)};
         std::optional<SpectralDataset> data;
@@ -77,6 +81,7 @@ void bind_mixing(py::module_& m) {
           path = temporary;
         }
         write_mix_file(path, content);
+        if (!residuals.empty()) write_residual_file(residuals, *data, content.comparisons);
         std::ifstream in(path);
         std::stringstream text;
         text << in.rdbuf();
@@ -86,7 +91,7 @@ void bind_mixing(py::module_& m) {
       py::arg("formulation"), py::arg("data") = "", py::arg("method") = "all", py::arg("folds") = 5,
       py::arg("seed") = 1u, py::arg("per_wavelength") = false, py::arg("sum_to_one") = false,
       py::arg("binder_coverage") = py::none(), py::arg("mastic_fraction") = py::none(), py::arg("reference") = "",
-      py::arg("output") = "");
+      py::arg("output") = "", py::arg("use_sigma") = true, py::arg("residuals") = "");
   m.def("read_spectral_model_file", &mixing::read_spectral_model_file, py::arg("path"), py::arg("selection") = "");
 }
 

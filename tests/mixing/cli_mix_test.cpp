@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -139,6 +140,168 @@ TEST_F(CliMix, FormulationErrorsAreReported) {
   EXPECT_NE(r.output.find("bad.json"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("100 %"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "o.json"));
+}
+
+// Rows of a CSV file (comment lines skipped), split on ','.
+std::vector<std::vector<std::string>> read_csv_rows(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// The table line of a method in the command's output: its held-out RMSE (second column).
+double table_rmse(const std::string& output, const std::string& method) {
+  std::istringstream lines(output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string first;
+    double rmse = 0.0;
+    if (words >> first && first == method && words >> rmse) return rmse;
+  }
+  return std::nan("");
+}
+
+TEST_F(CliMix, ResidualFileRmseEqualsTheTable) {
+  // The mixture of the fixture with a deterministic +-2 % perturbation and sigma = 1 % of the value.
+  std::ofstream csv(dir_ / "mixed-sigma.csv");
+  csv.precision(17);
+  csv << "theta_i,phi_i,theta_r,phi_r";
+  for (double w : kWavelengths) csv << ',' << w;
+  for (double w : kWavelengths) csv << ",sigma_" << w;
+  csv << '\n';
+  int index = 0;
+  std::vector<std::array<double, 4>> angles;
+  for (double ti : {0.0, 30.0, 60.0}) {
+    for (double tr : {10.0, 40.0, 70.0}) {
+      for (double pr : {0.0, 90.0, 180.0}) {
+        angles.push_back({ti, 0.0, tr, pr});
+        csv << ti << ",0," << tr << ',' << pr;
+        std::vector<double> value;
+        for (std::size_t m = 0; m < kWavelengths.size(); ++m) {
+          const double rho = 0.1 * kBitumen[m] + 0.3 * kMastic[m] + 0.6 * kGravel[m];
+          value.push_back(rho / kPi * (1.0 + 0.02 * std::sin(1.7 * ++index)));
+          csv << ',' << value.back();
+        }
+        for (double v : value) csv << ',' << 0.01 * v;
+        csv << '\n';
+      }
+    }
+  }
+  csv.close();
+  const fs::path out = dir_ / "mix.json", residuals = dir_ / "res.csv";
+  const Result r = run("mix " + (dir_ / "F.json").string() + " --data " + (dir_ / "mixed-sigma.csv").string() +
+                       " --folds 3 --residuals " + residuals.string() + " -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto rows = read_csv_rows(residuals);
+  ASSERT_FALSE(rows.empty());
+  const std::vector<std::string> columns = {"method",    "fold",     "theta_i",  "phi_i",    "theta_r",
+                                            "phi_r",     "wavelength", "measured", "sigma",  "predicted",
+                                            "residual", "relative_residual", "normalized_residual"};
+  ASSERT_EQ(rows[0], columns);
+  std::map<std::string, double> sse, chi2;
+  std::map<std::string, int> count;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto& c = rows[i];
+    ASSERT_EQ(c.size(), columns.size()) << i;
+    const double measured = std::stod(c[7]), sigma = std::stod(c[8]), predicted = std::stod(c[9]),
+                 residual = std::stod(c[10]);
+    EXPECT_NEAR(residual, predicted - measured, 1e-15);
+    EXPECT_NEAR(std::stod(c[11]), residual / measured, 1e-12);
+    EXPECT_NEAR(sigma, 0.01 * measured, 1e-15);
+    // Row order: geometry-major inside a method, in the data's order.
+    const int row_in_method = count[c[0]]++;
+    const auto& a = angles[row_in_method / kWavelengths.size()];
+    for (int k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(std::stod(c[2 + k]), a[k]) << i;
+    EXPECT_DOUBLE_EQ(std::stod(c[6]), kWavelengths[row_in_method % kWavelengths.size()]);
+    const int fold = std::stoi(c[1]);
+    if (c[0] == "fitted" || c[0] == "shadowed") {
+      EXPECT_TRUE(fold >= 1 && fold <= 3) << fold;
+    } else {
+      EXPECT_EQ(fold, 0);
+    }
+    sse[c[0]] += residual * residual;
+    chi2[c[0]] += std::pow(std::stod(c[12]), 2);
+  }
+  std::ifstream in(out);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(count.size(), j.at("methods").size());
+  for (const auto& m : j.at("methods")) {
+    const std::string method = m.at("method");
+    ASSERT_EQ(count[method], 27 * 4) << method;
+    const double rmse = std::sqrt(sse[method] / count[method]);
+    EXPECT_NEAR(rmse, m.at("comparison").at("rmse").get<double>(), 1e-12 * rmse) << method;
+    EXPECT_NEAR(chi2[method] / count[method], m.at("comparison").at("chi2_reduced").get<double>(),
+                1e-9 * chi2[method] / count[method])
+        << method;
+    // The printed table (5 significant digits).
+    EXPECT_NEAR(table_rmse(r.output, method), rmse, 1e-4 * rmse) << method << "\n" << r.output;
+  }
+  // Without sigma in the data: no sigma columns; --residuals needs --data.
+  const Result plain = run("mix " + (dir_ / "F.json").string() + " --data " + (dir_ / "mixed.csv").string() +
+                           " --method areal --folds 3 --residuals " + residuals.string() + " -o " + out.string());
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  const auto plain_rows = read_csv_rows(residuals);
+  EXPECT_EQ(plain_rows[0], (std::vector<std::string>{"method", "fold", "theta_i", "phi_i", "theta_r", "phi_r",
+                                                     "wavelength", "measured", "predicted", "residual",
+                                                     "relative_residual"}));
+  EXPECT_EQ(plain_rows.size(), 1u + 27 * 4);
+  const Result no_data = run("mix " + (dir_ / "F.json").string() + " --residuals " + residuals.string() + " -o " +
+                             out.string());
+  EXPECT_EQ(no_data.status, 2) << no_data.output;
+  EXPECT_NE(no_data.output.find("--residuals needs --data"), std::string::npos) << no_data.output;
+}
+
+TEST_F(CliMix, NoSigmaSwitchTurnsWeightingOff) {
+  // sigma differs by 100x between the first and the other geometries, and the data are a perturbed
+  // mixture: weighted and unweighted fitted weights must differ; --no-sigma is recorded in the settings.
+  std::ofstream csv(dir_ / "mixed-sigma.csv");
+  csv.precision(17);
+  csv << "theta_i,phi_i,theta_r,phi_r";
+  for (double w : kWavelengths) csv << ',' << w;
+  for (double w : kWavelengths) csv << ",sigma_" << w;
+  csv << '\n';
+  int index = 0;
+  for (double ti : {0.0, 30.0, 60.0}) {
+    for (double tr : {10.0, 40.0, 70.0}) {
+      for (double pr : {0.0, 90.0, 180.0}) {
+        csv << ti << ",0," << tr << ',' << pr;
+        std::vector<double> value;
+        for (std::size_t m = 0; m < kWavelengths.size(); ++m) {
+          const double rho = 0.1 * kBitumen[m] + 0.3 * kMastic[m] + 0.6 * kGravel[m];
+          value.push_back(rho / kPi * (1.0 + 0.05 * std::sin(2.3 * ++index)));
+          csv << ',' << value.back();
+        }
+        for (double v : value) csv << ',' << (index % 3 ? 0.001 : 0.1) * v;
+        csv << '\n';
+      }
+    }
+  }
+  csv.close();
+  auto fitted_weights = [&](const std::string& extra) {
+    const fs::path out = dir_ / "w.json";
+    const Result r = run("mix " + (dir_ / "F.json").string() + " --data " + (dir_ / "mixed-sigma.csv").string() +
+                         " --method fitted --folds 3 " + extra + " -o " + out.string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const auto& m = j.at("methods").at(0);
+    return std::make_pair(m.at("weights").at("gravel").get<double>(), m.at("settings").at("sigma_weighted").get<double>());
+  };
+  const auto weighted = fitted_weights("");
+  const auto plain = fitted_weights("--no-sigma");
+  EXPECT_EQ(weighted.second, 1.0);
+  EXPECT_EQ(plain.second, 0.0);
+  EXPECT_GT(std::fabs(weighted.first - plain.first), 1e-6);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // roadbrdf mix FORMULATION.json [--data MEASURED.csv] [--method areal|fitted|mastic|hapke|shadowed|all]
-//              [--folds K] [--reference FIT.json] -o MIX.json
+//              [--folds K] [--reference FIT.json] [--no-sigma] [--residuals RES.csv] -o MIX.json
 // Predicts the BRDF of a road formulation from its components' fits (mixing/mixing.h) and, with
 // measured data of the mixed sample, compares the methods with k-fold held-out geometries.
 #include <fmt/core.h>
@@ -14,6 +14,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/mixing/residual_file.h"
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::cli {
@@ -28,6 +29,8 @@ struct MixArgs {
   unsigned seed = 1;
   bool per_wavelength = false;
   bool sum_to_one = false;
+  bool no_sigma = false;
+  std::string residuals;
   std::optional<double> binder_coverage;
   std::optional<double> mastic_fraction;
   std::string reference;
@@ -57,6 +60,8 @@ void run(const MixArgs& a) {
   settings.mastic_area_fraction = a.mastic_fraction;
   settings.per_wavelength = a.per_wavelength;
   settings.sum_to_one = a.sum_to_one;
+  settings.use_sigma = !a.no_sigma;
+  if (!a.residuals.empty() && a.data.empty()) throw InputError("--residuals needs --data (held-out residuals)");
 
   std::vector<Method> methods;
   const bool all = a.method == "all";
@@ -100,20 +105,26 @@ void run(const MixArgs& a) {
   }
   if (content.results.empty()) throw InputError("no mixing method could be applied to " + a.formulation);
   write_mix_file(a.output, content);
+  if (!a.residuals.empty()) write_residual_file(a.residuals, *data, content.comparisons);
 
   fmt::print("formulation {} ({} components, {} end-members)\n", formulation.name, formulation.components.size(),
              inputs.end_members.size());
   if (data) {
     fmt::print("measured mixture {}: {} geometries x {} wavelengths; errors on held-out geometries ({}-fold)\n",
                a.data, data->geometry_count(), data->wavelength_count(), a.folds);
-    fmt::print("{:<9} {:>12} {:>9} {:>12} {:>8} {:>9}  {}\n", "method", "RMSE[sr-1]", "relRMSE", "RMSE(fit)",
-               "albedo", "d_albedo", "weights");
+    if (data->has_sigma()) {
+      fmt::print("fitted methods {} (sigma from the data); chi2/n: held-out reduced chi^2\n",
+                 settings.use_sigma ? "weighted by 1/sigma^2" : "unweighted (--no-sigma)");
+    }
+    fmt::print("{:<9} {:>12} {:>9} {:>8} {:>12} {:>8} {:>9}  {}\n", "method", "RMSE[sr-1]", "relRMSE", "chi2/n",
+               "RMSE(fit)", "albedo", "d_albedo", "weights");
     std::size_t best = 0;
     for (std::size_t i = 0; i < content.comparisons.size(); ++i) {
       const Comparison& c = content.comparisons[i];
       if (c.rmse < content.comparisons[best].rmse) best = i;
-      fmt::print("{:<9} {:>12.5g} {:>9.4f} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse,
-                 c.relative_rmse, c.rmse_in_sample, c.albedo,
+      fmt::print("{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse,
+                 c.relative_rmse, std::isfinite(c.chi2_reduced) ? fmt::format("{:.4g}", c.chi2_reduced) : std::string("n/a"),
+                 c.rmse_in_sample, c.albedo,
                  std::isfinite(c.albedo_difference) ? fmt::format("{:+.4f}", c.albedo_difference) : std::string("n/a"),
                  weights_text(c.result));
     }
@@ -122,13 +133,14 @@ void run(const MixArgs& a) {
   } else {
     fmt::print("{:<9} {:>8}  {}\n", "method", "albedo", "weights");
     for (const auto& r : content.results) {
-      const std::vector<double> albedo = spectral_white_sky_albedo(*r.model, r.model->wavelengths());
+      const std::vector<double> albedo = mixture_white_sky_albedo(inputs, r, r.model->wavelengths());
       double mean = 0.0;
       for (double x : albedo) mean += x / albedo.size();
       fmt::print("{:<9} {:>8.4f}  {}\n", to_string(r.method), mean, weights_text(r));
     }
   }
   fmt::print("wrote {}\n", a.output);
+  if (!a.residuals.empty()) fmt::print("wrote {} (held-out residuals)\n", a.residuals);
 }
 
 }  // namespace
@@ -153,6 +165,11 @@ void register_mix_command(CLI::App& app) {
   command->add_option("--mastic-fraction", args.mastic_fraction,
                       "mastic: area fraction of the mastic, overriding the formulation")
       ->check(CLI::Range(0.0, 1.0));
+  command->add_flag("--no-sigma", args.no_sigma,
+                    "fitted, shadowed: ignore the data's sigma (default: weight residuals by 1/sigma^2 when given)");
+  command->add_option("--residuals", args.residuals,
+                      "With --data: write the held-out residuals per method, geometry and wavelength (CSV, "
+                      "see docs/mixing.md)");
   command->add_option("--reference", args.reference,
                       "Fit file of the measured mixture: the albedo difference column compares with it");
   command->add_option("-o,--output", args.output, "Output MIX.json (format: src/roadbrdf/mixing/mix_file.h)")->required();

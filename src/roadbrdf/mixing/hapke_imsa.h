@@ -52,8 +52,13 @@ std::vector<double> white_sky_albedo(const Model& model, const double* params, s
 // White-sky albedo of the IMSA isotropic BRDF by the same rule (see the header comment).
 double imsa_white_sky_albedo(double w);
 
-// The w in [0, 1] with imsa_white_sky_albedo(w) = albedo (bisection to 1e-12). Throws InputError
-// when the albedo is not in [0, imsa_white_sky_albedo(1)].
+// The w in [0, 1] with imsa_white_sky_albedo(w) = albedo. Throws InputError when the albedo is not in
+// [0, imsa_white_sky_albedo(1)]. Solved in gamma = sqrt(1 - w), where A is smooth (in w it has a
+// square-root singularity at w = 1), by Newton's method with the analytic derivative, safeguarded by
+// bisection on the bracket [0, 1]; stops when the step or the bracket is below 1e-15 in gamma.
+// Accuracy: |w - w_exact| <= 1e-12 (tested against an independent bisection to 1e-15,
+// tests/mixing/hapke_inversion_test.cpp); typically 4-6 iterations of a 24 x 24 node sum
+// (the former plain bisection in w needed ~43).
 double invert_imsa_white_sky_albedo(double albedo);
 
 }  // namespace roadbrdf::mixing

@@ -37,6 +37,7 @@ void write_mix_file(const std::string& path, const MixFileContent& content) {
                 {"shadowing", "1: s in exp(-s (tan theta_i + tan theta_r))"},
                 {"rmse", "sr^-1 (BRDF)"},
                 {"relative_rmse", "1: rmse / mean |measured BRDF|"},
+                {"chi2_reduced", "1: mean of ((predicted - measured) / sigma)^2 over the held-out values (null without sigma)"},
                 {"albedo", "1: white-sky (bi-hemispherical) albedo, mean over the wavelengths"},
                 {"d_eff_mm", "mm"},
                 {"density_g_cm3", "g/cm^3"},
@@ -124,6 +125,7 @@ void write_mix_file(const std::string& path, const MixFileContent& content) {
                          {"relative_rmse", c.relative_rmse},
                          {"rmse_in_sample", c.rmse_in_sample},
                          {"relative_rmse_in_sample", c.relative_rmse_in_sample},
+                         {"chi2_reduced", number_or_null(c.chi2_reduced)},
                          {"albedo", c.albedo},
                          {"albedo_reference", number_or_null(c.albedo_reference)},
                          {"albedo_difference", number_or_null(c.albedo_difference)}};

@@ -227,10 +227,16 @@ struct LinearSystem {
   std::size_t M = 0, K = 0;
   std::vector<double> F;          // [row][k][m]
   std::vector<double> y;          // [row][m]
+  // [row][m]: 1/sigma of each measured value (residual multiplier), or empty (unweighted).
+  std::vector<double> inverse_sigma;
+  double multiplier(std::size_t row, std::size_t m) const {
+    return inverse_sigma.empty() ? 1.0 : inverse_sigma[row * M + m];
+  }
 };
 
 LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_t>& members, const SpectralDataset& data,
-                           const std::vector<std::size_t>* training, const std::vector<double>& grid) {
+                           const std::vector<std::size_t>* training, const std::vector<double>& grid,
+                           bool use_sigma) {
   if (grid != data.wavelengths) throw InputError("fitted mixing uses the data's wavelengths (no --wavelengths)");
   LinearSystem s;
   if (training) {
@@ -258,18 +264,38 @@ LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_
       s.y[r * s.M + m] = y;
     }
   }
+  if (use_sigma && data.has_sigma()) {
+    if (data.sigma.size() != data.brdf.size()) throw InputError("the measured mixture's sigma table has the wrong size");
+    s.inverse_sigma.resize(s.rows.size() * s.M);
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      for (std::size_t m = 0; m < s.M; ++m) {
+        const double sigma = data.sigma[s.rows[r] * s.M + m];
+        if (!(sigma > 0.0) || !std::isfinite(sigma)) {
+          std::ostringstream msg;
+          msg << "the measured mixture's uncertainty at geometry " << s.rows[r] + 1 << ", wavelength "
+              << data.wavelengths[m] << " nm is " << sigma
+              << " (must be > 0 for 1/sigma^2 weighting; or use --no-sigma)";
+          throw InputError(msg.str());
+        }
+        s.inverse_sigma[r * s.M + m] = 1.0 / sigma;
+      }
+    }
+  }
   return s;
 }
 
-// NNLS over the wavelengths in [m0, m1) of the system, optionally sum-to-one.
+// NNLS over the wavelengths in [m0, m1) of the system, optionally sum-to-one. With sigma, weighted
+// least squares: min sum ((sum_k x_k F_k - y) / sigma)^2, i.e. G = A^T W A, h = A^T W y, W = 1/sigma^2.
 std::vector<double> solve_weights(const LinearSystem& s, std::size_t m0, std::size_t m1, bool sum_to_one) {
   const std::size_t K = s.K;
   std::vector<double> G(K * K, 0.0), h(K, 0.0);
   for (std::size_t r = 0; r < s.rows.size(); ++r) {
     for (std::size_t m = m0; m < m1; ++m) {
       const double y = s.y[r * s.M + m];
+      const double v = s.multiplier(r, m);
+      const double weight = v * v;
       for (std::size_t a = 0; a < K; ++a) {
-        const double fa = s.F[(r * K + a) * s.M + m];
+        const double fa = weight * s.F[(r * K + a) * s.M + m];
         h[a] += fa * y;
         for (std::size_t b = 0; b < K; ++b) G[a * K + b] += fa * s.F[(r * K + b) * s.M + m];
       }
@@ -302,6 +328,7 @@ void weight_distance(MixResult& r) {
 struct ShadowedResidual {
   const double* F;  // [k][m] of this geometry
   const double* y;  // [m]
+  const double* inverse_sigma;  // [m], or nullptr (unweighted)
   std::size_t K, M;
   double path_tangent;  // tan theta_i + tan theta_r
   const std::vector<bool>* coarse;
@@ -317,7 +344,7 @@ struct ShadowedResidual {
     for (std::size_t m = 0; m < M; ++m) {
       T sum(0.0);
       for (std::size_t k = 0; k < K; ++k) sum += a[k] * ((*coarse)[k] ? boost : S) * F[k * M + m];
-      residuals[m] = sum - y[m];
+      residuals[m] = inverse_sigma ? (sum - y[m]) * inverse_sigma[m] : sum - y[m];
     }
     return true;
   }
@@ -449,6 +476,58 @@ std::vector<double> spectral_white_sky_albedo(const SpectralModel& model, const 
   return white_sky_albedo(model.model(), params.data(), sets);
 }
 
+std::vector<double> mixture_white_sky_albedo(const MixInputs& inputs, const MixResult& result,
+                                             const std::vector<double>& wavelengths) {
+  const MixtureModel& mixture = *result.mixture;
+  const SpectralModel& model = *result.model;
+  const std::size_t K = mixture.component_count();
+  if (mixture.kind() == MixtureKind::kShadowed || result.end_members.size() != K) {
+    return spectral_white_sky_albedo(model, wavelengths);
+  }
+  // The end-member of each mixture component (by name).
+  std::vector<const SpectralModel*> members(K, nullptr);
+  for (std::size_t k = 0; k < K; ++k) {
+    for (const EndMember& e : inputs.end_members) {
+      if (e.name == result.end_members[k]) members[k] = e.model.get();
+    }
+    if (!members[k]) return spectral_white_sky_albedo(model, wavelengths);
+  }
+  const std::size_t sets = wavelengths.empty() ? 1 : wavelengths.size();
+  std::vector<std::vector<double>> rows(sets);
+  for (std::size_t q = 0; q < sets; ++q) {
+    rows[q] = wavelengths.empty() ? model.parameter_table() : model.parameters_at(wavelengths[q]);
+    for (std::size_t k = 0; k < K; ++k) {
+      const std::vector<double> own =
+          wavelengths.empty() ? members[k]->parameter_table() : members[k]->parameters_at(wavelengths[q]);
+      const std::size_t offset = mixture.component_offset(k);
+      if (own.size() != mixture.component(k).parameter_count() ||
+          !std::equal(own.begin(), own.end(), rows[q].begin() + offset)) {
+        return spectral_white_sky_albedo(model, wavelengths);
+      }
+    }
+  }
+  std::vector<std::vector<double>> member_albedo(K);
+  for (std::size_t k = 0; k < K; ++k) member_albedo[k] = inputs.albedo_cache->white_sky(*members[k], wavelengths);
+  const HemisphereRule& rule = white_sky_rule();
+  const std::vector<double> zero(K, 0.0);
+  std::vector<double> albedo(sets, 0.0);
+  for (std::size_t q = 0; q < sets; ++q) {
+    const double* p = rows[q].data();
+    double total = 0.0;
+    for (std::size_t k = 0; k < K; ++k) total += p[k];
+    for (std::size_t k = 0; k < K; ++k) {
+      const double e = mixture.kind() == MixtureKind::kHapke ? p[k] / total : p[k];
+      albedo[q] += e * member_albedo[k][q];
+    }
+    if (mixture.kind() == MixtureKind::kHapke) {
+      for (std::size_t n = 0; n < rule.geometries.size(); ++n) {
+        albedo[q] += rule.weights[n] * mixture.combine(p, rule.geometries[n], zero.data(), nullptr);
+      }
+    }
+  }
+  return albedo;
+}
+
 std::vector<double> nnls_normal(const std::vector<double>& G, const std::vector<double>& h, std::size_t K) {
   std::vector<double> x(K, 0.0);
   std::vector<bool> passive(K, false);
@@ -562,7 +641,7 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
     std::vector<std::vector<double>> w(members.size(), std::vector<double>(rows));
     for (std::size_t k = 0; k < members.size(); ++k) {
       const EndMember& em = inputs.end_members[members[k]];
-      const std::vector<double> albedo = spectral_white_sky_albedo(*em.model, grid);
+      const std::vector<double> albedo = inputs.albedo_cache->white_sky(*em.model, grid);
       for (std::size_t q = 0; q < rows; ++q) {
         try {
           w[k][q] = invert_imsa_white_sky_albedo(albedo[q]);
@@ -596,7 +675,7 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
       r.formulation_weights = areal_weights(inputs, settings, members, info);
     }
     const std::vector<double> grid = output_grid(inputs, members, settings, data);
-    const LinearSystem sys = linear_system(inputs, members, *data, training, grid);
+    const LinearSystem sys = linear_system(inputs, members, *data, training, grid, settings.use_sigma);
     const std::size_t K = members.size();
     if (sys.rows.size() * (settings.per_wavelength ? 1 : sys.M) < K) {
       throw InputError("too few measured values to fit " + std::to_string(K) + " weights");
@@ -618,6 +697,7 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
             std::copy(table[q].begin(), table[q].end(), row);
           }));
       r.settings["per_wavelength"] = settings.per_wavelength ? 1.0 : 0.0;
+      r.settings["sigma_weighted"] = sys.inverse_sigma.empty() ? 0.0 : 1.0;
       r.settings["sum_to_one"] = settings.sum_to_one ? 1.0 : 0.0;
     } else {
       for (std::size_t e : members) {
@@ -643,8 +723,9 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
         const Geometry& g = data->geometries[sys.rows[row]];
         const double ci = std::max(g.cos_theta_i(), 1e-9), cr = std::max(g.cos_theta_r(), 1e-9);
         const double path = std::sqrt(std::max(0.0, 1.0 - ci * ci)) / ci + std::sqrt(std::max(0.0, 1.0 - cr * cr)) / cr;
-        auto* functor = new ShadowedResidual{sys.F.data() + row * K * sys.M, sys.y.data() + row * sys.M, K, sys.M,
-                                             path, &coarse};
+        auto* functor = new ShadowedResidual{sys.F.data() + row * K * sys.M, sys.y.data() + row * sys.M,
+                                             sys.inverse_sigma.empty() ? nullptr : sys.inverse_sigma.data() + row * sys.M,
+                                             K, sys.M, path, &coarse};
         auto* cost = new ceres::DynamicAutoDiffCostFunction<ShadowedResidual, 4>(functor);
         cost->AddParameterBlock(static_cast<int>(K));
         cost->AddParameterBlock(1);
@@ -652,8 +733,12 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
         problem.AddResidualBlock(cost, nullptr, a.data(), &s);
       }
       if (settings.sum_to_one) {
+        // Scale of the penalty: the (weighted) data norm per geometry.
         double y2 = 0.0;
-        for (double y : sys.y) y2 += y * y;
+        for (std::size_t i = 0; i < sys.y.size(); ++i) {
+          const double v = sys.inverse_sigma.empty() ? 1.0 : sys.inverse_sigma[i];
+          y2 += sys.y[i] * sys.y[i] * v * v;
+        }
         auto* cost = new ceres::DynamicAutoDiffCostFunction<SumToOneResidual, 4>(
             new SumToOneResidual{1e4 * std::sqrt(y2 / std::max<std::size_t>(1, sys.rows.size())), K});
         cost->AddParameterBlock(static_cast<int>(K));
@@ -697,6 +782,7 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
       }
       r.weights = a;
       r.settings["shadowing"] = s;
+      r.settings["sigma_weighted"] = sys.inverse_sigma.empty() ? 0.0 : 1.0;
       r.settings["sum_to_one"] = settings.sum_to_one ? 1.0 : 0.0;
       r.mixture = make_mixture(MixtureKind::kShadowed, inputs, members, coarse);
       r.model = std::make_shared<const SpectralModel>(
@@ -727,6 +813,7 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   c.method = method;
   c.folds = folds;
   c.result = mix(inputs, method, settings, &data);
+  // Errors of predictions (N_rows x M, rows = geometry indices) against the data.
   auto errors = [&](const std::vector<double>& predicted, const std::vector<std::size_t>& rows, double& sse,
                     double& sum_abs) {
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -740,30 +827,59 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   };
   std::vector<std::size_t> all(N);
   std::iota(all.begin(), all.end(), 0);
+  const std::vector<double> in_sample = evaluate_spectral(*c.result.model, data.geometries, data.wavelengths);
   {
     double sse = 0.0, sum_abs = 0.0;
-    errors(evaluate_spectral(*c.result.model, data.geometries, data.wavelengths), all, sse, sum_abs);
+    errors(in_sample, all, sse, sum_abs);
     c.rmse_in_sample = std::sqrt(sse / (N * M));
     c.relative_rmse_in_sample = c.rmse_in_sample / (sum_abs / (N * M));
   }
+  c.fold_of_geometry.assign(N, 0);
   if (!method_needs_data(method)) {
-    c.rmse = c.rmse_in_sample;
-    c.relative_rmse = c.relative_rmse_in_sample;
+    c.predicted = in_sample;
   } else {
+    c.predicted.assign(N * M, std::numeric_limits<double>::quiet_NaN());
     std::vector<std::size_t> order = all;
     std::mt19937 rng(seed);
     std::shuffle(order.begin(), order.end(), rng);
-    double sse = 0.0, sum_abs = 0.0;
     for (int fold = 0; fold < folds; ++fold) {
       std::vector<std::size_t> train, test;
       for (std::size_t i = 0; i < N; ++i) (static_cast<int>(i % folds) == fold ? test : train).push_back(order[i]);
       const MixResult part = mix(inputs, method, settings, &data, &train);
       std::vector<Geometry> geometries;
       for (std::size_t n : test) geometries.push_back(data.geometries[n]);
-      errors(evaluate_spectral(*part.model, geometries, data.wavelengths), test, sse, sum_abs);
+      const std::vector<double> predicted = evaluate_spectral(*part.model, geometries, data.wavelengths);
+      for (std::size_t t = 0; t < test.size(); ++t) {
+        std::copy(predicted.begin() + t * M, predicted.begin() + (t + 1) * M, c.predicted.begin() + test[t] * M);
+        c.fold_of_geometry[test[t]] = fold + 1;
+      }
     }
+  }
+  {
+    double sse = 0.0, sum_abs = 0.0;
+    errors(c.predicted, all, sse, sum_abs);
     c.rmse = std::sqrt(sse / (N * M));
     c.relative_rmse = c.rmse / (sum_abs / (N * M));
+  }
+  if (data.has_sigma()) {
+    if (data.sigma.size() != N * M) throw InputError("the measured mixture's sigma table has the wrong size");
+    double chi2 = 0.0;
+    bool valid = true;
+    for (std::size_t i = 0; i < N * M && valid; ++i) {
+      const double sigma = data.sigma[i];
+      if (!(sigma > 0.0) || !std::isfinite(sigma)) {
+        // Keep the comparison, say why chi^2 is missing.
+        std::ostringstream msg;
+        msg << "held-out chi^2 not computed: the measured mixture's uncertainty at geometry " << i / M + 1
+            << ", wavelength " << data.wavelengths[i % M] << " nm is " << sigma << " (must be > 0)";
+        c.result.notes.push_back(msg.str());
+        valid = false;
+        break;
+      }
+      const double z = (c.predicted[i] - data.brdf[i]) / sigma;
+      chi2 += z * z;
+    }
+    if (valid) c.chi2_reduced = chi2 / (N * M);
   }
   // Albedo summary on at most kAlbedoWavelengths wavelengths evenly spaced in index (the quadrature
   // costs ~14k model evaluations per wavelength).
@@ -775,7 +891,7 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
       albedo_wavelengths.push_back(data.wavelengths[index]);
     }
   }
-  const std::vector<double> albedo = spectral_white_sky_albedo(*c.result.model, albedo_wavelengths);
+  const std::vector<double> albedo = mixture_white_sky_albedo(inputs, c.result, albedo_wavelengths);
   c.albedo = std::accumulate(albedo.begin(), albedo.end(), 0.0) / albedo.size();
   if (reference) {
     const std::vector<double> ref = spectral_white_sky_albedo(*reference, albedo_wavelengths);

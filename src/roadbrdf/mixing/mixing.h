@@ -23,6 +23,8 @@
 //            wavelength, optionally constrained to sum to one. Reports the distance to the areal
 //            weights: half the L1 distance between the normalised fitted weights and the areal
 //            weights (0 = same proportions, 1 = disjoint), and the sum of the fitted weights.
+//            When the measured mixture has sigma, residuals are divided by sigma (weighted least
+//            squares, weights 1/sigma^2; MixSettings::use_sigma), for "shadowed" too.
 //  mastic    The report's structure: the measured mastic (binder + fines + filler + pigment, i.e.
 //            every component that is not a coarse aggregate) plus the coarse aggregate classes
 //            (aggregates with d_min >= coarse_min_size_mm), areal mixing between them. The mastic's
@@ -57,6 +59,7 @@
 #include <vector>
 
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/mixing/albedo_cache.h"
 #include "roadbrdf/mixing/formulation.h"
 #include "roadbrdf/mixing/mixture_model.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -78,6 +81,8 @@ struct EndMember {
 struct MixInputs {
   Formulation formulation;
   std::vector<EndMember> end_members;  // the components' distinct fits, then the mastic's if separate
+  // End-member white-sky albedos computed so far (hapke inversion, albedo summaries); copies share it.
+  std::shared_ptr<AlbedoCache> albedo_cache = std::make_shared<AlbedoCache>();
 };
 
 // Load every distinct fit file of the formulation (errors name the formulation key).
@@ -95,6 +100,9 @@ struct MixSettings {
   std::optional<double> mastic_area_fraction;  // overrides the formulation (mastic)
   bool per_wavelength = false;                 // fitted: one NNLS per wavelength
   bool sum_to_one = false;                     // fitted, shadowed: weights sum to one
+  // fitted, shadowed: when the measured mixture has sigma, each residual f - y is divided by its
+  // sigma (weights 1/sigma^2, as `fit` does, fitting/fit.h use_sigma); false: plain least squares.
+  bool use_sigma = true;
   std::vector<double> wavelengths;             // output grid [nm]; empty: automatic (see above)
 };
 
@@ -129,6 +137,15 @@ std::vector<double> evaluate_spectral(const SpectralModel& model, const std::vec
 // `wavelengths` is empty and the model is not spectral).
 std::vector<double> spectral_white_sky_albedo(const SpectralModel& model, const std::vector<double>& wavelengths);
 
+// The same for the mixture of a MixResult, from the end-members' albedos (inputs.albedo_cache) where
+// the quadrature allows it: for the linear and hapke kinds f = sum_k e_k f_k + f_0(mu0, mu) with
+// coefficients e_k that do not depend on the geometry (e_k = a_k; hapke: c_k / sum c), so the same
+// quadrature gives A = sum_k e_k A_k + A(f_0) exactly (to rounding; the delta parts mix with the
+// same e_k, mixture_model.h). f_0 (hapke multiple-scattering correction) is cheap. The shadowed kind,
+// or a table whose end-member parameters are not the end-members' own, uses the full quadrature.
+std::vector<double> mixture_white_sky_albedo(const MixInputs& inputs, const MixResult& result,
+                                             const std::vector<double>& wavelengths);
+
 // Non-negative least squares min |A x - b|^2, x >= 0, from the normal equations G = A^T A
 // (K x K row-major) and h = A^T b (Lawson & Hanson 1974, ch. 23 active-set algorithm).
 std::vector<double> nnls_normal(const std::vector<double>& G, const std::vector<double>& h, std::size_t K);
@@ -142,6 +159,16 @@ struct Comparison {
   double relative_rmse = 0.0;            // held-out rmse / mean |measured|
   double rmse_in_sample = 0.0;           // all geometries used for fitting and evaluation
   double relative_rmse_in_sample = 0.0;
+  // Reduced chi^2 of the held-out residuals, (1 / (N M)) sum ((f - y) / sigma)^2 over every held-out
+  // value (no parameter count is subtracted: the held-out values were not used by the fit). NaN
+  // when the data have no sigma. About 1 when the method predicts within the measurement noise.
+  // Computed from the data's sigma whether or not the fit used it (MixSettings::use_sigma).
+  double chi2_reduced = std::numeric_limits<double>::quiet_NaN();
+  // Held-out predictions [sr^-1], N x M geometry-major in the data's order (each geometry predicted
+  // by the fit that did not see it; methods without fitted parameters: the one prediction), and the
+  // fold (1..folds) that held out each geometry (0 for methods without fitted parameters).
+  std::vector<double> predicted;
+  std::vector<int> fold_of_geometry;
   double albedo = 0.0;                   // mean of the mixture's white-sky albedo over the data's
                                          // wavelengths (at most kAlbedoWavelengths, evenly spaced in index)
   double albedo_reference = std::numeric_limits<double>::quiet_NaN();   // same for the reference fit
@@ -151,8 +178,8 @@ struct Comparison {
 
 // Compare a method with measured data: k-fold cross-validation over geometries (folds >= 2;
 // geometries shuffled with a fixed seed; methods without fitted parameters predict every fold the
-// same), in-sample errors, albedo, and the albedo difference to `reference` (e.g. the fit of the
-// measured mixed sample) when given.
+// same), in-sample errors, held-out reduced chi^2 (data with sigma), albedo, and the albedo
+// difference to `reference` (e.g. the fit of the measured mixed sample) when given.
 Comparison compare_method(const MixInputs& inputs, Method method, const MixSettings& settings,
                           const SpectralDataset& data, int folds, unsigned seed = 1,
                           const SpectralModel* reference = nullptr);

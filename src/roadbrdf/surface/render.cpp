@@ -6,11 +6,13 @@
 #include <limits>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
+#include "roadbrdf/surface/brdf_sampler.h"
 
 namespace roadbrdf::surface {
 
@@ -159,6 +161,7 @@ struct Renderer::Impl {
   double eps = 1e-6;
   std::vector<Cell> cells;
   std::vector<RenderMaterial> materials;
+  std::vector<BrdfSampler> samplers;  // one per material
   std::size_t m = 0;  // wavelengths
   bool any_delta = false;
 
@@ -177,6 +180,10 @@ struct Renderer::Impl {
   void trace(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta, double* f) const;
   void specular_spike(const Job& job, Rng& rng, double* contrib, double* f) const;
   std::vector<Estimate> run(const std::vector<Job>& jobs, const RenderSettings& s) const;
+  // Continuation direction (local frame) for the smooth part at a vertex with outgoing direction
+  // wo_l; returns false if none (direction at or below the horizon). `weight` = cos / pdf.
+  bool continue_direction(int material, const Vec3& wo_l, const RenderSettings& s, Rng& rng, Vec3& wl,
+                          double& weight) const;
   void eval(int material, const Geometry& g, double* out) const {
     const RenderMaterial& mat = materials[material];
     mat.model->evaluate_batch(&g, 1, mat.parameters.data(), m, out);
@@ -199,6 +206,7 @@ Renderer::Renderer(const HeightField& field, std::vector<RenderMaterial> materia
       throw InputError("render: material '" + mat.name + "' has a wrong parameter table size");
     }
     s.any_delta = s.any_delta || mat.has_delta;
+    s.samplers.emplace_back(*mat.model, mat.parameters, wavelength_count);
   }
   s.cells.resize(static_cast<std::size_t>(s.nx) * s.ny);
   s.hmax = -1e300;
@@ -350,6 +358,34 @@ void Renderer::Impl::specular_spike(const Job& job, Rng& rng, double* contrib, d
   for (std::size_t w = 0; w < m; ++w) contrib[w] += k * f[w];
 }
 
+// Cosine sampling: pdf cos/pi, weight pi. BRDF sampling: with probability c from the material's
+// table (brdf_sampler.h), else cosine-weighted; whichever was drawn, the weight uses the mixture
+// density c p_table(w) + (1 - c) cos/pi, i.e. the one-sample model of multiple importance sampling
+// with the balance heuristic (Veach 1997, sec. 9.2.4), unbiased because the mixture is the exact
+// density of the drawn direction and is > 0 wherever f cos > 0.
+bool Renderer::Impl::continue_direction(int material, const Vec3& wo_l, const RenderSettings& s, Rng& rng, Vec3& wl,
+                                        double& weight) const {
+  const bool use_table = s.sampling == Sampling::brdf;
+  const double c = use_table ? s.brdf_sampling_fraction : 0.0;
+  double p_table = 0.0;
+  if (use_table && rng.uniform() < c) {
+    const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+    wl = samplers[material].sample(wo_l, u1, u2, u3, p_table);
+  } else {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+    wl = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+    if (!use_table) {
+      weight = kPi;
+      return wl.z > 0.0;
+    }
+    if (c > 0.0) p_table = samplers[material].pdf(wo_l, wl);
+  }
+  if (!(wl.z > 0.0)) return false;
+  weight = wl.z / (c * p_table + (1.0 - c) * wl.z / kPi);
+  return true;
+}
+
 void Renderer::Impl::trace(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta,
                            double* f) const {
   for (std::size_t w = 0; w < m; ++w) contrib[w] = 0.0;
@@ -414,13 +450,12 @@ void Renderer::Impl::trace(const Job& job, const RenderSettings& s, Rng& rng, do
         beta[w] *= branch_weight * mat.model->delta_reflectance(mat.parameters.data() + w * np, wo_l.z);
       }
     } else {
-      const double u1 = rng.uniform(), u2 = rng.uniform();
-      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-      const Vec3 wl{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
-      if (wl.z <= 0.0) break;
+      Vec3 wl;
+      double weight = 0.0;
+      if (!continue_direction(hit.material, wo_l, s, rng, wl, weight)) break;
       w_new = wl.x * t + wl.y * b + wl.z * hit.n;
       eval(hit.material, local_geometry(wl, wo_l), f);
-      for (std::size_t w = 0; w < m; ++w) beta[w] *= branch_weight * kPi * f[w];
+      for (std::size_t w = 0; w < m; ++w) beta[w] *= branch_weight * weight * f[w];
     }
     if (bounce >= s.rr_start_bounce) {
       double q = 0.0;
@@ -435,73 +470,145 @@ void Renderer::Impl::trace(const Job& job, const RenderSettings& s, Rng& rng, do
   }
 }
 
-std::vector<Estimate> Renderer::Impl::run(const std::vector<Job>& jobs, const RenderSettings& s) const {
-  if (s.samples < 2) throw InputError("render: at least 2 paths per geometry are needed for a standard error");
-  if (s.paths_per_block < 1) throw InputError("render: paths_per_block must be >= 1");
-  const long blocks_per_job = (s.samples + s.paths_per_block - 1) / s.paths_per_block;
-  const std::size_t n_items = jobs.size() * static_cast<std::size_t>(blocks_per_job);
-  // Per-item running mean and sum of squared deviations per wavelength (Welford), combined over
-  // blocks with the pairwise formula of Chan, Golub & LeVeque (1979): no cancellation, so a
-  // deterministic estimator (e.g. a flat sample seen by an ideal detector) has exactly 0 error.
-  std::vector<double> sums(n_items * 2 * m, 0.0);
-  std::vector<long> counts(n_items, 0);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&]() {
-    std::vector<double> contrib(m), beta(m), f(m);
-    for (;;) {
-      const std::size_t item = next.fetch_add(1);
-      if (item >= n_items) break;
-      const std::size_t job_index = item / blocks_per_job;
-      const long block = static_cast<long>(item % blocks_per_job);
-      const Job& job = jobs[job_index];
-      Rng rng(stream_seed(s.seed, job.stream, static_cast<std::uint64_t>(block)));
-      const long first = block * s.paths_per_block;
-      const long count = std::min(s.paths_per_block, s.samples - first);
-      double* mean = sums.data() + item * 2 * m;
-      double* m2 = mean + m;
-      for (long k = 0; k < count; ++k) {
-        trace(job, s, rng, contrib.data(), beta.data(), f.data());
-        const double inv = 1.0 / static_cast<double>(k + 1);
-        for (std::size_t w = 0; w < m; ++w) {
-          const double delta = contrib[w] - mean[w];
-          mean[w] += delta * inv;
-          m2[w] += delta * (contrib[w] - mean[w]);
-        }
-      }
-      counts[item] = count;
-    }
-  };
-  unsigned n_threads = s.threads > 0 ? static_cast<unsigned>(s.threads) : std::max(1u, std::thread::hardware_concurrency());
-  n_threads = static_cast<unsigned>(std::min<std::size_t>(n_threads, n_items));
-  if (n_threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned k = 0; k < n_threads; ++k) pool.emplace_back(worker);
-    for (auto& th : pool) th.join();
+double Estimate::worst_relative_error() const {
+  double worst = 0.0;
+  for (std::size_t w = 0; w < mean.size(); ++w) {
+    if (standard_error[w] == 0.0) continue;
+    worst = std::max(worst, mean[w] != 0.0 ? standard_error[w] / std::fabs(mean[w])
+                                           : std::numeric_limits<double>::infinity());
   }
+  return worst;
+}
+
+// Blocks of paths are the unit of work: block k of a geometry holds paths [k B, min((k+1) B, N_max))
+// and has its own random stream (seed, geometry, k). Fixed mode runs all blocks of every geometry in
+// one round. Adaptive mode runs min_blocks blocks per geometry, then in rounds adds blocks to the
+// geometries that have not reached the target; after each round the statistics of the completed
+// blocks are merged in block order and the decision (stop, or how many blocks to add) depends only on
+// them, so the result does not depend on the number of threads or on timing.
+std::vector<Estimate> Renderer::Impl::run(const std::vector<Job>& jobs, const RenderSettings& s) const {
+  const bool adaptive = s.target_relative_error > 0.0;
+  if (s.paths_per_block < 1) throw InputError("render: paths_per_block must be >= 1");
+  if (!(s.brdf_sampling_fraction >= 0.0 && s.brdf_sampling_fraction < 1.0)) {
+    throw InputError("render: brdf_sampling_fraction must be in [0, 1) (cosine sampling keeps the estimator unbiased)");
+  }
+  if (!(s.target_relative_error >= 0.0) || !std::isfinite(s.target_relative_error)) {
+    throw InputError("render: the target relative error must be >= 0");
+  }
+  long max_paths = s.samples;
+  long min_blocks = 0;
+  if (adaptive) {
+    if (s.max_samples < 2) throw InputError("render: --max-samples must be >= 2");
+    if (s.min_blocks < 1) throw InputError("render: min_blocks must be >= 1");
+    if (!(s.absolute_error_floor >= 0.0)) throw InputError("render: the absolute error floor must be >= 0");
+    max_paths = s.max_samples;
+    min_blocks = s.min_blocks;
+  } else {
+    if (s.samples < 2) throw InputError("render: at least 2 paths per geometry are needed for a standard error");
+  }
+  const long B = s.paths_per_block;
+  const long max_blocks = (max_paths + B - 1) / B;
+  if (!adaptive) min_blocks = max_blocks;
+  min_blocks = std::min(min_blocks, max_blocks);
+
+  // Per-geometry running statistics, combined over blocks with the pairwise formula of Chan, Golub &
+  // LeVeque (1979); per block Welford's update. No cancellation, so a deterministic estimator (e.g.
+  // a flat sample seen by an ideal detector) has exactly 0 error.
+  struct Accumulator {
+    std::vector<double> mean, m2;
+    double n = 0.0;
+    long blocks = 0;
+  };
+  std::vector<Accumulator> acc(jobs.size());
+  for (auto& a : acc) {
+    a.mean.assign(m, 0.0);
+    a.m2.assign(m, 0.0);
+  }
+  std::vector<long> extra(jobs.size(), min_blocks);  // blocks to add in the next round
   std::vector<Estimate> out(jobs.size());
-  const double n = static_cast<double>(s.samples);
-  for (std::size_t g = 0; g < jobs.size(); ++g) {
-    std::vector<double> mean(m, 0.0), m2(m, 0.0);
-    double na = 0.0;
-    for (long block = 0; block < blocks_per_job; ++block) {
-      const std::size_t item = g * blocks_per_job + block;
+  unsigned n_threads_max = s.threads > 0 ? static_cast<unsigned>(s.threads) : std::max(1u, std::thread::hardware_concurrency());
+
+  for (;;) {
+    std::vector<std::pair<std::size_t, long>> items;  // (job, block)
+    for (std::size_t g = 0; g < jobs.size(); ++g) {
+      for (long k = 0; k < extra[g]; ++k) items.emplace_back(g, acc[g].blocks + k);
+    }
+    if (items.empty()) break;
+    std::vector<double> sums(items.size() * 2 * m, 0.0);
+    std::vector<long> counts(items.size(), 0);
+    std::atomic<std::size_t> next{0};
+    auto worker = [&]() {
+      std::vector<double> contrib(m), beta(m), f(m);
+      for (;;) {
+        const std::size_t item = next.fetch_add(1);
+        if (item >= items.size()) break;
+        const auto [job_index, block] = items[item];
+        const Job& job = jobs[job_index];
+        Rng rng(stream_seed(s.seed, job.stream, static_cast<std::uint64_t>(block)));
+        const long count = std::min(B, max_paths - block * B);
+        double* mean = sums.data() + item * 2 * m;
+        double* m2 = mean + m;
+        for (long k = 0; k < count; ++k) {
+          trace(job, s, rng, contrib.data(), beta.data(), f.data());
+          const double inv = 1.0 / static_cast<double>(k + 1);
+          for (std::size_t w = 0; w < m; ++w) {
+            const double delta = contrib[w] - mean[w];
+            mean[w] += delta * inv;
+            m2[w] += delta * (contrib[w] - mean[w]);
+          }
+        }
+        counts[item] = count;
+      }
+    };
+    const unsigned n_threads = static_cast<unsigned>(std::min<std::size_t>(n_threads_max, items.size()));
+    if (n_threads <= 1) {
+      worker();
+    } else {
+      std::vector<std::thread> pool;
+      for (unsigned k = 0; k < n_threads; ++k) pool.emplace_back(worker);
+      for (auto& th : pool) th.join();
+    }
+    // Merge in (job, block) order.
+    for (std::size_t item = 0; item < items.size(); ++item) {
+      Accumulator& a = acc[items[item].first];
       const double* bm = sums.data() + item * 2 * m;
       const double nb = static_cast<double>(counts[item]);
-      const double nt = na + nb;
+      const double nt = a.n + nb;
       for (std::size_t w = 0; w < m; ++w) {
-        const double delta = bm[w] - mean[w];
-        mean[w] += delta * (nb / nt);
-        m2[w] += bm[m + w] + delta * delta * (na * nb / nt);
+        const double delta = bm[w] - a.mean[w];
+        a.mean[w] += delta * (nb / nt);
+        a.m2[w] += bm[m + w] + delta * delta * (a.n * nb / nt);
       }
-      na = nt;
+      a.n = nt;
+      a.blocks += 1;
     }
-    Estimate& e = out[g];
-    e.paths = s.samples;
-    e.mean = mean;
-    e.standard_error.resize(m);
-    for (std::size_t w = 0; w < m; ++w) e.standard_error[w] = std::sqrt(std::max(0.0, m2[w] / (n - 1.0)) / n);
+    // Estimates and the next round.
+    for (std::size_t g = 0; g < jobs.size(); ++g) {
+      const Accumulator& a = acc[g];
+      Estimate& e = out[g];
+      e.paths = static_cast<long>(a.n);
+      e.mean = a.mean;
+      e.standard_error.resize(m);
+      for (std::size_t w = 0; w < m; ++w) e.standard_error[w] = std::sqrt(std::max(0.0, a.m2[w] / (a.n - 1.0)) / a.n);
+      extra[g] = 0;
+      if (!adaptive) continue;
+      // Ratio of the standard error to the tolerance; the paths needed scale with its square.
+      double ratio = 0.0;
+      for (std::size_t w = 0; w < m; ++w) {
+        const double tol = std::max(s.target_relative_error * std::fabs(e.mean[w]), s.absolute_error_floor);
+        if (e.standard_error[w] <= tol) continue;
+        ratio = std::max(ratio, tol > 0.0 ? e.standard_error[w] / tol : std::numeric_limits<double>::infinity());
+      }
+      e.converged = ratio == 0.0;
+      if (e.converged || a.blocks >= max_blocks) continue;
+      // Blocks predicted to reach the target, at least 1, at most 3x those done (a noisy early error
+      // estimate cannot launch a huge round), at most up to max_samples.
+      const double needed = std::ceil(a.n * std::min(ratio * ratio, 1e12) / static_cast<double>(B));
+      long add = static_cast<long>(std::min(needed, 1e15)) - a.blocks;
+      add = std::clamp(add, 1L, 3 * a.blocks);
+      extra[g] = std::min(add, max_blocks - a.blocks);
+    }
+    if (!adaptive) break;
   }
   return out;
 }
@@ -543,7 +650,9 @@ Estimate Renderer::directional_albedo(double theta_i, double phi_i, const Render
 }
 
 SpectralDataset render_dataset(const HeightField& field, const std::vector<Geometry>& geometries,
-                               const std::vector<double>& wavelengths, const RenderSettings& settings) {
+                               const std::vector<double>& wavelengths, const RenderSettings& settings,
+                               std::vector<Estimate>* estimates) {
+  if (geometries.empty()) throw InputError("render: no geometries");
   for (std::size_t k = 0; k < wavelengths.size(); ++k) {
     if (k > 0 && !(wavelengths[k] > wavelengths[k - 1])) throw InputError("render: wavelengths must increase");
   }
@@ -569,9 +678,46 @@ SpectralDataset render_dataset(const HeightField& field, const std::vector<Geome
   std::ostringstream a;
   a << settings.acceptance_half_angle_deg;
   d.metadata["acceptance_half_angle_deg"] = a.str();
-  d.metadata["paths_per_geometry"] = std::to_string(settings.samples);
+  d.metadata["sampling"] = settings.sampling == Sampling::brdf
+                              ? "brdf (tabulated BRDF sampler mixed with cosine sampling, one-sample MIS, "
+                                "BRDF fraction " + std::to_string(settings.brdf_sampling_fraction) + ")"
+                              : "cosine";
+  if (settings.target_relative_error > 0.0) {
+    std::vector<long> paths;
+    std::vector<double> worst;
+    std::string not_converged;
+    for (std::size_t g = 0; g < est.size(); ++g) {
+      paths.push_back(est[g].paths);
+      worst.push_back(est[g].worst_relative_error());
+      if (!est[g].converged) {
+        std::ostringstream o;
+        const Geometry& gg = geometries[g];
+        o << (not_converged.empty() ? "" : "; ") << "geometry " << g + 1 << " (" << rad_to_deg(gg.theta_i) << ","
+          << rad_to_deg(gg.phi_i) << "," << rad_to_deg(gg.theta_r) << "," << rad_to_deg(gg.phi_r)
+          << " deg): relative error " << worst.back();
+        not_converged += o.str();
+      }
+    }
+    std::sort(paths.begin(), paths.end());
+    std::sort(worst.begin(), worst.end());
+    std::ostringstream o;
+    o << settings.target_relative_error << " (per wavelength: sigma <= max(target |BRDF|, "
+      << settings.absolute_error_floor << " sr^-1)); at least " << settings.min_blocks * settings.paths_per_block
+      << " paths, at most " << settings.max_samples;
+    d.metadata["target_relative_error"] = o.str();
+    std::ostringstream p;
+    p << "min " << paths.front() << ", median " << paths[paths.size() / 2] << ", max " << paths.back();
+    d.metadata["paths_per_geometry"] = p.str();
+    std::ostringstream w;
+    w << "median " << worst[worst.size() / 2] << ", max " << worst.back();
+    d.metadata["achieved_relative_error"] = w.str();
+    d.metadata["geometries_not_converged"] = not_converged.empty() ? std::string("none") : not_converged;
+  } else {
+    d.metadata["paths_per_geometry"] = std::to_string(settings.samples);
+  }
   d.metadata["seed"] = std::to_string(settings.seed);
   d.metadata["max_bounces"] = settings.max_bounces > 0 ? std::to_string(settings.max_bounces) : "unlimited";
+  if (estimates) *estimates = est;
   return d;
 }
 

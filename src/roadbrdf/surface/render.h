@@ -28,10 +28,18 @@
 //     light, its reflected radiance at x_k is f_mk(w_i, w_out) E_perp (n_k . w_i)^+ V(x_k, w_i), so
 //     the contribution per unit E_perp cos theta_i is beta_k f_mk(w_i, w_out) (n_k . w_i)^+ V / cos theta_i
 //     (V: shadow ray along w_i, 1 if it escapes the height field);
-//   - continuation: w_new drawn cosine-weighted about n_k (pdf (n.w)/pi), throughput
-//     beta_{k+1} = beta_k f_mk(w_new, w_out) (n.w_new) / pdf = beta_k pi f_mk(w_new, w_out);
+//   - continuation: w_new drawn with density p(w_new) over the hemisphere of n_k, throughput
+//     beta_{k+1} = beta_k f_mk(w_new, w_out) (n.w_new) / p(w_new). Two choices (RenderSettings::sampling):
+//       cosine: p = (n.w)/pi, so beta_{k+1} = beta_k pi f;
+//       brdf (default): with probability c (brdf_sampling_fraction, 0.5) from the material's tabulated
+//         sampler (brdf_sampler.h: piecewise-constant density ~ wavelength-averaged f cos tabulated
+//         over theta_o bins), otherwise cosine-weighted; whichever was used, p is the mixture
+//         c p_table + (1 - c)(n.w)/pi evaluated at w_new: the one-sample model of multiple importance
+//         sampling with the balance heuristic (Veach 1997, PhD thesis, sec. 9.2.4). It is the exact
+//         density of the drawn direction and > 0 wherever f cos > 0 (cosine part), so the estimator
+//         stays unbiased whatever the table's accuracy; c < 1 is required;
 //     a material with an ideal specular (delta) part R takes the mirror direction with probability
-//     1/2 (weight R / (1/2)) and the diffuse branch otherwise (weight pi f / (1/2));
+//     1/2 (weight R / (1/2)) and the smooth branch above otherwise (weight f cos / (p/2));
 //   - Russian roulette from vertex `rr_start_bounce` on: survival q = min(0.95, max_lambda |beta|),
 //     beta /= q (unbiased; the 0.95 cap guarantees termination for non-absorbing materials).
 // The source can never be hit by a continuation ray (delta light), so the estimator has no
@@ -47,8 +55,18 @@
 // parts (detector -> ... -> mirror -> ... -> NEE) are.
 //
 // Uncertainty: the standard error of the mean of the N per-path values, sqrt(s^2 / N), per
-// wavelength. Seeds: every block of `paths_per_block` paths of geometry g has its own random
+// wavelength. Seeds: every block of `paths_per_block` (256) paths of geometry g has its own random
 // stream derived from (seed, g, block), so results do not depend on the number of threads.
+// Path count: fixed (`samples`), or adaptive (target_relative_error > 0): min_blocks (4, i.e. 1024
+// paths) blocks first, then rounds that add the blocks predicted to reach
+//     sigma_lambda <= max(target |mean_lambda|, absolute_error_floor)   at every wavelength
+// (paths needed ~ N (sigma / tolerance)^2, at most 3x the blocks done per round), until it holds or
+// max_samples paths are used (then Estimate::converged = false; reported, never hidden). Decisions
+// use only completed blocks merged in block order, so the result is deterministic and independent
+// of the thread count. Stopping on an estimated error biases the mean slightly (a run whose mean
+// fluctuated up looks relatively more precise and stops earlier): the bias is of the order of
+// target^2 relative (1e-4 at 1 %), and the minimum of 1024 paths keeps the error estimate itself
+// from stopping on a lucky first block.
 // Ray traversal: exact, over the periodic grid (2-D DDA), with the two planar triangles of each
 // cell; the height along the ray is piecewise linear in each cell, so hits are found exactly.
 #pragma once
@@ -80,20 +98,38 @@ std::vector<RenderMaterial> load_materials(const HeightField& field, const std::
 // to all spectral materials; {550} when no material is spectral.
 std::vector<double> default_wavelengths(const HeightField& field);
 
+// How continuation directions are drawn (see the header comment).
+enum class Sampling {
+  cosine,  // cosine-weighted about the facet normal (pdf cos/pi)
+  brdf,    // one-sample MIS mixture of the material's tabulated BRDF sampler and cosine sampling
+};
+
 struct RenderSettings {
-  long samples = 4096;                     // paths per geometry
+  long samples = 4096;                     // paths per geometry (when target_relative_error == 0)
   double acceptance_half_angle_deg = 1.0;  // detector cone half-angle Delta; 0 = ideal direction
   std::uint64_t seed = 1;
   int threads = 0;                         // 0 = hardware concurrency
   int rr_start_bounce = 3;                 // Russian roulette from this vertex on (1-based)
   int max_bounces = 0;                     // 0 = unlimited; 1 = single scattering (direct light only)
-  long paths_per_block = 1024;
+  long paths_per_block = 256;              // one random stream per (geometry, block)
+  Sampling sampling = Sampling::brdf;
+  double brdf_sampling_fraction = 0.5;     // probability of drawing from the BRDF table (brdf sampling)
+  // Adaptive sampling (on when target_relative_error > 0): blocks are added until, at every
+  // wavelength, standard_error <= max(target_relative_error |mean|, absolute_error_floor), with at
+  // least min_blocks blocks and at most max_samples paths.
+  double target_relative_error = 0.0;
+  double absolute_error_floor = 1e-5;      // [sr^-1]
+  long max_samples = 1L << 20;
+  int min_blocks = 4;
 };
 
 struct Estimate {
   std::vector<double> mean;            // per wavelength
   std::vector<double> standard_error;  // per wavelength
   long paths = 0;
+  bool converged = true;               // adaptive: the target was reached (false: stopped at max_samples)
+  // Largest standard_error / |mean| over wavelengths (infinity when a mean is 0 with a non-zero error).
+  double worst_relative_error() const;
 };
 
 class Renderer {
@@ -129,7 +165,9 @@ class Renderer {
 
 // Render a dataset: geometries x wavelengths, sigma = Monte Carlo standard error, metadata
 // describing the virtual instrument.
+// `estimates` (optional) receives the per-geometry estimates (paths, convergence).
 SpectralDataset render_dataset(const HeightField& field, const std::vector<Geometry>& geometries,
-                               const std::vector<double>& wavelengths, const RenderSettings& settings);
+                               const std::vector<double>& wavelengths, const RenderSettings& settings,
+                               std::vector<Estimate>* estimates = nullptr);
 
 }  // namespace roadbrdf::surface
