@@ -1,11 +1,13 @@
 // roadbrdf surface FORMULATION.json [--size 60mm] [--cell 0.1] [--seed S] [--matrix-level F | --target-mpd MM]
 //                  [--preview FILE.png] -o SURFACE.json
 // roadbrdf surface MATERIAL (--flat | --gaussian-slopes SIGMA) [-p NAME=VALUE] [--option NAME=VALUE] -o SURFACE.json
-// roadbrdf render SURFACE.json --grid GRID.csv [--wavelengths A:B:STEP] [--samples N] [--acceptance DEG]
+// roadbrdf render SURFACE.json --grid GRID.csv [--wavelengths A:B:STEP] [--samples N | --target-error E
+//                 [--max-samples N] [--error-floor F]] [--sampling brdf|cosine] [--acceptance DEG]
 //                 [--seed S] [--threads T] [--max-bounces K] -o DATA.csv
 // Virtual road samples and the virtual gonioreflectometer (issue 9; src/roadbrdf/surface/).
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/resample.h"
@@ -152,7 +155,11 @@ struct RenderArgs {
   std::string surface;
   std::string grid;
   std::string wavelengths;
-  long samples = 4096;
+  std::optional<long> samples;
+  std::optional<double> target_error;
+  long max_samples = 1L << 20;
+  double error_floor = 1e-5;
+  std::string sampling = "brdf";
   double acceptance = 1.0;
   std::uint64_t seed = 1;
   int threads = 0;
@@ -163,26 +170,55 @@ struct RenderArgs {
 
 void run_render(const RenderArgs& a) {
   if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
+  if (a.samples && a.target_error) throw InputError("--samples and --target-error exclude each other");
   const surface::HeightField field = surface::read_surface(a.surface);
   const GeometryTable grid = read_geometry_file(a.grid);
   const std::vector<double> wavelengths =
       a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
   surface::RenderSettings s;
-  s.samples = a.samples;
+  if (a.samples) s.samples = *a.samples;
+  if (a.target_error) s.target_relative_error = *a.target_error;
+  s.max_samples = a.max_samples;
+  s.absolute_error_floor = a.error_floor;
+  s.sampling = a.sampling == "cosine" ? surface::Sampling::cosine : surface::Sampling::brdf;
   s.acceptance_half_angle_deg = a.acceptance;
   s.seed = a.seed;
   s.threads = a.threads;
   s.max_bounces = a.max_bounces;
-  SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s);
+  std::vector<surface::Estimate> estimates;
+  SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
   data.convention = grid.convention;
   write_dataset(data, a.output, dataset_format_from_string(a.format));
-  double max_rel = 0.0;
-  for (std::size_t k = 0; k < data.brdf.size(); ++k) {
-    if (data.brdf[k] > 0.0) max_rel = std::max(max_rel, data.sigma[k] / data.brdf[k]);
+  long total_paths = 0;
+  std::vector<double> worst;
+  for (const auto& e : estimates) {
+    total_paths += e.paths;
+    worst.push_back(e.worst_relative_error());
   }
-  fmt::print("rendered {}: {} geometries x {} wavelengths, {} paths each, acceptance {} deg; largest relative "
-             "standard error {:.3g}\nwrote {}\n",
-             a.surface, data.geometry_count(), data.wavelength_count(), a.samples, a.acceptance, max_rel, a.output);
+  std::sort(worst.begin(), worst.end());
+  auto quantile = [&](double q) { return worst[static_cast<std::size_t>(q * static_cast<double>(worst.size() - 1) + 0.5)]; };
+  fmt::print("rendered {}: {} geometries x {} wavelengths, {} sampling, acceptance {} deg, {} paths in total\n",
+             a.surface, data.geometry_count(), data.wavelength_count(), a.sampling, a.acceptance, total_paths);
+  fmt::print("per-geometry worst relative standard error over wavelengths: median {:.3g}, 90th percentile {:.3g}, "
+             "max {:.3g}\n",
+             quantile(0.5), quantile(0.9), worst.back());
+  if (a.target_error) {
+    fmt::print("adaptive: target {} (or {} sr^-1 for values near 0), paths per geometry {}\n", *a.target_error,
+               a.error_floor, data.metadata["paths_per_geometry"]);
+    std::size_t missed = 0;
+    for (std::size_t g = 0; g < estimates.size(); ++g) {
+      if (estimates[g].converged) continue;
+      ++missed;
+      const Geometry& gg = grid.geometries[g];
+      fmt::print(stderr,
+                 "roadbrdf: warning: geometry {} ({:g},{:g},{:g},{:g} deg) reached --max-samples {} with relative "
+                 "standard error {:.3g} > target {}\n",
+                 g + 1, rad_to_deg(gg.theta_i), rad_to_deg(gg.phi_i), rad_to_deg(gg.theta_r), rad_to_deg(gg.phi_r),
+                 a.max_samples, estimates[g].worst_relative_error(), *a.target_error);
+    }
+    if (missed > 0) fmt::print(stderr, "roadbrdf: warning: {} of {} geometries did not reach the target\n", missed, estimates.size());
+  }
+  fmt::print("wrote {}\n", a.output);
 }
 
 }  // namespace
@@ -225,7 +261,22 @@ void register_surface_command(CLI::App& app) {
       ->required();
   r->add_option("--wavelengths", rargs.wavelengths,
                 "Wavelengths START:STOP:STEP [nm] (default: those of the materials' fits, or 550)");
-  r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096)")->check(CLI::Range(2L, 1L << 40));
+  r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096 when --target-error is not given)")
+      ->check(CLI::Range(2L, 1L << 40));
+  r->add_option("--target-error", rargs.target_error,
+                "Adaptive sampling: add paths until every wavelength's standard error is <= this fraction of |BRDF| "
+                "(e.g. 0.01), at least 1024 paths")
+      ->check(CLI::Range(1e-6, 1.0));
+  r->add_option("--max-samples", rargs.max_samples,
+                "Adaptive sampling: at most this many paths per geometry (default 1048576); geometries stopped here "
+                "are reported")
+      ->check(CLI::Range(2L, 1L << 40));
+  r->add_option("--error-floor", rargs.error_floor,
+                "Adaptive sampling: absolute standard error [sr^-1] accepted for BRDF values near 0 (default 1e-5)")
+      ->check(CLI::Range(0.0, 1.0));
+  r->add_option("--sampling", rargs.sampling,
+                "Continuation directions: brdf (tabulated BRDF mixed with cosine, MIS; default) | cosine")
+      ->check(CLI::IsMember({"brdf", "cosine"}));
   r->add_option("--acceptance", rargs.acceptance, "Detector acceptance half-angle [deg] (1 or 5 typical; default 1)")
       ->check(CLI::Range(0.0, 45.0));
   r->add_option("--seed", rargs.seed, "Random seed (default 1); each geometry has its own streams");

@@ -221,7 +221,7 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   const double h = s.cell_size_mm;
   const double lowest = -std::numeric_limits<double>::infinity();
   std::vector<double> top_nodes(static_cast<std::size_t>(n) * n, lowest), top_centres(top_nodes.size(), lowest);
-  std::vector<int> centre_class(top_nodes.size(), -1);
+  std::vector<int> centre_class(top_nodes.size(), -1), node_class(top_nodes.size(), -1);
   for (const Grain& g : grains) {
     const double wx = std::sqrt(g.A[0]), wy = std::sqrt(g.A[4]);
     for (int pass = 0; pass < 2; ++pass) {
@@ -236,7 +236,10 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
           const std::size_t idx = static_cast<std::size_t>(jw) * n + iw;
           const double z = g.z + dz;
           if (pass == 0) {
-            top_nodes[idx] = std::max(top_nodes[idx], z);
+            if (z > top_nodes[idx]) {
+              top_nodes[idx] = z;
+              node_class[idx] = g.cls;
+            }
           } else if (z > top_centres[idx]) {
             top_centres[idx] = z;
             centre_class[idx] = g.cls;
@@ -279,9 +282,24 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
     }
   }
   out.matrix_level_mm = level;
-  for (std::size_t k = 0; k < top_nodes.size(); ++k) {
-    f.heights[k] = std::max(level, top_nodes[k]);
-    f.material[k] = top_centres[k] > level ? static_cast<std::uint16_t>(centre_class[k] + 1) : 0;
+  for (std::size_t k = 0; k < top_nodes.size(); ++k) f.heights[k] = std::max(level, top_nodes[k]);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * n + i;
+      int cls = top_centres[k] > level ? centre_class[k] : -1;
+      if (cls < 0) {
+        // The mastic is the flat fill at the level: a cell whose mesh rises above it (a node on a grain)
+        // is the flank of that grain, not mastic. Class of the highest such node.
+        double highest = level;
+        for (const std::size_t node : {f.index(i, j), f.index(i + 1, j), f.index(i, j + 1), f.index(i + 1, j + 1)}) {
+          if (top_nodes[node] > highest) {
+            highest = top_nodes[node];
+            cls = node_class[node];
+          }
+        }
+      }
+      f.material[k] = static_cast<std::uint16_t>(cls + 1);
+    }
   }
   std::ostringstream d;
   d << "virtual sample of " << recipe.name << ": " << grains.size()

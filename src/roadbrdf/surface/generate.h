@@ -23,7 +23,9 @@
 //    so accepted grains never overlap; some touching-but-disjoint pairs are rejected).
 //  - Matrix: the mastic fills everything below the level z_m = matrix_level T; the surface is
 //    z = max(z_m, top of the highest grain), and a cell's material is the grain's class where a
-//    grain pokes out of the matrix at the cell centre, else the mastic. The level sets the
+//    grain pokes out of the matrix at the cell centre; else, where one of the cell's nodes is on a
+//    grain above the matrix (the cell is that grain's flank rising out of the flat mastic), the class
+//    of the highest such node; else the mastic. So every mastic cell is flat at z_m. The level sets the
 //    texture depth; with `target_mpd_mm` the level is found by bisection so that the MPD
 //    (height_field.h) matches.
 #pragma once
