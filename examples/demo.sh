@@ -86,18 +86,64 @@ section "6. Road photometry: r-table of the measured F1 and of the mixture, Q0, 
 "$rb" rtable "$out/F1.mix.json" --illuminant A --format csv -o "$out/F1-mix-rtable.csv"
 "$rb" rtable --import "$out/F1.rtb" --compare "$out/F1-mix-rtable.csv" | grep -E '^# (Q0|S1|class|compared)'
 
-section "7. Virtual road surface: F1 built from its formulation and measured by the virtual gonioreflectometer"
+section "7. Virtual road surface: components -> virtual F1 -> mixing prediction vs simulation -> albedo"
+# The virtual F1: coarse grains of the formulation in its mastic, each cell carrying its component's fit.
 "$rb" surface "$out/formulations/F1.json" --size 30mm --cell 0.2 --seed 1 --preview "$out/F1-surface.png" \
     -o "$out/F1-surface.json"
-printf 'theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,30,180\n30,0,30,0\n60,0,60,180\n60,0,60,0\n' > "$out/small-grid.csv"
-"$rb" render "$out/F1-surface.json" --grid "$out/small-grid.csv" --wavelengths 550:650:100 --samples 2048 \
-    -o "$out/F1-virtual.csv"
-echo "virtual F1 (550 and 650 nm, with Monte Carlo standard errors) written to $out/F1-virtual.csv"
-echo "-- the mixing methods judged against the virtual F1 (its shadowing and interreflections are real):"
-"$rb" render "$out/F1-surface.json" --grid data/examples/grid/cerema-like-grid.csv --wavelengths 450:850:200 \
-    --samples 4096 -o "$out/F1-virtual-grid.csv"
-"$rb" mix "$out/formulations/F1.json" --data "$out/F1-virtual-grid.csv" --method all -o "$out/F1-virtual.mix.json" \
-    2>/dev/null | tail -n 8
+vgrid=data/examples/grid/cerema-like-grid.csv
+vbands=450:850:200
+vrender() { "$rb" render "$1" --grid "$vgrid" --wavelengths "$vbands" --samples 4096 -o "$2" | tail -n 2; }
+vrender "$out/F1-surface.json" "$out/F1-virtual.csv"
+# Its components measured the same way (docs/virtual-study.md): the same height field with every cell
+# made of one component, rendered and fitted like a laboratory sample.
+mkdir -p "$out/virtual"
+cp "$out/F1-surface.json" "$out/virtual/F1-surface.json"
+vfit() { "$rb" fit "$1" --model oren-nayar --model oren-nayar+torrance-sparrow --model hapke --fix oren-nayar.weight=1 \
+    --fix torrance-sparrow.weight=1 --multistart 8 -o "$2" >/dev/null 2>&1; }
+for component in mastic-garonne-bitumen garonne; do
+  /usr/bin/python3 examples/virtual_study.py relabel "$out/virtual/F1-surface.json" \
+      "$out/virtual/only-$component.surface.json" "$out/fits/$component.fit.json"
+  vrender "$out/virtual/only-$component.surface.json" "$out/virtual/only-$component.csv" >/dev/null
+  vfit "$out/virtual/only-$component.csv" "$out/virtual/$component.fit.json"
+done
+/usr/bin/python3 examples/virtual_study.py formulation "$out/formulations/F1.json" "$out/virtual/F1.json" \
+    --mastic "$out/virtual/mastic-garonne-bitumen.fit.json" --rock garonne="$out/virtual/garonne.fit.json"
+echo "-- every mixing method predicting the virtual F1 from its virtual components (held-out geometries):"
+"$rb" mix "$out/virtual/F1.json" --data "$out/F1-virtual.csv" --method all --folds 5 \
+    --residuals "$out/virtual/F1-residuals.csv" -o "$out/F1-virtual.mix.json" 2>/dev/null | tail -n 9
+/usr/bin/python3 - "$out/virtual/F1-residuals.csv" <<'PY'
+import csv, math, sys
+rows = list(csv.DictReader(r for r in open(sys.argv[1]) if not r.startswith("#")))
+def phase(r):  # angle between the incidence and reflection directions [deg]
+    ti, pi_, tr, pr = (math.radians(float(r[k])) for k in ("theta_i", "phi_i", "theta_r", "phi_r"))
+    c = math.sin(ti) * math.sin(tr) * math.cos(pi_ - pr) + math.cos(ti) * math.cos(tr)
+    return math.degrees(math.acos(max(-1.0, min(1.0, c))))
+bins = [(0, 60), (60, 120), (120, 180)]
+print("-- where the linear methods fail: mean relative residual by phase angle between w_i and w_r")
+print("   method      " + "".join(f"{a:>4d}-{b:<3d}deg" for a, b in bins))
+for method in ("areal", "fitted", "mastic", "shadowed"):
+    sel = [r for r in rows if r["method"] == method]
+    cells = []
+    for a, b in bins:
+        v = [float(r["relative_residual"]) for r in sel if a <= phase(r) < b and r["relative_residual"] != "nan"]
+        cells.append(f"{100 * sum(v) / len(v):+9.1f} %" if v else "        n/a")
+    print(f"   {method:<11s}" + "".join(cells))
+PY
+echo "-- albedo: the virtual F1 measured by the virtual instrument vs the best mixing prediction"
+"$rb" render "$out/F1-surface.json" --albedo 30,60 --wavelengths "$vbands" --samples 8192 \
+    -o "$out/F1-virtual-albedo.csv" >/dev/null
+"$rb" albedo "$out/F1-virtual.mix.json" --sun-zenith 30,60 --wavelengths 450,650,850 -o "$out/F1-mix-albedo.csv"
+/usr/bin/python3 - "$out/F1-virtual-albedo.csv" "$out/F1-mix-albedo.csv" <<'PY'
+import csv, sys
+read = lambda p: list(csv.DictReader(r for r in open(p) if not r.startswith("#")))
+sim, mix = read(sys.argv[1]), read(sys.argv[2])
+print("   wavelength  quantity          virtual F1 (+- MC error)   mixing prediction")
+for s, m in zip(sim, mix):
+    for key in ("white_sky", "black_sky_30deg", "black_sky_60deg"):
+        err = s[key.replace("sky", "sky_error", 1) if key == "white_sky" else key.replace("black_sky", "black_sky_error")]
+        print(f"   {float(s['wavelength_nm']):6.0f} nm   {key:<16s}  {float(s[key]):.4f} +- {float(err):.4f}"
+              f"          {float(m[key]):.4f}")
+PY
 
 section "8. Figures"
 "$rb" plot spectral data/examples/mixed/F1.csv data/examples/mixed/F2.csv data/examples/mixed/F3.csv \

@@ -114,3 +114,51 @@ TEST(CliSurface, ErrorsAreClear) {
   std::filesystem::remove(surface);
   std::filesystem::remove(grid);
 }
+
+// `render --albedo`: a flat Lambertian sample has black-sky and white-sky albedo equal to its albedo
+// exactly (every path weighs pi * albedo/pi; the Gauss-Legendre weights 2 w_k mu_k sum to 1).
+TEST(CliSurface, RenderAlbedoOfAFlatLambertianSample) {
+  const std::string surface = temp_path("alb_flat.json"), out = temp_path("alb.csv");
+  ASSERT_EQ(run("surface lambert --flat -p albedo=0.35 -o " + surface).status, 0);
+  Result r = run("render " + surface + " --albedo 0,45 --wavelengths 500:600:100 --samples 64 -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(out);
+  std::string line, header;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("# virtual albedo of", 0), 0u) << line;
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "wavelength_nm,white_sky,white_sky_error,black_sky_0deg,black_sky_error_0deg,black_sky_45deg,"
+            "black_sky_error_45deg");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    double w, white, white_e, b0, b0_e, b45, b45_e;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &w, &white, &white_e, &b0, &b0_e, &b45, &b45_e), 7)
+        << line;
+    EXPECT_NEAR(white, 0.35, 1e-7);
+    EXPECT_NEAR(b0, 0.35, 1e-7);
+    EXPECT_NEAR(b45, 0.35, 1e-7);
+    EXPECT_EQ(b45_e, 0.0);
+  }
+  EXPECT_EQ(rows, 2);
+  // Exactly one of --grid and --albedo; --albedo angles must be below 90 deg.
+  EXPECT_EQ(run("render " + surface + " --samples 8 -o " + out).status, 2);
+  EXPECT_EQ(run("render " + surface + " --albedo 90 --samples 8 -o " + out).status, 2);
+  for (const auto& p : {surface, out}) std::filesystem::remove(p);
+}
+
+// `render --target-error`: every geometry of a rough sample reaches the target (recorded in the
+// dataset's metadata); --samples and --target-error exclude each other.
+TEST(CliSurface, RenderToATargetError) {
+  const std::string surface = temp_path("rough.json"), grid = temp_path("rough_grid.csv"), data = temp_path("rough.csv");
+  ASSERT_EQ(run("surface oren-nayar -p albedo=0.5 -p sigma=0.3 --gaussian-slopes 0.4 --cells 64 -o " + surface).status, 0);
+  write_text(grid, "theta_i,phi_i,theta_r,phi_r\n0,0,30,0\n60,0,60,180\n");
+  Result r = run("render " + surface + " --grid " + grid + " --target-error 0.02 --acceptance 5 -o " + data);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const roadbrdf::SpectralDataset d = roadbrdf::read_dataset(data);
+  for (std::size_t k = 0; k < d.brdf.size(); ++k) EXPECT_LE(d.sigma[k], 0.02 * d.brdf[k] + 1e-12) << k;
+  EXPECT_EQ(d.metadata.at("geometries_not_converged"), "none");
+  EXPECT_EQ(run("render " + surface + " --grid " + grid + " --samples 64 --target-error 0.02 -o " + data).status, 2);
+  for (const auto& p : {surface, grid, data}) std::filesystem::remove(p);
+}

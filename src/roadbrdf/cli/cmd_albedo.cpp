@@ -42,38 +42,6 @@ struct AlbedoArgs {
   std::string output;
 };
 
-double parse_number(const std::string& text, const std::string& what) {
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
-    throw InputError(what + ": '" + text + "' is not a finite number");
-  }
-  return v;
-}
-
-// "D", "D1,D2,...", or "A:B:STEP" (inclusive of B when it falls on the grid).
-std::vector<double> parse_list_or_range(const std::string& text, const std::string& what) {
-  std::vector<double> values;
-  if (text.find(':') != std::string::npos) {
-    std::vector<std::string> parts;
-    std::stringstream ss(text);
-    std::string part;
-    while (std::getline(ss, part, ':')) parts.push_back(part);
-    if (parts.size() != 3) throw InputError(what + ": a range is A:B:STEP, got '" + text + "'");
-    const double a = parse_number(parts[0], what), b = parse_number(parts[1], what), step = parse_number(parts[2], what);
-    if (!(step > 0.0) || b < a) throw InputError(what + ": range '" + text + "' needs A <= B and STEP > 0");
-    const long n = static_cast<long>(std::floor((b - a) / step + 1e-9));
-    if (n > 100000) throw InputError(what + ": range '" + text + "' has too many values");
-    for (long k = 0; k <= n; ++k) values.push_back(a + static_cast<double>(k) * step);
-    return values;
-  }
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) values.push_back(parse_number(item, what));
-  if (values.empty()) throw InputError(what + ": no value given");
-  return values;
-}
-
 void run(const AlbedoArgs& a) {
   const SpectralModel sm = spectral_model_from_command_line(a.model, a.parameters, a.options, a.fit_model);
   albedo::AlbedoRequest request;

@@ -1,9 +1,10 @@
 // roadbrdf surface FORMULATION.json [--size 60mm] [--cell 0.1] [--seed S] [--matrix-level F | --target-mpd MM]
 //                  [--preview FILE.png] -o SURFACE.json
 // roadbrdf surface MATERIAL (--flat | --gaussian-slopes SIGMA) [-p NAME=VALUE] [--option NAME=VALUE] -o SURFACE.json
-// roadbrdf render SURFACE.json --grid GRID.csv [--wavelengths A:B:STEP] [--samples N | --target-error E
+// roadbrdf render SURFACE.json (--grid GRID.csv | --albedo ZENITHS [--white-sky-nodes N])
+//                 [--wavelengths A:B:STEP] [--samples N | --target-error E
 //                 [--max-samples N] [--error-floor F]] [--sampling brdf|cosine] [--acceptance DEG]
-//                 [--seed S] [--threads T] [--max-bounces K] -o DATA.csv
+//                 [--seed S] [--threads T] [--max-bounces K] -o DATA.csv|ALBEDO.csv
 // Virtual road samples and the virtual gonioreflectometer (issue 9; src/roadbrdf/surface/).
 #include <fmt/core.h>
 
@@ -25,6 +26,8 @@
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
+#include "roadbrdf/surface/virtual_albedo.h"
+#include "roadbrdf/io/csv.h"
 
 namespace roadbrdf::cli {
 
@@ -154,6 +157,8 @@ void run_surface(const SurfaceArgs& a) {
 struct RenderArgs {
   std::string surface;
   std::string grid;
+  std::string albedo;         // sun zenith angles [deg] for the black-sky albedo (instead of --grid)
+  int white_sky_nodes = 8;    // Gauss-Legendre nodes in cos(theta) for the white-sky albedo (0: none)
   std::string wavelengths;
   std::optional<long> samples;
   std::optional<double> target_error;
@@ -168,23 +173,19 @@ struct RenderArgs {
   std::string output;
 };
 
+surface::RenderSettings render_settings(const RenderArgs& a);
+void run_render_albedo(const RenderArgs& a);
+
 void run_render(const RenderArgs& a) {
   if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
   if (a.samples && a.target_error) throw InputError("--samples and --target-error exclude each other");
+  if (a.grid.empty() == a.albedo.empty()) throw InputError("give either --grid GRID.csv or --albedo ZENITHS");
+  if (!a.albedo.empty()) return run_render_albedo(a);
   const surface::HeightField field = surface::read_surface(a.surface);
   const GeometryTable grid = read_geometry_file(a.grid);
   const std::vector<double> wavelengths =
       a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
-  surface::RenderSettings s;
-  if (a.samples) s.samples = *a.samples;
-  if (a.target_error) s.target_relative_error = *a.target_error;
-  s.max_samples = a.max_samples;
-  s.absolute_error_floor = a.error_floor;
-  s.sampling = a.sampling == "cosine" ? surface::Sampling::cosine : surface::Sampling::brdf;
-  s.acceptance_half_angle_deg = a.acceptance;
-  s.seed = a.seed;
-  s.threads = a.threads;
-  s.max_bounces = a.max_bounces;
+  const surface::RenderSettings s = render_settings(a);
   std::vector<surface::Estimate> estimates;
   SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
   data.convention = grid.convention;
@@ -217,6 +218,59 @@ void run_render(const RenderArgs& a) {
                  a.max_samples, estimates[g].worst_relative_error(), *a.target_error);
     }
     if (missed > 0) fmt::print(stderr, "roadbrdf: warning: {} of {} geometries did not reach the target\n", missed, estimates.size());
+  }
+  fmt::print("wrote {}\n", a.output);
+}
+
+surface::RenderSettings render_settings(const RenderArgs& a) {
+  surface::RenderSettings s;
+  if (a.samples) s.samples = *a.samples;
+  if (a.target_error) s.target_relative_error = *a.target_error;
+  s.max_samples = a.max_samples;
+  s.absolute_error_floor = a.error_floor;
+  s.sampling = a.sampling == "cosine" ? surface::Sampling::cosine : surface::Sampling::brdf;
+  s.acceptance_half_angle_deg = a.acceptance;
+  s.seed = a.seed;
+  s.threads = a.threads;
+  s.max_bounces = a.max_bounces;
+  return s;
+}
+
+// Black-sky (and white-sky) albedo of the virtual sample, written like `roadbrdf albedo`'s CSV
+// (columns wavelength_nm, white_sky, white_sky_error, black_sky_<Z>deg, black_sky_error_<Z>deg, ...),
+// with Monte Carlo standard errors instead of quadrature error estimates.
+void run_render_albedo(const RenderArgs& a) {
+  const surface::HeightField field = surface::read_surface(a.surface);
+  const std::vector<double> zeniths = parse_list_or_range(a.albedo, "--albedo");
+  const std::vector<double> wavelengths =
+      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
+  const surface::VirtualAlbedo r =
+      surface::render_albedo(field, zeniths, wavelengths, render_settings(a), a.white_sky_nodes);
+  AtomicFile file(a.output);
+  std::ofstream& out = file.stream();
+  out << "# virtual albedo of " << a.surface << " (roadbrdf render --albedo); dimensionless reflectances, "
+      << "Monte Carlo standard errors; sun azimuth 0 in the sample frame";
+  if (r.white_sky_nodes > 0) out << "; white-sky by " << r.white_sky_nodes << "-point Gauss-Legendre in cos(theta)";
+  out << "\nwavelength_nm";
+  if (r.white_sky_nodes > 0) out << ",white_sky,white_sky_error";
+  for (double z : zeniths) out << fmt::format(",black_sky_{:g}deg,black_sky_error_{:g}deg", z, z);
+  out << "\n";
+  for (std::size_t w = 0; w < wavelengths.size(); ++w) {
+    out << fmt::format("{:g}", wavelengths[w]);
+    if (r.white_sky_nodes > 0) out << fmt::format(",{:.8f},{:.2e}", r.white_sky[w], r.white_sky_error[w]);
+    for (std::size_t k = 0; k < zeniths.size(); ++k) {
+      out << fmt::format(",{:.8f},{:.2e}", r.black_sky[k][w], r.black_sky_error[k][w]);
+    }
+    out << "\n";
+  }
+  file.commit();
+  std::size_t missed = 0;
+  for (bool c : r.converged) missed += c ? 0 : 1;
+  fmt::print("rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n", a.surface,
+             zeniths.size(), r.white_sky_nodes > 0 ? fmt::format(" + white-sky ({} nodes)", r.white_sky_nodes) : "",
+             wavelengths.size(), r.paths);
+  if (missed > 0) {
+    fmt::print(stderr, "roadbrdf: warning: {} albedo estimates reached --max-samples before the target error\n", missed);
   }
   fmt::print("wrote {}\n", a.output);
 }
@@ -257,8 +311,13 @@ void register_surface_command(CLI::App& app) {
       "Virtual gonioreflectometer: path-trace a SURFACE at the geometries of a grid; writes a dataset with the Monte "
       "Carlo standard error as sigma");
   r->add_option("surface", rargs.surface, "SURFACE.json written by `roadbrdf surface`")->required();
-  r->add_option("--grid", rargs.grid, "Geometry table (CSV, theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta)")
-      ->required();
+  r->add_option("--grid", rargs.grid, "Geometry table (CSV, theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta)");
+  r->add_option("--albedo", rargs.albedo,
+                "Instead of --grid: black-sky albedo at these sun zenith angles [deg] (D, D1,D2,... or A:B:STEP) and "
+                "the white-sky albedo; writes an albedo CSV like `roadbrdf albedo`");
+  r->add_option("--white-sky-nodes", rargs.white_sky_nodes,
+                "With --albedo: Gauss-Legendre nodes in cos(theta) for the white-sky albedo (default 8; 0 = none)")
+      ->check(CLI::Range(0, 64));
   r->add_option("--wavelengths", rargs.wavelengths,
                 "Wavelengths START:STOP:STEP [nm] (default: those of the materials' fits, or 550)");
   r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096 when --target-error is not given)")
@@ -285,7 +344,7 @@ void register_surface_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   r->add_option("--format", rargs.format, "Output CSV layout: wide | long (default wide)")
       ->check(CLI::IsMember({"wide", "long"}));
-  r->add_option("-o,--output", rargs.output, "Output dataset (CSV)")->required();
+  r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")->required();
   r->callback([] { run_render(rargs); });
 }
 

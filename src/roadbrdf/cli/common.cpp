@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
+#include <sstream>
+#include <system_error>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/mixing/mix_file.h"
@@ -74,6 +76,37 @@ void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_item
       ->allow_extra_args(false);
   command->add_option("--option", option_items, "Model option NAME=VALUE (repeatable), e.g. distribution=ggx")
       ->allow_extra_args(false);
+}
+
+double parse_number(const std::string& text, const std::string& what) {
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+    throw InputError(what + ": '" + text + "' is not a finite number");
+  }
+  return v;
+}
+
+std::vector<double> parse_list_or_range(const std::string& text, const std::string& what) {
+  std::vector<double> values;
+  if (text.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::stringstream ss(text);
+    std::string part;
+    while (std::getline(ss, part, ':')) parts.push_back(part);
+    if (parts.size() != 3) throw InputError(what + ": a range is A:B:STEP, got '" + text + "'");
+    const double a = parse_number(parts[0], what), b = parse_number(parts[1], what), step = parse_number(parts[2], what);
+    if (!(step > 0.0) || b < a) throw InputError(what + ": range '" + text + "' needs A <= B and STEP > 0");
+    const long n = static_cast<long>(std::floor((b - a) / step + 1e-9));
+    if (n > 100000) throw InputError(what + ": range '" + text + "' has too many values");
+    for (long k = 0; k <= n; ++k) values.push_back(a + static_cast<double>(k) * step);
+    return values;
+  }
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) values.push_back(parse_number(item, what));
+  if (values.empty()) throw InputError(what + ": no value given");
+  return values;
 }
 
 }  // namespace roadbrdf::cli

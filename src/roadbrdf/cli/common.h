@@ -34,6 +34,11 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
                                                const std::vector<std::string>& option_items,
                                                const std::string& fit_model = "");
 
+// A finite number; `what` names the flag in errors. Throws InputError.
+double parse_number(const std::string& text, const std::string& what);
+// "D", "D1,D2,...", or "A:B:STEP" (inclusive of B when it falls on the grid). Throws InputError.
+std::vector<double> parse_list_or_range(const std::string& text, const std::string& what);
+
 // Adds the usual "-p NAME=VALUE" and "--option NAME=VALUE" flags to a sub-command.
 void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,
                      std::vector<std::string>& option_items);
