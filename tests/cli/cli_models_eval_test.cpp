@@ -1,4 +1,5 @@
 // The roadbrdf program: models and eval sub-commands, error messages and exit codes.
+#include "support/scratch.h"
 #include "support/cli.h"
 #include <gtest/gtest.h>
 
@@ -17,7 +18,7 @@ using Result = roadbrdf::test::CliResult;
 Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("roadbrdf_cli_test_" + name)).string();
+  return roadbrdf::test::scratch_path("cli_test_" + name);
 }
 
 TEST(CliEval, LambertAtOneGeometry) {

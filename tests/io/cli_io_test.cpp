@@ -1,4 +1,5 @@
 // End-to-end runs of the measurement sub-commands through build/roadbrdf.
+#include "support/scratch.h"
 #include "support/cli.h"
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ const std::string kData = ROADBRDF_DATA_DIR;
 using Result = roadbrdf::test::CliResult;
 Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
-std::string tmp(const std::string& name) { return (std::filesystem::path(testing::TempDir()) / ("roadbrdf_cli_io_" + name)).string(); }
+std::string tmp(const std::string& name) { return roadbrdf::test::scratch_path("cli_io_" + name); }
 
 TEST(CliIo, SimulateCheckResampleConvert) {
   const std::string grid = tmp("grid.csv");

@@ -1,4 +1,5 @@
 // Wide/long CSV datasets: round trips and every bad-input case with its file:line:column.
+#include "support/scratch.h"
 #include "roadbrdf/io/dataset_io.h"
 
 #include <gtest/gtest.h>
@@ -17,7 +18,7 @@ namespace {
 const std::string kData = std::string(ROADBRDF_TEST_DATA_DIR) + "/io/";
 
 std::string temp_file(const std::string& name, const std::string& content) {
-  const std::string path = (std::filesystem::path(testing::TempDir()) / ("roadbrdf_io_" + name)).string();
+  const std::string path = roadbrdf::test::scratch_path("io_" + name);
   std::ofstream(path) << content;
   return path;
 }
@@ -97,7 +98,7 @@ TEST(DatasetIo, RoundTripWideAndLongBothConventions) {
     for (bool sigma : {false, true}) {
       for (auto format : {DatasetFormat::kWide, DatasetFormat::kLong}) {
         const SpectralDataset d = random_dataset(convention, sigma);
-        const std::string path = (std::filesystem::path(testing::TempDir()) / "roadbrdf_io_roundtrip.csv").string();
+        const std::string path = roadbrdf::test::scratch_path("io_roundtrip.csv");
         write_dataset(d, path, format);
         Quiet q;
         const SpectralDataset back = read_dataset(path, q.options());
@@ -255,7 +256,7 @@ TEST(DatasetIo, UnitsMustBeBrdf) {
 TEST(DatasetIo, WriteIsAtomicAndRejectsInconsistentData) {
   SpectralDataset d = random_dataset(AngleConvention::kZenithAzimuth, false);
   d.brdf.pop_back();
-  const std::string path = (std::filesystem::path(testing::TempDir()) / "roadbrdf_io_never.csv").string();
+  const std::string path = roadbrdf::test::scratch_path("io_never.csv");
   std::filesystem::remove(path);
   EXPECT_THROW(write_dataset(d, path), InputError);
   EXPECT_FALSE(std::filesystem::exists(path));

@@ -3,6 +3,7 @@
 // illuminant A (CIE 15: S_A(l) = 100 (560/l)^5 (exp(c2/(2848*560e-9)) - 1) / (exp(c2/(2848 l)) - 1),
 // c2 = 1.435e-2 m K), the integral of V(lambda) over 360-830 nm (106.857 nm, CIE 1 nm table),
 // the CIE 1931 5 nm y-bar values at odd 5 nm wavelengths, and closed-form integrals of simple spectra.
+#include "support/scratch.h"
 #include "roadbrdf/photometry/cie.h"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@ namespace roadbrdf::photometry {
 namespace {
 
 std::string temp_file(const std::string& name, const std::string& content) {
-  const auto path = std::filesystem::temp_directory_path() / ("roadbrdf_photometry_cie_" + name);
+  const auto path = std::filesystem::path(roadbrdf::test::scratch_path("photometry_cie_" + name));
   std::ofstream(path) << content;
   return path.string();
 }

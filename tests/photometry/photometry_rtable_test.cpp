@@ -6,6 +6,7 @@
 //  - published S1 of the CIE standard tables (R1 0.25, R2 0.58, R3 1.11, R4 1.55, C1 0.24, C2 0.97) and
 //    the nominal Q0 of their classes (0.10, 0.07, 0.07, 0.08, 0.10, 0.07), van Bommel Table 12.2;
 //  - road-angle definitions (theta_r = 90 - alpha, dphi = 180 - beta).
+#include "support/scratch.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +29,7 @@ namespace roadbrdf::photometry {
 namespace {
 
 std::filesystem::path temp_path(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("roadbrdf_photometry_rtable_" + name);
+  return std::filesystem::path(roadbrdf::test::scratch_path("photometry_rtable_" + name));
 }
 
 std::string temp_file(const std::string& name, const std::string& content) {

@@ -1,4 +1,5 @@
 // The roadbrdf program: surface and render sub-commands.
+#include "support/scratch.h"
 #include "support/cli.h"
 #include <gtest/gtest.h>
 
@@ -18,7 +19,7 @@ using Result = roadbrdf::test::CliResult;
 Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("roadbrdf_cli_surface_" + name)).string();
+  return roadbrdf::test::scratch_path("cli_surface_" + name);
 }
 
 void write_text(const std::string& path, const std::string& text) {
