@@ -2,6 +2,9 @@
 //   <model>/geometries:100000/wavelengths:1   and   <model>/geometries:1000/wavelengths:2151
 // items_per_second = BRDF evaluations per second on one core.
 // Run: build/bench/models_bench --benchmark_min_time=0.2
+// Hapke with the exact H (its default) also has, below: the fitting path (prepared geometries,
+// value + Jacobian, one parameter set per wavelength with w varying), and the H function alone
+// (table h_tabulated used by the model vs the direct quadrature h_exact), items = H evaluations.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -9,6 +12,8 @@
 #include <vector>
 
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/models/hapke_h_function.h"
+#include "roadbrdf/models/hapke_h_table.h"
 #include "roadbrdf/models/registry.h"
 
 namespace {
@@ -51,6 +56,51 @@ void bench_model(benchmark::State& state, const std::string& name, const OptionS
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * n_geometries * n_wavelengths));
 }
+
+// What the fitter does per cost evaluation: 89 prepared geometries (as garonne.csv), value and
+// Jacobian for each of 108 wavelengths, w varying over [0.05, 0.99] across wavelengths.
+void bench_hapke_fit_path(benchmark::State& state) {
+  const auto model = make_model("hapke");
+  const std::vector<Geometry> geometries = random_geometries(89);
+  const auto prepared = model->prepare(geometries.data(), geometries.size());
+  const std::size_t n_sets = 108;
+  std::vector<double> params;
+  for (std::size_t s = 0; s < n_sets; ++s) {
+    for (double v : {0.05 + 0.94 * double(s) / (n_sets - 1), 0.3, 0.06, -0.2}) params.push_back(v);
+  }
+  std::vector<double> values(geometries.size()), jacobian(geometries.size() * 4);
+  for (auto _ : state) {
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      model->evaluate_prepared_with_gradient(*prepared, params.data() + 4 * s, values.data(), jacobian.data());
+      benchmark::DoNotOptimize(jacobian.data());
+    }
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * n_sets * geometries.size()));
+}
+BENCHMARK(bench_hapke_fit_path)->Name("hapke/fit_path:89x108,jacobian")->Unit(benchmark::kMillisecond);
+
+// H(x, w) alone on 4096 random (x, w) pairs: table (as used by the model) vs direct quadrature.
+template <bool kTabulated>
+void bench_hapke_h(benchmark::State& state) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> x(4096), w(4096);
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    x[k] = u(rng);
+    w[k] = u(rng);
+  }
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      sum += kTabulated ? hapke::h_tabulated(x[k], w[k]) : hapke::h_exact(x[k], w[k]);
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * x.size()));
+}
+BENCHMARK(bench_hapke_h<true>)->Name("hapke/H:table");
+BENCHMARK(bench_hapke_h<false>)->Name("hapke/H:direct_quadrature");
 
 struct Registration {
   Registration() {

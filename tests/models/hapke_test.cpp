@@ -16,6 +16,7 @@
 //   - central finite differences for the gradients.
 #include "support/reference_quadrature.h"
 #include "roadbrdf/models/hapke.h"
+#include "roadbrdf/models/hapke_h_table.h"
 
 #include <gtest/gtest.h>
 
@@ -140,15 +141,18 @@ TEST(HapkeHFunction, ExactMatchesTheTabulatedValues) {
   // the Nystrom solution and the moment identities below agree with h_exact to 1e-8). The tolerance is
   // therefore the table's actual accuracy, 2.5e-4 absolute, and its typical accuracy (RMS) is
   // checked too.
+  // Both the direct quadrature h_exact and the table h_tabulated used by the model.
   const std::vector<TableRow> rows = read_h_table();
   ASSERT_EQ(rows.size(), 126u);
-  double sum2 = 0.0;
-  for (const TableRow& r : rows) {
-    const double h = hapke::h_exact(r.mu, r.w);
-    EXPECT_NEAR(h, r.h, 2.5e-4) << "w=" << r.w << " mu=" << r.mu;
-    sum2 += sqr(h - r.h);
+  for (const bool tabulated : {false, true}) {
+    double sum2 = 0.0;
+    for (const TableRow& r : rows) {
+      const double h = tabulated ? hapke::h_tabulated(r.mu, r.w) : hapke::h_exact(r.mu, r.w);
+      EXPECT_NEAR(h, r.h, 2.5e-4) << "w=" << r.w << " mu=" << r.mu << " tabulated=" << tabulated;
+      sum2 += sqr(h - r.h);
+    }
+    EXPECT_LT(std::sqrt(sum2 / rows.size()), 6e-5);
   }
-  EXPECT_LT(std::sqrt(sum2 / rows.size()), 6e-5);
 }
 
 TEST(HapkeHFunction, ExactMatchesAnIndependentNystromSolution) {
@@ -156,6 +160,7 @@ TEST(HapkeHFunction, ExactMatchesAnIndependentNystromSolution) {
     const NystromH reference(w, 200);
     for (double mu : {1e-4, 0.01, 0.05, 0.2, 0.5, 0.8, 1.0}) {
       EXPECT_NEAR(hapke::h_exact(mu, w), reference.evaluate(mu), 2e-9) << "w=" << w << " mu=" << mu;
+      EXPECT_NEAR(hapke::h_tabulated(mu, w), reference.evaluate(mu), 2e-9) << "w=" << w << " mu=" << mu;
     }
   }
 }
@@ -164,17 +169,19 @@ TEST(HapkeHFunction, ExactSatisfiesTheMomentIdentities) {
   // alpha_0 = int_0^1 H dmu = (2/w)(1 - sqrt(1 - w)); for w = 1 also alpha_1 = int_0^1 H mu dmu = 2/sqrt(3).
   std::vector<double> t, wt;
   gauss_legendre_01(200, t, wt);
-  for (double w : {0.01, 0.3, 0.6, 0.9, 0.999, 1.0}) {
-    double alpha0 = 0.0, alpha1 = 0.0;
-    for (std::size_t k = 0; k < t.size(); ++k) {
-      const double mu = t[k] * t[k];
-      const double h = hapke::h_exact(mu, w);
-      alpha0 += wt[k] * 2.0 * t[k] * h;
-      alpha1 += wt[k] * 2.0 * t[k] * h * mu;
-    }
-    EXPECT_NEAR(alpha0, 2.0 / w * (1.0 - std::sqrt(1.0 - w)), 1e-9) << "w=" << w;
-    if (w == 1.0) {
-      EXPECT_NEAR(alpha1, 2.0 / std::sqrt(3.0), 1e-9);
+  for (const bool tabulated : {false, true}) {
+    for (double w : {0.01, 0.3, 0.6, 0.9, 0.999, 1.0}) {
+      double alpha0 = 0.0, alpha1 = 0.0;
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        const double mu = t[k] * t[k];
+        const double h = tabulated ? hapke::h_tabulated(mu, w) : hapke::h_exact(mu, w);
+        alpha0 += wt[k] * 2.0 * t[k] * h;
+        alpha1 += wt[k] * 2.0 * t[k] * h * mu;
+      }
+      EXPECT_NEAR(alpha0, 2.0 / w * (1.0 - std::sqrt(1.0 - w)), 1e-9) << "w=" << w << " tabulated=" << tabulated;
+      if (w == 1.0) {
+        EXPECT_NEAR(alpha1, 2.0 / std::sqrt(3.0), 1e-9) << "tabulated=" << tabulated;
+      }
     }
   }
 }
@@ -186,11 +193,16 @@ TEST(HapkeHFunction, ExactMatchesDomainNotesReferenceValues) {
   EXPECT_NEAR(hapke::h_exact(1.0, 0.95), 2.07712, 5e-6);
   // Classical conservative value H(1) = 2.90781 (Chandrasekhar 1960).
   EXPECT_NEAR(hapke::h_exact(1.0, 1.0), 2.90781, 5e-6);
+  EXPECT_NEAR(hapke::h_tabulated(1.0, 0.2), 1.07865, 5e-6);
+  EXPECT_NEAR(hapke::h_tabulated(1.0, 0.6), 1.33541, 5e-6);
+  EXPECT_NEAR(hapke::h_tabulated(1.0, 0.95), 2.07712, 5e-6);
+  EXPECT_NEAR(hapke::h_tabulated(1.0, 1.0), 2.90781, 5e-6);
 }
 
 TEST(HapkeHFunction, LimitsAndEdges) {
   for (double w : {0.0, 0.4, 1.0}) {
     EXPECT_EQ(hapke::h_exact(0.0, w), 1.0);
+    EXPECT_EQ(hapke::h_tabulated(0.0, w), 1.0);
     EXPECT_EQ(hapke::h_hapke2002(0.0, w), 1.0);
     EXPECT_EQ(hapke::h_hapke1981(0.0, w), 1.0);
   }
@@ -198,10 +210,14 @@ TEST(HapkeHFunction, LimitsAndEdges) {
     EXPECT_NEAR(hapke::h_exact(mu, 0.0), 1.0, 1e-15);  // no scattering: H = 1
     EXPECT_TRUE(std::isfinite(hapke::h_exact(mu, 1.0)));
     EXPECT_GE(hapke::h_exact(mu, 1.0), 1.0);
+    EXPECT_NEAR(hapke::h_tabulated(mu, 0.0), 1.0, 1e-14);
+    EXPECT_TRUE(std::isfinite(hapke::h_tabulated(mu, 1.0)));
+    EXPECT_GE(hapke::h_tabulated(mu, 1.0), 1.0);
     EXPECT_TRUE(std::isfinite(hapke::h_hapke2002(mu, 1.0)));
   }
   // H is continuous as w -> 1.
   EXPECT_NEAR(hapke::h_exact(0.7, 1.0 - 1e-12), hapke::h_exact(0.7, 1.0), 1e-5);
+  EXPECT_NEAR(hapke::h_tabulated(0.7, 1.0 - 1e-12), hapke::h_tabulated(0.7, 1.0), 1e-5);
 }
 
 TEST(HapkeHFunction, ApproximationsWithinTheirPublishedAccuracy) {

@@ -30,6 +30,18 @@
 //   w -> 1: H stays finite (H(1, 1) = 2.9078), but dH/dw ~ 1/sqrt(1 - w) diverges; at w = 1 the
 //   returned derivative is that of the finite quadrature (large, finite), and for the closed forms
 //   gamma = sqrt(1 - w) has derivative 0 at w = 1 by convention (safe_sqrt), not -infinity.
+// * The model does not call h_exact directly: it uses hapke::h_tabulated (models/hapke_h_table.h), a
+//   process-wide table of piecewise tensor Chebyshev interpolants of h_exact in log2(x) (octaves, 12
+//   nodes each, x down to 2^-40) and gamma = sqrt(1 - w) (panels of width 1/8, 10 nodes each), built
+//   lazily per block (~0.5 ms each, ~150 ms for all 320). In these variables H is analytic around
+//   each panel (the x ln x term at x -> 0 and the sqrt(1 - w) branch point at w = 1 are absorbed by
+//   the change of variables). Measured relative difference to h_exact on a dense grid not aligned with
+//   the nodes (tests/models/hapke_h_table_test.cpp, ~725 x 200 points, x in [1e-14, 1], both sides of
+//   every panel boundary): <= 2.6e-14 for 0 <= w <= 1 - 1e-5; <= 1.1e-11 for 1 - 1e-5 < w <= 1, which
+//   is the quadrature's own error there (the interpolant is smoother than the quadrature's
+//   w-dependent node choice). dH/dw is the exact derivative of the interpolant, within ~1e-9
+//   relative of the quadrature's derivative; 0 at w = 1 by convention, as for the closed forms.
+//   Cost: ~35 ns per H (value) and ~45 ns (with dH/dw) against ~0.8 us for h_exact.
 #pragma once
 
 #include <algorithm>
