@@ -178,7 +178,8 @@ struct Renderer::Impl {
 
   bool intersect(const Vec3& o, const Vec3& d, Hit& hit) const;
   void trace(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta, double* f) const;
-  void specular_spike(const Job& job, Rng& rng, double* contrib, double* f) const;
+  void source_delta_paths(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta,
+                          double* f) const;
   std::vector<Estimate> run(const std::vector<Job>& jobs, const RenderSettings& s) const;
   // Continuation direction (local frame) for the smooth part at a vertex with outgoing direction
   // wo_l; returns false if none (direction at or below the horizon). `weight` = cos / pdf.
@@ -330,32 +331,112 @@ bool Renderer::Impl::intersect(const Vec3& o, const Vec3& d, Hit& hit) const {
   return false;
 }
 
-// Single-bounce mirror term of delta parts (source -> mirror facet -> detector), estimated from the
-// source side: y uniform over the period, first hit x of the beam along -w_i, mirror direction
-// w_s = 2 (n.w_i) n - w_i. The reflected flux per unit mean-plane irradiance is R (n.w_i) dA_facet /
-// (cos theta_i A) = R V dA(y)/A, and a cone detector averaging radiance uniformly over its solid angle
-// Omega sees it as Lbar / (E_perp cos theta_i) = R V 1[w_s in cone] / (Omega cos theta_s) per unit
-// area: that is the per-sample value. For the albedo (hemisphere) estimate the value is R V.
-void Renderer::Impl::specular_spike(const Job& job, Rng& rng, double* contrib, double* f) const {
+// Paths whose first reflection from the source is a delta (mirror) part, estimated from the source
+// side (a detector path cannot find them: its next-event estimation evaluates the smooth part, and a
+// mirror vertex sends it towards the source with probability 0). One light sub-path per sample:
+// y uniform over the period, first hit x_1 of the beam along -w_i; if x_1 has a delta part R, the
+// reflected beam (flux fraction beta = R per unit of the flux E_perp cos(theta_i) dA(y) falling on
+// dA(y)) leaves along the mirror direction w_s = 2 (n.w_i) n - w_i. Then, vertex by vertex:
+//   - the beam escapes: if the last reflection was a mirror, it is seen by the detector when w_s is in
+//     its cone: Lbar / (E_perp cos theta_i) = beta 1[w_s in cone] / (Omega cos theta_s) (albedo: beta);
+//   - the beam hits x_j (normal n_j, light arriving from w_in): connection to the detector through
+//     the smooth part: a flux Phi on dA_j gives radiance f_j(w_in, w) Phi / dA_j towards w, and dA_j
+//     covers (n_j.w) dA_j / cos(theta_w) of the mean plane seen along w, so the per-sample value is
+//     beta f_j(w_in, w) (n_j.w) V(x_j, w) / cos(theta_w), w uniform in the cone (albedo: w
+//     cosine-weighted over the hemisphere and the value times pi);
+//   - continuation: through the delta part with probability 1/2 (beta *= 2 R) or the smooth part with
+//     a cosine-weighted direction (beta *= 2 pi f_j(w_in, w_new)); Russian roulette as for detector
+//     paths. Light carries f(w_in -> w_new) with w_in as the incidence direction (no reciprocity needed).
+// Every path of the sample's light transport is counted once: detector paths cover those whose
+// vertex next to the source reflects through its smooth part (next-event estimation), these cover
+// those whose vertex next to the source is a mirror; within them, a path ending with a smooth
+// vertex is counted by that vertex's connection, one ending with a mirror by the escape test.
+void Renderer::Impl::source_delta_paths(const Job& job, const RenderSettings& s, Rng& rng, double* contrib,
+                                        double* beta, double* f) const {
   const double x = rng.uniform() * nx * h, y = rng.uniform() * ny * h;
   Hit hit;
   if (!intersect(Vec3{x, y, hmax + 1e-3 * h}, Vec3{-job.wi.x, -job.wi.y, -job.wi.z}, hit)) return;
-  const RenderMaterial& mat = materials[hit.material];
-  if (!mat.has_delta) return;
-  const double c = dot(hit.n, job.wi);
-  if (c <= 0.0) return;
-  const Vec3 ws = (2.0 * c) * hit.n - job.wi;
-  if (ws.z <= 0.0) return;
-  double k = 1.0;
-  if (!job.hemisphere) {
-    if (dot(ws, job.w_center) < job.cos_delta) return;
-    k = 1.0 / (2.0 * kPi * (1.0 - job.cos_delta) * ws.z);
+  if (!materials[hit.material].has_delta) return;
+  // Detector direction for the connections: uniform in the cone (or cosine-weighted, albedo).
+  Vec3 w_det;
+  double det_scale = 1.0;
+  if (job.hemisphere) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+    w_det = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+    det_scale = kPi;
+  } else if (job.cos_delta < 1.0) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const double ca = 1.0 - u1 * (1.0 - job.cos_delta);
+    const double sa = std::sqrt(std::max(0.0, 1.0 - ca * ca)), phi = 2.0 * kPi * u2;
+    w_det = (sa * std::cos(phi)) * job.t_center + (sa * std::sin(phi)) * job.b_center + ca * job.w_center;
+  } else {
+    w_det = job.w_center;
   }
-  Hit shadow;
-  if (intersect(Vec3{hit.p.x, hit.p.y, hit.p.z + eps}, ws, shadow)) return;
-  const std::size_t np = mat.model->parameter_count();
-  for (std::size_t w = 0; w < m; ++w) f[w] = mat.model->delta_reflectance(mat.parameters.data() + w * np, c);
-  for (std::size_t w = 0; w < m; ++w) contrib[w] += k * f[w];
+  Vec3 w_in = job.wi;  // direction towards where the light comes from, at the current vertex
+  bool mirror = true;  // the first reflection is the delta part
+  for (std::size_t w = 0; w < m; ++w) beta[w] = 1.0;
+  for (int vertex = 1;; ++vertex) {
+    const RenderMaterial& mat = materials[hit.material];
+    Vec3 t, b;
+    make_basis(hit.n, t, b);
+    const Vec3 wi_l = to_local(w_in, t, b, hit.n);
+    if (wi_l.z <= 0.0) return;
+    const Vec3 p{hit.p.x, hit.p.y, hit.p.z + eps};
+    if (vertex > 1 && w_det.z > 0.0) {
+      // Connection of this vertex's smooth part to the detector.
+      const Vec3 wd_l = to_local(w_det, t, b, hit.n);
+      Hit shadow;
+      if (wd_l.z > 0.0 && !intersect(p, w_det, shadow)) {
+        eval(hit.material, local_geometry(wi_l, wd_l), f);
+        const double k = det_scale * wd_l.z / w_det.z;
+        for (std::size_t w = 0; w < m; ++w) contrib[w] += beta[w] * f[w] * k;
+      }
+    }
+    Vec3 w_new;
+    if (vertex == 1) {
+      mirror = true;
+    } else {
+      mirror = mat.has_delta && rng.uniform() < 0.5;
+    }
+    const double branch_weight = (vertex == 1 || !mat.has_delta) ? 1.0 : 2.0;
+    if (mirror) {
+      const Vec3 wl{-wi_l.x, -wi_l.y, wi_l.z};
+      w_new = wl.x * t + wl.y * b + wl.z * hit.n;
+      const std::size_t np = mat.model->parameter_count();
+      for (std::size_t w = 0; w < m; ++w) {
+        beta[w] *= branch_weight * mat.model->delta_reflectance(mat.parameters.data() + w * np, wi_l.z);
+      }
+    } else {
+      const double u1 = rng.uniform(), u2 = rng.uniform();
+      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+      const Vec3 wl{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+      if (!(wl.z > 0.0)) return;
+      w_new = wl.x * t + wl.y * b + wl.z * hit.n;
+      eval(hit.material, local_geometry(wi_l, wl), f);
+      for (std::size_t w = 0; w < m; ++w) beta[w] *= branch_weight * kPi * f[w];
+    }
+    if (vertex >= s.rr_start_bounce) {
+      double q = 0.0;
+      for (std::size_t w = 0; w < m; ++w) q = std::max(q, std::fabs(beta[w]));
+      q = std::min(q, 0.95);
+      if (q <= 0.0 || rng.uniform() >= q) return;
+      for (std::size_t w = 0; w < m; ++w) beta[w] /= q;
+    }
+    if (!intersect(p, w_new, hit)) {
+      // Escaped: seen by the detector only after a mirror (a smooth last vertex was connected above).
+      if (!mirror || w_new.z <= 0.0) return;
+      double k = 1.0;
+      if (!job.hemisphere) {
+        if (!(job.cos_delta < 1.0) || dot(w_new, job.w_center) < job.cos_delta) return;
+        k = 1.0 / (2.0 * kPi * (1.0 - job.cos_delta) * w_new.z);
+      }
+      for (std::size_t w = 0; w < m; ++w) contrib[w] += k * beta[w];
+      return;
+    }
+    if (s.max_bounces > 0 && vertex >= s.max_bounces) return;  // the next vertex would be one too many
+    w_in = Vec3{-w_new.x, -w_new.y, -w_new.z};
+  }
 }
 
 // Cosine sampling: pdf cos/pi, weight pi. BRDF sampling: with probability c from the material's
@@ -403,7 +484,8 @@ void Renderer::Impl::trace(const Job& job, const RenderSettings& s, Rng& rng, do
   } else {
     w_out = job.w_center;
   }
-  if (any_delta && (job.hemisphere || job.cos_delta < 1.0)) specular_spike(job, rng, contrib, f);
+  // beta is scratch here (set below for the detector path).
+  if (any_delta) source_delta_paths(job, s, rng, contrib, beta, f);
   // Cone directions below the horizon see nothing.
   if (w_out.z <= 0.0) return;
   // Sight line through a uniformly drawn point of the period.
