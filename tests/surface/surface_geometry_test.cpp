@@ -1,4 +1,5 @@
 // Virtual samples: height field, texture statistics, SURFACE files, exact ray traversal, generator.
+#include "support/scratch.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +28,7 @@ rs::MaterialSpec lambert(double albedo, const std::string& name = "white") {
 }
 
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("roadbrdf_surface_test_" + name)).string();
+  return roadbrdf::test::scratch_path("surface_test_" + name);
 }
 
 }  // namespace
@@ -194,9 +195,11 @@ TEST(Generator, InvariantsDeterminismAndTargetMpd) {
   const rs::GeneratedSample g = rs::generate_sample(recipe, s);
   EXPECT_EQ(g.field.nx, 160);
   EXPECT_DOUBLE_EQ(g.slab_thickness_mm, 6.0);
+  // A reachable grading (0.35 of the slab): every class reaches its target (more in surface_packing_test).
+  EXPECT_TRUE(g.targets_reached);
   for (std::size_t k = 0; k < 2; ++k) {
     EXPECT_GT(g.grain_count[k], 0);
-    EXPECT_GT(g.achieved_volume_fraction[k], 0.5 * g.target_volume_fraction[k]);
+    EXPECT_GE(g.achieved_volume_fraction[k], g.target_volume_fraction[k]);
   }
   const rs::TextureStatistics st = rs::texture_statistics(g.field);
   double sum = 0.0;

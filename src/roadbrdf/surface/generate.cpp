@@ -46,16 +46,6 @@ SampleRecipe recipe_from_formulation(const mixing::Formulation& f) {
 
 namespace {
 
-using Mat3 = std::array<double, 9>;  // row-major
-
-struct Grain {
-  double x, y, z;
-  Mat3 A;  // R diag(a^2, b^2, c^2) R^T  (support function: h(u) = sqrt(u^T A u))
-  Mat3 Q;  // R diag(1/a^2, 1/b^2, 1/c^2) R^T  (implicit surface: d^T Q d = 1)
-  double bound;  // largest semi-axis
-  int cls;
-};
-
 class Uniform {
  public:
   explicit Uniform(std::uint64_t seed) : engine_(seed) {}
@@ -64,54 +54,6 @@ class Uniform {
  private:
   std::mt19937_64 engine_;
 };
-
-double quad(const Mat3& M, double x, double y, double z) {
-  return x * (M[0] * x + M[1] * y + M[2] * z) + y * (M[3] * x + M[4] * y + M[5] * z) +
-         z * (M[6] * x + M[7] * y + M[8] * z);
-}
-
-// Random rotation matrix (uniform quaternion, Shoemake 1992).
-Mat3 random_rotation(Uniform& u) {
-  const double u1 = u(), u2 = u(), u3 = u();
-  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-  const double qx = a * std::sin(2 * kPi * u2), qy = a * std::cos(2 * kPi * u2);
-  const double qz = b * std::sin(2 * kPi * u3), qw = b * std::cos(2 * kPi * u3);
-  return {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw),
-          2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw),
-          2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)};
-}
-
-Mat3 r_diag_rt(const Mat3& R, double d0, double d1, double d2) {
-  Mat3 M{};
-  const double d[3] = {d0, d1, d2};
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      double s = 0.0;
-      for (int k = 0; k < 3; ++k) s += R[r * 3 + k] * d[k] * R[c * 3 + k];
-      M[r * 3 + c] = s;
-    }
-  }
-  return M;
-}
-
-double wrap_delta(double d, double L) {
-  d = std::fmod(d, L);
-  if (d > 0.5 * L) d -= L;
-  if (d < -0.5 * L) d += L;
-  return d;
-}
-
-bool overlaps(const Grain& a, const Grain& b, double L) {
-  const double dx = wrap_delta(b.x - a.x, L), dy = wrap_delta(b.y - a.y, L), dz = b.z - a.z;
-  const double dist2 = dx * dx + dy * dy + dz * dz;
-  const double rb = a.bound + b.bound;
-  if (dist2 > rb * rb) return false;
-  if (dist2 < 1e-24) return true;
-  const double dist = std::sqrt(dist2);
-  const double ux = dx / dist, uy = dy / dist, uz = dz / dist;
-  const double ha = std::sqrt(quad(a.A, ux, uy, uz)), hb = std::sqrt(quad(b.A, ux, uy, uz));
-  return dist <= ha + hb;
-}
 
 // Height of the top of the ellipsoid above its centre at horizontal offset (dx, dy), if any.
 bool top_offset(const Mat3& Q, double dx, double dy, double& dz) {
@@ -156,74 +98,70 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   out.target_volume_fraction.resize(K);
   out.achieved_volume_fraction.assign(K, 0.0);
   out.grain_count.assign(K, 0);
-  Uniform u(s.seed);
-  std::vector<Grain> grains;
-  // Largest class first (random sequential addition packs polydisperse grains better that way).
+  // Pack all classes together, largest first at equal progress (packing.h).
   std::vector<std::size_t> order(K);
   for (std::size_t k = 0; k < K; ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return recipe.classes[a].d_max_mm > recipe.classes[b].d_max_mm; });
   const double slab_volume = L * L * T;
+  std::vector<PackingClass> pack_classes;
   for (std::size_t k : order) {
     const GrainClass& c = recipe.classes[k];
     out.target_volume_fraction[k] = c.volume_fraction;
-    const double target = c.volume_fraction * slab_volume;
-    double placed = 0.0;
-    long failures = 0;
-    while (placed < target) {
-      // Sieve size with the class mass uniform over [d_min, d_max]: number density ~ d^-3.
-      const double v = u();
-      const double d = c.d_max_mm > c.d_min_mm
-                           ? 1.0 / std::sqrt(1.0 / (c.d_min_mm * c.d_min_mm) -
-                                             v * (1.0 / (c.d_min_mm * c.d_min_mm) - 1.0 / (c.d_max_mm * c.d_max_mm)))
-                           : c.d_min_mm;
-      const double b = 0.5 * d;
-      const double a = b / (s.elongation_min + (s.elongation_max - s.elongation_min) * u());
-      const double cc = b * (s.flatness_min + (s.flatness_max - s.flatness_min) * u());
-      const Mat3 R = random_rotation(u);
-      Grain g;
-      g.A = r_diag_rt(R, a * a, b * b, cc * cc);
-      g.Q = r_diag_rt(R, 1.0 / (a * a), 1.0 / (b * b), 1.0 / (cc * cc));
-      g.bound = a;
-      g.cls = static_cast<int>(k);
-      g.x = u() * L;
-      g.y = u() * L;
-      // Inside the slab vertically (compaction by the roller: no grain above the top plane z = T);
-      // a grain taller than the slab touches the top plane and reaches below the slab.
-      const double hz = std::sqrt(g.A[8]);
-      g.z = hz >= 0.5 * T ? T - hz : hz + u() * (T - 2.0 * hz);
-      bool ok = true;
-      for (const Grain& o : grains) {
-        if (overlaps(o, g, L)) {
-          ok = false;
-          break;
-        }
-      }
-      if (!ok) {
-        if (++failures >= s.max_failures) break;
-        continue;
-      }
-      failures = 0;
-      grains.push_back(g);
-      placed += 4.0 / 3.0 * kPi * a * b * cc;
-      ++out.grain_count[k];
-    }
-    out.achieved_volume_fraction[k] = placed / slab_volume;
-    if (placed < target) {
-      std::ostringstream note;
-      note << c.material.name << ": packing jammed at volume fraction " << placed / slab_volume << " (target "
-           << c.volume_fraction << ")";
-      out.notes.push_back(note.str());
-    }
+    pack_classes.push_back({c.d_min_mm, c.d_max_mm, c.volume_fraction * slab_volume});
   }
+  PackingSettings ps;
+  ps.period_mm = L;
+  ps.thickness_mm = T;
+  ps.bottom_mm = -2.0 * T;  // room below the slab for the deposit to grow into
+  ps.layer_bottom_mm = 0.0;
+  ps.seed = s.seed;
+  ps.elongation_min = s.elongation_min;
+  ps.elongation_max = s.elongation_max;
+  ps.flatness_min = s.flatness_min;
+  ps.flatness_max = s.flatness_max;
+  ps.insertion_attempts = s.max_failures;
+  ps.deposition_tries = s.deposition_tries;
+  ps.settle_moves = s.settle_moves;
+  const PackingResult packed = pack_ellipsoids(pack_classes, ps);
+  // Grains entirely below the slab never reach the surface: dropped.
+  std::vector<Ellipsoid> grains;
+  for (Ellipsoid e : packed.grains) {
+    if (e.z + std::sqrt(e.shape()[8]) <= 0.0) continue;
+    e.cls = static_cast<int>(order[e.cls]);
+    ++out.grain_count[e.cls];
+    grains.push_back(e);
+  }
+  for (std::size_t p = 0; p < K; ++p) {
+    out.achieved_volume_fraction[order[p]] = packed.layer_volume_mm3[p] / slab_volume;
+  }
+  out.targets_reached = packed.reached;
+  out.deposition = packed.deposition;
+  if (!packed.reached) {
+    double target_total = 0.0, achieved_total = 0.0;
+    for (std::size_t k = 0; k < K; ++k) {
+      target_total += out.target_volume_fraction[k];
+      achieved_total += out.achieved_volume_fraction[k];
+    }
+    std::ostringstream note;
+    note << "packing jammed at grain volume fraction " << achieved_total << " of the slab (target " << target_total
+         << "): all classes scaled down together, achieved / target:";
+    for (std::size_t k = 0; k < K; ++k) {
+      note << " " << recipe.classes[k].material.name << " " << out.achieved_volume_fraction[k] << " / "
+           << out.target_volume_fraction[k] << (k + 1 < K ? ";" : "");
+    }
+    out.notes.push_back(note.str());
+  }
+  out.grains = grains;
 
   // Rasterise the grain tops at the nodes (heights) and at the cell centres (materials).
   const double h = s.cell_size_mm;
   const double lowest = -std::numeric_limits<double>::infinity();
   std::vector<double> top_nodes(static_cast<std::size_t>(n) * n, lowest), top_centres(top_nodes.size(), lowest);
   std::vector<int> centre_class(top_nodes.size(), -1), node_class(top_nodes.size(), -1);
-  for (const Grain& g : grains) {
-    const double wx = std::sqrt(g.A[0]), wy = std::sqrt(g.A[4]);
+  for (const Ellipsoid& g : grains) {
+    const Mat3 A = g.shape(), Q = g.inverse_shape();
+    const double wx = std::sqrt(A[0]), wy = std::sqrt(A[4]);
     for (int pass = 0; pass < 2; ++pass) {
       const double off = pass == 0 ? 0.0 : 0.5;  // nodes, then cell centres
       const long i0 = static_cast<long>(std::floor((g.x - wx) / h - off)), i1 = static_cast<long>(std::ceil((g.x + wx) / h - off));
@@ -231,7 +169,7 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
       for (long j = j0; j <= j1; ++j) {
         for (long i = i0; i <= i1; ++i) {
           double dz;
-          if (!top_offset(g.Q, (i + off) * h - g.x, (j + off) * h - g.y, dz)) continue;
+          if (!top_offset(Q, (i + off) * h - g.x, (j + off) * h - g.y, dz)) continue;
           const long iw = ((i % n) + n) % n, jw = ((j % n) + n) % n;
           const std::size_t idx = static_cast<std::size_t>(jw) * n + iw;
           const double z = g.z + dz;
@@ -304,9 +242,13 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   std::ostringstream d;
   d << "virtual sample of " << recipe.name << ": " << grains.size()
     << " ellipsoidal grains (random orientation, b/a in [" << s.elongation_min << ", " << s.elongation_max
-    << "], c/b in [" << s.flatness_min << ", " << s.flatness_max << "]) placed by random sequential addition in a "
-    << T << " mm slab, periodic " << L << " mm x " << L << " mm, mastic level " << level << " mm, seed " << s.seed
-    << ". Classes (target / achieved volume fraction of the slab):";
+    << "], c/b in [" << s.flatness_min << ", " << s.flatness_max
+    << "]) packed without overlap, all classes together in proportion, by "
+    << (out.deposition ? "deposition against the roller's plane with settling (random sequential addition jammed)"
+                       : "random sequential addition")
+    << " in a " << T << " mm slab, periodic " << L << " mm x " << L << " mm, mastic level " << level << " mm, seed " << s.seed
+    << ". Classes (target / achieved volume fraction of the slab" << (out.targets_reached ? "" : "; targets NOT reached, classes scaled down together")
+    << "):";
   for (std::size_t k = 0; k < K; ++k) {
     d << " " << recipe.classes[k].material.name << " " << out.target_volume_fraction[k] << " / "
       << out.achieved_volume_fraction[k] << " (" << out.grain_count[k] << " grains);";

@@ -7,20 +7,21 @@
 //    the coarse class k (aggregate with d_min >= coarse_min_size_mm, formulation.h) occupies
 //    phi_k = (M_k/rho_k) / sum_j (M_j/rho_j) of the mix (air voids neglected). Everything else
 //    (binder, fines, filler, pigment) is the mastic matrix, with the formulation's "mastic" fit.
-//  - Layer: a periodic slab of side L and thickness T = the largest d_max of the coarse classes.
-//    Grains are placed by random sequential addition, largest class first, centres uniform in
-//    x, y (periodic) and z uniform such that the grain lies inside [0, T] (the roller's plane
-//    z = T bounds the tops; a grain taller than T touches it and reaches below 0), until each class's grain volume reaches phi_k L^2 T or
-//    `max_failures` consecutive placements are rejected (jamming: random sequential addition of
-//    convex grains jams near 30-40 % volume, below the ~55-60 % of a compacted mix; the achieved
-//    fractions are reported).
-//  - Grains: ellipsoids, uniformly random orientation, semi-axes a >= b >= c with intermediate
+//  - Layer: a periodic slab of side L and thickness T = the largest d_max of the coarse classes;
+//    its top z = T is the roller's plane. Class k gets the grain volume budget phi_k L^2 T.
+//    Packing (packing.h): all classes together, always the class furthest behind its target, so the
+//    class proportions follow the formulation whatever the density; random sequential addition in
+//    the slab, and when that jams, deposition against the roller's plane with settling moves into a
+//    box reaching 2T below the slab (grains entirely below the slab are then dropped). The achieved
+//    fraction of a class is its grain volume inside the slab. When the targets cannot all be reached
+//    every class stands at the same fraction of its target (within one grain); achieved vs target per
+//    class are reported (notes and the SURFACE description).
+//  - Grains: ellipsoids, orientation drawn uniformly (deposition keeps the trial that rests highest,
+//    so the kept orientations are not uniform), semi-axes a >= b >= c with intermediate
 //    diameter 2b = d (the sieve size), b/a ~ U(0.6, 0.9) (elongation), c/b ~ U(0.5, 0.85)
 //    (flatness); d distributed so that the class's mass is uniform over [d_min, d_max]
 //    (number density ~ d^-3).
-//  - Non-overlap: a pair is accepted only if the projections of the two ellipsoids on the line
-//    joining their centres are disjoint (support function h(u) = sqrt(u^T A u); a separating axis,
-//    so accepted grains never overlap; some touching-but-disjoint pairs are rejected).
+//  - Non-overlap: exact Perram-Wertheim test (packing.h); touching pairs count as overlapping.
 //  - Matrix: the mastic fills everything below the level z_m = matrix_level T; the surface is
 //    z = max(z_m, top of the highest grain), and a cell's material is the grain's class where a
 //    grain pokes out of the matrix at the cell centre; else, where one of the cell's nodes is on a
@@ -37,6 +38,7 @@
 
 #include "roadbrdf/mixing/formulation.h"
 #include "roadbrdf/surface/height_field.h"
+#include "roadbrdf/surface/packing.h"
 
 namespace roadbrdf::surface {
 
@@ -62,7 +64,9 @@ struct GeneratorSettings {
   std::uint64_t seed = 1;
   double matrix_level = 0.7;       // z_m / T
   std::optional<double> target_mpd_mm;  // overrides matrix_level (bisection)
-  long max_failures = 5000;        // consecutive rejected placements before a class is declared jammed
+  long max_failures = 2000;        // random sequential addition: positions tried for one grain before jamming
+  long deposition_tries = 128;     // deposition: vertical lines tried per grain (packing.h)
+  long settle_moves = 500;         // deposition: settling moves per grain
   double elongation_min = 0.6, elongation_max = 0.9;  // b/a
   double flatness_min = 0.5, flatness_max = 0.85;     // c/b
 };
@@ -72,6 +76,9 @@ struct GeneratedSample {
   std::vector<double> target_volume_fraction;    // per class
   std::vector<double> achieved_volume_fraction;  // per class (grain volume / slab volume)
   std::vector<long> grain_count;                 // per class
+  bool targets_reached = false;                  // every class reached its target
+  bool deposition = false;                       // random sequential addition jammed: packed by deposition
+  std::vector<Ellipsoid> grains;                 // the placed grains (class = index into the recipe's classes)
   double slab_thickness_mm = 0.0;
   double matrix_level_mm = 0.0;
   std::vector<std::string> notes;                // jamming etc.
