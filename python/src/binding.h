@@ -13,6 +13,7 @@
 namespace roadbrdf::python {
 
 void bind_extensions(pybind11::module_& m);
+void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces, render
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 

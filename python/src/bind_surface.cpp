@@ -1,0 +1,328 @@
+// Python bindings of the virtual road surfaces and the virtual gonioreflectometer
+// (src/roadbrdf/surface/): the same library calls as `roadbrdf surface` and `roadbrdf render`
+// (src/roadbrdf/cli/cmd_surface.cpp), with the same validation of the render options.
+// The public API is roadbrdf.surface / read_surface / flat_surface / gaussian_slope_surface /
+// render / render_albedo and the class roadbrdf.Surface (python/roadbrdf/__init__.py).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "binding.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/models/registry.h"
+#include "roadbrdf/models/spectral_model.h"
+#include "roadbrdf/surface/generate.h"
+#include "roadbrdf/surface/height_field.h"
+#include "roadbrdf/surface/render.h"
+#include "roadbrdf/surface/virtual_albedo.h"
+
+namespace py = pybind11;
+
+namespace roadbrdf::python {
+
+namespace {
+
+using Field = surface::HeightField;
+using FieldPtr = std::shared_ptr<Field>;
+
+// Fit paths made absolute, so that a surface held in Python still renders after os.chdir.
+FieldPtr keep(Field field) {
+  for (auto& m : field.materials) {
+    if (!m.fit_path.empty()) m.fit_path = std::filesystem::absolute(m.fit_path).lexically_normal().string();
+  }
+  return std::make_shared<Field>(std::move(field));
+}
+
+// A node or cell array of the field as an ny x nx numpy array (row j = y index, column i = x index).
+template <typename T, typename Source>
+py::array_t<T> grid_array(const Field& f, const std::vector<Source>& values) {
+  py::array_t<T> out({static_cast<py::ssize_t>(f.ny), static_cast<py::ssize_t>(f.nx)});
+  T* o = out.mutable_data();
+  for (std::size_t k = 0; k < values.size(); ++k) o[k] = static_cast<T>(values[k]);
+  return out;
+}
+
+py::dict material_dict(const surface::MaterialSpec& m) {
+  py::dict d;
+  d["name"] = m.name;
+  if (!m.model.empty()) {
+    d["model"] = m.model;
+    d["parameters"] = m.parameters;
+    d["options"] = m.options;
+  } else {
+    d["fit"] = m.fit_path.empty() ? m.fit : m.fit_path;
+    d["fit_model"] = m.fit_model;
+  }
+  return d;
+}
+
+py::dict statistics_dict(const surface::TextureStatistics& s) {
+  py::dict d;
+  d["mpd_mm"] = s.mpd_mm;
+  d["etd_mm"] = s.etd_mm;
+  d["rms_height_mm"] = s.rms_height_mm;
+  d["mean_height_mm"] = s.mean_height_mm;
+  d["min_height_mm"] = s.min_height_mm;
+  d["max_height_mm"] = s.max_height_mm;
+  d["surface_area_ratio"] = s.surface_area_ratio;
+  d["exposed_area_fraction"] = s.exposed_area_fraction;
+  d["exposed_true_area_fraction"] = s.exposed_true_area_fraction;
+  return d;
+}
+
+// One material: a fit file (validated by reading it) or a model with fixed parameters (validated
+// like `roadbrdf surface MODEL -p ...`).
+surface::MaterialSpec material_spec(const std::string& fit, const std::string& fit_model, const std::string& model,
+                                    const std::map<std::string, double>& parameters,
+                                    const std::map<std::string, std::string>& options) {
+  surface::MaterialSpec m;
+  if (!fit.empty()) {
+    if (!parameters.empty() || !options.empty()) throw InputError("params/options apply to a model, not to a fit file");
+    read_fit_file(fit, fit_model);  // fail early on a bad file
+    m.name = std::filesystem::path(fit).stem().string();
+    m.fit = fit;
+    m.fit_path = fit;
+    m.fit_model = fit_model;
+  } else {
+    const std::unique_ptr<Model> made = make_model(model, options);
+    parameters_from_assignments(made->description(), parameters);
+    m.name = model;
+    m.model = model;
+    m.parameters = parameters;
+    m.options = options;
+  }
+  return m;
+}
+
+// Render options as `roadbrdf render` accepts them (same ranges as its command-line checks).
+surface::RenderSettings render_settings(std::optional<long> samples, std::optional<double> target_error,
+                                        long max_samples, double error_floor, double acceptance_deg,
+                                        const std::string& sampling, std::uint64_t seed, int threads,
+                                        int max_bounces) {
+  if (samples && target_error) throw InputError("samples and target_error exclude each other");
+  surface::RenderSettings s;
+  if (samples) {
+    if (*samples < 2) throw InputError("samples must be >= 2 (a standard error needs 2 paths), got " +
+                                       std::to_string(*samples));
+    s.samples = *samples;
+  }
+  if (target_error) {
+    if (!(*target_error >= 1e-6 && *target_error <= 1.0)) {
+      throw InputError("target_error must be in [1e-6, 1] (a relative standard error)");
+    }
+    s.target_relative_error = *target_error;
+  }
+  if (max_samples < 2) throw InputError("max_samples must be >= 2");
+  if (!(error_floor >= 0.0 && error_floor <= 1.0)) throw InputError("error_floor must be in [0, 1] sr^-1");
+  if (!(acceptance_deg >= 0.0 && acceptance_deg <= 45.0)) throw InputError("acceptance_deg must be in [0, 45] deg");
+  if (sampling == "brdf") {
+    s.sampling = surface::Sampling::brdf;
+  } else if (sampling == "cosine") {
+    s.sampling = surface::Sampling::cosine;
+  } else {
+    throw InputError("sampling must be 'brdf' or 'cosine', got '" + sampling + "'");
+  }
+  if (threads < 0 || threads > 1024) throw InputError("threads must be in [0, 1024] (0 = all cores)");
+  if (max_bounces < 0 || max_bounces > 1000) throw InputError("max_bounces must be in [0, 1000] (0 = unlimited)");
+  s.max_samples = max_samples;
+  s.absolute_error_floor = error_floor;
+  s.acceptance_half_angle_deg = acceptance_deg;
+  s.seed = seed;
+  s.threads = threads;
+  s.max_bounces = max_bounces;
+  return s;
+}
+
+std::vector<double> wavelengths_or_default(const Field& f, const std::vector<double>& wavelengths) {
+  return wavelengths.empty() ? surface::default_wavelengths(f) : wavelengths;
+}
+
+}  // namespace
+
+void bind_surface(py::module_& m) {
+  py::class_<Field, FieldPtr>(m, "HeightField")
+      .def_readonly("name", &Field::name)
+      .def_readonly("description", &Field::description)
+      .def_readonly("cell_size_mm", &Field::cell_size_mm)
+      .def_readonly("nx", &Field::nx)
+      .def_readonly("ny", &Field::ny)
+      .def_property_readonly("heights", [](const Field& f) { return grid_array<double>(f, f.heights); })
+      .def_property_readonly("material", [](const Field& f) { return grid_array<int>(f, f.material); })
+      .def_property_readonly("materials",
+                             [](const Field& f) {
+                               py::list out;
+                               for (const auto& spec : f.materials) out.append(material_dict(spec));
+                               return out;
+                             })
+      .def("statistics",
+           [](const Field& f) {
+             surface::TextureStatistics s;
+             {
+               py::gil_scoped_release release;
+               s = surface::texture_statistics(f);
+             }
+             return statistics_dict(s);
+           })
+      .def("write",
+           [](const Field& f, const std::string& path) {
+             py::gil_scoped_release release;
+             const surface::TextureStatistics s = surface::texture_statistics(f);
+             surface::write_surface(f, path, &s);
+           })
+      .def("write_preview", [](const Field& f, const std::string& path) { surface::write_preview_png(f, path); });
+
+  m.def("read_surface", [](const std::string& path) { return keep(surface::read_surface(path)); });
+
+  // `roadbrdf surface FORMULATION`: the sample and the generator's report.
+  m.def("surface_from_formulation", [](const std::string& path, double size_mm, double cell_mm, std::uint64_t seed,
+                                       std::optional<double> matrix_level, std::optional<double> target_mpd) {
+    if (matrix_level && target_mpd) throw InputError("matrix_level and target_mpd exclude each other");
+    if (matrix_level && !(*matrix_level >= 0.0 && *matrix_level <= 1.0)) {
+      throw InputError("matrix_level must be in [0, 1] (a fraction of the slab thickness)");
+    }
+    std::ifstream in(path);
+    if (!in) throw FileError(path, 0, 0, "cannot open the formulation file");
+    std::stringstream text;
+    text << in.rdbuf();
+    // As the command line: fit files are needed only to render, they may not exist yet.
+    const mixing::Formulation formulation = mixing::parse_formulation(text.str(), path, false);
+    const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
+    surface::GeneratorSettings s;
+    s.size_mm = size_mm;
+    s.cell_size_mm = cell_mm;
+    s.seed = seed;
+    if (matrix_level) s.matrix_level = *matrix_level;
+    s.target_mpd_mm = target_mpd;
+    surface::GeneratedSample sample;
+    {
+      py::gil_scoped_release release;
+      sample = surface::generate_sample(recipe, s);
+    }
+    py::dict report;
+    std::vector<std::string> classes;
+    for (const auto& c : recipe.classes) classes.push_back(c.material.name);
+    report["classes"] = classes;
+    report["target_volume_fraction"] = sample.target_volume_fraction;
+    report["achieved_volume_fraction"] = sample.achieved_volume_fraction;
+    report["grain_count"] = sample.grain_count;
+    report["targets_reached"] = sample.targets_reached;
+    report["deposition"] = sample.deposition;
+    report["slab_thickness_mm"] = sample.slab_thickness_mm;
+    report["matrix_level_mm"] = sample.matrix_level_mm;
+    report["notes"] = sample.notes;
+    return py::make_tuple(keep(std::move(sample.field)), report);
+  });
+
+  m.def("flat_surface", [](const std::string& fit, const std::string& fit_model, const std::string& model,
+                           const std::map<std::string, double>& parameters,
+                           const std::map<std::string, std::string>& options, int cells, double cell_mm) {
+    Field f = surface::make_flat(material_spec(fit, fit_model, model, parameters, options), cells, cell_mm);
+    surface::validate(f);
+    return keep(std::move(f));
+  });
+
+  m.def("gaussian_slope_surface", [](const std::string& fit, const std::string& fit_model, const std::string& model,
+                                     const std::map<std::string, double>& parameters,
+                                     const std::map<std::string, std::string>& options, double sigma_rad, int cells,
+                                     double cell_mm, std::uint64_t seed) {
+    const surface::MaterialSpec spec = material_spec(fit, fit_model, model, parameters, options);
+    if (!(cell_mm > 0.0)) throw InputError("cell_mm must be > 0");
+    Field f;
+    {
+      py::gil_scoped_release release;
+      f = surface::make_gaussian_slope_surface(spec, sigma_rad, cells, cell_mm, seed);
+    }
+    surface::validate(f);
+    return keep(std::move(f));
+  });
+
+  // `roadbrdf render SURFACE --grid`: angles [deg] as flat arrays of one length.
+  m.def("render_surface", [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i,
+                             const DoubleArray& theta_r, const DoubleArray& phi_r,
+                             const std::vector<double>& wavelengths, std::optional<long> samples,
+                             std::optional<double> target_error, long max_samples, double error_floor,
+                             double acceptance_deg, const std::string& sampling, std::uint64_t seed, int threads,
+                             int max_bounces) {
+    const py::ssize_t n = theta_i.size();
+    if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n) {
+      throw InputError("internal: render angle arrays of different sizes");
+    }
+    const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor, acceptance_deg,
+                                                      sampling, seed, threads, max_bounces);
+    std::vector<Geometry> geometries;
+    for (py::ssize_t k = 0; k < n; ++k) {
+      try {
+        geometries.push_back(
+            geometry_from_degrees(theta_i.data()[k], phi_i.data()[k], theta_r.data()[k], phi_r.data()[k]));
+      } catch (const InputError& e) {
+        throw InputError("geometry " + std::to_string(k + 1) + ": " + e.what());
+      }
+    }
+    SpectralDataset d;
+    std::vector<surface::Estimate> estimates;
+    {
+      py::gil_scoped_release release;
+      d = surface::render_dataset(f, geometries, wavelengths_or_default(f, wavelengths), s, &estimates);
+    }
+    const auto rows = static_cast<py::ssize_t>(d.geometry_count());
+    const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
+    py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
+    std::copy(d.brdf.begin(), d.brdf.end(), brdf.mutable_data());
+    std::copy(d.sigma.begin(), d.sigma.end(), sigma.mutable_data());
+    std::vector<long> paths;
+    std::vector<bool> converged;
+    for (const auto& e : estimates) {
+      paths.push_back(e.paths);
+      converged.push_back(e.converged);
+    }
+    py::dict out;
+    out["wavelengths"] = d.wavelengths;
+    out["brdf"] = brdf;
+    out["sigma"] = sigma;
+    out["metadata"] = d.metadata;
+    out["paths"] = paths;
+    out["converged"] = converged;
+    return out;
+  });
+
+  // `roadbrdf render SURFACE --albedo`.
+  m.def("render_surface_albedo", [](const Field& f, const std::vector<double>& sun_zenith,
+                                    const std::vector<double>& wavelengths, int white_sky_nodes,
+                                    std::optional<long> samples, std::optional<double> target_error, long max_samples,
+                                    double error_floor, double acceptance_deg, const std::string& sampling,
+                                    std::uint64_t seed, int threads, int max_bounces) {
+    if (white_sky_nodes < 0 || white_sky_nodes > 64) throw InputError("white_sky_nodes must be in [0, 64]");
+    const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor, acceptance_deg,
+                                                      sampling, seed, threads, max_bounces);
+    surface::VirtualAlbedo r;
+    {
+      py::gil_scoped_release release;
+      r = surface::render_albedo(f, sun_zenith, wavelengths_or_default(f, wavelengths), s, white_sky_nodes);
+    }
+    py::dict out;
+    out["wavelengths"] = r.wavelengths;
+    out["sun_zenith"] = r.sun_zenith_deg;
+    out["black_sky"] = r.black_sky;
+    out["black_sky_error"] = r.black_sky_error;
+    out["white_sky"] = r.white_sky;
+    out["white_sky_error"] = r.white_sky_error;
+    out["white_sky_nodes"] = r.white_sky_nodes;
+    out["paths"] = r.paths;
+    out["converged"] = r.converged;
+    return out;
+  });
+}
+
+}  // namespace roadbrdf::python
