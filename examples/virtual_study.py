@@ -199,10 +199,72 @@ def report(out: str) -> None:
     print()
 
     print("### D3. Where each material of the virtual F1 is seen: single-scattering share of the mastic\n")
-    ds_m = rb.read_dataset(p("data", "F1-share-mastic.csv"))
-    ds_1 = rb.read_dataset(p("data", "F1-share-all.csv"))
+    _share(p, "F1")
+
+    print("### D4. Mixing methods with the measured (real-sample) fits against the virtual F1\n")
+    d, methods = _mix_methods(p("mix", "F1-real-fits.mix.json"))
+    print(_table(["method", "held-out rel. RMSE", "in-sample rel. RMSE", "weights"],
+                 [(m, v["comparison"]["relative_rmse"], v["comparison"]["relative_rmse_in_sample"],
+                   ", ".join(f"{k} {w:.3f}" for k, w in v["weights"].items())) for m, v in methods.items()],
+                 ["{}", "{:.3f}", "{:.3f}", "{}"]))
+    print()
+    ds = rb.read_dataset(p("data", "F1.csv"))
+    y = np.asarray(ds.brdf)
+    rel = {}
+    for m in ("fitted", "mastic", "shadowed"):
+        rel[m] = ((_model_on(ds, p("mix", "F1-real-fits.mix.json"), m) - y) / y).mean(axis=1)
+    print("Relative residual (prediction / virtual - 1, mean over bands) by geometry:\n")
+    print(_binned_table(rel, ds))
+    print()
+
+    # 2. The self-consistent study.
+    tags = ["F1", "F2", "F3", "F4", "F1-60mm-seed2"]
+    print("### G1. Virtual components, virtual mixtures: held-out relative RMSE (5 folds) of each method\n")
+    _g1(p, tags)
+    print("### G2. Mixing the rendered component datasets directly (no model fit in between)\n")
+    _g2(p, tags)
+    print("### G3. Best fitted-linear prediction with the virtual-component fits, residual by geometry\n")
+    _g3(p, tags[:4])
+
+    # 2b. The same at 25 % exposed mastic (surface --mastic-fraction 0.25).
+    m25 = ["F1-m25", "F2-m25", "F3-m25", "F4-m25"]
+    print("### G1-m25. As G1 with the mastic raised to 25 % of the plan (--mastic-fraction 0.25)\n")
+    print(_table(["mixture", "mastic level [mm]", "MPD [mm]", "exposed mastic (counted)"],
+                 [(t,) + _level_mpd(p, t) for t in m25], ["{}", "{:.3f}", "{:.3f}", "{:.4f}"]))
+    print()
+    _g1(p, m25)
+    print("### G2-m25. As G2 at 25 % mastic\n")
+    _g2(p, m25)
+    print("### G3-m25. As G3 at 25 % mastic\n")
+    _g3(p, m25)
+    print("### D3-m25. Single-scattering share of the mastic on F1-m25\n")
+    _share(p, "F1-m25")
+
+    print("### G4. Laboratory-like components (flat mastic = its fit, rock trays), virtual mixtures: held-out "
+          "relative RMSE\n")
+    print(_lab_table(p))
+    print()
+
+    print("### G5. Quality of the fits of the virtual single-component samples\n")
+    rows = []
+    for name in sorted(os.listdir(p("vfits"))):
+        with open(p("vfits", name)) as f:
+            fd = json.load(f)
+        for ft in fd["fits"]:
+            if ft["model"] == fd["best"]:
+                rows.append((name.replace(".fit.json", ""), ft["model"], float(np.mean(ft["relative_rmse"]))))
+    print(_table(["virtual sample", "best model (BIC)", "relative RMSE (mean over bands)"], rows,
+                 ["{}", "{}", "{:.3f}"]))
+    print()
+
+
+def _share(p, tag):
+    """D3: the mastic's share of the single-scattered light of a white Lambertian version of `tag`."""
+    rb = _rb()
+    ds_m = rb.read_dataset(p("data", f"{tag}-share-mastic.csv"))
+    ds_1 = rb.read_dataset(p("data", f"{tag}-share-all.csv"))
     share = np.asarray(ds_m.brdf)[:, 0] / np.asarray(ds_1.brdf)[:, 0]
-    names, fr = _area_fractions(p("surfaces", "F1.surface.json"))
+    names, fr = _area_fractions(p("surfaces", f"{tag}.surface.json"))
     print(f"projected area fraction of the mastic: {fr[0]:.3f}; its share of the single-scattered light of a "
           f"Lambertian sample (lit and seen fraction, cosine-weighted): median {np.median(share):.3f}, "
           f"range {share.min():.3f}-{share.max():.3f}\n")
@@ -227,25 +289,8 @@ def report(out: str) -> None:
           f"theta_r <= 70 deg: a = {np.exp(intercept):.3f}, s = {-slope:.3f}, rms relative deviation "
           f"{100 * np.sqrt(np.mean((pred / share[sel] - 1) ** 2)):.0f} %\n")
 
-    print("### D4. Mixing methods with the measured (real-sample) fits against the virtual F1\n")
-    d, methods = _mix_methods(p("mix", "F1-real-fits.mix.json"))
-    print(_table(["method", "held-out rel. RMSE", "in-sample rel. RMSE", "weights"],
-                 [(m, v["comparison"]["relative_rmse"], v["comparison"]["relative_rmse_in_sample"],
-                   ", ".join(f"{k} {w:.3f}" for k, w in v["weights"].items())) for m, v in methods.items()],
-                 ["{}", "{:.3f}", "{:.3f}", "{}"]))
-    print()
-    ds = rb.read_dataset(p("data", "F1.csv"))
-    y = np.asarray(ds.brdf)
-    rel = {}
-    for m in ("fitted", "mastic", "shadowed"):
-        rel[m] = ((_model_on(ds, p("mix", "F1-real-fits.mix.json"), m) - y) / y).mean(axis=1)
-    print("Relative residual (prediction / virtual - 1, mean over bands) by geometry:\n")
-    print(_binned_table(rel, ds))
-    print()
 
-    # 2. The self-consistent study.
-    tags = ["F1", "F2", "F3", "F4", "F1-60mm-seed2"]
-    print("### G1. Virtual components, virtual mixtures: held-out relative RMSE (5 folds) of each method\n")
+def _g1(p, tags):
     rows = []
     all_methods = None
     for tag in tags:
@@ -267,7 +312,9 @@ def report(out: str) -> None:
                  ["{}", "{}", "{}", "{}", "{:.3f}"]))
     print()
 
-    print("### G2. Mixing the rendered component datasets directly (no model fit in between)\n")
+
+def _g2(p, tags):
+    rb = _rb()
     rows = []
     residuals = {}
     for tag in tags:
@@ -280,7 +327,7 @@ def report(out: str) -> None:
         nn = sum(a * c for a, c in zip(w, comps))
         rows.append((tag, _relative_rmse(areal, y), _relative_rmse(nn, y),
                      ", ".join(f"{a:.3f}" for a in w), ", ".join(f"{a:.3f}" for a in fr)))
-        if tag in ("F1", "F2", "F3", "F4"):
+        if "60mm" not in tag:
             residuals[f"{tag} areal"] = ((areal - y) / y).mean(axis=1)
     print(_table(["mixture", "areal (projected fractions) rel. RMSE", "NNLS rel. RMSE (in-sample)",
                   "NNLS weights", "projected fractions"], rows, ["{}", "{:.3f}", "{:.3f}", "{}", "{}"]))
@@ -289,31 +336,23 @@ def report(out: str) -> None:
     print(_binned_table(residuals, mix))
     print()
 
-    print("### G3. Best fitted-linear prediction with the virtual-component fits, residual by geometry\n")
+
+def _g3(p, tags):
+    rb = _rb()
     rel = {}
-    for k in (1, 2, 3, 4):
-        mix = rb.read_dataset(p("data", f"F{k}.csv"))
+    for tag in tags:
+        mix = rb.read_dataset(p("data", f"{tag}.csv"))
         y = np.asarray(mix.brdf)
-        rel[f"F{k} fitted"] = ((_model_on(mix, p("mix", f"F{k}.mix.json"), "fitted") - y) / y).mean(axis=1)
+        rel[f"{tag} fitted"] = ((_model_on(mix, p("mix", f"{tag}.mix.json"), "fitted") - y) / y).mean(axis=1)
     print(_binned_table(rel, mix))
     print()
 
-    print("### G4. Laboratory-like components (flat mastic = its fit, rock trays), virtual mixtures: held-out "
-          "relative RMSE\n")
-    print(_lab_table(p))
-    print()
 
-    print("### G5. Quality of the fits of the virtual single-component samples\n")
-    rows = []
-    for name in sorted(os.listdir(p("vfits"))):
-        with open(p("vfits", name)) as f:
-            fd = json.load(f)
-        for ft in fd["fits"]:
-            if ft["model"] == fd["best"]:
-                rows.append((name.replace(".fit.json", ""), ft["model"], float(np.mean(ft["relative_rmse"]))))
-    print(_table(["virtual sample", "best model (BIC)", "relative RMSE (mean over bands)"], rows,
-                 ["{}", "{}", "{:.3f}"]))
-    print()
+def _level_mpd(p, tag):
+    with open(p("surfaces", f"{tag}.surface.json")) as f:
+        s = json.load(f)
+    z = np.asarray(s["heights_mm"])
+    return (float(z.min()), float(s["statistics"]["mpd_mm"]), float((np.asarray(s["material"]) == 0).mean()))
 
 
 def _lab_table(p):

@@ -588,19 +588,22 @@ class Surface:
 
 
 def surface(formulation_path, size_mm=60.0, cell_mm=0.1, seed=1, matrix_level=None, target_mpd=None,
-            output=None) -> Surface:
+            output=None, mastic_fraction=None) -> Surface:
     """A virtual sample of a formulation, as ``roadbrdf surface FORMULATION`` builds it: coarse aggregate
     classes as packed ellipsoidal grains in a mastic (docs/surface.md "Virtual sample").
 
     ``size_mm``: side of the periodic sample [mm]; ``cell_mm``: grid spacing [mm]; ``matrix_level``: mastic
-    level as a fraction of the slab thickness (default 0.7), or ``target_mpd`` [mm] to choose it (exclusive).
+    level as a fraction of the slab thickness (default 0.7), or ``target_mpd`` [mm], or ``mastic_fraction`` (the
+    exposed, projected area fraction of the mastic, in (0, 1), met within max(0.001, 1/cells); an unreachable
+    value raises ValueError naming the reachable range) to choose it (the three exclude each other).
     Fit files are resolved relative to the formulation's folder (they are needed only to render).
     ``output``: also write the SURFACE file. Generator notes (e.g. jamming) are issued as UserWarning.
     """
     import warnings
     handle, report = _roadbrdf.surface_from_formulation(
         str(formulation_path), float(size_mm), float(cell_mm), int(seed),
-        None if matrix_level is None else float(matrix_level), None if target_mpd is None else float(target_mpd))
+        None if matrix_level is None else float(matrix_level), None if target_mpd is None else float(target_mpd),
+        None if mastic_fraction is None else float(mastic_fraction))
     for note in report["notes"]:
         warnings.warn(note, UserWarning, stacklevel=2)
     s = Surface(handle, dict(report))

@@ -187,8 +187,11 @@ void bind_surface(py::module_& m) {
 
   // `roadbrdf surface FORMULATION`: the sample and the generator's report.
   m.def("surface_from_formulation", [](const std::string& path, double size_mm, double cell_mm, std::uint64_t seed,
-                                       std::optional<double> matrix_level, std::optional<double> target_mpd) {
-    if (matrix_level && target_mpd) throw InputError("matrix_level and target_mpd exclude each other");
+                                       std::optional<double> matrix_level, std::optional<double> target_mpd,
+                                       std::optional<double> mastic_fraction) {
+    if ((matrix_level ? 1 : 0) + (target_mpd ? 1 : 0) + (mastic_fraction ? 1 : 0) > 1) {
+      throw InputError("matrix_level, target_mpd and mastic_fraction exclude each other");
+    }
     if (matrix_level && !(*matrix_level >= 0.0 && *matrix_level <= 1.0)) {
       throw InputError("matrix_level must be in [0, 1] (a fraction of the slab thickness)");
     }
@@ -205,6 +208,7 @@ void bind_surface(py::module_& m) {
     s.seed = seed;
     if (matrix_level) s.matrix_level = *matrix_level;
     s.target_mpd_mm = target_mpd;
+    s.mastic_fraction = mastic_fraction;
     surface::GeneratedSample sample;
     {
       py::gil_scoped_release release;

@@ -287,3 +287,20 @@ def test_errors(tmp_path):
     formulation = _formulation(tmp_path)
     with pytest.raises(ValueError, match="exclude each other"):
         roadbrdf.surface(formulation, size_mm=12, cell_mm=0.25, matrix_level=0.5, target_mpd=0.5)
+
+
+def test_surface_mastic_fraction_counted_on_the_map_and_equal_to_the_cli(cli, tmp_path):
+    formulation = _formulation(tmp_path)
+    s = roadbrdf.surface(formulation, size_mm=12, cell_mm=0.25, seed=3, mastic_fraction=0.4)
+    # 48 x 48 cells: tolerance max(0.001, 1/2304); every cell has the same projected area.
+    assert np.mean(s.material_map == 0) == pytest.approx(0.4, abs=0.001)
+    cli_file = tmp_path / "cli.surface.json"
+    cli("surface", formulation, "--size", "12mm", "--cell", "0.25", "--seed", "3", "--mastic-fraction", "0.4",
+        "-o", cli_file)
+    np.testing.assert_array_equal(s.material_map.reshape(-1), json.loads(cli_file.read_text())["material"])
+    with pytest.raises(ValueError, match="exclude each other"):
+        roadbrdf.surface(formulation, size_mm=12, cell_mm=0.25, matrix_level=0.5, mastic_fraction=0.4)
+    with pytest.raises(ValueError, match="exclude each other"):
+        roadbrdf.surface(formulation, size_mm=12, cell_mm=0.25, target_mpd=0.5, mastic_fraction=0.4)
+    with pytest.raises(ValueError, match=r"must be in \(0, 1\)"):
+        roadbrdf.surface(formulation, size_mm=12, cell_mm=0.25, mastic_fraction=1.0)

@@ -1,4 +1,5 @@
-// roadbrdf surface FORMULATION.json [--size 60mm] [--cell 0.1] [--seed S] [--matrix-level F | --target-mpd MM]
+// roadbrdf surface FORMULATION.json [--size 60mm] [--cell 0.1] [--seed S]
+//                  [--matrix-level F | --target-mpd MM | --mastic-fraction F]
 //                  [--preview FILE.png] -o SURFACE.json
 // roadbrdf surface MATERIAL (--flat | --gaussian-slopes SIGMA) [-p NAME=VALUE] [--option NAME=VALUE] -o SURFACE.json
 // roadbrdf render SURFACE.json (--grid GRID.csv | --albedo ZENITHS [--white-sky-nodes N])
@@ -40,6 +41,7 @@ struct SurfaceArgs {
   std::uint64_t seed = 1;
   std::optional<double> matrix_level;
   std::optional<double> target_mpd;
+  std::optional<double> mastic_fraction;
   std::string preview;
   bool flat = false;
   std::optional<double> gaussian_slopes;
@@ -130,9 +132,12 @@ void run_surface(const SurfaceArgs& a) {
     s.size_mm = parse_length_mm(a.size);
     s.cell_size_mm = a.cell;
     s.seed = a.seed;
-    if (a.matrix_level && a.target_mpd) throw InputError("--matrix-level and --target-mpd exclude each other");
+    if ((a.matrix_level ? 1 : 0) + (a.target_mpd ? 1 : 0) + (a.mastic_fraction ? 1 : 0) > 1) {
+      throw InputError("--matrix-level, --target-mpd and --mastic-fraction exclude each other");
+    }
     if (a.matrix_level) s.matrix_level = *a.matrix_level;
     s.target_mpd_mm = a.target_mpd;
+    s.mastic_fraction = a.mastic_fraction;
     const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
     field = sample.field;
     for (const auto& note : sample.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
@@ -143,6 +148,10 @@ void run_surface(const SurfaceArgs& a) {
       }
     }
     fmt::print("{}\n", field.description);
+    if (a.mastic_fraction) {
+      fmt::print("exposed mastic fraction {:.4f} (requested {}, tolerance {:.4g}) at mastic level {:.4f} mm\n",
+                 sample.mastic_fraction, *a.mastic_fraction, sample.mastic_fraction_tolerance, sample.matrix_level_mm);
+    }
   }
   const surface::TextureStatistics stats = surface::texture_statistics(field);
   surface::write_surface(field, a.output, &stats);
@@ -293,6 +302,9 @@ void register_surface_command(CLI::App& app) {
                 "Mastic level as a fraction of the slab thickness (largest grain size), default 0.7")
       ->check(CLI::Range(0.0, 1.0));
   c->add_option("--target-mpd", args.target_mpd, "Choose the mastic level so that the MPD is this [mm]");
+  c->add_option("--mastic-fraction", args.mastic_fraction,
+                "Choose the mastic level so that the exposed (projected) area fraction of the mastic is this, in "
+                "(0, 1), within max(0.001, 1/cells); an unreachable value is an error naming the reachable range");
   c->add_option("--preview", args.preview, "Write a PNG of the height map coloured by material");
   c->add_flag("--flat", args.flat, "Flat sample z = 0 of one material (validation)");
   c->add_option("--gaussian-slopes,--vgrooves", args.gaussian_slopes,

@@ -81,6 +81,12 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   }
   if (static_cast<long>(n) * n > 40'000'000L) throw InputError("surface: more than 4e7 cells; use a larger --cell");
   if (!(s.matrix_level >= 0.0 && s.matrix_level <= 1.0)) throw InputError("surface: matrix level must be in [0, 1]");
+  if (s.mastic_fraction && s.target_mpd_mm) throw InputError("surface: target MPD and mastic fraction exclude each other");
+  if (s.mastic_fraction && !(*s.mastic_fraction > 0.0 && *s.mastic_fraction < 1.0)) {
+    std::ostringstream e;
+    e << "surface: the exposed mastic fraction must be in (0, 1) (exclusive), got " << *s.mastic_fraction;
+    throw InputError(e.str());
+  }
   if (recipe.classes.empty()) throw InputError("surface: no grain class");
   if (recipe.classes.size() > 60000) throw InputError("surface: too many classes");
   const double L = n * s.cell_size_mm;
@@ -196,6 +202,34 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   f.materials.push_back(recipe.matrix);
   for (const auto& c : recipe.classes) f.materials.push_back(c.material);
 
+  // Material map at a mastic level; returns the number of mastic cells. A cell is grain where a grain pokes
+  // out of the mastic at its centre; else, the mastic being the flat fill at the level, a cell whose mesh
+  // rises above it (a node on a grain) is the flank of that grain (class of the highest such node); else
+  // mastic. So a cell is mastic exactly when its centre and its 4 nodes are at or below the level (generate.h).
+  auto label_cells = [&](double level) {
+    long mastic_cells = 0;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * n + i;
+        int cls = top_centres[k] > level ? centre_class[k] : -1;
+        if (cls < 0) {
+          double highest = level;
+          for (const std::size_t node : {f.index(i, j), f.index(i + 1, j), f.index(i, j + 1), f.index(i + 1, j + 1)}) {
+            if (top_nodes[node] > highest) {
+              highest = top_nodes[node];
+              cls = node_class[node];
+            }
+          }
+        }
+        f.material[k] = static_cast<std::uint16_t>(cls + 1);
+        if (cls < 0) ++mastic_cells;
+      }
+    }
+    return mastic_cells;
+  };
+  const double cells = static_cast<double>(n) * n;
+  auto mastic_fraction_at = [&](double level) { return static_cast<double>(label_cells(level)) / cells; };
+
   double level = s.matrix_level * T;
   if (s.target_mpd_mm) {
     if (!(*s.target_mpd_mm > 0.0)) throw InputError("surface: target MPD must be > 0");
@@ -219,26 +253,52 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
       level = 0.5 * (lo + hi);
     }
   }
-  out.matrix_level_mm = level;
-  for (std::size_t k = 0; k < top_nodes.size(); ++k) f.heights[k] = std::max(level, top_nodes[k]);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j) * n + i;
-      int cls = top_centres[k] > level ? centre_class[k] : -1;
-      if (cls < 0) {
-        // The mastic is the flat fill at the level: a cell whose mesh rises above it (a node on a grain)
-        // is the flank of that grain, not mastic. Class of the highest such node.
-        double highest = level;
-        for (const std::size_t node : {f.index(i, j), f.index(i + 1, j), f.index(i, j + 1), f.index(i + 1, j + 1)}) {
-          if (top_nodes[node] > highest) {
-            highest = top_nodes[node];
-            cls = node_class[node];
-          }
+  if (s.mastic_fraction) {
+    const double target = *s.mastic_fraction;
+    const double tol = std::max(1e-3, 1.0 / cells);
+    out.mastic_fraction_tolerance = tol;
+    double lo = 0.0, hi = T;  // the fraction is non-decreasing in the level (generate.h)
+    const double f_lo = mastic_fraction_at(lo), f_hi = mastic_fraction_at(hi);
+    auto range = [&] {
+      std::ostringstream r;
+      r << "reachable with this packing: " << f_lo << " (mastic at the bottom of the " << T << " mm slab) to " << f_hi
+        << " (at its top), tolerance " << tol;
+      return r.str();
+    };
+    if (target < f_lo - tol || target > f_hi + tol) {
+      std::ostringstream e;
+      e << "surface: exposed mastic fraction " << target << " not reachable (" << range() << ")";
+      throw InputError(e.str());
+    }
+    if (target <= f_lo) {
+      level = lo;
+    } else if (target >= f_hi) {
+      level = hi;
+    } else {
+      // Invariant: fraction(lo) < target <= fraction(hi).
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (mastic_fraction_at(mid) < target) {
+          lo = mid;
+        } else {
+          hi = mid;
         }
       }
-      f.material[k] = static_cast<std::uint16_t>(cls + 1);
+      const double a_lo = mastic_fraction_at(lo), a_hi = mastic_fraction_at(hi);
+      level = target - a_lo <= a_hi - target ? lo : hi;
+      const double achieved = level == lo ? a_lo : a_hi;
+      if (std::fabs(achieved - target) > tol) {
+        std::ostringstream e;
+        e << "surface: exposed mastic fraction " << target << " not reachable within " << tol
+          << ": the fraction jumps from " << a_lo << " to " << a_hi << " at the mastic level " << level
+          << " mm (cells whose grain tops are at equal heights; " << range() << ")";
+        throw InputError(e.str());
+      }
     }
   }
+  out.matrix_level_mm = level;
+  for (std::size_t k = 0; k < top_nodes.size(); ++k) f.heights[k] = std::max(level, top_nodes[k]);
+  out.mastic_fraction = mastic_fraction_at(level);
   std::ostringstream d;
   d << "virtual sample of " << recipe.name << ": " << grains.size()
     << " ellipsoidal grains (random orientation, b/a in [" << s.elongation_min << ", " << s.elongation_max
@@ -246,7 +306,12 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
     << "]) packed without overlap, all classes together in proportion, by "
     << (out.deposition ? "deposition against the roller's plane with settling (random sequential addition jammed)"
                        : "random sequential addition")
-    << " in a " << T << " mm slab, periodic " << L << " mm x " << L << " mm, mastic level " << level << " mm, seed " << s.seed
+    << " in a " << T << " mm slab, periodic " << L << " mm x " << L << " mm, mastic level " << level << " mm";
+  if (s.mastic_fraction) {
+    d << " (chosen for an exposed mastic fraction of " << *s.mastic_fraction << ": achieved " << out.mastic_fraction
+      << ", tolerance " << out.mastic_fraction_tolerance << ")";
+  }
+  d << ", seed " << s.seed
     << ". Classes (target / achieved volume fraction of the slab" << (out.targets_reached ? "" : "; targets NOT reached, classes scaled down together")
     << "):";
   for (std::size_t k = 0; k < K; ++k) {

@@ -29,6 +29,13 @@
 //    of the highest such node; else the mastic. So every mastic cell is flat at z_m. The level sets the
 //    texture depth; with `target_mpd_mm` the level is found by bisection so that the MPD
 //    (height_field.h) matches.
+//  - Exposed mastic fraction: with `mastic_fraction` the level is found by bisection on [0, T] so that the
+//    projected (plan) area fraction of the mastic cells equals it within max(0.001, 1 / cells). It is
+//    monotone in the level: by the rule above a cell is mastic exactly when m_c = max(grain top at its
+//    centre, grain tops at its 4 nodes) <= z_m, so the fraction is the empirical distribution function of
+//    m_c over the cells, non-decreasing in z_m. A fraction outside [fraction at z_m = 0, fraction at
+//    z_m = T] (within the tolerance), or inside a jump of the distribution wider than the tolerance
+//    (cells with equal m_c), is an InputError naming the reachable range; never clamped.
 #pragma once
 
 #include <cstdint>
@@ -64,6 +71,8 @@ struct GeneratorSettings {
   std::uint64_t seed = 1;
   double matrix_level = 0.7;       // z_m / T
   std::optional<double> target_mpd_mm;  // overrides matrix_level (bisection)
+  std::optional<double> mastic_fraction;  // exposed (projected) mastic area fraction in (0, 1); overrides
+                                          // matrix_level (bisection); excludes target_mpd_mm
   long max_failures = 2000;        // random sequential addition: positions tried for one grain before jamming
   long deposition_tries = 128;     // deposition: vertical lines tried per grain (packing.h)
   long settle_moves = 500;         // deposition: settling moves per grain
@@ -81,6 +90,8 @@ struct GeneratedSample {
   std::vector<Ellipsoid> grains;                 // the placed grains (class = index into the recipe's classes)
   double slab_thickness_mm = 0.0;
   double matrix_level_mm = 0.0;
+  double mastic_fraction = 0.0;                  // achieved exposed (projected) area fraction of the mastic
+  double mastic_fraction_tolerance = 0.0;        // with settings.mastic_fraction: max(0.001, 1 / cells); else 0
   std::vector<std::string> notes;                // jamming etc.
 };
 
