@@ -220,6 +220,14 @@ TEST(Generator, InvariantsDeterminismAndTargetMpd) {
   const rs::GeneratedSample g3 = rs::generate_sample(recipe, s);
   EXPECT_NEAR(rs::texture_statistics(g3.field).mpd_mm, 0.5 * st.mpd_mm, 1e-6);
   EXPECT_GT(g3.matrix_level_mm, g.matrix_level_mm);
+  // An MPD above what the grains can give (the slab is 6 mm thick) is an error, not a clamp.
+  s.target_mpd_mm = 50.0;
+  try {
+    rs::generate_sample(recipe, s);
+    FAIL() << "no error for an unreachable MPD";
+  } catch (const roadbrdf::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not reachable"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Generator, GaussianSlopeSurfaceHasTheRequestedRmsSlope) {

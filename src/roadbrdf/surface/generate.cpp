@@ -236,11 +236,11 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
     double lo = 0.0, hi = T;  // MPD decreases as the matrix rises
     const double mpd_lo = mpd_of_level(top_nodes, lo, f);
     if (mpd_lo < *s.target_mpd_mm) {
-      std::ostringstream note;
-      note << "target MPD " << *s.target_mpd_mm << " mm not reachable (at most " << mpd_lo
-           << " mm with the matrix at the bottom of the slab); matrix level set to 0";
-      out.notes.push_back(note.str());
-      level = 0.0;
+      // Not clamped to the nearest reachable level: the user asked for a texture this packing cannot give.
+      std::ostringstream e;
+      e << "surface: target MPD " << *s.target_mpd_mm << " mm not reachable with this packing (at most " << mpd_lo
+        << " mm, with the mastic at the bottom of the " << T << " mm slab; it decreases as the mastic rises)";
+      throw InputError(e.str());
     } else {
       for (int it = 0; it < 50; ++it) {
         const double mid = 0.5 * (lo + hi);
