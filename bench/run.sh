@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Run every benchmark program in BUILD/bench (default build/) on one core and print the figures.
+# Run every benchmark program in BUILD/bench (default build/) on one core, then the comparison and
+# end-to-end scripts (bench/fit_bench.sh, bench/render_speed.sh), and print the figures.
 # Usage: bash bench/run.sh [BUILD]
 set -euo pipefail
 build="${1:-build}"
@@ -13,3 +14,5 @@ for s in bench/*_bench.sh; do
   echo "== $(basename "$s")"
   bash "$s" "$build"
 done
+echo "== render_speed.sh (virtual gonioreflectometer, 432 geometries x 20 bands at 1 %)"
+bash bench/render_speed.sh "$build"
