@@ -148,6 +148,23 @@ inline Geometry local_geometry(Vec3 wi, Vec3 wr) {
 
 }  // namespace
 
+// Cosine-weighted direction about +z (pdf cos(theta)/pi) from two uniform numbers.
+inline Vec3 cosine_direction(double u1, double u2) {
+  const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+}
+
+// Russian roulette on the throughput beta (m wavelengths): survival q = min(0.95, max |beta|),
+// beta /= q. Returns false when the path ends.
+inline bool russian_roulette(double* beta, std::size_t m, Rng& rng) {
+  double q = 0.0;
+  for (std::size_t w = 0; w < m; ++w) q = std::max(q, std::fabs(beta[w]));
+  q = std::min(q, 0.95);
+  if (q <= 0.0 || rng.uniform() >= q) return false;
+  for (std::size_t w = 0; w < m; ++w) beta[w] /= q;
+  return true;
+}
+
 // ---- scene ------------------------------------------------------------------------------------
 
 struct Renderer::Impl {
@@ -177,6 +194,10 @@ struct Renderer::Impl {
   };
 
   bool intersect(const Vec3& o, const Vec3& d, Hit& hit) const;
+  // Detector direction of a sample: uniform in the cone (the axis for an ideal detector), or
+  // cosine-weighted over the hemisphere for the albedo (then `scale` = pi, the 1/pdf factor of the
+  // cosine-weighted albedo integral; else 1).
+  Vec3 detector_direction(const Job& job, Rng& rng, double& scale) const;
   void trace(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta, double* f) const;
   void source_delta_paths(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta,
                           double* f) const;
@@ -357,22 +378,9 @@ void Renderer::Impl::source_delta_paths(const Job& job, const RenderSettings& s,
   Hit hit;
   if (!intersect(Vec3{x, y, hmax + 1e-3 * h}, Vec3{-job.wi.x, -job.wi.y, -job.wi.z}, hit)) return;
   if (!materials[hit.material].has_delta) return;
-  // Detector direction for the connections: uniform in the cone (or cosine-weighted, albedo).
-  Vec3 w_det;
+  // Detector direction for the connections.
   double det_scale = 1.0;
-  if (job.hemisphere) {
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-    w_det = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
-    det_scale = kPi;
-  } else if (job.cos_delta < 1.0) {
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const double ca = 1.0 - u1 * (1.0 - job.cos_delta);
-    const double sa = std::sqrt(std::max(0.0, 1.0 - ca * ca)), phi = 2.0 * kPi * u2;
-    w_det = (sa * std::cos(phi)) * job.t_center + (sa * std::sin(phi)) * job.b_center + ca * job.w_center;
-  } else {
-    w_det = job.w_center;
-  }
+  const Vec3 w_det = detector_direction(job, rng, det_scale);
   Vec3 w_in = job.wi;  // direction towards where the light comes from, at the current vertex
   bool mirror = true;  // the first reflection is the delta part
   for (std::size_t w = 0; w < m; ++w) beta[w] = 1.0;
@@ -409,20 +417,13 @@ void Renderer::Impl::source_delta_paths(const Job& job, const RenderSettings& s,
       }
     } else {
       const double u1 = rng.uniform(), u2 = rng.uniform();
-      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-      const Vec3 wl{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+      const Vec3 wl = cosine_direction(u1, u2);
       if (!(wl.z > 0.0)) return;
       w_new = wl.x * t + wl.y * b + wl.z * hit.n;
       eval(hit.material, local_geometry(wi_l, wl), f);
       for (std::size_t w = 0; w < m; ++w) beta[w] *= branch_weight * kPi * f[w];
     }
-    if (vertex >= s.rr_start_bounce) {
-      double q = 0.0;
-      for (std::size_t w = 0; w < m; ++w) q = std::max(q, std::fabs(beta[w]));
-      q = std::min(q, 0.95);
-      if (q <= 0.0 || rng.uniform() >= q) return;
-      for (std::size_t w = 0; w < m; ++w) beta[w] /= q;
-    }
+    if (vertex >= s.rr_start_bounce && !russian_roulette(beta, m, rng)) return;
     if (!intersect(p, w_new, hit)) {
       // Escaped: seen by the detector only after a mirror (a smooth last vertex was connected above).
       if (!mirror || w_new.z <= 0.0) return;
@@ -437,6 +438,22 @@ void Renderer::Impl::source_delta_paths(const Job& job, const RenderSettings& s,
     if (s.max_bounces > 0 && vertex >= s.max_bounces) return;  // the next vertex would be one too many
     w_in = Vec3{-w_new.x, -w_new.y, -w_new.z};
   }
+}
+
+Vec3 Renderer::Impl::detector_direction(const Job& job, Rng& rng, double& scale) const {
+  scale = 1.0;
+  if (job.hemisphere) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    scale = kPi;
+    return cosine_direction(u1, u2);
+  }
+  if (job.cos_delta < 1.0) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const double ca = 1.0 - u1 * (1.0 - job.cos_delta);  // uniform in solid angle
+    const double sa = std::sqrt(std::max(0.0, 1.0 - ca * ca)), phi = 2.0 * kPi * u2;
+    return (sa * std::cos(phi)) * job.t_center + (sa * std::sin(phi)) * job.b_center + ca * job.w_center;
+  }
+  return job.w_center;
 }
 
 // Cosine sampling: pdf cos/pi, weight pi. BRDF sampling: with probability c from the material's
@@ -454,8 +471,7 @@ bool Renderer::Impl::continue_direction(int material, const Vec3& wo_l, const Re
     wl = samplers[material].sample(wo_l, u1, u2, u3, p_table);
   } else {
     const double u1 = rng.uniform(), u2 = rng.uniform();
-    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-    wl = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+    wl = cosine_direction(u1, u2);
     if (!use_table) {
       weight = kPi;
       return wl.z > 0.0;
@@ -470,20 +486,9 @@ bool Renderer::Impl::continue_direction(int material, const Vec3& wo_l, const Re
 void Renderer::Impl::trace(const Job& job, const RenderSettings& s, Rng& rng, double* contrib, double* beta,
                            double* f) const {
   for (std::size_t w = 0; w < m; ++w) contrib[w] = 0.0;
-  // Detector direction.
-  Vec3 w_out;
-  if (job.hemisphere) {
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
-    w_out = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
-  } else if (job.cos_delta < 1.0) {
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const double ca = 1.0 - u1 * (1.0 - job.cos_delta);  // uniform in solid angle
-    const double sa = std::sqrt(std::max(0.0, 1.0 - ca * ca)), phi = 2.0 * kPi * u2;
-    w_out = (sa * std::cos(phi)) * job.t_center + (sa * std::sin(phi)) * job.b_center + ca * job.w_center;
-  } else {
-    w_out = job.w_center;
-  }
+  // Detector direction (the albedo's factor pi is in the initial throughput below).
+  double unused_scale = 1.0;
+  Vec3 w_out = detector_direction(job, rng, unused_scale);
   // beta is scratch here (set below for the detector path).
   if (any_delta) source_delta_paths(job, s, rng, contrib, beta, f);
   // Cone directions below the horizon see nothing.
@@ -539,13 +544,7 @@ void Renderer::Impl::trace(const Job& job, const RenderSettings& s, Rng& rng, do
       eval(hit.material, local_geometry(wl, wo_l), f);
       for (std::size_t w = 0; w < m; ++w) beta[w] *= branch_weight * weight * f[w];
     }
-    if (bounce >= s.rr_start_bounce) {
-      double q = 0.0;
-      for (std::size_t w = 0; w < m; ++w) q = std::max(q, std::fabs(beta[w]));
-      q = std::min(q, 0.95);
-      if (q <= 0.0 || rng.uniform() >= q) break;
-      for (std::size_t w = 0; w < m; ++w) beta[w] /= q;
-    }
+    if (bounce >= s.rr_start_bounce && !russian_roulette(beta, m, rng)) break;
     origin = p;
     dir = w_new;
     w_out = Vec3{-w_new.x, -w_new.y, -w_new.z};
