@@ -1,4 +1,5 @@
 // Virtual samples: height field, texture statistics, SURFACE files, exact ray traversal, generator.
+#include "support/materials.h"
 #include "support/scratch.h"
 #include <gtest/gtest.h>
 
@@ -19,13 +20,7 @@ using roadbrdf::Vec3;
 
 namespace {
 
-rs::MaterialSpec lambert(double albedo, const std::string& name = "white") {
-  rs::MaterialSpec m;
-  m.name = name;
-  m.model = "lambert";
-  m.parameters = {{"albedo", albedo}};
-  return m;
-}
+rs::MaterialSpec lambert(double albedo, const std::string& name = "white") { return roadbrdf::test::lambert(albedo, name); }
 
 std::string temp_path(const std::string& name) {
   return roadbrdf::test::scratch_path("surface_test_" + name);

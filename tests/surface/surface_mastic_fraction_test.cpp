@@ -3,6 +3,7 @@
 // the request within max(0.001, 1 / cells). Every expected value here is counted from the generated
 // material map (cells of material 0: each cell has the same projected area), never read from the
 // generator's report; unreachable requests are errors naming the reachable range.
+#include "support/materials.h"
 #include "support/cli.h"
 #include "support/scratch.h"
 #include <gtest/gtest.h>
@@ -23,13 +24,7 @@ namespace rs = roadbrdf::surface;
 
 namespace {
 
-rs::MaterialSpec lambert(double albedo, const std::string& name) {
-  rs::MaterialSpec m;
-  m.name = name;
-  m.model = "lambert";
-  m.parameters = {{"albedo", albedo}};
-  return m;
-}
+using roadbrdf::test::lambert;
 
 // Two classes; `scale` multiplies the volume fractions (1: dense, deposition; small: loose, random
 // sequential addition leaves much of the plan without any grain).

@@ -1,5 +1,6 @@
 // Grain packing of the virtual sample (packing.h, generate.h): exact overlap test, non-overlap of the
 // generated grains, achieved vs target volume fractions, class proportions, gradings -> textures.
+#include "support/materials.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,13 +17,7 @@ using roadbrdf::kPi;
 
 namespace {
 
-rs::MaterialSpec lambert(double albedo, const std::string& name) {
-  rs::MaterialSpec m;
-  m.name = name;
-  m.model = "lambert";
-  m.parameters = {{"albedo", albedo}};
-  return m;
-}
+using roadbrdf::test::lambert;
 
 rs::SampleRecipe two_classes(double phi_fine, double phi_coarse) {
   rs::SampleRecipe r;

@@ -1,4 +1,5 @@
 // Virtual gonioreflectometer: flat samples, white furnace, reciprocity, standard error.
+#include "support/materials.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,15 +18,7 @@ using roadbrdf::kPi;
 
 namespace {
 
-rs::MaterialSpec model_material(const std::string& model, std::map<std::string, double> params,
-                                std::map<std::string, std::string> options = {}) {
-  rs::MaterialSpec m;
-  m.name = model;
-  m.model = model;
-  m.parameters = std::move(params);
-  m.options = std::move(options);
-  return m;
-}
+using roadbrdf::test::model_material;
 
 rs::RenderSettings settings(long samples, double acceptance, int threads = 2, std::uint64_t seed = 1) {
   rs::RenderSettings s;

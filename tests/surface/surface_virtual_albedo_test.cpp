@@ -1,6 +1,7 @@
 // Albedo of a virtual sample (surface/virtual_albedo.h) against the deterministic hemisphere
 // quadrature of albedo/hemisphere.h (an independent code path: adaptive Gauss-Kronrod x Sidi
 // trapezoid over the model, no Monte Carlo) and the white furnace.
+#include "support/materials.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,13 +17,7 @@ namespace rs = roadbrdf::surface;
 
 namespace {
 
-rs::MaterialSpec model_material(const std::string& model, std::map<std::string, double> params) {
-  rs::MaterialSpec m;
-  m.name = model;
-  m.model = model;
-  m.parameters = std::move(params);
-  return m;
-}
+using roadbrdf::test::model_material;
 
 rs::RenderSettings settings(long samples) {
   rs::RenderSettings s;

@@ -3,6 +3,7 @@
 // a grain while one of its nodes is on the grain is the grain's steep flank; labelled mastic, it gave
 // the mastic a large tilted area (26 % of the mastic cells of the virtual F1 at 0.2 mm cells), lit at
 // oblique geometries where the real mastic, lying in the pits, is shadowed (docs/virtual-study.md).
+#include "support/materials.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,13 +15,7 @@ namespace rs = roadbrdf::surface;
 
 namespace {
 
-rs::MaterialSpec lambert(double albedo, const std::string& name) {
-  rs::MaterialSpec m;
-  m.name = name;
-  m.model = "lambert";
-  m.parameters = {{"albedo", albedo}};
-  return m;
-}
+using roadbrdf::test::lambert;
 
 }  // namespace
 

@@ -16,6 +16,7 @@
 // single-scattering BRDF of the sample is exactly
 //     f = (rho / pi) * (lit and seen width of the bottom) / (P h).
 // Projected fraction of the bottom: (P - a - 2) / P. Reference: this elementary geometry, not the code.
+#include "support/materials.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,13 +38,7 @@ constexpr double kH = 0.5;  // ridge height [mm]
 constexpr double kCell = 0.1;
 constexpr double kRho = 0.8;
 
-rs::MaterialSpec lambert(double albedo) {
-  rs::MaterialSpec m;
-  m.name = "lambert";
-  m.model = "lambert";
-  m.parameters = {{"albedo", albedo}};
-  return m;
-}
+using roadbrdf::test::lambert;
 
 rs::HeightField trenches() {
   rs::HeightField f;
