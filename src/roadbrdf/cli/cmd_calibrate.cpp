@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -42,12 +43,7 @@ void run(const CalibrateArgs& a) {
   out.metadata["sample_radiance"] = a.sample;
   out.metadata["reference_radiance"] = a.reference;
   if (!a.dark.empty()) out.metadata["dark"] = a.dark;
-  const DatasetFormat format = dataset_format_from_string(a.format);
-  if (a.output.empty() || a.output == "-") {
-    write_dataset(out, std::cout, format);
-  } else {
-    write_dataset(out, a.output, format);
-  }
+  write_dataset_output(out, a.output, a.format);
 }
 
 }  // namespace

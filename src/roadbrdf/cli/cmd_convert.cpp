@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
@@ -63,12 +64,7 @@ void run(const ConvertArgs& a) {
   } else if (!a.convention.empty()) {
     throw InputError("--convention: expected zenith or road, got '" + a.convention + "'");
   }
-  const DatasetFormat format = dataset_format_from_string(a.to);
-  if (a.output.empty() || a.output == "-") {
-    write_dataset(d, std::cout, format);
-  } else {
-    write_dataset(d, a.output, format);
-  }
+  write_dataset_output(d, a.output, a.to);
 }
 
 }  // namespace

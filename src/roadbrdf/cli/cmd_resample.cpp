@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/quality.h"
@@ -47,12 +48,7 @@ void run(const ResampleArgs& a) {
   }
   SpectralDataset out = resample_dataset(d, bands, drop);
   if (!noisy_text.empty()) out.metadata["noisy_bands_nm"] = noisy_text;
-  const DatasetFormat format = dataset_format_from_string(a.format);
-  if (a.output.empty() || a.output == "-") {
-    write_dataset(out, std::cout, format);
-  } else {
-    write_dataset(out, a.output, format);
-  }
+  write_dataset_output(out, a.output, a.format);
 }
 
 }  // namespace

@@ -64,12 +64,7 @@ void run(const SimulateArgs& a) {
   SpectralDataset d = simulate_dataset(in);
   d.metadata["grid"] = a.grid;
   for (const auto& [k, v] : parse_option_assignments(a.metadata, "--metadata")) d.metadata[k] = v;
-  const DatasetFormat format = dataset_format_from_string(a.format);
-  if (a.output.empty() || a.output == "-") {
-    write_dataset(d, std::cout, format);
-  } else {
-    write_dataset(d, a.output, format);
-  }
+  write_dataset_output(d, a.output, a.format);
 }
 
 }  // namespace

@@ -3,10 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <system_error>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/models/registry.h"
 
@@ -107,6 +109,15 @@ std::vector<double> parse_list_or_range(const std::string& text, const std::stri
   while (std::getline(ss, item, ',')) values.push_back(parse_number(item, what));
   if (values.empty()) throw InputError(what + ": no value given");
   return values;
+}
+
+void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format) {
+  const DatasetFormat f = dataset_format_from_string(format);
+  if (path.empty() || path == "-") {
+    write_dataset(data, std::cout, f);
+  } else {
+    write_dataset(data, path, f);
+  }
 }
 
 }  // namespace roadbrdf::cli

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "roadbrdf/core/parameters.h"
+#include "roadbrdf/io/dataset.h"
 #include "roadbrdf/models/model.h"
 #include "roadbrdf/models/spectral_model.h"
 
@@ -33,6 +34,10 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
                                                const std::vector<std::string>& parameter_items,
                                                const std::vector<std::string>& option_items,
                                                const std::string& fit_model = "");
+
+// Write a dataset to `path` (atomically), or to standard output when `path` is empty or "-";
+// `format` is "wide" or "long".
+void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format);
 
 // A finite number; `what` names the flag in errors. Throws InputError.
 double parse_number(const std::string& text, const std::string& what);
