@@ -9,7 +9,7 @@
 
 #include "binding.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/spectra/cie.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_io.h"
 

@@ -20,7 +20,8 @@
 #include "binding.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
-#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
@@ -200,7 +201,7 @@ void bind_surface(py::module_& m) {
     std::stringstream text;
     text << in.rdbuf();
     // As the command line: fit files are needed only to render, they may not exist yet.
-    const mixing::Formulation formulation = mixing::parse_formulation(text.str(), path, false);
+    const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(text.str(), path, false);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratorSettings s;
     s.size_mm = size_mm;

@@ -13,6 +13,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"

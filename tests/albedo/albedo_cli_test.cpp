@@ -4,12 +4,13 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include "support/paths.h"
 
 namespace {
 
 std::string run(const std::string& args, int& status) {
   std::string out;
-  FILE* pipe = popen((std::string(ROADBRDF_CLI) + " " + args + " 2>&1").c_str(), "r");
+  FILE* pipe = popen((roadbrdf::test::cli_program() + " " + args + " 2>&1").c_str(), "r");
   char buffer[4096];
   while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
   status = pclose(pipe);

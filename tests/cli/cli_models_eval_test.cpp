@@ -11,6 +11,7 @@
 #include <string>
 
 #include "roadbrdf/core/math.h"
+#include "support/paths.h"
 
 namespace {
 
@@ -93,7 +94,7 @@ TEST(CliModels, MarkdownReferenceIsUpToDate) {
   //   build/roadbrdf models --markdown > docs/models.md
   const Result r = run("models --markdown");
   ASSERT_EQ(r.status, 0);
-  std::ifstream f(std::string(ROADBRDF_TEST_DATA_DIR) + "/../../docs/models.md");
+  std::ifstream f(roadbrdf::test::source_dir() + "/docs/models.md");
   std::stringstream text;
   text << f.rdbuf();
   EXPECT_EQ(text.str(), r.output) << "docs/models.md is stale: regenerate it";

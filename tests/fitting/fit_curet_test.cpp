@@ -10,11 +10,12 @@
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/models/registry.h"
+#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
 
-const std::string kCuret = std::string(ROADBRDF_DATA_DIR) + "/third-party/curet/";
+const std::string kCuret = roadbrdf::data_directory() + "/third-party/curet/";
 
 class CuretConcrete : public ::testing::TestWithParam<int> {};
 

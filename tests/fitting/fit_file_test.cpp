@@ -14,6 +14,7 @@
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "synthetic.h"
+#include "support/paths.h"
 
 namespace roadbrdf {
 namespace {
@@ -81,7 +82,6 @@ TEST(FitFile, WrittenFileReadsBackTheSameParameters) {
   fs::remove_all(path.parent_path());
 }
 
-#ifdef ROADBRDF_CLI
 int run(const std::string& command) { return std::system((command + " > /dev/null 2> /dev/null").c_str()); }
 
 TEST(FitFile, CommandLineFitRanksAndWritesFiles) {
@@ -89,7 +89,7 @@ TEST(FitFile, CommandLineFitRanksAndWritesFiles) {
   const fs::path data_path = dir / "data.csv", fit_path = dir / "fit.json", res_path = dir / "res.csv";
   const SpectralDataset data = on_data();
   write_dataset(data, data_path.string());
-  const std::string cli = ROADBRDF_CLI;
+  const std::string cli = roadbrdf::test::cli_program();
   ASSERT_EQ(run(cli + " fit " + data_path.string() + " --model lambert --model oren-nayar --threads 2 --residuals " +
                 res_path.string() + " -o " + fit_path.string()),
             0);
@@ -117,7 +117,6 @@ TEST(FitFile, CommandLineFitRanksAndWritesFiles) {
   EXPECT_NE(run(cli + " fit " + (dir / "missing.csv").string() + " --model lambert -o " + fit_path.string()), 0);
   fs::remove_all(dir);
 }
-#endif
 
 }  // namespace
 }  // namespace roadbrdf

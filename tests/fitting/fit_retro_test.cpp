@@ -9,6 +9,7 @@
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/models/registry.h"
+#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 class RetroTape : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RetroTape, RetroModelsConvergeAndBeatLambert) {
-  const std::string path = std::string(ROADBRDF_DATA_DIR) + "/third-party/retroreflective/" + GetParam();
+  const std::string path = roadbrdf::data_directory() + "/third-party/retroreflective/" + GetParam();
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "retroreflective data not bundled";
   AltaReadOptions ro;
   ro.wavelength_nm = 550.0;

@@ -9,11 +9,12 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/resample.h"
+#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
 
-const std::string kSpectralon = std::string(ROADBRDF_DATA_DIR) + "/third-party/spectralon/Spectralon_Num4.txt";
+const std::string kSpectralon = roadbrdf::data_directory() + "/third-party/spectralon/Spectralon_Num4.txt";
 
 // The calibration file parsed here, independently of read_spectrum.
 std::map<int, std::pair<double, double>> spectralon_table() {
@@ -101,7 +102,7 @@ TEST(Calibration, RefusesExtrapolationAndBadReference) {
 }
 
 TEST(Calibration, OneColumnPanelBrf) {
-  const std::string path = std::string(ROADBRDF_DATA_DIR) + "/third-party/spectralon/BRF_i10_e0.txt";
+  const std::string path = roadbrdf::data_directory() + "/third-party/spectralon/BRF_i10_e0.txt";
   SpectrumReadOptions o;
   o.first_wavelength = 350;
   o.step = 1;

@@ -11,12 +11,14 @@
 #include <sstream>
 
 #include "roadbrdf/io/dataset_io.h"
+#include "support/paths.h"
+#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
 
-const std::string kCli = ROADBRDF_CLI;
-const std::string kData = ROADBRDF_DATA_DIR;
+const std::string kCli = roadbrdf::test::cli_program();
+const std::string kData = roadbrdf::data_directory();
 
 using Result = roadbrdf::test::CliResult;
 Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }

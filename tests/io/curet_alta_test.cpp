@@ -10,11 +10,12 @@
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
+#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
 
-const std::string kThird = std::string(ROADBRDF_DATA_DIR) + "/third-party/";
+const std::string kThird = roadbrdf::data_directory() + "/third-party/";
 
 std::vector<std::vector<double>> numeric_lines(const std::string& path) {
   std::ifstream in(path);

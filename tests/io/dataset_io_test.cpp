@@ -11,11 +11,12 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "support/paths.h"
 
 namespace roadbrdf {
 namespace {
 
-const std::string kData = std::string(ROADBRDF_TEST_DATA_DIR) + "/io/";
+const std::string kData = roadbrdf::test::test_data_dir() + "/io/";
 
 std::string temp_file(const std::string& name, const std::string& content) {
   const std::string path = roadbrdf::test::scratch_path("io_" + name);

@@ -4,7 +4,7 @@
 // c2 = 1.435e-2 m K), the integral of V(lambda) over 360-830 nm (106.857 nm, CIE 1 nm table),
 // the CIE 1931 5 nm y-bar values at odd 5 nm wavelengths, and closed-form integrals of simple spectra.
 #include "support/scratch.h"
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/spectra/cie.h"
 
 #include <gtest/gtest.h>
 

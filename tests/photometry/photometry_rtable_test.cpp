@@ -24,6 +24,7 @@
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_io.h"
+#include "support/paths.h"
 
 namespace roadbrdf::photometry {
 namespace {
@@ -400,7 +401,7 @@ TEST(RTableCompare, ScaledTable) {
 // ---- command line ---------------------------------------------------------------------------------
 
 std::string run(const std::string& arguments, int* status = nullptr) {
-  const std::string command = std::string(ROADBRDF_CLI) + " " + arguments + " 2>/dev/null";
+  const std::string command = roadbrdf::test::cli_program() + " " + arguments + " 2>/dev/null";
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
   char buffer[4096];
@@ -411,7 +412,7 @@ std::string run(const std::string& arguments, int* status = nullptr) {
 }
 
 TEST(RTableCli, JsonOfALambertianSurface) {
-  if (!std::filesystem::exists(ROADBRDF_CLI)) GTEST_SKIP() << "roadbrdf program not built";
+  if (!std::filesystem::exists(roadbrdf::test::cli_program())) GTEST_SKIP() << "roadbrdf program not built";
   const auto j = nlohmann::json::parse(run("rtable lambert -p albedo=0.3 --json"));
   EXPECT_NEAR(j["Q0"].get<double>(), 0.3 / kPi, 1e-14);
   EXPECT_NEAR(j["S1"].get<double>(), std::pow(5.0, -1.5), 1e-14);
@@ -426,7 +427,7 @@ TEST(RTableCli, JsonOfALambertianSurface) {
 }
 
 TEST(RTableCli, ExportImportAndCompare) {
-  if (!std::filesystem::exists(ROADBRDF_CLI)) GTEST_SKIP() << "roadbrdf program not built";
+  if (!std::filesystem::exists(roadbrdf::test::cli_program())) GTEST_SKIP() << "roadbrdf program not built";
   const std::string rtb = temp_path("cli.rtb").string();
   int status = 0;
   run("rtable oren-nayar -p albedo=0.3 -p sigma=0.4 -o " + rtb, &status);
@@ -445,7 +446,7 @@ TEST(RTableCli, ExportImportAndCompare) {
 }
 
 TEST(RTableCli, FitFileWithAFlatSpectrumEqualsThePlainModel) {
-  if (!std::filesystem::exists(ROADBRDF_CLI)) GTEST_SKIP() << "roadbrdf program not built";
+  if (!std::filesystem::exists(roadbrdf::test::cli_program())) GTEST_SKIP() << "roadbrdf program not built";
   const std::string fit = temp_file(
       "flat_fit.json",
       R"({"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{"model": "oren-nayar",

@@ -1,4 +1,4 @@
-// Test support: run the roadbrdf program built with the tests (path compiled in as ROADBRDF_CLI).
+// Test support: run the roadbrdf program built with the tests (tests/support/paths.h).
 #pragma once
 
 #include <sys/wait.h>
@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdio>
 #include <string>
+
+#include "support/paths.h"
 
 namespace roadbrdf::test {
 
@@ -15,7 +17,7 @@ struct CliResult {
 };
 
 inline CliResult run_cli(const std::string& arguments) {
-  const std::string command = std::string(ROADBRDF_CLI) + " " + arguments + " 2>&1";
+  const std::string command = roadbrdf::test::cli_program() + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 4096> buffer{};

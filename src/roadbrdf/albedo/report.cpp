@@ -11,7 +11,7 @@
 #include "roadbrdf/albedo/solar.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::albedo {
 

@@ -8,7 +8,7 @@
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::albedo {
 

@@ -15,10 +15,11 @@
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/io/csv.h"
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/core/csv.h"
+#include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::cli {
 

@@ -7,8 +7,9 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/io/geometry_file.h"
 
 namespace roadbrdf::cli {

@@ -11,10 +11,11 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/models/registry.h"
 

@@ -11,6 +11,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mixing.h"

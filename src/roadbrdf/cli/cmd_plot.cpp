@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 
 namespace roadbrdf::cli {
@@ -16,9 +17,13 @@ namespace {
 void run(const std::vector<std::string>& arguments) {
   const char* interpreter_env = std::getenv("ROADBRDF_PYTHON");
   const std::string interpreter = interpreter_env && *interpreter_env ? interpreter_env : "/usr/bin/python3";
-  std::string python_path = ROADBRDF_PYTHON_DIR;
-  if (const char* existing = std::getenv("PYTHONPATH"); existing && *existing) python_path += std::string(":") + existing;
-  setenv("PYTHONPATH", python_path.c_str(), 1);
+  // The package that belongs to this program goes first on the path (data_path.h); when there is
+  // none (installed by pip) the interpreter's own path has it.
+  std::string python_path = python_package_parent();
+  if (const char* existing = std::getenv("PYTHONPATH"); existing && *existing) {
+    python_path += python_path.empty() ? std::string(existing) : std::string(":") + existing;
+  }
+  if (!python_path.empty()) setenv("PYTHONPATH", python_path.c_str(), 1);
   if (std::getenv("MPLBACKEND") == nullptr) setenv("MPLBACKEND", "Agg", 1);
   std::vector<std::string> args = {interpreter, "-m", "roadbrdf.plot"};
   args.insert(args.end(), arguments.begin(), arguments.end());

@@ -13,8 +13,9 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/csv.h"
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/core/csv.h"
+#include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/spectra/cie.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_io.h"
 

@@ -17,18 +17,20 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/resample.h"
-#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/virtual_albedo.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::cli {
 
@@ -126,7 +128,7 @@ void run_surface(const SurfaceArgs& a) {
     std::stringstream text;
     text << in.rdbuf();
     // Fit files are needed only to render: they may not exist yet (warned below).
-    const mixing::Formulation formulation = mixing::parse_formulation(text.str(), a.input, false);
+    const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(text.str(), a.input, false);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratorSettings s;
     s.size_mm = parse_length_mm(a.size);

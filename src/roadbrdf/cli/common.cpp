@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/models/registry.h"

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 
 int main(int argc, char** argv) {
@@ -13,7 +14,7 @@ int main(int argc, char** argv) {
       "roadbrdf: spectral BRDF models, fitting, mixing, albedo and road photometry for road materials.\n"
       "Angles in degrees, BRDF in sr^-1, wavelengths in nm."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "roadbrdf 0.1.0");
+  app.set_version_flag("--version", "roadbrdf " + roadbrdf::version());
   roadbrdf::cli::register_models_command(app);
   roadbrdf::cli::register_eval_command(app);
   roadbrdf::cli::register_rtable_command(app);

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <limits>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
+#include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
 
@@ -156,6 +158,51 @@ void write_residuals(std::ostream& out, const SpectralDataset& data, const std::
             << fmt::format("{:.17g},{:.17g},{:.17g}", y, v, v - y) << '\n';
       }
     }
+  }
+}
+
+bool is_fit_file_argument(const std::string& argument) {
+  return argument.size() > 5 && argument.compare(argument.size() - 5, 5, ".json") == 0;
+}
+
+SpectralModel read_fit_file(const std::string& path, const std::string& model_name) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path, 0, 0, "cannot open fit file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw FileError(path, 0, 0, std::string("not valid JSON: ") + e.what());
+  }
+  try {
+    if (j.value("format", "") != "roadbrdf-fit") throw FileError(path, 0, 0, "not a roadbrdf fit file (format key)");
+    const std::string wanted = model_name.empty() ? j.at("best").get<std::string>() : model_name;
+    for (const auto& fit : j.at("fits")) {
+      if (fit.at("model").get<std::string>() != wanted) continue;
+      OptionSet options;
+      // Keep the options object alive: iterating items() of a temporary would dangle.
+      const nlohmann::json fit_options = fit.value("options", nlohmann::json::object());
+      for (const auto& [key, value] : fit_options.items()) options[key] = value.get<std::string>();
+      std::shared_ptr<const Model> model = make_model(wanted, options);
+      const auto wavelengths = fit.at("wavelengths").get<std::vector<double>>();
+      const auto& parameters = fit.at("parameters");
+      const std::size_t n = model->parameter_count();
+      std::vector<double> table(wavelengths.size() * n);
+      for (std::size_t q = 0; q < n; ++q) {
+        const std::string& name = model->description().parameters[q].name;
+        if (!parameters.contains(name)) throw FileError(path, 0, 0, "fit of '" + wanted + "' lacks parameter '" + name + "'");
+        const auto values = parameters.at(name).get<std::vector<double>>();
+        if (values.size() != wavelengths.size()) {
+          throw FileError(path, 0, 0, "parameter '" + name + "' has " + std::to_string(values.size()) +
+                                          " values for " + std::to_string(wavelengths.size()) + " wavelengths");
+        }
+        for (std::size_t w = 0; w < wavelengths.size(); ++w) table[w * n + q] = values[w];
+      }
+      return SpectralModel(model, wavelengths, table);
+    }
+    throw FileError(path, 0, 0, "no fit of model '" + wanted + "' in this file");
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, 0, 0, std::string("malformed fit file: ") + e.what());
   }
 }
 

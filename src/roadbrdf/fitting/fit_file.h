@@ -1,6 +1,6 @@
 // Fit files (JSON) and residual tables written by `roadbrdf fit`.
 //
-// The fit file follows the schema of models/spectral_model.h (read back by read_fit_file):
+// The fit file (read back as a model by read_fit_file):
 // {
 //   "format": "roadbrdf-fit", "version": 1,
 //   "best": model name with the lowest total BIC, "best_criterion": "bic_total",
@@ -26,8 +26,16 @@
 #include <vector>
 
 #include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf {
+
+// A fit file as a spectral model: the fit named `model_name` (default: the file's "best").
+// Throws FileError / InputError.
+SpectralModel read_fit_file(const std::string& path, const std::string& model_name = "");
+
+// True if `argument` names a fit file rather than a model (ends in ".json").
+bool is_fit_file_argument(const std::string& argument);
 
 nlohmann::json fit_to_json(const FitResult& fit);
 

@@ -8,7 +8,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/resample.h"
 

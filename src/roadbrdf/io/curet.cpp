@@ -7,7 +7,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf {
 

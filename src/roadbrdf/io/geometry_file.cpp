@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf {
 

@@ -4,8 +4,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf::mixing {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/mixing/hapke_imsa.h"
 
 namespace roadbrdf::mixing {

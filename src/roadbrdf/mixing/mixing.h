@@ -58,9 +58,10 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/mixing/albedo_cache.h"
-#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/mixing/mixture_model.h"
 #include "roadbrdf/models/spectral_model.h"
 

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/mixing/mixing.h"
 

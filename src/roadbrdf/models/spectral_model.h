@@ -33,20 +33,4 @@ class SpectralModel {
   std::vector<double> parameters_;
 };
 
-// Fit file (JSON, written by `roadbrdf fit`), the parts needed to use it as a model:
-// {
-//   "format": "roadbrdf-fit", "version": 1,
-//   "best": "<model name of the best-ranked fit>",
-//   "fits": [ { "model": "oren-nayar+torrance-sparrow",
-//               "options": { "name": "value", ... },
-//               "wavelengths": [nm, ...],
-//               "parameters": { "<parameter name>": [value per wavelength], ... },
-//               ...statistics (stderr, rmse, rmse_total, ...) } ]
-// }
-// Reads the fit named `model_name` (default: "best"). Throws FileError / InputError.
-SpectralModel read_fit_file(const std::string& path, const std::string& model_name = "");
-
-// True if `argument` names a fit file rather than a model (ends in ".json").
-bool is_fit_file_argument(const std::string& argument);
-
 }  // namespace roadbrdf

@@ -25,7 +25,7 @@
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/models/model.h"
 #include "roadbrdf/models/spectral_model.h"
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::photometry {
 

@@ -9,9 +9,10 @@
 #include <sstream>
 #include <vector>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::photometry {
 

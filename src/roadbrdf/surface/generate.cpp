@@ -12,7 +12,7 @@
 
 namespace roadbrdf::surface {
 
-SampleRecipe recipe_from_formulation(const mixing::Formulation& f) {
+SampleRecipe recipe_from_formulation(const roadbrdf::Formulation& f) {
   SampleRecipe r;
   r.name = f.name;
   if (!f.mastic) {
@@ -26,7 +26,7 @@ SampleRecipe recipe_from_formulation(const mixing::Formulation& f) {
   double total_volume = 0.0;
   for (const auto& c : f.components) total_volume += c.mass_percent / c.density;
   for (const auto& c : f.components) {
-    if (!mixing::is_coarse(f, c)) continue;
+    if (!roadbrdf::is_coarse(f, c)) continue;
     GrainClass g;
     g.material.name = c.name;
     g.material.fit = c.fit;

@@ -43,7 +43,7 @@
 #include <string>
 #include <vector>
 
-#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/packing.h"
 
@@ -63,7 +63,7 @@ struct SampleRecipe {
 
 // Recipe from a formulation (volume fractions as above). Throws InputError when the formulation
 // has no coarse class or no mastic fit.
-SampleRecipe recipe_from_formulation(const mixing::Formulation& formulation);
+SampleRecipe recipe_from_formulation(const roadbrdf::Formulation& formulation);
 
 struct GeneratorSettings {
   double size_mm = 60.0;           // period L

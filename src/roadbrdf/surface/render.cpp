@@ -10,6 +10,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/brdf_sampler.h"

@@ -1,4 +1,4 @@
-#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/formulation/formulation.h"
 
 #include <cmath>
 #include <filesystem>
@@ -9,7 +9,7 @@
 
 #include "roadbrdf/core/error.h"
 
-namespace roadbrdf::mixing {
+namespace roadbrdf {
 
 namespace {
 
@@ -283,4 +283,4 @@ Formulation read_formulation(const std::string& path) {
   return parse_formulation(buffer.str(), path, true);
 }
 
-}  // namespace roadbrdf::mixing
+}  // namespace roadbrdf

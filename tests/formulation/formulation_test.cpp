@@ -9,12 +9,11 @@
 
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/mixing/formulation.h"
+#include "roadbrdf/formulation/formulation.h"
 
 namespace {
 
 using namespace roadbrdf;
-using namespace roadbrdf::mixing;
 namespace fs = std::filesystem;
 
 class FormulationFiles : public ::testing::Test {

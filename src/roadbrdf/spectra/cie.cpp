@@ -1,4 +1,4 @@
-#include "roadbrdf/photometry/cie.h"
+#include "roadbrdf/spectra/cie.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/csv.h"
+#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::photometry {
 

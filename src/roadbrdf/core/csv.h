@@ -51,20 +51,4 @@ std::vector<CsvCell> split_whitespace(std::string_view line);
 // Parse a whole cell as a finite double (leading '+' allowed); false otherwise.
 bool parse_finite_double(std::string_view text, double& value);
 
-// Write a file atomically: the content goes to a temporary file in the same directory, which is
-// renamed over `path` only once complete, so a crash never leaves a half-written file.
-class AtomicFile {
- public:
-  explicit AtomicFile(std::string path);
-  ~AtomicFile();  // removes the temporary file if commit() was not called
-  std::ofstream& stream() { return out_; }
-  void commit();  // flush, close, rename; throws InputError on failure
-
- private:
-  std::string path_;
-  std::string temporary_;
-  std::ofstream out_;
-  bool committed_ = false;
-};
-
 }  // namespace roadbrdf

@@ -42,7 +42,7 @@
 #include <string>
 #include <vector>
 
-namespace roadbrdf::mixing {
+namespace roadbrdf {
 
 enum class ComponentKind { kBinder, kAggregate, kFiller, kPigment };
 
@@ -112,4 +112,4 @@ Formulation parse_formulation(const std::string& json_text, const std::string& p
 // sizes present where needed, parameters in range). Throws FileError (path, key) / InputError.
 void validate_formulation(const Formulation& formulation);
 
-}  // namespace roadbrdf::mixing
+}  // namespace roadbrdf

@@ -1,0 +1,47 @@
+# Installation: the program, the library (static, one archive per module) with its headers and a
+# CMake package (find_package(roadbrdf) -> roadbrdf::roadbrdf and roadbrdf::<module>), the bundled
+# data, the man page and the Python package (python/CMakeLists.txt); `cpack -G DEB` makes a .deb.
+include(CMakePackageConfigHelpers)
+
+install(TARGETS roadbrdf RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT program)
+install(TARGETS ${ROADBRDF_MODULES} roadbrdf_library EXPORT roadbrdfTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development)
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/src/roadbrdf/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/roadbrdf
+        COMPONENT development FILES_MATCHING PATTERN "*.h" PATTERN "cli" EXCLUDE)
+install(EXPORT roadbrdfTargets NAMESPACE roadbrdf:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/roadbrdf
+        COMPONENT development)
+configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/roadbrdfConfig.cmake.in
+                              ${CMAKE_BINARY_DIR}/roadbrdfConfig.cmake
+                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/roadbrdf)
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/roadbrdfConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/roadbrdfConfig.cmake ${CMAKE_BINARY_DIR}/roadbrdfConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/roadbrdf COMPONENT development)
+
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/data/ DESTINATION ${ROADBRDF_INSTALL_DATADIR} COMPONENT program)
+
+# Man page, generated from the program's own --help texts.
+if(PYTHON_EXECUTABLE)
+  set(Python3_EXECUTABLE ${PYTHON_EXECUTABLE})
+endif()
+find_package(Python3 COMPONENTS Interpreter REQUIRED)
+add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/roadbrdf.1
+                   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/scripts/make_manpage.py $<TARGET_FILE:roadbrdf>
+                           ${PROJECT_VERSION} ${CMAKE_BINARY_DIR}/roadbrdf.1
+                   DEPENDS roadbrdf ${CMAKE_SOURCE_DIR}/scripts/make_manpage.py)
+add_custom_target(roadbrdf_manpage ALL DEPENDS ${CMAKE_BINARY_DIR}/roadbrdf.1)
+install(FILES ${CMAKE_BINARY_DIR}/roadbrdf.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT program)
+
+# ---- Debian package (cpack -G DEB) -------------------------------------------------------------
+set(CPACK_PACKAGE_NAME roadbrdf)
+set(CPACK_PACKAGE_VENDOR "roadbrdf developers")
+set(CPACK_PACKAGE_CONTACT "roadbrdf developers <roadbrdf@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+# Shared-library dependencies come from dpkg-shlibdeps; the Python side needs Debian's interpreter
+# and the packages the roadbrdf module imports.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy, python3-matplotlib")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "python3-pandas, python3-distributed")
+include(CPack)
