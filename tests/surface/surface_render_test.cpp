@@ -154,7 +154,7 @@ TEST(WhiteFurnace, RoughWhiteLambertianHasDirectionalAlbedoOne) {
 // A rough sample of a non-absorbing material with an ideal specular part (Simonot's interfaced
 // Lambertian with background reflectance 1): all the light comes back, including the paths whose
 // first reflection from the source is the mirror part and that hit the surface again (without the
-// source-side delta paths of render.cpp the albedo was 0.98 / 0.966 / 0.973 here, 10 sigma low).
+// source-side delta paths (path_integrator.cpp) the albedo was 0.98 / 0.966 / 0.973 here, 10 sigma low).
 TEST(WhiteFurnace, RoughSampleOfANonAbsorbingMaterialWithAMirrorPart) {
   const auto white = model_material("simonot", {{"albedo", 1.0}, {"ior", 1.5}});
   const rs::HeightField f = rs::make_gaussian_slope_surface(white, 0.5, 64, 0.1, 1, 256);

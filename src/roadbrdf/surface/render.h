@@ -49,7 +49,7 @@
 // Delta parts: a path whose reflection next to the source is an ideal mirror cannot be found from
 // the detector (next-event estimation evaluates the smooth part; a mirror sends a continuation
 // towards the delta source with probability 0). When a material has a delta part, each sample
-// therefore adds one source-side light path (render.cpp, source_delta_paths): y uniform, first hit
+// therefore adds one source-side light path (path_integrator.cpp, source_delta_paths): y uniform, first hit
 // x_1 along -w_i; if x_1 has a delta part R the beam (flux fraction R) leaves along the mirror
 // direction and is followed: escaping after a mirror it scores beta 1[w_s in cone] / (Omega cos theta_s)
 // (the single-bounce spike needs a cone, Delta > 0), and at every later vertex x_j it is connected to
@@ -83,26 +83,11 @@
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/io/dataset.h"
-#include "roadbrdf/models/model.h"
 #include "roadbrdf/surface/height_field.h"
+#include "roadbrdf/surface/materials.h"
+#include "roadbrdf/surface/tracer.h"
 
 namespace roadbrdf::surface {
-
-// A material ready for rendering: a model and one parameter set per wavelength.
-struct RenderMaterial {
-  std::string name;
-  std::shared_ptr<const Model> model;
-  std::vector<double> parameters;  // wavelengths x parameter_count, row-major
-  bool has_delta = false;
-};
-
-// Load the materials of a height field at the given wavelengths (fit files are read; model
-// materials use their fixed parameters at every wavelength). Throws InputError / FileError.
-std::vector<RenderMaterial> load_materials(const HeightField& field, const std::vector<double>& wavelengths);
-
-// Wavelengths to render by default: those of the first spectral material inside the range common
-// to all spectral materials; {550} when no material is spectral.
-std::vector<double> default_wavelengths(const HeightField& field);
 
 // How continuation directions are drawn (see the header comment).
 enum class Sampling {
@@ -155,17 +140,12 @@ class Renderer {
   // Many geometries, in parallel (blocks of paths over threads).
   std::vector<Estimate> brdf(const std::vector<Geometry>& geometries, const RenderSettings& settings) const;
 
-  struct Hit {
-    double t = 0.0;
-    Vec3 p, n;
-    int material = 0;
-  };
+  using Hit = SurfaceHit;
   // First intersection of the ray o + t d (t > 0, d unit) with the surface; false if it escapes.
   bool intersect(const Vec3& o, const Vec3& d, Hit& hit) const;
 
-  struct Impl;  // implementation detail (render.cpp)
-
  private:
+  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

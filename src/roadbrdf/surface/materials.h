@@ -1,0 +1,68 @@
+// Materials of a virtual sample as the path tracer sees them (render.h): each material of the
+// height field's material map is a BRDF model with one parameter set per rendered wavelength, its
+// ideal specular (delta) part if the model has one, and its tabulated importance sampler
+// (brdf_sampler.h). One geometric path serves every wavelength, so every evaluation returns the
+// whole spectrum at once.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/core/geometry.h"
+#include "roadbrdf/models/model.h"
+#include "roadbrdf/surface/brdf_sampler.h"
+#include "roadbrdf/surface/height_field.h"
+
+namespace roadbrdf::surface {
+
+// A material ready for rendering: a model and one parameter set per wavelength.
+struct RenderMaterial {
+  std::string name;
+  std::shared_ptr<const Model> model;
+  std::vector<double> parameters;  // wavelengths x parameter_count, row-major
+  bool has_delta = false;
+};
+
+// Load the materials of a height field at the given wavelengths (fit files are read; model
+// materials use their fixed parameters at every wavelength). Throws InputError / FileError.
+std::vector<RenderMaterial> load_materials(const HeightField& field, const std::vector<double>& wavelengths);
+
+// Wavelengths to render by default: those of the first spectral material inside the range common
+// to all spectral materials; {550} when no material is spectral.
+std::vector<double> default_wavelengths(const HeightField& field);
+
+// The materials of one render, indexed like the material map.
+class MaterialSet {
+ public:
+  // Checks that every parameter table holds wavelength_count sets; builds the samplers.
+  MaterialSet(std::vector<RenderMaterial> materials, std::size_t wavelength_count);
+
+  std::size_t size() const { return materials_.size(); }
+  std::size_t wavelength_count() const { return m_; }
+  bool any_delta() const { return any_delta_; }
+  bool has_delta(int material) const { return materials_[material].has_delta; }
+  const BrdfSampler& sampler(int material) const { return samplers_[material]; }
+
+  // Smooth BRDF [sr^-1] of `material` at a geometry in the facet's frame: out[w], w < wavelength_count().
+  void evaluate(int material, const Geometry& g, double* out) const {
+    const RenderMaterial& mat = materials_[material];
+    mat.model->evaluate_batch(&g, 1, mat.parameters.data(), m_, out);
+  }
+  // Reflectance R of the delta part for light arriving at cos_theta from the facet normal, per
+  // wavelength: beta[w] *= factor * R_w.
+  void scale_by_delta_reflectance(int material, double cos_theta, double factor, double* beta) const {
+    const RenderMaterial& mat = materials_[material];
+    const std::size_t np = mat.model->parameter_count();
+    for (std::size_t w = 0; w < m_; ++w) beta[w] *= factor * mat.model->delta_reflectance(mat.parameters.data() + w * np, cos_theta);
+  }
+
+ private:
+  std::vector<RenderMaterial> materials_;
+  std::vector<BrdfSampler> samplers_;
+  std::size_t m_ = 0;
+  bool any_delta_ = false;
+};
+
+}  // namespace roadbrdf::surface

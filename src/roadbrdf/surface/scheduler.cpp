@@ -1,0 +1,149 @@
+#include "roadbrdf/surface/scheduler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/surface/render.h"
+
+namespace roadbrdf::surface {
+
+void validate_sampling(const RenderSettings& s) {
+  if (s.paths_per_block < 1) throw InputError("render: paths_per_block must be >= 1");
+  if (!(s.brdf_sampling_fraction >= 0.0 && s.brdf_sampling_fraction < 1.0)) {
+    throw InputError("render: brdf_sampling_fraction must be in [0, 1) (cosine sampling keeps the estimator unbiased)");
+  }
+  if (!(s.target_relative_error >= 0.0) || !std::isfinite(s.target_relative_error)) {
+    throw InputError("render: the target relative error must be >= 0");
+  }
+  if (s.target_relative_error > 0.0) {
+    if (s.max_samples < 2) throw InputError("render: --max-samples must be >= 2");
+    if (s.min_blocks < 1) throw InputError("render: min_blocks must be >= 1");
+    if (!(s.absolute_error_floor >= 0.0)) throw InputError("render: the absolute error floor must be >= 0");
+  } else {
+    if (s.samples < 2) throw InputError("render: at least 2 paths per geometry are needed for a standard error");
+  }
+}
+
+namespace {
+
+// Mean and sum of squared deviations of the paths of one block (Welford's update), then of all the
+// blocks of an estimate (the pairwise formula of Chan, Golub & LeVeque, 1979). No cancellation, so a
+// deterministic estimator (e.g. a flat sample seen by an ideal detector) has exactly 0 error.
+struct Accumulator {
+  std::vector<double> mean, m2;
+  double n = 0.0;
+  long blocks = 0;
+};
+
+// Runs one block of paths into its statistics (mean, m2: m values each).
+void run_block(const PathSource& source, std::size_t job, std::uint64_t seed, long block, long count, double* mean,
+               double* m2, std::vector<double>& values, PathSource::Workspace& workspace) {
+  const std::size_t m = source.wavelength_count();
+  Rng rng(stream_seed(seed, source.stream(job), static_cast<std::uint64_t>(block)));
+  for (long k = 0; k < count; ++k) {
+    source.path(job, rng, workspace, values.data());
+    const double inv = 1.0 / static_cast<double>(k + 1);
+    for (std::size_t w = 0; w < m; ++w) {
+      const double delta = values[w] - mean[w];
+      mean[w] += delta * inv;
+      m2[w] += delta * (values[w] - mean[w]);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_count, const RenderSettings& s) {
+  validate_sampling(s);
+  const bool adaptive = s.target_relative_error > 0.0;
+  const std::size_t m = source.wavelength_count();
+  const long max_paths = adaptive ? s.max_samples : s.samples;
+  const long B = s.paths_per_block;
+  const long max_blocks = (max_paths + B - 1) / B;
+  const long min_blocks = std::min<long>(adaptive ? s.min_blocks : max_blocks, max_blocks);
+
+  std::vector<Accumulator> acc(job_count);
+  for (auto& a : acc) {
+    a.mean.assign(m, 0.0);
+    a.m2.assign(m, 0.0);
+  }
+  std::vector<long> extra(job_count, min_blocks);  // blocks to add in the next round
+  std::vector<Estimate> out(job_count);
+  tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+
+  for (;;) {
+    std::vector<std::pair<std::size_t, long>> items;  // (job, block)
+    for (std::size_t g = 0; g < job_count; ++g) {
+      for (long k = 0; k < extra[g]; ++k) items.emplace_back(g, acc[g].blocks + k);
+    }
+    if (items.empty()) break;
+    // Per block: mean and m2 (m values each) and the number of paths.
+    std::vector<double> sums(items.size() * 2 * m, 0.0);
+    std::vector<long> counts(items.size(), 0);
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, items.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          std::vector<double> values(m);
+                          const std::unique_ptr<PathSource::Workspace> workspace = source.workspace();
+                          for (std::size_t item = range.begin(); item != range.end(); ++item) {
+                            const auto [job, block] = items[item];
+                            const long count = std::min(B, max_paths - block * B);
+                            double* mean = sums.data() + item * 2 * m;
+                            run_block(source, job, s.seed, block, count, mean, mean + m, values, *workspace);
+                            counts[item] = count;
+                          }
+                        });
+    });
+    // Merge in (job, block) order.
+    for (std::size_t item = 0; item < items.size(); ++item) {
+      Accumulator& a = acc[items[item].first];
+      const double* bm = sums.data() + item * 2 * m;
+      const double nb = static_cast<double>(counts[item]);
+      const double nt = a.n + nb;
+      for (std::size_t w = 0; w < m; ++w) {
+        const double delta = bm[w] - a.mean[w];
+        a.mean[w] += delta * (nb / nt);
+        a.m2[w] += bm[m + w] + delta * delta * (a.n * nb / nt);
+      }
+      a.n = nt;
+      a.blocks += 1;
+    }
+    // Estimates and the next round.
+    for (std::size_t g = 0; g < job_count; ++g) {
+      const Accumulator& a = acc[g];
+      Estimate& e = out[g];
+      e.paths = static_cast<long>(a.n);
+      e.mean = a.mean;
+      e.standard_error.resize(m);
+      for (std::size_t w = 0; w < m; ++w) e.standard_error[w] = std::sqrt(std::max(0.0, a.m2[w] / (a.n - 1.0)) / a.n);
+      extra[g] = 0;
+      if (!adaptive) continue;
+      // Ratio of the standard error to the tolerance; the paths needed scale with its square.
+      double ratio = 0.0;
+      for (std::size_t w = 0; w < m; ++w) {
+        const double tol = std::max(s.target_relative_error * std::fabs(e.mean[w]), s.absolute_error_floor);
+        if (e.standard_error[w] <= tol) continue;
+        ratio = std::max(ratio, tol > 0.0 ? e.standard_error[w] / tol : std::numeric_limits<double>::infinity());
+      }
+      e.converged = ratio == 0.0;
+      if (e.converged || a.blocks >= max_blocks) continue;
+      // Blocks predicted to reach the target, at least 1, at most 3x those done (a noisy early error
+      // estimate cannot launch a huge round), at most up to max_samples.
+      const double needed = std::ceil(a.n * std::min(ratio * ratio, 1e12) / static_cast<double>(B));
+      long add = static_cast<long>(std::min(needed, 1e15)) - a.blocks;
+      add = std::clamp(add, 1L, 3 * a.blocks);
+      extra[g] = std::min(add, max_blocks - a.blocks);
+    }
+    if (!adaptive) break;
+  }
+  return out;
+}
+
+}  // namespace roadbrdf::surface
