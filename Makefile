@@ -1,24 +1,32 @@
-# roadbrdf quick start: `make demo` and `make test` (each installs what is missing first).
+# roadbrdf quick start: `make demo` and `make test` (each installs the Debian packages it lacks first).
 BUILD ?= build
 JOBS ?= $(shell nproc)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
 
-.PHONY: deps configure build build-app demo test bench clean
+.PHONY: deps deps-app configure build build-app demo test bench install clean
 
+# Package sets of packages.txt: the demo needs [build] and [python], the tests every set.
 deps:
 	@bash scripts/install-deps.sh
 
-$(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+deps-app:
+	@bash scripts/install-deps.sh build python
 
-configure: deps $(BUILD)/CMakeCache.txt
+# Configuring an existing build folder again takes seconds; the demo's does not need the test packages.
+configure: deps
+	@mkdir -p $(BUILD)
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DROADBRDF_BUILD_TESTS=ON -DROADBRDF_BUILD_BENCHMARKS=ON > $(BUILD)/configure.log \
+	  || { cat $(BUILD)/configure.log; exit 1; }
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 # The program and the Python module only (what the demo runs).
-build-app: configure
+build-app: deps-app
+	@mkdir -p $(BUILD)
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DROADBRDF_BUILD_TESTS=OFF -DROADBRDF_BUILD_BENCHMARKS=OFF > $(BUILD)/configure.log \
+	  || { cat $(BUILD)/configure.log; exit 1; }
 	cmake --build $(BUILD) -j $(JOBS) --target roadbrdf _roadbrdf
 
 demo: build-app
@@ -29,6 +37,12 @@ test: build
 
 bench: build
 	bash bench/run.sh $(BUILD)
+
+# Install into PREFIX (default /usr/local); see README "Install".
+PREFIX ?= /usr/local
+install: build-app
+	cmake --build $(BUILD) -j $(JOBS) --target roadbrdf_manpage
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD)

@@ -12,7 +12,8 @@ install(EXPORT roadbrdfTargets NAMESPACE roadbrdf:: DESTINATION ${CMAKE_INSTALL_
         COMPONENT development)
 configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/roadbrdfConfig.cmake.in
                               ${CMAKE_BINARY_DIR}/roadbrdfConfig.cmake
-                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/roadbrdf)
+                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/roadbrdf
+                              PATH_VARS ROADBRDF_INSTALL_DATADIR)
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/roadbrdfConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_BINARY_DIR}/roadbrdfConfig.cmake ${CMAKE_BINARY_DIR}/roadbrdfConfigVersion.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/roadbrdf COMPONENT development)

@@ -20,10 +20,17 @@ from . import _roadbrdf
 
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "models", "model_names", "read_fit",
            "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable", "read_rtable",
-           "fit", "spectral_model_from_fit", "mix", "albedo", "road_to_zenith_azimuth", "Surface", "surface",
+           "fit", "spectral_model_from_fit", "mix", "albedo", "road_to_zenith_azimuth", "data_directory", "Surface", "surface",
            "read_surface", "flat_surface", "gaussian_slope_surface", "render", "render_albedo"]
 
 InputError = _roadbrdf.InputError
+__version__ = _roadbrdf.__version__
+
+
+def data_directory() -> str:
+    """Folder of the bundled data tables (``share/roadbrdf/data`` of the build or install tree;
+    ``$ROADBRDF_DATA`` overrides it)."""
+    return _roadbrdf.data_directory()
 
 
 def model_names():

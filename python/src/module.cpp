@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "binding.h"
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
@@ -100,6 +101,8 @@ PYBIND11_MODULE(_roadbrdf, m) {
   });
 
   m.def("model_names", &model_names, "Names of the single (non-composite) models.");
+  m.def("data_directory", &data_directory, "Folder of the bundled data tables (share/roadbrdf/data).");
+  m.attr("__version__") = version();
 
   py::class_<Model, std::shared_ptr<Model>>(m, "Model")
       .def_property_readonly("name", &Model::name)

@@ -24,3 +24,13 @@ def cli():
 @pytest.fixture
 def root():
     return ROOT
+
+
+@pytest.fixture
+def real_data():
+    """../shared/real-data next to the source tree (real third-party measurements, never copied into
+    the repository); the test is skipped with a message when the folder is absent (a user's clone)."""
+    folder = ROOT.parent / "shared" / "real-data"
+    if not folder.is_dir():
+        pytest.skip(f"real third-party data not available ({folder} is absent)")
+    return folder

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,14 @@ namespace roadbrdf::cli {
 namespace {
 
 void run(const std::vector<std::string>& arguments) {
-  const char* interpreter_env = std::getenv("ROADBRDF_PYTHON");
-  const std::string interpreter = interpreter_env && *interpreter_env ? interpreter_env : "/usr/bin/python3";
+  // The interpreter: $ROADBRDF_PYTHON, else the python3 next to the program (a virtual environment
+  // that pip installed roadbrdf into), else Debian's.
+  std::string interpreter = "/usr/bin/python3";
+  if (const char* env = std::getenv("ROADBRDF_PYTHON"); env != nullptr && *env != '\0') {
+    interpreter = env;
+  } else if (const auto beside = image_directory() / "python3"; std::filesystem::exists(beside)) {
+    interpreter = beside.string();
+  }
   // The package that belongs to this program goes first on the path (data_path.h); when there is
   // none (installed by pip) the interpreter's own path has it.
   std::string python_path = python_package_parent();
