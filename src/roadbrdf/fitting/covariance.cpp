@@ -1,0 +1,201 @@
+#include "roadbrdf/fitting/covariance.h"
+
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "roadbrdf/fitting/cost_functions.h"
+
+namespace roadbrdf::fitting {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Standard errors and correlation from a covariance (p x p, zero rows for fixed parameters).
+void set_covariance(const ParameterLayout& L, const Eigen::MatrixXd& cov, WavelengthFit& out) {
+  const std::size_t p = L.info.size();
+  out.standard_errors.assign(p, kNaN);
+  out.correlation.assign(p * p, kNaN);
+  for (std::size_t a = 0; a < p; ++a) {
+    if (L.fixed[a]) continue;
+    const double v = cov(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(a));
+    out.standard_errors[a] = v >= 0.0 ? std::sqrt(v) : kNaN;
+  }
+  for (std::size_t a = 0; a < p; ++a) {
+    for (std::size_t b = 0; b < p; ++b) {
+      if (L.fixed[a] || L.fixed[b]) continue;
+      const double sa = out.standard_errors[a], sb = out.standard_errors[b];
+      if (sa > 0.0 && sb > 0.0) {
+        out.correlation[a * p + b] = cov(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) / (sa * sb);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void no_covariance(const ParameterLayout& L, WavelengthFit& out, const std::string& why) {
+  const std::size_t p = L.info.size();
+  out.standard_errors.assign(p, kNaN);
+  out.correlation.assign(p * p, kNaN);
+  out.covariance_ok = false;
+  out.covariance_message = why;
+}
+
+void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size_t w, WavelengthFit& out) {
+  if (out.free_parameters == 0) return no_covariance(L, out, "no free parameter");
+  if (out.points <= out.free_parameters) return no_covariance(L, out, "no degrees of freedom (points <= free parameters)");
+  std::vector<double> x = out.parameters;
+  {
+    // Rank check first (Ceres would log an error for a rank-deficient matrix): eigenvalues of
+    // J^T J over the free columns, the same reciprocal-condition criterion.
+    std::vector<double> r(d.n), J(d.n * d.p), f(d.n), js(d.n * d.p);
+    if (!d.residuals(w, x.data(), r.data(), J.data(), f.data(), js.data())) {
+      return no_covariance(L, out, "residuals undefined at the solution");
+    }
+    std::vector<std::size_t> free;
+    for (std::size_t k = 0; k < d.p; ++k) {
+      if (!L.fixed[k]) free.push_back(k);
+    }
+    const auto nf = static_cast<Eigen::Index>(free.size());
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(nf, nf);
+    for (std::size_t g = 0; g < d.n; ++g) {
+      for (Eigen::Index a = 0; a < nf; ++a) {
+        for (Eigen::Index b = 0; b < nf; ++b) {
+          H(a, b) += J[g * d.p + free[static_cast<std::size_t>(a)]] * J[g * d.p + free[static_cast<std::size_t>(b)]];
+        }
+      }
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+    const double emax = es.eigenvalues().cwiseAbs().maxCoeff();
+    if (!H.allFinite() || !(emax > 0.0) || !(es.eigenvalues().minCoeff() > 1e-13 * emax)) {
+      return no_covariance(L, out, "rank-deficient Jacobian (parameters not separately identifiable at this solution)");
+    }
+  }
+  ceres::Problem problem;
+  problem.AddResidualBlock(new WavelengthCost(d, w), nullptr, x.data());
+  std::vector<int> constant;
+  for (std::size_t k = 0; k < d.p; ++k) {
+    if (L.fixed[k]) constant.push_back(static_cast<int>(k));
+  }
+  fix_coordinates(problem, x.data(), static_cast<int>(d.p), constant);
+  ceres::Covariance::Options co;
+  co.algorithm_type = ceres::DENSE_SVD;
+  co.min_reciprocal_condition_number = 1e-14;
+  co.null_space_rank = 0;
+  co.apply_loss_function = true;
+  co.num_threads = 1;
+  ceres::Covariance covariance(co);
+  std::vector<std::pair<const double*, const double*>> blocks = {{x.data(), x.data()}};
+  if (!covariance.Compute(blocks, &problem)) {
+    return no_covariance(L, out, "rank-deficient Jacobian (parameters not separately identifiable at this solution)");
+  }
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(d.p, d.p);
+  covariance.GetCovarianceBlock(x.data(), x.data(), c.data());
+  const double s2 = out.chi2 / static_cast<double>(out.points - out.free_parameters);
+  Eigen::MatrixXd cov = c * s2;
+  if (!cov.allFinite()) return no_covariance(L, out, "covariance not finite");
+  out.covariance_ok = true;
+  out.covariance_message.clear();
+  set_covariance(L, cov, out);
+}
+
+void joint_covariance(const FitData& d, const ParameterLayout& L, std::vector<WavelengthFit>& fits) {
+  const std::size_t M = d.m, p = d.p;
+  std::vector<std::size_t> lf, sf;  // free local / shared full indices
+  for (std::size_t k = 0; k < p; ++k) {
+    if (!L.fixed[k]) (L.shared[k] ? sf : lf).push_back(k);
+  }
+  const auto nl = static_cast<Eigen::Index>(lf.size()), ns = static_cast<Eigen::Index>(sf.size());
+  std::size_t n_total = 0;
+  double chi2_total = 0.0;
+  Eigen::MatrixXd Hss = Eigen::MatrixXd::Zero(ns, ns);
+  std::vector<Eigen::MatrixXd> Hll_inv(M), Hls(M);
+  std::vector<bool> ok(M, true);
+  std::vector<double> r(d.n), J(d.n * p), f(d.n), Js(d.n * p);
+  Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(ns, ns);
+  for (std::size_t w = 0; w < M; ++w) {
+    WavelengthFit& out = fits[w];
+    d.residuals(w, out.parameters.data(), r.data(), J.data(), f.data(), Js.data());
+    n_total += d.n;
+    chi2_total += out.chi2;
+    Eigen::MatrixXd Jl(static_cast<Eigen::Index>(d.n), nl), Jsh(static_cast<Eigen::Index>(d.n), ns);
+    for (std::size_t g = 0; g < d.n; ++g) {
+      for (Eigen::Index i = 0; i < nl; ++i) Jl(static_cast<Eigen::Index>(g), i) = J[g * p + lf[static_cast<std::size_t>(i)]];
+      for (Eigen::Index i = 0; i < ns; ++i) Jsh(static_cast<Eigen::Index>(g), i) = J[g * p + sf[static_cast<std::size_t>(i)]];
+    }
+    const Eigen::MatrixXd Hll = Jl.transpose() * Jl;
+    Hls[w] = Jl.transpose() * Jsh;
+    Hss += Jsh.transpose() * Jsh;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Hll);
+    const double emax = nl > 0 ? es.eigenvalues().cwiseAbs().maxCoeff() : 1.0;
+    if (nl > 0 && !(es.eigenvalues().minCoeff() > 1e-14 * emax)) {
+      ok[w] = false;
+      continue;
+    }
+    Hll_inv[w] = nl > 0 ? Eigen::MatrixXd(es.eigenvectors() * es.eigenvalues().cwiseInverse().asDiagonal() *
+                                          es.eigenvectors().transpose())
+                        : Eigen::MatrixXd(0, 0);
+    schur += Hls[w].transpose() * Hll_inv[w] * Hls[w];
+  }
+  const std::size_t k_total = sf.size() + M * lf.size();
+  if (n_total <= k_total) {
+    for (auto& out : fits) no_covariance(L, out, "no degrees of freedom");
+    return;
+  }
+  const double s2 = chi2_total / static_cast<double>(n_total - k_total);
+  const bool all_ok = std::all_of(ok.begin(), ok.end(), [](bool b) { return b; });
+  Eigen::MatrixXd Css;
+  bool shared_ok = all_ok;
+  if (all_ok && ns > 0) {
+    const Eigen::MatrixXd Sm = Hss - schur;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Sm);
+    const double emax = es.eigenvalues().cwiseAbs().maxCoeff();
+    if (!(es.eigenvalues().minCoeff() > 1e-14 * emax)) {
+      shared_ok = false;
+    } else {
+      Css = es.eigenvectors() * es.eigenvalues().cwiseInverse().asDiagonal() * es.eigenvectors().transpose();
+    }
+  } else if (ns == 0) {
+    Css = Eigen::MatrixXd(0, 0);
+  }
+  for (std::size_t w = 0; w < M; ++w) {
+    WavelengthFit& out = fits[w];
+    if (!shared_ok) {
+      no_covariance(L, out, all_ok ? "rank-deficient: shared parameters not identifiable"
+                                   : "rank-deficient Jacobian at some wavelength (parameters not separately identifiable)");
+      continue;
+    }
+    // Blocks of the inverse of [[Hll, Hls], [Hsl, Hss]] (all wavelengths): Css = S^-1,
+    // Cll = Hll^-1 + Hll^-1 Hls Css Hsl Hll^-1, Cls = -Hll^-1 Hls Css.
+    const Eigen::MatrixXd Bw = Hll_inv[w] * Hls[w];
+    const Eigen::MatrixXd Cll = Hll_inv[w] + Bw * Css * Bw.transpose();
+    const Eigen::MatrixXd Cls = -Bw * Css;
+    Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(p));
+    for (Eigen::Index a = 0; a < nl; ++a) {
+      const auto ia = static_cast<Eigen::Index>(lf[static_cast<std::size_t>(a)]);
+      for (Eigen::Index b = 0; b < nl; ++b) cov(ia, static_cast<Eigen::Index>(lf[static_cast<std::size_t>(b)])) = Cll(a, b);
+      for (Eigen::Index b = 0; b < ns; ++b) {
+        const auto ib = static_cast<Eigen::Index>(sf[static_cast<std::size_t>(b)]);
+        cov(ia, ib) = Cls(a, b);
+        cov(ib, ia) = Cls(a, b);
+      }
+    }
+    for (Eigen::Index a = 0; a < ns; ++a) {
+      for (Eigen::Index b = 0; b < ns; ++b) {
+        cov(static_cast<Eigen::Index>(sf[static_cast<std::size_t>(a)]), static_cast<Eigen::Index>(sf[static_cast<std::size_t>(b)])) = Css(a, b);
+      }
+    }
+    cov *= s2;
+    out.covariance_ok = true;
+    out.covariance_message.clear();
+    set_covariance(L, cov, out);
+  }
+}
+
+}  // namespace roadbrdf::fitting

@@ -1,0 +1,154 @@
+#include "roadbrdf/fitting/losses.h"
+
+#include <cctype>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <string>
+
+#include "roadbrdf/core/error.h"
+
+namespace roadbrdf::fitting {
+
+bool FitData::residuals(std::size_t w, const double* params, double* r, double* jac, double* scratch_f,
+                        double* scratch_j, bool apply_robust) const {
+  if (jac != nullptr) {
+    model->evaluate_prepared_with_gradient(*prepared_geometries, params, scratch_f, scratch_j);
+  } else {
+    model->evaluate_prepared(*prepared_geometries, params, scratch_f);
+  }
+  return residuals_of_values(w, scratch_f, jac != nullptr ? scratch_j : nullptr, r, jac, apply_robust);
+}
+
+bool FitData::residuals_of_values(std::size_t w, const double* f_values, const double* model_jac, double* r,
+                                  double* jac, bool apply_robust) const {
+  const double* yw = y.data() + w * n;
+  const double* mw = mult.data() + w * n;
+  for (std::size_t g = 0; g < n; ++g) {
+    const double f = f_values[g];
+    double d = 0.0;  // dr/df
+    if (loss == FitLoss::kLog) {
+      const double c = cos_i[g];
+      const double a = 1.0 + f * c;
+      if (!(a > 0.0) || !std::isfinite(f)) return false;
+      r[g] = mw[g] * (std::log(a) - std::log(1.0 + yw[g] * c));
+      d = mw[g] * c / a;
+    } else {
+      if (!std::isfinite(f)) return false;
+      r[g] = mw[g] * (f - yw[g]);
+      d = mw[g];
+    }
+    if (apply_robust && robust != RobustLoss::kNone) {
+      const double sq = r[g] * r[g];
+      double rho = sq, drho = 1.0;
+      if (robust == RobustLoss::kHuber) {
+        if (sq > robust_b) {
+          const double root = std::sqrt(sq * robust_b);
+          rho = 2.0 * root - robust_b;
+          drho = robust_b / root;
+        }
+      } else {
+        rho = robust_b * std::log1p(sq / robust_b);
+        drho = 1.0 / (1.0 + sq / robust_b);
+      }
+      const double rt = std::sqrt(rho);
+      if (sq > 0.0) d *= drho * std::fabs(r[g]) / rt;
+      r[g] = r[g] < 0.0 ? -rt : rt;
+    }
+    if (jac != nullptr) {
+      const double* js = model_jac + g * p;
+      double* jr = jac + g * p;
+      for (std::size_t k = 0; k < p; ++k) jr[k] = d * js[k];
+    }
+  }
+  return true;
+}
+
+double FitData::chi2(std::size_t w, const double* params, bool apply_robust) const {
+  std::vector<double> r(n), f(n);
+  if (!residuals(w, params, r.data(), nullptr, f.data(), nullptr, apply_robust)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double s = 0.0;
+  for (double v : r) s += v * v;
+  return s;
+}
+
+}  // namespace roadbrdf::fitting
+
+namespace roadbrdf {
+
+namespace {
+
+std::string lower_case(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+FitLoss fit_loss_from_string(const std::string& name) {
+  const std::string s = lower_case(name);
+  if (s == "plain") return FitLoss::kPlain;
+  if (s == "relative") return FitLoss::kRelative;
+  if (s == "log") return FitLoss::kLog;
+  if (s == "cosine") return FitLoss::kCosine;
+  throw InputError("unknown loss '" + name + "' (known: plain, relative, log, cosine)");
+}
+
+std::string to_string(FitLoss loss) {
+  switch (loss) {
+    case FitLoss::kRelative:
+      return "relative";
+    case FitLoss::kLog:
+      return "log";
+    case FitLoss::kCosine:
+      return "cosine";
+    default:
+      return "plain";
+  }
+}
+
+void robust_loss_from_string(const std::string& text, RobustLoss& kind, double& scale) {
+  const std::string s = lower_case(text);
+  if (s.empty() || s == "none") {
+    kind = RobustLoss::kNone;
+    scale = 1.0;
+    return;
+  }
+  const auto colon = s.find(':');
+  const std::string name = s.substr(0, colon);
+  if (name == "huber") {
+    kind = RobustLoss::kHuber;
+  } else if (name == "cauchy") {
+    kind = RobustLoss::kCauchy;
+  } else {
+    throw InputError("unknown robust loss '" + text + "' (use huber:SCALE or cauchy:SCALE)");
+  }
+  if (colon == std::string::npos) throw InputError("robust loss '" + text + "' needs a scale, e.g. " + name + ":0.01");
+  const std::string number = s.substr(colon + 1);
+  std::size_t used = 0;
+  double v = std::numeric_limits<double>::quiet_NaN();
+  try {
+    v = std::stod(number, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != number.size() || !(v > 0.0) || !std::isfinite(v)) {
+    throw InputError("robust loss scale '" + number + "' must be a positive number");
+  }
+  scale = v;
+}
+
+std::string to_string(RobustLoss loss) {
+  switch (loss) {
+    case RobustLoss::kHuber:
+      return "huber";
+    case RobustLoss::kCauchy:
+      return "cauchy";
+    default:
+      return "none";
+  }
+}
+
+}  // namespace roadbrdf
