@@ -261,7 +261,7 @@ void register_fit_command(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--seed", args.seed, "Seed of the multi-start points")->capture_default_str();
   c->add_option("--wavelengths", args.wavelengths, "Wavelengths to fit: START:STOP:STEP or a list, nm");
-  c->add_option("--threads", args.threads, "Threads (per-wavelength mode; joint mode: Ceres threads)")
+  c->add_option("--threads", args.threads, "Threads (per-wavelength mode; the results do not depend on it)")
       ->capture_default_str();
   c->add_option("--joint-solver", args.joint_solver,
                 "Joint mode linear solver: dense-schur | sparse-schur | iterative-schur (per-wavelength blocks "

@@ -1,9 +1,10 @@
 // Fitting any model (models/registry.h) to a measured spectral BRDF (io/dataset.h) with Ceres Solver.
 //
 // Two modes:
-//  - per wavelength: one small nonlinear least-squares problem per wavelength, solved in parallel
-//    (contiguous chunks of wavelengths per thread; inside a chunk each wavelength starts from the
-//    solution of the previous one, "warm start");
+//  - per wavelength: one small nonlinear least-squares problem per wavelength, solved in parallel.
+//    Each wavelength starts from the solution of the previous one ("warm start") along chains of 32
+//    wavelengths; the first wavelength of a chain starts from the first of the previous chain. The
+//    chains do not depend on the thread count, and neither do the results (bit for bit);
 //  - joint spectral ("shared" parameters): one problem holding the shared parameters once and one
 //    block of the other parameters per wavelength. The per-wavelength blocks form the first
 //    elimination group of Ceres' Schur-complement solver, so the linear algebra per iteration is
@@ -80,7 +81,7 @@ struct FitOptions {
   // "iterative-schur" (conjugate gradients on the Schur complement, Jacobi preconditioner;
   // EXPERIMENTAL: on a small test problem Ceres 2.1 stopped with "Numerical failure, rho = r'z = 0").
   std::string joint_solver = "dense-schur";
-  int threads = 1;           // per-wavelength mode
+  int threads = 1;           // per-wavelength mode (the results do not depend on it); joint mode: 1
   int max_iterations = 200;
   double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;

@@ -110,7 +110,9 @@ void fit_joint(const FitData& d, const ParameterLayout& L, const FitOptions& o, 
     std::string why;
     if (!so.IsValid(&why)) throw InputError("joint solver '" + o.joint_solver + "' is not available: " + why);
     so.linear_solver_ordering.reset(ordering);
-    so.num_threads = std::max(1, o.threads);
+    // One thread: Ceres' multi-threaded Schur elimination sums the blocks in a thread-dependent
+    // order, which changed the last digits of the result with the thread count.
+    so.num_threads = 1;
     ProgressCallback cb(o);
     if (o.progress) so.callbacks.push_back(&cb);
     ceres::Solver::Summary summary;

@@ -2,9 +2,9 @@
 
 #include <ceres/ceres.h>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <atomic>
@@ -18,6 +18,9 @@
 namespace roadbrdf::fitting {
 
 namespace {
+
+// Wavelengths per warm-start chain (see fit_per_wavelength).
+constexpr std::size_t kChainLength = 32;
 
 struct SingleSolve {
   std::vector<double> x;
@@ -100,9 +103,11 @@ std::vector<double> fit_wavelength(const FitData& d, const ParameterLayout& L, c
 
 }  // namespace
 
-// Wavelengths are split into `threads` contiguous chains; inside a chain each wavelength starts
-// from the previous one's solution (warm start). The chains run as TBB tasks in an arena of
-// `threads` threads; progress is reported by the calling thread only.
+// Warm-start chains of fixed length, independent of the thread count (so are the results): the
+// wavelengths are cut into chains of kChainLength; the first wavelength of each chain (its anchor)
+// starts from the previous anchor's solution, the others from the previous wavelength's. The
+// anchors are solved in order by the calling thread, which hands each chain's remainder to a TBB
+// task as soon as its anchor is solved; progress is reported by the calling thread only.
 void fit_per_wavelength(const FitData& d, const ParameterLayout& L, const FitOptions& o, FitResult& result) {
   const std::size_t M = d.m;
   result.wavelengths.assign(M, WavelengthFit{});
@@ -111,28 +116,43 @@ void fit_per_wavelength(const FitData& d, const ParameterLayout& L, const FitOpt
     if (!L.fixed[k]) ++n_free;
   }
   const auto lhs = latin_hypercube(L, L.start, std::max(0, o.multistart - 2), o.seed);
-  const int threads = std::max(1, std::min<int>(o.threads, static_cast<int>(M)));
-  const std::size_t chains = static_cast<std::size_t>(threads);
+  const std::size_t chains = (M + kChainLength - 1) / kChainLength;
+  std::vector<std::vector<double>> anchor_solution(chains);
   std::atomic<std::size_t> done{0};
   const std::thread::id caller = std::this_thread::get_id();
-
-  auto run_chain = [&](std::size_t t) {
-    const std::size_t begin = M * t / chains, end = M * (t + 1) / chains;
-    std::vector<double> warm = L.start;
-    for (std::size_t w = begin; w < end; ++w) {
-      std::vector<double> x = fit_wavelength(d, L, o, w, warm, w == begin, lhs, n_free, result.wavelengths[w]);
+  auto count_done = [&] {
+    const std::size_t count = done.fetch_add(1) + 1;
+    if (o.progress && std::this_thread::get_id() == caller) o.progress(count, M);
+  };
+  auto run_chain_rest = [&](std::size_t c) {
+    std::vector<double> warm = anchor_solution[c];
+    for (std::size_t w = c * kChainLength + 1; w < std::min(M, (c + 1) * kChainLength); ++w) {
+      std::vector<double> x = fit_wavelength(d, L, o, w, o.warm_start ? warm : L.start, false, lhs, n_free,
+                                             result.wavelengths[w]);
       if (o.warm_start) warm = std::move(x);
-      const std::size_t count = done.fetch_add(1) + 1;
-      if (o.progress && std::this_thread::get_id() == caller) o.progress(count, M);
+      count_done();
     }
   };
-  tbb::task_arena arena(threads);
+  // More threads than the machine runs at once would only make TBB warn: the results do not depend on it.
+  tbb::task_arena arena(std::clamp(o.threads, 1, tbb::info::default_concurrency()));
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chains, 1),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t t = range.begin(); t != range.end(); ++t) run_chain(t);
-                      },
-                      tbb::simple_partitioner());
+    tbb::task_group chain_tasks;
+    try {
+      std::vector<double> warm = L.start;
+      for (std::size_t c = 0; c < chains; ++c) {
+        const std::size_t w = c * kChainLength;
+        anchor_solution[c] = fit_wavelength(d, L, o, w, o.warm_start ? warm : L.start, c == 0, lhs, n_free,
+                                            result.wavelengths[w]);
+        warm = anchor_solution[c];
+        count_done();
+        chain_tasks.run([&run_chain_rest, c] { run_chain_rest(c); });
+      }
+    } catch (...) {
+      chain_tasks.cancel();
+      chain_tasks.wait();
+      throw;
+    }
+    chain_tasks.wait();
   });
   if (o.progress) o.progress(M, M);
 }
