@@ -39,16 +39,7 @@ echo "calibrated BRDF written to $out/soreze-calibrated.csv"
 
 section "3. Fitting every single-material sample and mastic (models ranked by BIC)"
 mkdir -p "$out/fits" "$out/formulations"
-fit_sample() {  # name file
-  local name="$1" file="$2"
-  echo "-- $name"
-  "$rb" fit "$file" --model oren-nayar --model oren-nayar+torrance-sparrow --model hapke \
-      --fix oren-nayar.weight=1 --fix torrance-sparrow.weight=1 --multistart 8 -o "$out/fits/$name.fit.json" 2>/dev/null \
-      | sed -n '2,99p'
-}
-for f in data/examples/single/*.csv data/examples/mastics/*.csv; do
-  fit_sample "$(basename "$f" .csv)" "$f"
-done
+bash examples/fit_components.sh "$build" "$out/fits"
 for k in 1 2 3 4; do
   "$rb" fit "data/examples/mixed/F$k.csv" --model oren-nayar+torrance-sparrow \
       --fix oren-nayar.weight=1 --fix torrance-sparrow.weight=1 --multistart 8 -o "$out/fits/F$k-measured.fit.json" >/dev/null 2>&1
