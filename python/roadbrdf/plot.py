@@ -434,6 +434,15 @@ def main(argv=None):
     p.add_argument("-p", "--parameter", action="append")
     output(p)
     a = parser.parse_args(argv)
+    # As every roadbrdf command: the figure must not replace one of the files it is drawn from.
+    inputs = []
+    for role in ("data", "model", "fit", "result", "table"):
+        value = getattr(a, role, None)
+        for path in (value if isinstance(value, list) else [value]):
+            if isinstance(path, str):
+                inputs.append((role.upper(), path))
+    from . import _roadbrdf
+    _roadbrdf.check_distinct_files(inputs, [("-o", a.output)])
     if a.kind == "spectral":
         spectral(a.data, a.geometry, title=a.title, output=a.output)
     elif a.kind == "hemisphere":

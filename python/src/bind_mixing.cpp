@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "binding.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
@@ -31,7 +32,16 @@ void bind_mixing(py::module_& m) {
          std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output,
          bool use_sigma, const std::string& residuals) {
         using namespace mixing;
+        std::vector<FileArgument> files_read = {
+            {"formulation", formulation_path}, {"data", data_path}, {"reference", reference_path}};
+        const std::vector<FileArgument> outputs = {{"output", output}, {"residuals", residuals}};
+        check_distinct_files(files_read, outputs);
         const Formulation formulation = read_formulation(formulation_path);
+        if (formulation.mastic) files_read.push_back({"mastic.fit of " + formulation_path, formulation.mastic->fit_path});
+        for (const auto& c : formulation.components) {
+          files_read.push_back({"fit of component '" + c.name + "'", c.fit_path});
+        }
+        check_distinct_files(files_read, outputs);
         const MixInputs inputs = load_mix_inputs(formulation);
         MixSettings settings;
         settings.binder_coverage = binder_coverage;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "binding.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
@@ -103,6 +104,16 @@ PYBIND11_MODULE(_roadbrdf, m) {
   m.def("model_names", &model_names, "Names of the single (non-composite) models.");
   m.def("data_directory", &data_directory, "Folder of the bundled data tables (share/roadbrdf/data).");
   m.attr("__version__") = version();
+
+  // The check every command makes before it works (core/atomic_file.h): inputs and outputs as
+  // (role, path) pairs.
+  m.def("check_distinct_files", [](const std::vector<std::pair<std::string, std::string>>& inputs,
+                                   const std::vector<std::pair<std::string, std::string>>& outputs) {
+    std::vector<FileArgument> in, out;
+    for (const auto& [role, path] : inputs) in.push_back({role, path});
+    for (const auto& [role, path] : outputs) out.push_back({role, path});
+    check_distinct_files(in, out);
+  });
 
   py::class_<Model, std::shared_ptr<Model>>(m, "Model")
       .def_property_readonly("name", &Model::name)

@@ -16,14 +16,25 @@ struct CliResult {
   std::string output;  // standard output and standard error together
 };
 
-inline CliResult run_cli(const std::string& arguments) {
-  const std::string command = roadbrdf::test::cli_program() + " " + arguments + " 2>&1";
+// Runs a shell command line; returns its exit status and everything it printed to the pipe.
+inline CliResult run_shell(const std::string& command) {
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 4096> buffer{};
   while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
   const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
+  // A program killed by a signal counts as 128 + the signal, as the shell reports it.
+  return {WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status), output};
+}
+
+inline CliResult run_cli(const std::string& arguments) {
+  return run_shell(roadbrdf::test::cli_program() + " " + arguments + " 2>&1");
+}
+
+// The program with its standard output sent to `target` (e.g. /dev/full); `output` holds standard
+// error only.
+inline CliResult run_cli_with_stdout(const std::string& arguments, const std::string& target) {
+  return run_shell(roadbrdf::test::cli_program() + " " + arguments + " 2>&1 >" + target);
 }
 
 }  // namespace roadbrdf::test

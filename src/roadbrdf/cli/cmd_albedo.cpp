@@ -44,6 +44,9 @@ struct AlbedoArgs {
 };
 
 void run(const AlbedoArgs& a) {
+  check_distinct_files({{"MODEL", a.model}, {"--diffuse-fraction", a.diffuse_fraction}, {"--spectrum", a.spectrum},
+                        {"--illuminant", a.illuminant}},
+                       {{"-o", a.output}});
   const SpectralModel sm = spectral_model_from_command_line(a.model, a.parameters, a.options, a.fit_model);
   albedo::AlbedoRequest request;
   request.sun_zenith_deg = parse_list_or_range(a.sun_zenith, "--sun-zenith");
@@ -57,13 +60,9 @@ void run(const AlbedoArgs& a) {
   request.tolerance = a.tolerance;
   const nlohmann::json report = albedo::compute_albedo(sm, request);
   const std::string text = a.as_json ? report.dump(2) + "\n" : albedo::albedo_table(report);
-  if (a.output.empty()) {
-    std::cout << text;
-  } else {
-    AtomicFile out(a.output);
-    out.stream() << text;
-    out.commit();
-  }
+  AtomicFile out(a.output.empty() ? std::string("-") : a.output);
+  out.stream() << text;
+  out.commit();
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -24,6 +25,9 @@ struct CalibrateArgs {
 };
 
 void run(const CalibrateArgs& a) {
+  check_distinct_files({{"SAMPLE", a.sample}, {"--reference", a.reference}, {"--dark", a.dark},
+                        {"--panel-reflectance", a.panel}, {"--panel-brf", a.panel_brf}},
+                       {{"-o", a.output}});
   DatasetReadOptions radiance;
   radiance.any_units = true;
   CalibrationInput in;

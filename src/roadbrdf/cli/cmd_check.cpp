@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -22,6 +23,7 @@ struct CheckArgs {
 };
 
 void run(CheckArgs& a) {
+  check_distinct_files({{"DATA", a.data}, {"--panel-reflectance", a.panel}}, {});
   DatasetReadOptions read;
   read.allow_missing = true;  // counted in the report
   read.average_duplicates = a.average_duplicates;
@@ -32,9 +34,13 @@ void run(CheckArgs& a) {
   if (a.json) {
     nlohmann::json j = quality_report_json(d, r);
     j["file"] = a.data;
-    std::cout << j.dump(2) << '\n';
+    AtomicFile out("-");
+    out.stream() << j.dump(2) << '\n';
+    out.commit();
   } else {
-    std::cout << a.data << '\n' << quality_report_text(d, r);
+    AtomicFile out("-");
+    out.stream() << a.data << '\n' << quality_report_text(d, r);
+    out.commit();
   }
 }
 

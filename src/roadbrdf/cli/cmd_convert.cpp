@@ -6,6 +6,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
@@ -30,6 +31,7 @@ struct ConvertArgs {
 };
 
 void run(const ConvertArgs& a) {
+  check_distinct_files({{"INPUT", a.input}, {"--curet-table", a.curet_table}}, {{"-o", a.output}});
   SpectralDataset d;
   if (a.from == "auto" || a.from == "wide" || a.from == "long") {
     DatasetReadOptions o;
@@ -44,6 +46,7 @@ void run(const ConvertArgs& a) {
     const std::string table = a.curet_table.empty()
                                   ? (std::filesystem::path(a.input).parent_path() / "table.txt").string()
                                   : a.curet_table;
+    check_distinct_files({{"INPUT", a.input}, {"--curet-table", table}}, {{"-o", a.output}});
     CuretReadOptions o;
     if (a.wavelength > 0) o.nominal_wavelength_nm = a.wavelength;
     d = read_curet(a.input, table, a.sample, o);

@@ -31,16 +31,13 @@ void run(const EvalArgs& a) {
     if (a.theta_i || a.phi_i || a.theta_r || a.phi_r) {
       throw InputError("give either --geometry or the four angles, not both");
     }
+    check_distinct_files({{"--geometry", a.geometry_file}}, {{"-o", a.output}});
     const GeometryTable table = read_geometry_file(a.geometry_file);
     std::vector<double> brdf(table.geometries.size());
     m.model->evaluate_batch(table.geometries.data(), table.geometries.size(), m.parameters.data(), 1, brdf.data());
-    if (a.output.empty()) {
-      write_geometry_table_with_column(std::cout, table, "brdf", brdf);
-    } else {
-      AtomicFile out(a.output);
-      write_geometry_table_with_column(out.stream(), table, "brdf", brdf);
-      out.commit();
-    }
+    AtomicFile out(a.output.empty() ? std::string("-") : a.output);
+    write_geometry_table_with_column(out.stream(), table, "brdf", brdf);
+    out.commit();
     return;
   }
   if (!a.theta_i || !a.phi_i || !a.theta_r || !a.phi_r) {

@@ -98,6 +98,8 @@ std::string number_or_dash(double x, const char* format) {
 void run(const FitArgs& a) {
   if (a.models.empty()) throw InputError("give at least one --model");
   if (a.output.empty()) throw InputError("give the output fit file with -o FIT.json");
+  check_distinct_files({{"DATA", a.data}}, {{"-o", a.output}, {"--residuals", a.residuals}});
+  std::FILE* report = report_stream(a.output);
   SpectralDataset data = read_dataset(a.data);
   if (!a.wavelengths.empty()) data = subset_wavelengths(data, select_wavelengths(data.wavelengths, a.wavelengths));
 
@@ -187,22 +189,22 @@ void run(const FitArgs& a) {
     return fits[x].bic_total < fits[y].bic_total;
   });
   const std::size_t M = data.wavelength_count();
-  fmt::print("# {} geometries x {} wavelengths ({}-{} nm), loss {}{}{}\n", data.geometry_count(), M,
+  fmt::print(report, "# {} geometries x {} wavelengths ({}-{} nm), loss {}{}{}\n", data.geometry_count(), M,
              data.wavelengths.front(), data.wavelengths.back(), to_string(base.loss),
              base.robust == RobustLoss::kNone ? "" : ", robust " + to_string(base.robust),
              data.has_sigma() && base.use_sigma ? ", weights 1/sigma^2" : "");
-  fmt::print("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank", "model", "k",
+  fmt::print(report, "{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank", "model", "k",
              "RMSE[sr^-1]", "relRMSE%", "maxrel%", "AIC", "BIC", "converged", "atbound", "time[s]");
   for (std::size_t r = 0; r < order.size(); ++r) {
     const FitResult& f = fits[order[r]];
-    fmt::print("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8.2f}\n", r + 1, f.model,
+    fmt::print(report, "{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8.2f}\n", r + 1, f.model,
                f.free_parameters_total, number_or_dash(f.rmse_total, "{:.4g}"),
                number_or_dash(100.0 * f.relative_rmse_total, "{:.3g}"),
                number_or_dash(100.0 * f.max_relative_error_total, "{:.3g}"), number_or_dash(f.aic_total, "{:.2f}"),
                number_or_dash(f.bic_total, "{:.2f}"), fmt::format("{}/{}", f.converged_count, M), f.at_bound_count,
                f.seconds);
   }
-  fmt::print("best (lowest total BIC): {}\n", fits[order.front()].model);
+  fmt::print(report, "best (lowest total BIC): {}\n", fits[order.front()].model);
   for (const auto& f : fits) {
     if (f.converged_count < M) {
       fmt::print(stderr, "roadbrdf: warning: {}: {} of {} wavelengths did not converge (see 'status' in {})\n",

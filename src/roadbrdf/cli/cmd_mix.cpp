@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -54,7 +56,14 @@ std::string weights_text(const mixing::MixResult& r) {
 void run(const MixArgs& a) {
   using namespace mixing;
   if (a.output.empty()) throw InputError("give the output file with -o MIX.json");
+  std::vector<FileArgument> inputs_read = {{"FORMULATION", a.formulation}, {"--data", a.data}, {"--reference", a.reference}};
+  const std::vector<FileArgument> outputs = {{"-o", a.output}, {"--residuals", a.residuals}};
+  check_distinct_files(inputs_read, outputs);
   const Formulation formulation = read_formulation(a.formulation);
+  if (formulation.mastic) inputs_read.push_back({"mastic.fit of " + a.formulation, formulation.mastic->fit_path});
+  for (const auto& c : formulation.components) inputs_read.push_back({"fit of component '" + c.name + "'", c.fit_path});
+  check_distinct_files(inputs_read, outputs);
+  std::FILE* report = report_stream(a.output);
   const MixInputs inputs = load_mix_inputs(formulation);
   MixSettings settings;
   settings.binder_coverage = a.binder_coverage;
@@ -108,40 +117,40 @@ void run(const MixArgs& a) {
   write_mix_file(a.output, content);
   if (!a.residuals.empty()) write_residual_file(a.residuals, *data, content.comparisons);
 
-  fmt::print("formulation {} ({} components, {} end-members)\n", formulation.name, formulation.components.size(),
+  fmt::print(report, "formulation {} ({} components, {} end-members)\n", formulation.name, formulation.components.size(),
              inputs.end_members.size());
   if (data) {
-    fmt::print("measured mixture {}: {} geometries x {} wavelengths; errors on held-out geometries ({}-fold)\n",
+    fmt::print(report, "measured mixture {}: {} geometries x {} wavelengths; errors on held-out geometries ({}-fold)\n",
                a.data, data->geometry_count(), data->wavelength_count(), a.folds);
     if (data->has_sigma()) {
-      fmt::print("fitted methods {} (sigma from the data); chi2/n: held-out reduced chi^2\n",
+      fmt::print(report, "fitted methods {} (sigma from the data); chi2/n: held-out reduced chi^2\n",
                  settings.use_sigma ? "weighted by 1/sigma^2" : "unweighted (--no-sigma)");
     }
-    fmt::print("{:<9} {:>12} {:>9} {:>8} {:>12} {:>8} {:>9}  {}\n", "method", "RMSE[sr-1]", "relRMSE", "chi2/n",
+    fmt::print(report, "{:<9} {:>12} {:>9} {:>8} {:>12} {:>8} {:>9}  {}\n", "method", "RMSE[sr-1]", "relRMSE", "chi2/n",
                "RMSE(fit)", "albedo", "d_albedo", "weights");
     std::size_t best = 0;
     for (std::size_t i = 0; i < content.comparisons.size(); ++i) {
       const Comparison& c = content.comparisons[i];
       if (c.rmse < content.comparisons[best].rmse) best = i;
-      fmt::print("{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse,
+      fmt::print(report, "{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse,
                  c.relative_rmse, std::isfinite(c.chi2_reduced) ? fmt::format("{:.4g}", c.chi2_reduced) : std::string("n/a"),
                  c.rmse_in_sample, c.albedo,
                  std::isfinite(c.albedo_difference) ? fmt::format("{:+.4f}", c.albedo_difference) : std::string("n/a"),
                  weights_text(c.result));
     }
-    fmt::print("best method for {}: {} (held-out RMSE {:.5g} sr^-1)\n", formulation.name,
+    fmt::print(report, "best method for {}: {} (held-out RMSE {:.5g} sr^-1)\n", formulation.name,
                to_string(content.comparisons[best].method), content.comparisons[best].rmse);
   } else {
-    fmt::print("{:<9} {:>8}  {}\n", "method", "albedo", "weights");
+    fmt::print(report, "{:<9} {:>8}  {}\n", "method", "albedo", "weights");
     for (const auto& r : content.results) {
       const std::vector<double> albedo = mixture_white_sky_albedo(inputs, r, r.model->wavelengths());
       double mean = 0.0;
       for (double x : albedo) mean += x / albedo.size();
-      fmt::print("{:<9} {:>8.4f}  {}\n", to_string(r.method), mean, weights_text(r));
+      fmt::print(report, "{:<9} {:>8.4f}  {}\n", to_string(r.method), mean, weights_text(r));
     }
   }
-  fmt::print("wrote {}\n", a.output);
-  if (!a.residuals.empty()) fmt::print("wrote {} (held-out residuals)\n", a.residuals);
+  fmt::print(report, "wrote {}\n", a.output);
+  if (!a.residuals.empty()) fmt::print(report, "wrote {} (held-out residuals)\n", a.residuals);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 
@@ -47,7 +48,9 @@ void run(bool as_json) {
   if (as_json) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& name : model_names()) all.push_back(description_to_json(make_model(name)->description()));
-    std::cout << all.dump(2) << '\n';
+    AtomicFile out("-");
+    out.stream() << all.dump(2) << '\n';
+    out.commit();
     return;
   }
   for (const auto& name : model_names()) {

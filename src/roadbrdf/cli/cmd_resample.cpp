@@ -5,6 +5,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/quality.h"
@@ -25,6 +26,7 @@ struct ResampleArgs {
 };
 
 void run(const ResampleArgs& a) {
+  check_distinct_files({{"DATA", a.data}}, {{"-o", a.output}});
   const SpectralDataset d = read_dataset(a.data);
   const WavelengthBands bands = bands_from_edges(parse_wavelength_range(a.wavelengths));
   std::vector<std::pair<double, double>> drop;

@@ -12,6 +12,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -82,6 +83,9 @@ void run(const RTableArgs& a) {
   if ((a.wavelength || !a.band.empty()) && !a.illuminant.empty()) {
     throw InputError("--illuminant applies to photometric weighting only; drop it with --wavelength or --band");
   }
+  check_distinct_files({{"MODEL", a.model}, {"--import", a.import_file}, {"--compare", a.compare_file},
+                        {"--illuminant", a.illuminant}},
+                       {{"-o", a.output}});
   const Q0Region region = region_from_name(a.q0_region);
   const ClassSystem system = class_system_from_name(a.class_system);
 

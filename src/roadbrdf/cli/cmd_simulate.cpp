@@ -7,6 +7,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
@@ -32,6 +33,12 @@ struct SimulateArgs {
 };
 
 void run(const SimulateArgs& a) {
+  std::vector<FileArgument> inputs = {{"MODEL", a.model}, {"--grid", a.grid}};
+  for (const auto& item : a.spectral) {
+    const auto eq = item.find('=');
+    if (eq != std::string::npos) inputs.push_back({"--spectral", item.substr(eq + 1)});
+  }
+  check_distinct_files(inputs, {{"-o", a.output}});
   const SpectralModel model = spectral_model_from_command_line(a.model, a.parameters, a.options, a.fit_model);
   const GeometryTable grid = read_geometry_file(a.grid);
   SimulationInput in;

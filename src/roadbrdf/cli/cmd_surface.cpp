@@ -19,6 +19,7 @@
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -94,15 +95,15 @@ surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
   return m;
 }
 
-void print_statistics(const surface::HeightField& f, const surface::TextureStatistics& s) {
-  fmt::print("surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny, f.cell_size_mm,
+void print_statistics(std::FILE* report, const surface::HeightField& f, const surface::TextureStatistics& s) {
+  fmt::print(report, "surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny, f.cell_size_mm,
              f.size_x_mm(), f.size_y_mm());
-  fmt::print("MPD {:.3f} mm (ISO 13473-1 style, baseline = sample period), ETD {:.3f} mm, rms height {:.3f} mm, "
+  fmt::print(report, "MPD {:.3f} mm (ISO 13473-1 style, baseline = sample period), ETD {:.3f} mm, rms height {:.3f} mm, "
              "area ratio {:.3f}\n",
              s.mpd_mm, s.etd_mm, s.rms_height_mm, s.surface_area_ratio);
-  fmt::print("{:<40} {:>12} {:>12}\n", "material", "area frac.", "true area");
+  fmt::print(report, "{:<40} {:>12} {:>12}\n", "material", "area frac.", "true area");
   for (std::size_t k = 0; k < f.materials.size(); ++k) {
-    fmt::print("{:<40} {:>12.4f} {:>12.4f}\n", f.materials[k].name, s.exposed_area_fraction[k],
+    fmt::print(report, "{:<40} {:>12.4f} {:>12.4f}\n", f.materials[k].name, s.exposed_area_fraction[k],
                s.exposed_true_area_fraction[k]);
   }
 }
@@ -110,6 +111,10 @@ void print_statistics(const surface::HeightField& f, const surface::TextureStati
 void run_surface(const SurfaceArgs& a) {
   if (a.output.empty()) throw InputError("give the output file with -o SURFACE.json");
   if (a.flat && a.gaussian_slopes) throw InputError("--flat and --gaussian-slopes exclude each other");
+  std::vector<FileArgument> inputs = {{"INPUT", a.input}};
+  const std::vector<FileArgument> outputs = {{"-o", a.output}, {"--preview", a.preview}};
+  check_distinct_files(inputs, outputs);
+  std::FILE* report = report_stream(a.output);
   surface::HeightField field;
   if (a.flat || a.gaussian_slopes) {
     const surface::MaterialSpec m = material_from_argument(a);
@@ -123,12 +128,11 @@ void run_surface(const SurfaceArgs& a) {
     if (!a.parameter_items.empty() || !a.option_items.empty()) {
       throw InputError("-p/--option are for --flat and --gaussian-slopes surfaces");
     }
-    std::ifstream in(a.input);
-    if (!in) throw FileError(a.input, 0, 0, "cannot open the formulation file");
-    std::stringstream text;
-    text << in.rdbuf();
     // Fit files are needed only to render: they may not exist yet (warned below).
-    const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(text.str(), a.input, false);
+    const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(read_text_file(a.input), a.input, false);
+    if (formulation.mastic) inputs.push_back({"mastic.fit of " + a.input, formulation.mastic->fit_path});
+    for (const auto& c : formulation.components) inputs.push_back({"fit of component '" + c.name + "'", c.fit_path});
+    check_distinct_files(inputs, outputs);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratorSettings s;
     s.size_mm = parse_length_mm(a.size);
@@ -149,20 +153,20 @@ void run_surface(const SurfaceArgs& a) {
                    m.fit_path);
       }
     }
-    fmt::print("{}\n", field.description);
+    fmt::print(report, "{}\n", field.description);
     if (a.mastic_fraction) {
-      fmt::print("exposed mastic fraction {:.4f} (requested {}, tolerance {:.4g}) at mastic level {:.4f} mm\n",
+      fmt::print(report, "exposed mastic fraction {:.4f} (requested {}, tolerance {:.4g}) at mastic level {:.4f} mm\n",
                  sample.mastic_fraction, *a.mastic_fraction, sample.mastic_fraction_tolerance, sample.matrix_level_mm);
     }
   }
   const surface::TextureStatistics stats = surface::texture_statistics(field);
   surface::write_surface(field, a.output, &stats);
-  print_statistics(field, stats);
+  print_statistics(report, field, stats);
   if (!a.preview.empty()) {
     surface::write_preview_png(field, a.preview);
-    fmt::print("wrote {}\n", a.preview);
+    fmt::print(report, "wrote {}\n", a.preview);
   }
-  fmt::print("wrote {}\n", a.output);
+  fmt::print(report, "wrote {}\n", a.output);
 }
 
 struct RenderArgs {
@@ -185,20 +189,25 @@ struct RenderArgs {
 };
 
 surface::RenderSettings render_settings(const RenderArgs& a);
-void run_render_albedo(const RenderArgs& a);
+void run_render_albedo(const RenderArgs& a, const surface::HeightField& field);
 
 void run_render(const RenderArgs& a) {
   if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
   if (a.samples && a.target_error) throw InputError("--samples and --target-error exclude each other");
   if (a.grid.empty() == a.albedo.empty()) throw InputError("give either --grid GRID.csv or --albedo ZENITHS");
-  if (!a.albedo.empty()) return run_render_albedo(a);
+  std::vector<FileArgument> inputs = {{"SURFACE", a.surface}, {"--grid", a.grid}};
+  check_distinct_files(inputs, {{"-o", a.output}});
   const surface::HeightField field = surface::read_surface(a.surface);
+  for (const auto& m : field.materials) inputs.push_back({"fit of material '" + m.name + "'", m.fit_path});
+  check_distinct_files(inputs, {{"-o", a.output}});
+  if (!a.albedo.empty()) return run_render_albedo(a, field);
   const GeometryTable grid = read_geometry_file(a.grid);
   const std::vector<double> wavelengths =
       a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
   const surface::RenderSettings s = render_settings(a);
   std::vector<surface::Estimate> estimates;
   SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
+  std::FILE* report = report_stream(a.output);
   data.convention = grid.convention;
   write_dataset(data, a.output, dataset_format_from_string(a.format));
   long total_paths = 0;
@@ -209,13 +218,13 @@ void run_render(const RenderArgs& a) {
   }
   std::sort(worst.begin(), worst.end());
   auto quantile = [&](double q) { return worst[static_cast<std::size_t>(q * static_cast<double>(worst.size() - 1) + 0.5)]; };
-  fmt::print("rendered {}: {} geometries x {} wavelengths, {} sampling, acceptance {} deg, {} paths in total\n",
+  fmt::print(report, "rendered {}: {} geometries x {} wavelengths, {} sampling, acceptance {} deg, {} paths in total\n",
              a.surface, data.geometry_count(), data.wavelength_count(), a.sampling, a.acceptance, total_paths);
-  fmt::print("per-geometry worst relative standard error over wavelengths: median {:.3g}, 90th percentile {:.3g}, "
+  fmt::print(report, "per-geometry worst relative standard error over wavelengths: median {:.3g}, 90th percentile {:.3g}, "
              "max {:.3g}\n",
              quantile(0.5), quantile(0.9), worst.back());
   if (a.target_error) {
-    fmt::print("adaptive: target {} (or {} sr^-1 for values near 0), paths per geometry {}\n", *a.target_error,
+    fmt::print(report, "adaptive: target {} (or {} sr^-1 for values near 0), paths per geometry {}\n", *a.target_error,
                a.error_floor, data.metadata["paths_per_geometry"]);
     std::size_t missed = 0;
     for (std::size_t g = 0; g < estimates.size(); ++g) {
@@ -230,7 +239,7 @@ void run_render(const RenderArgs& a) {
     }
     if (missed > 0) fmt::print(stderr, "roadbrdf: warning: {} of {} geometries did not reach the target\n", missed, estimates.size());
   }
-  fmt::print("wrote {}\n", a.output);
+  fmt::print(report, "wrote {}\n", a.output);
 }
 
 surface::RenderSettings render_settings(const RenderArgs& a) {
@@ -250,15 +259,15 @@ surface::RenderSettings render_settings(const RenderArgs& a) {
 // Black-sky (and white-sky) albedo of the virtual sample, written like `roadbrdf albedo`'s CSV
 // (columns wavelength_nm, white_sky, white_sky_error, black_sky_<Z>deg, black_sky_error_<Z>deg, ...),
 // with Monte Carlo standard errors instead of quadrature error estimates.
-void run_render_albedo(const RenderArgs& a) {
-  const surface::HeightField field = surface::read_surface(a.surface);
+void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
+  std::FILE* report = report_stream(a.output);
   const std::vector<double> zeniths = parse_list_or_range(a.albedo, "--albedo");
   const std::vector<double> wavelengths =
       a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
   const surface::VirtualAlbedo r =
       surface::render_albedo(field, zeniths, wavelengths, render_settings(a), a.white_sky_nodes);
   AtomicFile file(a.output);
-  std::ofstream& out = file.stream();
+  std::ostream& out = file.stream();
   out << "# virtual albedo of " << a.surface << " (roadbrdf render --albedo); dimensionless reflectances, "
       << "Monte Carlo standard errors; sun azimuth 0 in the sample frame";
   if (r.white_sky_nodes > 0) out << "; white-sky by " << r.white_sky_nodes << "-point Gauss-Legendre in cos(theta)";
@@ -277,13 +286,13 @@ void run_render_albedo(const RenderArgs& a) {
   file.commit();
   std::size_t missed = 0;
   for (bool c : r.converged) missed += c ? 0 : 1;
-  fmt::print("rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n", a.surface,
+  fmt::print(report, "rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n", a.surface,
              zeniths.size(), r.white_sky_nodes > 0 ? fmt::format(" + white-sky ({} nodes)", r.white_sky_nodes) : "",
              wavelengths.size(), r.paths);
   if (missed > 0) {
     fmt::print(stderr, "roadbrdf: warning: {} albedo estimates reached --max-samples before the target error\n", missed);
   }
-  fmt::print("wrote {}\n", a.output);
+  fmt::print(report, "wrote {}\n", a.output);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
@@ -113,12 +114,9 @@ std::vector<double> parse_list_or_range(const std::string& text, const std::stri
 }
 
 void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format) {
-  const DatasetFormat f = dataset_format_from_string(format);
-  if (path.empty() || path == "-") {
-    write_dataset(data, std::cout, f);
-  } else {
-    write_dataset(data, path, f);
-  }
+  write_dataset(data, path.empty() ? std::string("-") : path, dataset_format_from_string(format));
 }
+
+std::FILE* report_stream(const std::string& output) { return is_standard_stream(output) ? stderr : stdout; }
 
 }  // namespace roadbrdf::cli

@@ -39,6 +39,10 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
 // `format` is "wide" or "long".
 void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format);
 
+// Where a command's report (tables, notes) goes: standard error when its output file is standard
+// output ("-"), so that the two never mix; standard output otherwise.
+std::FILE* report_stream(const std::string& output);
+
 // A finite number; `what` names the flag in errors. Throws InputError.
 double parse_number(const std::string& text, const std::string& what);
 // "D", "D1,D2,...", or "A:B:STEP" (inclusive of B when it falls on the grid). Throws InputError.

@@ -2,12 +2,19 @@
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <system_error>
 #include <exception>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -29,16 +36,37 @@ int main(int argc, char** argv) {
   roadbrdf::cli::register_albedo_command(app);
   roadbrdf::cli::register_plot_command(app);
   // [command-registrations]
+  int status = 0;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    status = app.exit(e);
   } catch (const roadbrdf::InputError& e) {
     fmt::print(stderr, "roadbrdf: error: {}\n", e.what());
-    return 2;
+    status = 2;
+  } catch (const std::system_error& e) {
+    // fmt::print reports a failed write to standard output this way (e.g. a full disk).
+    if (std::string_view(e.what()).rfind("cannot write to file", 0) == 0) {
+      fmt::print(stderr, "roadbrdf: error: {}: write failed: {}\n", roadbrdf::kStandardOutputName, e.code().message());
+      status = 2;
+    } else {
+      fmt::print(stderr, "roadbrdf: internal error: {}\n", e.what());
+      status = 3;
+    }
   } catch (const std::exception& e) {
     fmt::print(stderr, "roadbrdf: internal error: {}\n", e.what());
-    return 3;
+    status = 3;
   }
-  return 0;
+  // Whatever was printed must have reached standard output (e.g. not a full disk): check the
+  // final flush and close, as the last thing the program does.
+  try {
+    roadbrdf::flush_standard_output();
+    if (std::fclose(stdout) != 0) {
+      throw roadbrdf::FileError(roadbrdf::kStandardOutputName, 0, 0, std::string("close failed: ") + std::strerror(errno));
+    }
+  } catch (const roadbrdf::InputError& e) {
+    fmt::print(stderr, "roadbrdf: error: {}\n", e.what());
+    if (status == 0) status = 2;
+  }
+  return status;
 }

@@ -1,10 +1,9 @@
 #include "roadbrdf/core/csv.h"
 
+#include <fmt/core.h>
+
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <random>
 
 #include "roadbrdf/core/error.h"
 
@@ -21,18 +20,24 @@ std::string_view trim(std::string_view s, std::size_t& offset) {
 }
 }  // namespace
 
-std::vector<CsvCell> split_cells(std::string_view line, char separator) {
+std::vector<CsvCell> split_cells(std::string_view line, char separator, std::size_t limit, std::size_t* count) {
   std::vector<CsvCell> cells;
   std::size_t start = 0;
+  std::size_t n = 0;
   while (true) {
     const std::size_t end = line.find(separator, start);
-    const std::string_view raw = line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
-    std::size_t offset = 0;
-    const std::string_view text = trim(raw, offset);
-    cells.push_back({text, static_cast<long>(start + offset + 1)});
+    if (n <= limit) {
+      const std::string_view raw =
+          line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
+      std::size_t offset = 0;
+      const std::string_view text = trim(raw, offset);
+      cells.push_back({text, static_cast<long>(start + offset + 1)});
+    }
+    ++n;
     if (end == std::string_view::npos) break;
     start = end + 1;
   }
+  if (count) *count = n;
   return cells;
 }
 
@@ -53,17 +58,19 @@ bool parse_finite_double(std::string_view text, double& value) {
   if (text.empty()) return false;
   const char* first = text.data();
   const char* last = first + text.size();
-  if (*first == '+') ++first;
+  if (*first == '+') {
+    ++first;
+    if (first == last || *first == '-' || *first == '+') return false;  // "+", "+-1", "++1"
+  }
   const auto [ptr, ec] = std::from_chars(first, last, value);
   return ec == std::errc() && ptr == last && std::isfinite(value);
 }
 
-CsvReader::CsvReader(std::string path) : path_(std::move(path)), in_(path_) {
-  if (!in_) throw FileError(path_, 0, 0, "cannot open file for reading");
-}
+CsvReader::CsvReader(std::string path)
+    : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
 
 bool CsvReader::next_row(std::vector<CsvCell>& cells) {
-  while (std::getline(in_, line_)) {
+  while (in_->read_line(line_)) {
     ++line_number_;
     std::size_t offset = 0;
     const std::string_view text = trim(line_, offset);
@@ -73,23 +80,28 @@ bool CsvReader::next_row(std::vector<CsvCell>& cells) {
       comment_lines_.push_back(line_number_);
       continue;
     }
-    cells = split_cells(line_);
+    cells = split_cells(line_, ',', cell_limit_, &cell_count_);
     return true;
   }
   return false;
 }
 
 double CsvReader::number(const CsvCell& cell, std::string_view what) const {
+  if (cell.text.empty()) fail(cell.column, fmt::format("empty cell where a {} was expected", what));
   double value = 0.0;
+  if (parse_finite_double(cell.text, value)) return value;
+  // Tell an out-of-range or infinite number from text that is no number at all.
   const char* first = cell.text.data();
   const char* last = first + cell.text.size();
+  if (*first == '+') ++first;
   const auto [ptr, ec] = std::from_chars(first, last, value);
-  if (cell.text.empty()) fail(cell.column, "empty cell where a " + std::string(what) + " was expected");
-  if (ec != std::errc() || ptr != last) {
-    fail(cell.column, "'" + std::string(cell.text) + "' is not a " + std::string(what));
+  if (ptr == last && ec == std::errc::result_out_of_range) {
+    fail(cell.column, fmt::format("'{}' is out of the range of double-precision numbers ({})", cell.text, what));
   }
-  if (!std::isfinite(value)) fail(cell.column, "'" + std::string(cell.text) + "' is not a finite " + std::string(what));
-  return value;
+  if (ptr == last && ec == std::errc() && !std::isfinite(value)) {
+    fail(cell.column, fmt::format("'{}' is not a finite {}", cell.text, what));
+  }
+  fail(cell.column, fmt::format("'{}' is not a {}", cell.text, what));
 }
 
 void CsvReader::fail(long column, const std::string& message) const {

@@ -1,13 +1,18 @@
 // Minimal streaming CSV tokenizer that remembers where every cell came from, so that every
 // error names file, line and column. Lines starting with '#' are comments; blank lines are
 // skipped. Cells are separated by ',' (surrounding spaces trimmed); no quoting (not needed by
-// any format roadbrdf reads).
+// any format roadbrdf reads). "-" reads standard input; read errors are errors (core/input_file.h).
 #pragma once
 
+#include <cstddef>
 #include <fstream>
+#include <limits>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "roadbrdf/core/input_file.h"
 
 namespace roadbrdf {
 
@@ -18,14 +23,25 @@ struct CsvCell {
 
 class CsvReader {
  public:
-  // Throws FileError if the file cannot be opened.
+  // Throws FileError if the file cannot be opened ("-" = standard input).
   explicit CsvReader(std::string path);
 
   // Next non-blank, non-comment line split into cells; false at end of file. Comment lines seen
-  // on the way are collected in comments() (without the leading '#').
+  // on the way are collected in comments() (without the leading '#'). Throws FileError on a read
+  // error.
   bool next_row(std::vector<CsvCell>& cells);
 
+  // Split rows into at most `limit` + 1 cells; cell_count() still gives the row's true count. A
+  // reader that knows how many cells a row must have sets this, so that an overlong row costs no
+  // more than the line itself before it is refused.
+  void set_cell_limit(std::size_t limit) { cell_limit_ = limit; }
+  // Number of cells of the last row returned by next_row.
+  std::size_t cell_count() const { return cell_count_; }
+
+  // The name for messages ("<standard input>" for "-").
   const std::string& path() const { return path_; }
+  // Size of a regular file in bytes, 0 when unknown.
+  std::uintmax_t size_hint() const { return in_->size_hint(); }
   long line_number() const { return line_number_; }
   std::vector<std::string>& comments() { return comments_; }
   // Line number of each entry of comments() (same order).
@@ -37,15 +53,20 @@ class CsvReader {
 
  private:
   std::string path_;
-  std::ifstream in_;
+  std::unique_ptr<InputFile> in_;
   std::string line_;
   long line_number_ = 0;
+  std::size_t cell_limit_ = std::numeric_limits<std::size_t>::max() - 1;
+  std::size_t cell_count_ = 0;
   std::vector<std::string> comments_;
   std::vector<long> comment_lines_;
 };
 
-// Split a line on a separator, trimming spaces; columns are 1-based.
-std::vector<CsvCell> split_cells(std::string_view line, char separator = ',');
+// Split a line on a separator, trimming spaces; columns are 1-based. At most `limit` + 1 cells are
+// made; `count` (if given) receives the line's true number of cells.
+std::vector<CsvCell> split_cells(std::string_view line, char separator = ',',
+                                 std::size_t limit = std::numeric_limits<std::size_t>::max() - 1,
+                                 std::size_t* count = nullptr);
 // Split a line on runs of spaces/tabs (for whitespace-separated tables); columns are 1-based.
 std::vector<CsvCell> split_whitespace(std::string_view line);
 // Parse a whole cell as a finite double (leading '+' allowed); false otherwise.

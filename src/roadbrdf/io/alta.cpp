@@ -5,12 +5,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/input_file.h"
 
 namespace roadbrdf {
 
@@ -38,8 +38,7 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
   if (!(options.wavelength_nm > 0.0)) {
     throw InputError(path + ": ALTA files carry no wavelength: give the wavelength [nm] of the measurement");
   }
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open file for reading");
+  InputFile in(path);
   SpectralDataset d;
   AltaInput input = AltaInput::kUnknown;
   AltaOutput output = AltaOutput::kUnknown;
@@ -58,7 +57,7 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
       fmt::print(stderr, "roadbrdf: warning: {}\n", m);
     }
   };
-  while (std::getline(in, line)) {
+  while (in.read_line(line)) {
     ++n;
     const auto b = line.find_first_not_of(" \t\r");
     if (b == std::string::npos) continue;

@@ -4,26 +4,25 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
 
 Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open file for reading");
+  InputFile in(path);
   Spectrum s;
   s.source = path;
   std::string line;
   long n = 0;
   std::size_t columns = 0;
   bool first_row = true;
-  while (std::getline(in, line)) {
+  while (in.read_line(line)) {
     ++n;
     const auto b = line.find_first_not_of(" \t\r");
     if (b == std::string::npos || line[b] == '#') continue;

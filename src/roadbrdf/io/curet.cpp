@@ -3,21 +3,15 @@
 #include <fmt/core.h>
 
 #include <cstdio>
-#include <fstream>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/input_file.h"
 
 namespace roadbrdf {
 
 namespace {
-
-std::ifstream open_or_throw(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open file for reading");
-  return in;
-}
 
 double number_or_throw(const std::string& path, long line, const CsvCell& cell, const char* what) {
   double v = 0.0;
@@ -35,11 +29,11 @@ bool is_blank_or_comment(const std::string& line) {
 }  // namespace
 
 std::vector<int> curet_sample_numbers(const std::string& abrdf_path) {
-  std::ifstream in = open_or_throw(abrdf_path);
+  InputFile in(abrdf_path);
   std::vector<int> numbers;
   std::string line;
   long n = 0;
-  while (std::getline(in, line)) {
+  while (in.read_line(line)) {
     ++n;
     if (is_blank_or_comment(line)) continue;
     const auto cells = split_whitespace(line);
@@ -57,10 +51,10 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
   SpectralDataset d;
   // Geometry table: index, theta_v, phi_v, theta_i, phi_i (radians).
   {
-    std::ifstream in = open_or_throw(table_path);
+    InputFile in(table_path);
     std::string line;
     long n = 0;
-    while (std::getline(in, line)) {
+    while (in.read_line(line)) {
       ++n;
       if (is_blank_or_comment(line)) continue;
       const auto cells = split_whitespace(line);
@@ -91,14 +85,14 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
   const std::size_t count = d.geometries.size();
   // Sample line.
   {
-    std::ifstream in = open_or_throw(abrdf_path);
+    InputFile in(abrdf_path);
     std::string line;
     long n = 0;
     bool found = false;
     std::vector<int> present;
     std::size_t negative = 0;
     std::string first_negative;
-    while (std::getline(in, line)) {
+    while (in.read_line(line)) {
       ++n;
       if (is_blank_or_comment(line)) continue;
       const auto cells = split_whitespace(line);

@@ -296,10 +296,9 @@ SpectralDataset read_wide(Reading& r, const std::vector<CsvCell>& header_cells) 
       // Reserve for the whole file from the length of the first row (memory proportional to the
       // data, without the copies of repeated growth).
       reserved = true;
-      std::error_code ec;
-      const auto size = std::filesystem::file_size(reader.path(), ec);
+      const auto size = reader.size_hint();
       const auto line_length = static_cast<std::uintmax_t>(cells.back().column) + cells.back().text.size() + 1;
-      if (!ec && line_length > 0) {
+      if (size > 0 && line_length > 0) {
         const std::size_t rows = static_cast<std::size_t>(size / line_length) + 1;
         if (rows < (std::size_t{1} << 26) / std::max<std::size_t>(m, 1)) {
           d.brdf.reserve(rows * m);

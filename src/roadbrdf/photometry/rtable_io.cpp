@@ -13,6 +13,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/input_file.h"
 
 namespace roadbrdf::photometry {
 
@@ -65,13 +66,7 @@ std::vector<Token> tokenize(const std::string& content, long first_line = 1) {
   return tokens;
 }
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, 0, 0, "cannot open file for reading");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string read_all(const std::string& path) { return read_text_file(path); }
 
 class TokenStream {
  public:
