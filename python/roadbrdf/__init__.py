@@ -21,7 +21,8 @@ from . import _roadbrdf
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "models", "model_names", "read_fit",
            "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable", "read_rtable",
            "fit", "spectral_model_from_fit", "mix", "albedo", "road_to_zenith_azimuth", "data_directory", "Surface", "surface",
-           "read_surface", "flat_surface", "gaussian_slope_surface", "render", "render_albedo"]
+           "read_surface", "flat_surface", "gaussian_slope_surface", "render", "render_albedo",
+           "InstrumentSpectrum", "read_instrument", "instrument_dataset", "read_manifest", "calibrate_manifest"]
 
 InputError = _roadbrdf.InputError
 __version__ = _roadbrdf.__version__
@@ -737,3 +738,8 @@ def render_albedo(surface, sun_zenith, wavelengths=None, white_sky_nodes=8, samp
            "white_sky_nodes": int(r["white_sky_nodes"]), "paths": int(r["paths"]),
            "converged": np.asarray(r["converged"], dtype=bool)}
     return out
+
+
+# Spectroradiometer files and run manifests (instruments.py).
+from .instruments import (InstrumentSpectrum, read_instrument, instrument_dataset, read_manifest,  # noqa: E402
+                          calibrate_manifest)

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 
 #include "binding.h"
 #include "roadbrdf/core/error.h"
@@ -12,6 +13,8 @@
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/instrument.h"
+#include "roadbrdf/io/manifest.h"
 
 namespace py = pybind11;
 
@@ -52,6 +55,82 @@ std::function<void(const std::string&)> python_warning() {
   return [](const std::string& message) {
     py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 3);
   };
+}
+
+Array vector_array(const std::vector<double>& v) { return Array(static_cast<py::ssize_t>(v.size()), v.data()); }
+
+py::object optional_array(const std::vector<double>& v) { return v.empty() ? py::object(py::none()) : vector_array(v); }
+
+ManifestOptions manifest_options(const std::string& overlap) {
+  ManifestOptions o;
+  o.read.overlap = overlap_rule_from_string(overlap);
+  o.warn = python_warning();
+  return o;
+}
+
+// The instrument readers and manifests (io/instrument.h, io/manifest.h), as `convert` and
+// `calibrate --manifest` use them.
+void bind_instruments(py::module_& m) {
+  m.def(
+      "read_instrument",
+      [](const std::string& path, const std::string& overlap) {
+        const ManifestOptions o = manifest_options(overlap);
+        const InstrumentSpectrum s = read_instrument_file(path, o.read);
+        for (const auto& note : s.notes) o.warn(note);
+        py::dict out;
+        out["path"] = s.path;
+        out["format"] = to_string(s.format);
+        out["wavelengths"] = vector_array(s.wavelengths);
+        out["target"] = optional_array(s.target);
+        out["reference"] = optional_array(s.reference);
+        out["reflectance"] = optional_array(s.reflectance);
+        out["quantity"] = s.quantity;
+        out["units"] = s.units;
+        out["target_settings"] = s.target_settings;
+        out["reference_settings"] = s.reference_settings;
+        out["metadata"] = s.metadata;
+        return out;
+      },
+      py::arg("path"), py::arg("overlap") = "upper");
+  m.def(
+      "instrument_dataset",
+      [](const std::string& path, const std::vector<double>& angles, const std::string& convention,
+         const std::string& quantity, const std::string& overlap) {
+        if (angles.size() != 4) throw InputError("give four angles (degrees)");
+        const AngleConvention c = convention == "road" ? AngleConvention::kRoad : AngleConvention::kZenithAzimuth;
+        const ManifestOptions o = manifest_options(overlap);
+        const InstrumentSpectrum s = read_instrument_file(path, o.read);
+        for (const auto& note : s.notes) o.warn(note);
+        return dataset_to_dict(instrument_dataset(s, geometry_from_angle_values(c, angles.data()), c,
+                                                  instrument_quantity_from_string(quantity)));
+      },
+      py::arg("path"), py::arg("angles"), py::arg("convention"), py::arg("quantity") = "target",
+      py::arg("overlap") = "upper");
+  m.def(
+      "manifest_dataset",
+      [](const std::string& path, const std::string& quantity, const std::string& overlap) {
+        return dataset_to_dict(
+            manifest_dataset(read_manifest(path), instrument_quantity_from_string(quantity), manifest_options(overlap)));
+      },
+      py::arg("path"), py::arg("quantity") = "target", py::arg("overlap") = "upper");
+  m.def(
+      "calibrate_manifest",
+      [](const std::string& path, const std::string& panel, const std::string& panel_brf,
+         std::optional<double> brf_start, std::optional<double> brf_step, const std::string& overlap) {
+        std::optional<Spectrum> brf;
+        if (!panel_brf.empty()) {
+          SpectrumReadOptions o;
+          o.first_wavelength = brf_start;
+          o.step = brf_step;
+          brf = read_spectrum(panel_brf, o);
+        } else if (brf_start || brf_step) {
+          throw InputError("panel_brf_start/panel_brf_step need panel_brf");
+        }
+        return dataset_to_dict(calibrate_manifest(read_manifest(path), read_spectrum(panel), brf,
+                                                  manifest_options(overlap)));
+      },
+      py::arg("path"), py::arg("panel_reflectance"), py::arg("panel_brf") = "", py::arg("panel_brf_start") = py::none(),
+      py::arg("panel_brf_step") = py::none(), py::arg("overlap") = "upper");
 }
 
 }  // namespace
@@ -127,6 +206,7 @@ void bind_io(py::module_& m) {
         return dataset_to_dict(read_alta(path, options));
       },
       py::arg("path"), py::arg("wavelength"), py::arg("assumed_output") = "", py::arg("exclude_grazing") = false);
+  bind_instruments(m);
 }
 
 }  // namespace roadbrdf::python

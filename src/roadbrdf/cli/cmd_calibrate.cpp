@@ -1,5 +1,6 @@
 // roadbrdf calibrate SAMPLE.csv --reference REF.csv [--dark DARK.csv] --panel-reflectance RHO.txt
 //                    [--panel-brf BRF.txt] -o DATA.csv
+// roadbrdf calibrate --manifest RUN.csv --panel-reflectance RHO.txt -o DATA.csv   (cli/instruments.h)
 // f = (L_s - L_dark)/(L_ref - L_dark) * rho_ref(lambda)/pi (io/calibration.h).
 #include <fmt/core.h>
 
@@ -8,6 +9,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/instruments.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
@@ -22,12 +24,24 @@ struct CalibrateArgs {
   std::optional<double> brf_start, brf_step;
   std::string format = "wide";
   std::string output;
+  std::string manifest;
+  InstrumentArgs instrument;
 };
 
 void run(const CalibrateArgs& a) {
   check_distinct_files({{"SAMPLE", a.sample}, {"--reference", a.reference}, {"--dark", a.dark},
-                        {"--panel-reflectance", a.panel}, {"--panel-brf", a.panel_brf}},
+                        {"--panel-reflectance", a.panel}, {"--panel-brf", a.panel_brf}, {"--manifest", a.manifest}},
                        {{"-o", a.output}});
+  if (!a.manifest.empty()) {
+    if (!a.sample.empty() || !a.reference.empty() || !a.dark.empty()) {
+      throw InputError("--manifest gives the sample, white reference and dark files: no SAMPLE, --reference or --dark");
+    }
+    SpectralDataset out =
+        calibrate_manifest_from_command_line(a.manifest, a.panel, a.panel_brf, a.brf_start, a.brf_step, a.instrument);
+    write_dataset_output(out, a.output, a.format);
+    return;
+  }
+  if (a.sample.empty() || a.reference.empty()) throw InputError("give SAMPLE and --reference, or --manifest RUN.csv");
   DatasetReadOptions radiance;
   radiance.any_units = true;
   CalibrationInput in;
@@ -57,11 +71,13 @@ void register_calibrate_command(CLI::App& app) {
   auto* c = app.add_subcommand(
       "calibrate",
       "BRDF from sample and reference-panel radiances: f = (L_s - L_dark)/(L_ref - L_dark) x rho_ref/pi");
-  c->add_option("sample", args.sample, "Sample radiances, dataset CSV (any units; sigma_<nm> columns optional)")
-      ->required();
+  c->add_option("sample", args.sample, "Sample radiances, dataset CSV (any units; sigma_<nm> columns optional)");
   c->add_option("--reference", args.reference,
-                "Reference-panel radiances: same geometries as the sample, or a single row used for every geometry")
-      ->required();
+                "Reference-panel radiances: same geometries as the sample, or a single row used for every geometry");
+  c->add_option("--manifest", args.manifest,
+                "Instrument run: CSV of file,role (sample|white|dark) and angles, mapping .asd/.sed/.sig files to "
+                "geometries (replaces SAMPLE, --reference and --dark; docs/data.md)");
+  add_instrument_flags(c, args.instrument, false);
   c->add_option("--dark", args.dark, "Dark signal: same geometries, or a single row (default: none)");
   c->add_option("--panel-reflectance", args.panel,
                 "Calibrated panel reflectance rho_ref: wavelength [nm], value [, sigma] (e.g. Spectralon_Num4.txt)")

@@ -1,4 +1,5 @@
-// roadbrdf convert INPUT [--from wide|long|curet|alta] [--to wide|long] -o OUT.csv
+// roadbrdf convert INPUT [--from wide|long|curet|alta|asd|sed|sig|manifest] [--to wide|long] -o OUT.csv
+// (instrument files and manifests: cli/instruments.h)
 #include <fmt/core.h>
 
 #include <filesystem>
@@ -6,6 +7,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/instruments.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/alta.h"
@@ -28,12 +30,15 @@ struct ConvertArgs {
   bool average_duplicates = false;
   std::string convention;
   std::string output;
+  InstrumentArgs instrument;
 };
 
 void run(const ConvertArgs& a) {
   check_distinct_files({{"INPUT", a.input}, {"--curet-table", a.curet_table}}, {{"-o", a.output}});
   SpectralDataset d;
-  if (a.from == "auto" || a.from == "wide" || a.from == "long") {
+  if (is_instrument_input(a.from, a.input)) {
+    d = convert_instrument_input(a.from, a.input, a.instrument);
+  } else if (a.from == "auto" || a.from == "wide" || a.from == "long") {
     DatasetReadOptions o;
     o.average_duplicates = a.average_duplicates;
     d = read_dataset(a.input, o);
@@ -58,7 +63,7 @@ void run(const ConvertArgs& a) {
     o.average_duplicates = a.average_duplicates;
     d = read_alta(a.input, o);
   } else {
-    throw InputError("--from: unknown format '" + a.from + "' (auto, wide, long, curet, alta)");
+    throw InputError("--from: unknown format '" + a.from + "' (auto, wide, long, curet, alta, asd, sed, sig, manifest)");
   }
   if (a.convention == "road") {
     d.convention = AngleConvention::kRoad;
@@ -74,9 +79,10 @@ void run(const ConvertArgs& a) {
 
 void register_convert_command(CLI::App& app) {
   static ConvertArgs args;
-  auto* c = app.add_subcommand("convert", "Convert a dataset between wide/long CSV, and from CUReT or ALTA files");
+  auto* c = app.add_subcommand("convert", "Convert a dataset between wide/long CSV, and from CUReT, ALTA, instrument (.asd, .sed, .sig) and manifest files");
   c->add_option("input", args.input, "Input file (for CUReT: abrdf.dat)")->required();
-  c->add_option("--from", args.from, "Input format: auto (wide or long CSV), wide, long, curet, alta");
+  c->add_option("--from", args.from, "Input format: auto (wide or long CSV, or an instrument file by its extension), wide, long, curet, alta, asd, sed, "
+                "sig, manifest (a run of instrument files: docs/data.md)");
   c->add_option("--to", args.to, "Output format: wide (default) or long");
   c->add_option("--curet-table", args.curet_table, "CUReT geometry table (default: table.txt next to the input)");
   c->add_option("--sample", args.sample, "CUReT sample number (first column of abrdf.dat)");
@@ -88,6 +94,7 @@ void register_convert_command(CLI::App& app) {
               "ALTA BRDF x cos(theta_v): leave out (and report) rows at grazing view, which cannot be converted");
   c->add_flag("--average-duplicates", args.average_duplicates, "Average rows with the same geometry (else an error)");
   c->add_option("--convention", args.convention, "Angle columns of the output: zenith or road (default: as read)");
+  add_instrument_flags(c, args.instrument, true);
   c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");
   c->callback([] { run(args); });
 }

@@ -1,0 +1,91 @@
+"""Spectroradiometer files: ASD ``.asd`` (v6-v8), Spectral Evolution ``.sed`` and Spectra Vista
+``.sig``, and manifests that turn a goniometric run of such files into one dataset.
+
+The same readers as ``roadbrdf convert`` and ``roadbrdf calibrate --manifest``; docs/data.md
+("Instrument files") describes the formats, the manifest, and what is certain or inferred.
+Warnings (SVC detector overlaps, saturation flags) are :class:`UserWarning`; malformed files raise
+:class:`roadbrdf.InputError` naming the file and the byte offset or line.
+"""
+
+from __future__ import annotations
+
+from . import _roadbrdf
+
+__all__ = ["InstrumentSpectrum", "read_instrument", "instrument_dataset", "read_manifest", "calibrate_manifest"]
+
+_ZENITH = ("theta_i", "phi_i", "theta_r", "phi_r")
+_ROAD = ("gamma", "alpha", "beta", "delta")
+
+
+class InstrumentSpectrum:
+    """One instrument file.
+
+    Attributes
+    ----------
+    path, format : str
+        the file and ``"asd"``, ``"sed"`` or ``"sig"``.
+    wavelengths : ndarray (M,)
+        [nm], strictly increasing (SVC overlaps resolved by the overlap rule).
+    target, reference, reflectance : ndarray (M,) or None
+        the target signal, the reference-panel signal stored in the file, and the reflectance
+        factor [1] (the file's column / 100, or ASD target / reference).
+    quantity, units : str
+        of target and reference: ``"DN"``, ``"normalized DN"``, ``"radiance"``, ``"irradiance"``.
+    target_settings, reference_settings : dict
+        integration times and gains on which raw counts depend.
+    metadata : dict
+        the header values (keys ``asd.*``, ``sed.*``, ``sig.*``).
+    """
+
+    def __init__(self, d):
+        self.__dict__.update(d)
+
+    def __repr__(self):
+        return (f"roadbrdf.InstrumentSpectrum({self.path!r}: {self.format}, {self.wavelengths.size} channels "
+                f"{self.wavelengths[0]:g}-{self.wavelengths[-1]:g} nm, {self.quantity})")
+
+
+def read_instrument(path, overlap="upper") -> InstrumentSpectrum:
+    """Read an ``.asd``, ``.sed`` or ``.sig`` file. ``overlap`` (SVC): ``"upper"`` keeps the next
+    detector's channels where detectors overlap, ``"lower"`` the previous detector's, ``"error"``
+    refuses; nothing is averaged."""
+    return InstrumentSpectrum(_roadbrdf.read_instrument(str(path), overlap))
+
+
+def instrument_dataset(path, quantity="target", overlap="upper", **angles):
+    """A one-geometry :class:`roadbrdf.Dataset` from one instrument file (``roadbrdf convert FILE
+    --geometry ...``). Give the angles [deg] as ``theta_i=, phi_i=, theta_r=, phi_r=`` or
+    ``gamma=, alpha=, beta=, delta=``; ``quantity`` is ``"target"``, ``"reference"`` or
+    ``"reflectance"``."""
+    from . import Dataset
+
+    names = set(angles)
+    if names == set(_ZENITH):
+        convention, order = "zenith", _ZENITH
+    elif names == set(_ROAD):
+        convention, order = "road", _ROAD
+    else:
+        raise _roadbrdf.InputError("give the angles theta_i, phi_i, theta_r, phi_r or gamma, alpha, beta, delta [deg]")
+    values = [float(angles[n]) for n in order]
+    return Dataset._from_dict(_roadbrdf.instrument_dataset(str(path), values, convention, quantity, overlap))
+
+
+def read_manifest(path, quantity="target", overlap="upper"):
+    """The sample rows of a run manifest as a :class:`roadbrdf.Dataset` of instrument signals
+    (``roadbrdf convert RUN.csv --from manifest --quantity ...``), in the files' units."""
+    from . import Dataset
+
+    return Dataset._from_dict(_roadbrdf.manifest_dataset(str(path), quantity, overlap))
+
+
+def calibrate_manifest(manifest, panel_reflectance, panel_brf=None, panel_brf_start=None, panel_brf_step=None,
+                       overlap="upper"):
+    """The calibrated BRDF [sr^-1] of a run (``roadbrdf calibrate --manifest RUN.csv
+    --panel-reflectance RHO.txt``): f = (S - dark)/(white - dark) x rho_panel/pi, with the
+    uncertainty of the panel propagated; no extrapolation of the panel file."""
+    from . import Dataset
+
+    return Dataset._from_dict(_roadbrdf.calibrate_manifest(
+        str(manifest), str(panel_reflectance), "" if panel_brf is None else str(panel_brf),
+        None if panel_brf_start is None else float(panel_brf_start),
+        None if panel_brf_step is None else float(panel_brf_step), overlap))

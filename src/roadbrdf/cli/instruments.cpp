@@ -1,0 +1,104 @@
+#include "roadbrdf/cli/instruments.h"
+
+#include <fmt/core.h>
+
+#include <map>
+
+#include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/io/calibration.h"
+#include "roadbrdf/io/geometry_file.h"
+#include "roadbrdf/io/instrument.h"
+#include "roadbrdf/io/manifest.h"
+
+namespace roadbrdf::cli {
+
+namespace {
+
+void warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
+
+// "theta_i=0,phi_i=0,theta_r=30,phi_r=180" (or the road angles) -> geometry and convention.
+Geometry parse_geometry(const std::string& text, AngleConvention& convention) {
+  if (text.empty()) {
+    throw InputError("an instrument file has no geometry: give --geometry theta_i=D,phi_i=D,theta_r=D,phi_r=D (or "
+                     "gamma=D,alpha=D,beta=D,delta=D), or convert a manifest with --from manifest");
+  }
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = text.find(',', start);
+    items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  const std::map<std::string, double> values = parse_numeric_assignments(items, "--geometry");
+  std::vector<std::string> header;
+  for (const auto& [name, value] : values) header.push_back(name);
+  if (header.size() != 4) throw InputError("--geometry: give exactly four angles (degrees)");
+  const auto columns = find_angle_columns(header, "--geometry", 0, convention);
+  double a[4];
+  for (int k = 0; k < 4; ++k) a[k] = values.at(header[columns[static_cast<std::size_t>(k)]]);
+  return geometry_from_angle_values(convention, a);
+}
+
+ManifestOptions manifest_options(const InstrumentArgs& args) {
+  ManifestOptions o;
+  o.read.overlap = overlap_rule_from_string(args.overlap);
+  o.warn = warn;
+  return o;
+}
+
+}  // namespace
+
+void add_instrument_flags(CLI::App* c, InstrumentArgs& args, bool convert) {
+  if (convert) {
+    c->add_option("--geometry", args.geometry,
+                  "Geometry of a single instrument file: theta_i=D,phi_i=D,theta_r=D,phi_r=D or "
+                  "gamma=D,alpha=D,beta=D,delta=D [deg]");
+    c->add_option("--quantity", args.quantity,
+                  "Instrument signal to store: target (default), reference (the panel signal stored in the file) or "
+                  "reflectance (the file's reflectance, or ASD target/reference)");
+  }
+  c->add_option("--overlap", args.overlap,
+                "SVC .sig detector overlap: upper (default: keep the next detector's channels), lower (keep the "
+                "previous detector's) or error; nothing is averaged, dropped channels are reported");
+}
+
+bool is_instrument_input(const std::string& from, const std::string& input) {
+  if (from == "asd" || from == "sed" || from == "sig" || from == "instrument" || from == "manifest") return true;
+  return from == "auto" && has_instrument_extension(input);
+}
+
+SpectralDataset convert_instrument_input(const std::string& from, const std::string& input, const InstrumentArgs& args) {
+  const InstrumentQuantity quantity = instrument_quantity_from_string(args.quantity);
+  const ManifestOptions options = manifest_options(args);
+  if (from == "manifest") {
+    if (!args.geometry.empty()) throw InputError("--geometry is for a single instrument file: a manifest gives its own");
+    return manifest_dataset(read_manifest(input), quantity, options);
+  }
+  AngleConvention convention = AngleConvention::kZenithAzimuth;
+  const Geometry geometry = parse_geometry(args.geometry, convention);
+  InstrumentSpectrum s = read_instrument_file(input, options.read);
+  if (from != "auto" && from != "instrument" && to_string(s.format) != from) {
+    throw InputError(fmt::format("{}: --from {} but the file is a .{} file", input, from, to_string(s.format)));
+  }
+  for (const auto& note : s.notes) warn(note);
+  return instrument_dataset(s, geometry, convention, quantity);
+}
+
+SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
+                                                     const std::string& panel_brf, std::optional<double> brf_start,
+                                                     std::optional<double> brf_step, const InstrumentArgs& args) {
+  std::optional<Spectrum> brf;
+  if (!panel_brf.empty()) {
+    SpectrumReadOptions o;
+    o.first_wavelength = brf_start;
+    o.step = brf_step;
+    brf = read_spectrum(panel_brf, o);
+  } else if (brf_start || brf_step) {
+    throw InputError("--panel-brf-start/--panel-brf-step need --panel-brf");
+  }
+  return calibrate_manifest(read_manifest(manifest), read_spectrum(panel), brf, manifest_options(args));
+}
+
+}  // namespace roadbrdf::cli
