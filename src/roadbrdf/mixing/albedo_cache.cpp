@@ -1,6 +1,6 @@
 #include "roadbrdf/mixing/albedo_cache.h"
 
-#include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/mixing/spectral_evaluation.h"
 
 namespace roadbrdf::mixing {
 

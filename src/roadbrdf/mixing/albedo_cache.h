@@ -15,9 +15,9 @@ namespace roadbrdf::mixing {
 
 class AlbedoCache {
  public:
-  // spectral_white_sky_albedo(model, wavelengths) (mixing.h), from the cache where possible. The
-  // model is identified by its address: use it only for models that outlive the cache (the
-  // end-members of a MixInputs, which owns its cache).
+  // spectral_white_sky_albedo(model, wavelengths) (spectral_evaluation.h), from the cache where
+  // possible. The model is identified by its address: use it only for models that outlive the cache
+  // (the end-members of a MixInputs, which owns its cache).
   std::vector<double> white_sky(const SpectralModel& model, const std::vector<double>& wavelengths);
 
  private:

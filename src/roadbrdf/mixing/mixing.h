@@ -6,7 +6,8 @@
 // Components sharing a fit file are one end-member; their weights add up. An end-member is named
 // after its fit file (file name without ".fit.json"/".json").
 //
-// Methods (each returns a MixtureModel, mixture_model.h, with a per-wavelength parameter table):
+// Methods (each returns a MixtureModel, mixture_model.h, with a per-wavelength parameter table; one
+// source file per method, method_<name>.cpp, behind the method table of method_table.h):
 //  areal     Areal (checkerboard) mixing f = sum a_k f_k with area fractions from the formulation:
 //            - granular components (aggregate, filler) expose projected area in proportion to
 //              M_k / (rho_k D_k): a sphere of diameter D and density rho has projected area per unit
@@ -63,6 +64,8 @@
 #include "roadbrdf/mixing/albedo_cache.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/mixing/mixture_model.h"
+#include "roadbrdf/mixing/nnls.h"
+#include "roadbrdf/mixing/spectral_evaluation.h"
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::mixing {
@@ -130,26 +133,14 @@ struct MixResult {
 MixResult mix(const MixInputs& inputs, Method method, const MixSettings& settings,
               const SpectralDataset* data = nullptr, const std::vector<std::size_t>* training = nullptr);
 
-// Values of a spectral model at the given geometries and wavelengths: N x M, geometry-major.
-std::vector<double> evaluate_spectral(const SpectralModel& model, const std::vector<Geometry>& geometries,
-                                      const std::vector<double>& wavelengths);
-
-// White-sky albedo (hapke_imsa.h quadrature) of a spectral model at each wavelength (or once when
-// `wavelengths` is empty and the model is not spectral).
-std::vector<double> spectral_white_sky_albedo(const SpectralModel& model, const std::vector<double>& wavelengths);
-
-// The same for the mixture of a MixResult, from the end-members' albedos (inputs.albedo_cache) where
-// the quadrature allows it: for the linear and hapke kinds f = sum_k e_k f_k + f_0(mu0, mu) with
+// spectral_white_sky_albedo (spectral_evaluation.h) of the mixture of a MixResult, from the
+// end-members' albedos (inputs.albedo_cache) where the quadrature allows it: for the linear and hapke kinds f = sum_k e_k f_k + f_0(mu0, mu) with
 // coefficients e_k that do not depend on the geometry (e_k = a_k; hapke: c_k / sum c), so the same
 // quadrature gives A = sum_k e_k A_k + A(f_0) exactly (to rounding; the delta parts mix with the
 // same e_k, mixture_model.h). f_0 (hapke multiple-scattering correction) is cheap. The shadowed kind,
 // or a table whose end-member parameters are not the end-members' own, uses the full quadrature.
 std::vector<double> mixture_white_sky_albedo(const MixInputs& inputs, const MixResult& result,
                                              const std::vector<double>& wavelengths);
-
-// Non-negative least squares min |A x - b|^2, x >= 0, from the normal equations G = A^T A
-// (K x K row-major) and h = A^T b (Lawson & Hanson 1974, ch. 23 active-set algorithm).
-std::vector<double> nnls_normal(const std::vector<double>& G, const std::vector<double>& h, std::size_t K);
 
 inline constexpr std::size_t kAlbedoWavelengths = 24;
 

@@ -1,0 +1,46 @@
+// The mixing methods behind mix() (mixing.h): one table entry and one source file per method
+// (method_<name>.cpp). A method chooses its end-members, builds the MixtureModel and its
+// per-wavelength parameter table and fills the rest of the MixResult; mix() checks that the methods
+// fitted to a measured mixture get one and adds the end-members' names and fit paths.
+// Helpers shared by several methods (weights from the formulation, the output wavelength grid,
+// parameter tables, the linear least-squares system) are in method_support.h.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "roadbrdf/mixing/mixing.h"
+
+namespace roadbrdf::mixing {
+
+struct MethodCall {
+  const MixInputs& inputs;
+  const MixSettings& settings;
+  const SpectralDataset* data;               // measured mixture, or null (methods that need none)
+  const std::vector<std::size_t>* training;  // geometry indices of `data` to fit on; null: all
+};
+
+// Fills `result` and sets `members` to the end-members of the mixture (indices into
+// inputs.end_members, in the mixture's order). `members` starts as the component end-members
+// (every fit file used by a component, in order; not the separate mastic fit).
+using MethodFunction = void (*)(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
+
+struct MethodEntry {
+  Method method;
+  const char* name;         // as on the command line and in MIX.json
+  const char* description;  // one line, in MIX.json and `mix --help`
+  bool needs_data;          // fitted to a measured mixture of the formulation itself
+  MethodFunction run;
+};
+
+// Every method, in the order of all_methods().
+const std::vector<MethodEntry>& method_table();
+const MethodEntry& method_entry(Method method);
+
+void mix_areal(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
+void mix_fitted(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
+void mix_mastic(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
+void mix_hapke(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
+void mix_shadowed(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
+
+}  // namespace roadbrdf::mixing
