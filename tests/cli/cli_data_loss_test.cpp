@@ -12,6 +12,7 @@
 
 #include "support/case_folder.h"
 #include "support/cli.h"
+#include "support/full_disk.h"
 #include "support/paths.h"
 
 namespace roadbrdf {
@@ -96,24 +97,45 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
   EXPECT_EQ(f.changes(), std::vector<std::string>{});
 }
 
+// Every command that writes to standard output, with a full standard output: /dev/full where the
+// machine has a real one, and always a regular file under a file-size limit.
+std::vector<std::string> standard_output_commands(const CaseFolder& f) {
+  const std::string data = f.path("data.csv");
+  return {"convert " + data, "eval lambert --geometry " + f.path("grid.csv"), "check " + data + " --json",
+          "check " + data, "rtable lambert", "rtable lambert --json", "models --json", "models",
+          "albedo " + f.path("lambert.fit.json"), "albedo lambert --json",
+          "fit " + data + " -m lambert -o -", "convert " + data + " -o -"};
+}
+
 TEST(CliDataLoss, FailedWritesToStandardOutputAreErrors) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  if (!test::dev_full_refuses_writes()) GTEST_SKIP() << test::kNoFullDevice;
   CaseFolder f = inputs("stdout-full");
   f.snapshot();
-  const std::string data = f.path("data.csv");
-  for (const std::string& arguments : std::vector<std::string>{
-           "convert " + data, "eval lambert --geometry " + f.path("grid.csv"), "check " + data + " --json",
-        "check " + data, "rtable lambert", "rtable lambert --json", "models --json", "models",
-        "albedo " + f.path("lambert.fit.json"), "albedo lambert --json",
-        "fit " + data + " -m lambert -o -", "convert " + data + " -o -"}) {
+  for (const std::string& arguments : standard_output_commands(f)) {
     const auto r = test::run_cli_with_stdout(arguments, "/dev/full");
     EXPECT_TRUE(refused_with(r, {"roadbrdf: error: <standard output>: write failed"})) << arguments;
     EXPECT_EQ(f.changes(), std::vector<std::string>{}) << arguments;
   }
 }
 
+TEST(CliDataLoss, StandardOutputPastTheFileSizeLimitIsAnError) {
+  CaseFolder f = inputs("stdout-limit");
+  const std::string sink = test::scratch_path("stdout-limit.out");
+  for (const std::string& arguments : standard_output_commands(f)) {
+    // Precondition: the output is larger than the limit (one block of at most 1024 bytes).
+    ASSERT_EQ(test::run_cli_with_stdout(arguments, sink).status, 0) << arguments;
+    ASSERT_GT(fs::file_size(sink), 1024u) << arguments << " writes too little to reach the limit";
+    f.snapshot();
+    const auto r = test::run_cli_with_file_size_limit(arguments, sink);
+    EXPECT_TRUE(refused_with(r, {std::string("roadbrdf: error: <standard output>: ") + test::kFileTooLarge}))
+        << arguments;
+    EXPECT_EQ(f.changes(), std::vector<std::string>{}) << arguments;
+  }
+  fs::remove(sink);
+}
+
 TEST(CliDataLoss, FullDiskIsAnErrorNamingTheOutput) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  if (!test::dev_full_refuses_writes()) GTEST_SKIP() << test::kNoFullDevice;
   CaseFolder f = inputs("file-full");
   f.snapshot();
   for (const std::string& arguments : std::vector<std::string>{
@@ -121,6 +143,24 @@ TEST(CliDataLoss, FullDiskIsAnErrorNamingTheOutput) {
         "rtable lambert -o /dev/full"}) {
     const auto r = run_cli(arguments);
     EXPECT_TRUE(refused_with(r, {"/dev/full: write failed: No space left on device"})) << arguments;
+    EXPECT_EQ(f.changes(), std::vector<std::string>{}) << arguments;
+  }
+}
+
+// A disk that fills up while an output file is written: the error names the output, and neither
+// the output nor its temporary file is left in the folder.
+TEST(CliDataLoss, OutputFilePastTheFileSizeLimitIsAnErrorAndLeavesNothing) {
+  CaseFolder f = inputs("file-limit");
+  const std::string out = f.path("out");
+  for (const std::string& arguments : std::vector<std::string>{
+           "convert " + f.path("data.csv") + " -o " + out, "fit " + f.path("data.csv") + " -m lambert -o " + out,
+           "rtable lambert -o " + out}) {
+    ASSERT_EQ(run_cli(arguments).status, 0) << arguments;
+    ASSERT_GT(fs::file_size(out), 1024u) << arguments << " writes too little to reach the limit";
+    fs::remove(out);
+    f.snapshot();
+    const auto r = test::run_cli_with_file_size_limit(arguments);
+    EXPECT_TRUE(refused_with(r, {out + ": " + test::kFileTooLarge})) << arguments;
     EXPECT_EQ(f.changes(), std::vector<std::string>{}) << arguments;
   }
 }

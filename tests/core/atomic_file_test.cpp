@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "roadbrdf/core/error.h"
+#include "support/full_disk.h"
 #include "support/scratch.h"
 
 namespace roadbrdf {
@@ -185,12 +187,50 @@ TEST(AtomicFile, DeviceIsWrittenNotReplaced) {
 }
 
 TEST(AtomicFile, FullDeviceIsAnErrorNamingThePath) {
-  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  if (!test::dev_full_refuses_writes()) GTEST_SKIP() << test::kNoFullDevice;
   AtomicFile f("/dev/full");
   for (int k = 0; k < 100000; ++k) f.stream() << "0123456789\n";
   const std::string message = error_of([&] { f.commit(); });
   EXPECT_NE(message.find("/dev/full"), std::string::npos) << message;
   EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+}
+
+// A disk that fills up during the write, on any machine: a child process with a 4 KiB file-size
+// limit (and SIGXFSZ ignored) writes 1.1 MB; the error names the target and nothing is left.
+TEST(AtomicFile, WriteRefusedMidwayIsAnErrorAndLeavesNothing) {
+  const std::string dir = folder("file-size-limit");
+  const std::string path = dir + "/out.csv";
+  int channel[2];
+  ASSERT_EQ(::pipe(channel), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(channel[0]);
+    ::signal(SIGXFSZ, SIG_IGN);
+    const struct rlimit limit {4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::string message = "no error";
+    try {
+      AtomicFile f(path);
+      for (int k = 0; k < 100000; ++k) f.stream() << "0123456789\n";
+      f.commit();
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    const ssize_t written = ::write(channel[1], message.data(), message.size());
+    ::_exit(written == static_cast<ssize_t>(message.size()) ? 0 : 1);
+  }
+  ::close(channel[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(channel[0], buffer, sizeof buffer)) > 0;) message.append(buffer, n);
+  ::close(channel[0]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find(test::kFileTooLarge), std::string::npos) << message;
+  EXPECT_EQ(names_in(dir), std::vector<std::string>{});
 }
 
 TEST(AtomicFile, DirectoryIsAnError) {

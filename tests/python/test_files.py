@@ -1,7 +1,10 @@
 """Files from Python follow the command line's rules (issue 15): an output is never an input,
 failed writes raise InputError naming the file, links are written through, nothing is left behind."""
+import errno
 import os
 import pathlib
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -35,11 +38,48 @@ def test_mix_refuses_an_output_that_is_an_input(tmp_path):
     assert contents(tmp_path) == before
 
 
+def dev_full_refuses_writes():
+    """Some containers give a /dev/full that accepts writes: probe it rather than assume."""
+    try:
+        with open("/dev/full", "wb", buffering=0) as f:
+            f.write(b"x")
+    except OSError as e:
+        return e.errno == errno.ENOSPC
+    return False
+
+
 def test_write_to_a_full_device_names_it():
-    if not os.path.exists("/dev/full"):
-        pytest.skip("no /dev/full")
+    if not dev_full_refuses_writes():
+        pytest.skip("this machine's /dev/full accepts writes (or is missing); "
+                    "test_write_past_the_file_size_limit covers full disks")
     with pytest.raises(roadbrdf.InputError, match="/dev/full: write failed: No space left on device"):
         small_dataset().write("/dev/full")
+
+
+# A disk that fills up during the write, on any machine: a child interpreter with a 1 KiB file-size
+# limit (Python ignores SIGXFSZ, so the write fails with EFBIG) writes a data set larger than that.
+WRITE_PAST_LIMIT = """
+import resource, sys
+import numpy as np
+import roadbrdf
+angles = np.array([[t, 0.0, 30.0, 180.0] for t in range(0, 80)], dtype=float)
+wavelengths = np.arange(400.0, 800.0, 10.0)
+values = np.full((len(angles), len(wavelengths)), 0.1)
+resource.setrlimit(resource.RLIMIT_FSIZE, (1024, resource.getrlimit(resource.RLIMIT_FSIZE)[1]))
+try:
+    roadbrdf.Dataset(angles, wavelengths, values).write(sys.argv[1])
+except roadbrdf.InputError as e:
+    print(e)
+"""
+
+
+def test_write_past_the_file_size_limit_names_the_file_and_leaves_nothing(tmp_path):
+    target = tmp_path / "out.csv"
+    environment = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    r = subprocess.run([sys.executable, "-c", WRITE_PAST_LIMIT, str(target)], capture_output=True, text=True,
+                       env=environment, check=True)
+    assert f"{target}: write failed: File too large" in r.stdout, r.stdout + r.stderr
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_write_through_a_symbolic_link_keeps_it(tmp_path):
