@@ -308,7 +308,8 @@ def rtable(model, params: dict | None = None, alpha=1.0, illuminant="A", wavelen
     ``model`` is a :class:`Model` (with ``params``), a :class:`SpectralModel` (e.g. :func:`read_fit`),
     or a fit file path. A spectral model is reduced to one BRDF per geometry photometrically
     (V(lambda) x ``illuminant`` "A", "D65" or a lamp CSV file), or at one ``wavelength`` [nm], or
-    averaged over ``band`` = (lo, hi) [nm].
+    averaged over ``band`` = (lo, hi) [nm]. A single-band fit is used at its band; ``note`` (else None)
+    says so.
     """
     if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
         model = read_fit(model)

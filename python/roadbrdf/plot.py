@@ -20,6 +20,7 @@ Angles in degrees, BRDF in sr^-1, wavelengths in nm.
 from __future__ import annotations
 
 import os
+import textwrap
 import tempfile
 
 import numpy as np
@@ -288,22 +289,32 @@ def albedo(result, title=None, output=None):
     zen = np.atleast_1d(np.asarray(result.get("sun_zenith_deg", result.get("sun_zenith", [np.nan])), dtype=float))
     if bs.ndim == 1:
         bs = bs[None, :]
+    # A few bands (or one) are drawn as points: a line through them would suggest a spectrum.
+    marker = "o" if wl.size < 8 else None
     for k in range(bs.shape[0]):
-        ax.plot(wl, bs[k], lw=1.2, label=f"black-sky, sun zenith {zen[min(k, zen.size - 1)]:g}°")
-    ax.plot(wl, np.asarray(result["white_sky"], dtype=float), "k", lw=1.6, label="white-sky")
+        ax.plot(wl, bs[k], lw=1.2, marker=marker, label=f"black-sky, sun zenith {zen[min(k, zen.size - 1)]:g}°")
+    ax.plot(wl, np.asarray(result["white_sky"], dtype=float), "k", lw=1.6, marker=marker, label="white-sky")
     if result.get("blue_sky") is not None:
         blue = np.asarray(result["blue_sky"], dtype=float)
         blue = blue[0] if blue.ndim > 1 else blue
-        ax.plot(wl, blue, "b--", lw=1.4, label=f"blue-sky, sun zenith {zen[0]:g}°")
+        ax.plot(wl, blue, "b--", lw=1.4, marker=marker, label=f"blue-sky, sun zenith {zen[0]:g}°")
+    if wl.size == 1:
+        ax.set_xlim(wl[0] - 50.0, wl[0] + 50.0)
     ax.set_xlabel("wavelength [nm]")
     ax.set_ylabel("albedo [1]")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     ax.set_title("spectral albedo")
     ax = axes[1]
-    broadband = result.get("broadband", {})
-    bb = np.atleast_1d(np.asarray(broadband.get("black_sky", []), dtype=float))
-    if bb.size == zen.size and bb.size > 1:
+    broadband = result.get("broadband")
+    bb = np.atleast_1d(np.asarray((broadband or {}).get("black_sky", []), dtype=float))
+    if broadband is None:
+        # Not formed (e.g. a single-band fit): say why, from the report's notes.
+        ax.axis("off")
+        notes = [n for n in result.get("notes", []) if "omitted" in n] or ["no broadband values"]
+        ax.text(0.05, 0.5, "broadband albedo omitted:\n" + "\n".join(textwrap.fill(n, 60) for n in notes),
+                fontsize=9, va="center")
+    elif bb.size == zen.size and bb.size > 1:
         ax.plot(zen, bb, "o-", label="black-sky (broadband)")
         ax.axhline(float(np.atleast_1d(broadband.get("white_sky"))[0]), color="k", lw=1.2, label="white-sky")
         ax.set_xlabel("sun zenith angle [deg]")
@@ -328,19 +339,27 @@ _CLASS_R = [("R1", 0.0, 0.42, 0.25, 0.10), ("R2", 0.42, 0.85, 0.58, 0.07), ("R3"
             ("R4", 1.35, 2.5, 1.55, 0.08)]
 
 
-def rtable(table, params=None, title=None, output=None):
+def rtable(table, params=None, title=None, output=None, wavelength=None, band=None, illuminant="A"):
     """r-table heat map (10^4 r over beta and tan gamma, missing cells blank) and the sample's
     (S1, Q0) among the CIE R classes with the standard tables' points.
 
-    ``table``: an :class:`roadbrdf.RTable`, an r-table file, a fit file, or a :class:`Model` (with ``params``).
+    ``table``: an :class:`roadbrdf.RTable`, an r-table file, a fit or MIX.json file, a
+    :class:`SpectralModel`, or a :class:`Model` (with ``params``). A spectral model is reduced as
+    :func:`roadbrdf.rtable` does: photometrically under ``illuminant``, at one ``wavelength`` [nm], or
+    averaged over ``band`` = (lo, hi) [nm]; a single-band fit is taken at its band.
     """
+    spectral_choice = wavelength is not None or band is not None
     if isinstance(table, dict):
         t = table
     elif isinstance(table, Model):
+        if spectral_choice:
+            raise ValueError("wavelength/band need a fit file: a model with constant parameters has no spectrum")
         t = _rtable(table, params)
-    elif str(table).endswith(".json"):
-        t = _rtable(read_fit(table))
+    elif isinstance(table, SpectralModel) or str(table).endswith(".json"):
+        t = _rtable(table, illuminant=illuminant, wavelength=wavelength, band=band)
     else:
+        if spectral_choice:
+            raise ValueError("wavelength/band apply to a fit file, not to an r-table file")
         t = read_rtable(table)
     r = np.asarray(t["r"], dtype=float) * 1e4
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.8), gridspec_kw={"width_ratios": [1.4, 1]})
@@ -373,6 +392,8 @@ def rtable(table, params=None, title=None, output=None):
     ax.legend(fontsize=8, loc="upper right")
     ax.set_title("CIE R classes (■ the standard tables)", fontsize=10)
     fig.suptitle(title or "Road r-table")
+    if t.get("note"):
+        fig.text(0.5, 0.005, t["note"], ha="center", va="bottom", fontsize=8, color="gray")
     fig.tight_layout()
     fig.roadbrdf_data = t
     return _finish(fig, output)
@@ -432,6 +453,9 @@ def main(argv=None):
     p = sub.add_parser("rtable", help="r-table heat map and class diagram")
     p.add_argument("table", help="r-table file, fit file or model name")
     p.add_argument("-p", "--parameter", action="append")
+    p.add_argument("--wavelength", type=float, help="fit file: the r-table at one wavelength [nm]")
+    p.add_argument("--band", help="fit file: unweighted mean over a band A:B [nm]")
+    p.add_argument("--illuminant", default="A", help="fit file: photometric weighting V(lambda) x A|D65|FILE")
     output(p)
     a = parser.parse_args(argv)
     # As every roadbrdf command: the figure must not replace one of the files it is drawn from.
@@ -457,7 +481,14 @@ def main(argv=None):
         table = a.table
         if not (table.endswith(".json") or os.path.exists(table)):
             table = Model(table)
-        rtable(table, model_params(a.parameter), title=a.title, output=a.output)
+        band = None
+        if a.band is not None:
+            lo, sep, hi = a.band.partition(":")
+            if not sep:
+                raise ValueError(f"--band expects A:B in nm, got '{a.band}'")
+            band = (float(lo), float(hi))
+        rtable(table, model_params(a.parameter), title=a.title, output=a.output, wavelength=a.wavelength,
+               band=band, illuminant=a.illuminant)
     print(a.output)
     return 0
 

@@ -101,7 +101,11 @@ void bind_photometry(py::module_& m) {
       "rtable_from_spectral",
       [](const SpectralModel& model, double alpha, const std::string& illuminant, std::optional<double> wavelength,
          std::optional<std::pair<double, double>> band) {
-        return rtable_to_dict(compute_rtable(model, weighting_from(illuminant, wavelength, band), alpha));
+        std::string note;
+        const SpectralWeighting w = effective_weighting(model, weighting_from(illuminant, wavelength, band), &note);
+        py::dict d = rtable_to_dict(compute_rtable(model, w, alpha));
+        d["note"] = note.empty() ? py::object(py::none()) : py::object(py::str(note));
+        return d;
       },
       py::arg("model"), py::arg("alpha") = 1.0, py::arg("illuminant") = "A", py::arg("wavelength") = py::none(),
       py::arg("band") = py::none());

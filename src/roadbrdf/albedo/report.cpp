@@ -26,6 +26,26 @@ SolarSpectrum read_diffuse_table(const std::string& path) {
   return t;
 }
 
+// Whether the luminous (V(lambda)-weighted) albedo can be formed from these wavelengths: at least
+// two, covering 99% of the luminous integral (photometry::photometric_weights). Otherwise a note.
+bool luminous_possible(const std::vector<double>& wavelengths, const photometry::TabulatedSpectrum& illuminant,
+                       std::vector<std::string>& notes) {
+  if (wavelengths.size() < 2) {
+    notes.push_back(fmt::format("single-band fit ({:g} nm): the luminous (V(lambda)-weighted) values need a spectrum "
+                                "and are omitted",
+                                wavelengths.front()));
+    return false;
+  }
+  const double coverage = photometry::luminous_coverage(wavelengths.front(), wavelengths.back(), illuminant);
+  if (coverage < 0.99) {
+    notes.push_back(fmt::format("the fit's wavelengths ({:g}-{:g} nm) hold {:.1f}% of the luminous integral under {} "
+                                "(99% needed): the luminous values are omitted",
+                                wavelengths.front(), wavelengths.back(), 100.0 * coverage, illuminant.name()));
+    return false;
+  }
+  return true;
+}
+
 nlohmann::json nullable(const std::vector<std::vector<double>>& v) {
   if (v.empty()) return nullptr;
   return v;
@@ -164,7 +184,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   }
 
   // Broadband values.
-  nlohmann::json broadband;
+  bool broadband_formed = true;
   std::vector<double> bb_bs, bb_bs_err, bb_blue, bb_blue_err;
   double bb_ws = ws.value[0], bb_ws_err = ws.error[0], outside = 0.0;
   std::string weighting;
@@ -179,7 +199,11 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
       }
     }
   } else if (wavelengths.size() < 2) {
-    throw InputError("broadband values need at least two wavelengths");
+    // A single band has no spectrum to weigh: its values are reported per wavelength only.
+    broadband_formed = false;
+    notes.push_back(fmt::format("single-band fit ({:g} nm): the broadband (solar-weighted) values need at least two "
+                                "wavelengths and are omitted",
+                                wavelengths.front()));
   } else {
     std::optional<SolarSpectrum> fixed;
     if (!a.spectrum.empty()) fixed = solar_spectrum_from_name(a.spectrum);
@@ -213,6 +237,11 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
       }
     }
     if (!fixed) notes.push_back("broadband white-sky is weighted by SPECTRL2's global spectrum at the first sun zenith");
+    if (outside > 0.5) {
+      notes.push_back(fmt::format("WARNING: the fit's wavelengths ({:g}-{:g} nm) hold only {:.0f}% of the solar energy: "
+                                  "the broadband values weigh that part only",
+                                  wavelengths.front(), wavelengths.back(), 100.0 * (1.0 - outside)));
+    }
   }
 
   // Luminous reflectance.
@@ -221,7 +250,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   double lum_ws = ws.value[0];
   if (!a.illuminant.empty()) {
     const photometry::TabulatedSpectrum illum = photometry::illuminant_from_name(a.illuminant);
-    if (spectral) {
+    if (spectral && !luminous_possible(wavelengths, illum, notes)) {
+      // omitted, with the note saying why
+    } else if (spectral) {
       const std::vector<double> grid = photometry::photometric_grid(wavelengths.front(), wavelengths.back());
       const std::vector<double> w = photometry::photometric_weights(grid, illum);
       auto weigh = [&](const std::vector<double>& v) {
@@ -234,7 +265,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     } else {
       for (std::size_t z = 0; z < zeniths.size(); ++z) lum_bs.push_back(bs[z][0]);
     }
-    luminous = {{"illuminant", illum.name()}, {"black_sky", lum_bs}, {"white_sky", lum_ws}};
+    if (!spectral || !lum_bs.empty()) {
+      luminous = {{"illuminant", illum.name()}, {"black_sky", lum_bs}, {"white_sky", lum_ws}};
+    }
   }
 
   nlohmann::json j;
@@ -247,7 +280,8 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                 {"white_sky", "1 (bi-hemispherical reflectance), [wavelength]"},
                 {"blue_sky", "1, (1 - D) black_sky + D white_sky, [sun zenith][wavelength]"},
                 {"diffuse_fraction", "1, D = diffuse / global horizontal irradiance, [sun zenith][wavelength]"},
-                {"errors", "absolute error estimates of the same quantities"}};
+                {"errors", "absolute error estimates of the same quantities"},
+                {"broadband", "solar-weighted values; null when they cannot be formed (one wavelength; see notes)"}};
   j["sun_zenith_deg"] = zeniths;
   j["wavelengths"] = wavelengths;
   j["tolerance"] = a.tolerance;
@@ -259,7 +293,10 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   j["diffuse_fraction"] = nullable(diffuse);
   j["blue_sky"] = nullable(blue);
   j["blue_sky_error"] = nullable(blue_err);
-  j["broadband"] = {{"weighting", weighting},
+  if (!broadband_formed) {
+    j["broadband"] = nullptr;
+  } else {
+    j["broadband"] = {{"weighting", weighting},
                     {"black_sky", bb_bs},
                     {"black_sky_error", bb_bs_err},
                     {"white_sky", bb_ws},
@@ -267,6 +304,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                     {"blue_sky", bb_blue.empty() ? nlohmann::json(nullptr) : nlohmann::json(bb_blue)},
                     {"blue_sky_error", bb_blue.empty() ? nlohmann::json(nullptr) : nlohmann::json(bb_blue_err)},
                     {"solar_fraction_outside_range", outside}};
+  }
   j["luminous"] = luminous;
   j["notes"] = notes;
   return j;
@@ -287,17 +325,22 @@ std::string albedo_table(const nlohmann::json& j) {
     diffuse = j.at("diffuse_fraction").get<std::vector<std::vector<double>>>();
   }
   const auto& b = j.at("broadband");
-  const auto bb_bs = b.at("black_sky").get<std::vector<double>>();
-  const auto bb_bs_err = b.at("black_sky_error").get<std::vector<double>>();
-  const double bb_ws = b.at("white_sky").get<double>();
-  const double bb_ws_err = b.at("white_sky_error").get<double>();
-  std::vector<double> bb_blue, bb_blue_err;
-  if (!b.at("blue_sky").is_null()) {
-    bb_blue = b.at("blue_sky").get<std::vector<double>>();
-    bb_blue_err = b.at("blue_sky_error").get<std::vector<double>>();
+  const bool with_broadband = !b.is_null();
+  std::vector<double> bb_bs, bb_bs_err, bb_blue, bb_blue_err;
+  double bb_ws = 0.0, bb_ws_err = 0.0, outside = 0.0;
+  std::string weighting;
+  if (with_broadband) {
+    bb_bs = b.at("black_sky").get<std::vector<double>>();
+    bb_bs_err = b.at("black_sky_error").get<std::vector<double>>();
+    bb_ws = b.at("white_sky").get<double>();
+    bb_ws_err = b.at("white_sky_error").get<double>();
+    if (!b.at("blue_sky").is_null()) {
+      bb_blue = b.at("blue_sky").get<std::vector<double>>();
+      bb_blue_err = b.at("blue_sky_error").get<std::vector<double>>();
+    }
+    weighting = b.at("weighting").get<std::string>();
+    outside = b.at("solar_fraction_outside_range").get<double>();
   }
-  const std::string weighting = b.at("weighting").get<std::string>();
-  const double outside = b.at("solar_fraction_outside_range").get<double>();
   const std::size_t n_sets = ws_value.size();
   const double tolerance = j.at("tolerance").get<double>();
   const std::string model_name = j.at("model").get<std::string>();
@@ -328,6 +371,7 @@ std::string albedo_table(const nlohmann::json& j) {
       }
       text << '\n';
     }
+  if (with_broadband) {
     text << fmt::format("# broadband (weighting: {}; solar energy outside the model's wavelength range: {:.4f})\n",
                         weighting, outside);
     text << fmt::format("# white_sky {:.6f} +- {:.1e}\n", bb_ws, bb_ws_err);
@@ -336,6 +380,7 @@ std::string albedo_table(const nlohmann::json& j) {
       if (!bb_blue.empty()) text << fmt::format("  blue_sky {:.6f} +- {:.1e}", bb_blue[z], bb_blue_err[z]);
       text << '\n';
     }
+  }
     if (!lum_bs.empty()) {
       text << fmt::format("# luminous (V(lambda) x {}): white_sky {:.6f}", illuminant, lum_ws);
       for (std::size_t z = 0; z < zeniths.size(); ++z) text << fmt::format("  black_sky_{:g}deg {:.6f}", zeniths[z], lum_bs[z]);

@@ -1,4 +1,5 @@
-// roadbrdf eval MODEL -p NAME=VALUE ... (--theta-i D --phi-i D --theta-r D --phi-r D | --geometry FILE.csv)
+// roadbrdf eval (MODEL -p NAME=VALUE ... | FIT.json | MIX.json [--fit NAME] [--wavelength NM])
+//   (--theta-i D --phi-i D --theta-r D --phi-r D | --geometry FILE.csv)
 #include <fmt/core.h>
 
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/geometry_file.h"
 
 namespace roadbrdf::cli {
@@ -21,17 +23,39 @@ struct EvalArgs {
   std::vector<std::string> parameters;
   std::vector<std::string> options;
   std::optional<double> theta_i, phi_i, theta_r, phi_r;
+  std::string fit_model;
+  std::optional<double> wavelength;
   std::string geometry_file;
   std::string output;
 };
 
+// The parameter set to evaluate: a model's constant parameters, or a fit/MIX file's at one
+// wavelength (its only band when it has one, else --wavelength).
+std::vector<double> parameters_to_evaluate(const SpectralModel& sm, const EvalArgs& a) {
+  if (!sm.is_spectral()) {
+    if (a.wavelength) throw InputError("--wavelength needs a fit file or a MIX.json: MODEL -p ... has no spectrum");
+    return sm.parameter_table();
+  }
+  const auto& wl = sm.wavelengths();
+  if (!a.wavelength && wl.size() > 1) {
+    throw InputError(fmt::format("{} holds {} wavelengths ({:g}-{:g} nm): choose one with --wavelength NM", a.model,
+                                 wl.size(), wl.front(), wl.back()));
+  }
+  return sm.parameters_at(a.wavelength.value_or(wl.front()));
+}
+
 void run(const EvalArgs& a) {
-  const ModelWithParameters m = model_from_command_line(a.model, a.parameters, a.options);
+  check_distinct_files({{"MODEL", a.model}, {"--geometry", a.geometry_file}}, {{"-o", a.output}});
+  if (!a.fit_model.empty() && !is_fit_file_argument(a.model)) throw InputError("--fit needs a fit file or a MIX.json");
+  const SpectralModel sm = spectral_model_from_command_line(a.model, a.parameters, a.options, a.fit_model);
+  struct {
+    const Model* model;
+    std::vector<double> parameters;
+  } m{&sm.model(), parameters_to_evaluate(sm, a)};
   if (!a.geometry_file.empty()) {
     if (a.theta_i || a.phi_i || a.theta_r || a.phi_r) {
       throw InputError("give either --geometry or the four angles, not both");
     }
-    check_distinct_files({{"--geometry", a.geometry_file}}, {{"-o", a.output}});
     const GeometryTable table = read_geometry_file(a.geometry_file);
     std::vector<double> brdf(table.geometries.size());
     m.model->evaluate_batch(table.geometries.data(), table.geometries.size(), m.parameters.data(), 1, brdf.data());
@@ -52,8 +76,13 @@ void run(const EvalArgs& a) {
 void register_eval_command(CLI::App& app) {
   static EvalArgs args;
   auto* command = app.add_subcommand("eval", "Evaluate a model's BRDF [sr^-1] at one geometry or at every row of a file");
-  command->add_option("model", args.model, "Model name, e.g. oren-nayar or lambert+torrance-sparrow")->required();
+  command->add_option("model", args.model,
+                      "Model name (e.g. oren-nayar or lambert+torrance-sparrow, with -p), FIT.json or MIX.json")
+      ->required();
   add_model_flags(command, args.parameters, args.options);
+  command->add_option("--fit", args.fit_model, "Which fit of FIT.json / method of MIX.json (default: the best-ranked)");
+  command->add_option("--wavelength", args.wavelength,
+                      "Wavelength [nm] at which a fit file is evaluated (needed unless it has a single band)");
   command->add_option("--theta-i", args.theta_i, "Incidence zenith angle [deg]");
   command->add_option("--phi-i", args.phi_i, "Incidence azimuth [deg]");
   command->add_option("--theta-r", args.theta_r, "Reflection (viewing) zenith angle [deg]");

@@ -133,6 +133,13 @@ void run(const RTableArgs& a) {
       weighting_json = {{"kind", "none (wavelength-independent model)"}};
     } else {
       const double lo = model.wavelengths().front(), hi = model.wavelengths().back();
+      std::string note;
+      w = effective_weighting(model, w, &note);
+      if (!note.empty()) {
+        fmt::print(stderr, "roadbrdf: note: {}\n", note);
+        weighting_json = {{"kind", "wavelength (the model's single band)"}, {"wavelength_nm", w.wavelength_nm},
+                          {"note", note}};
+      }
       weighting_json["model_wavelength_range_nm"] = {lo, hi};
       if (w.kind == SpectralWeighting::Kind::photometric) {
         const double coverage = luminous_coverage(lo, hi, *w.illuminant);

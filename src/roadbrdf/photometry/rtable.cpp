@@ -1,5 +1,7 @@
 #include "roadbrdf/photometry/rtable.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cctype>
 #include <limits>
@@ -119,21 +121,50 @@ void spectral_grid(const SpectralModel& model, const SpectralWeighting& w, std::
     }
     case SpectralWeighting::Kind::photometric: {
       if (wl.size() < 2) {
-        throw InputError("the model has a single wavelength (" + std::to_string(lo) +
-                         " nm): photometric weighting needs a spectrum; use --wavelength");
+        grid = {lo};  // effective_weighting: a single band is used as it is
+        weights = {1.0};
+        return;
+      }
+      const TabulatedSpectrum& illuminant = w.illuminant ? *w.illuminant : illuminant_a();
+      if (luminous_coverage(lo, hi, illuminant) < 0.99) {
+        std::string bands;
+        for (std::size_t k = 0; k < wl.size() && k < 12; ++k) bands += fmt::format("{}{:g}", k ? ", " : "", wl[k]);
+        if (wl.size() > 12) bands += ", ...";
+        throw InputError(fmt::format("the model's wavelengths ({} nm) hold {:.1f}% of the luminous integral under {} "
+                                     "(99% needed for photometric weighting): choose one band with --wavelength NM "
+                                     "or a range with --band A:B",
+                                     bands, 100.0 * luminous_coverage(lo, hi, illuminant), illuminant.name()));
       }
       grid = photometric_grid(lo, hi);
       if (grid.size() < 2) {
         throw InputError("the model's wavelengths " + std::to_string(lo) + "-" + std::to_string(hi) +
                          " nm do not overlap the visible range of V(lambda) (340-830 nm)");
       }
-      weights = photometric_weights(grid, w.illuminant ? *w.illuminant : illuminant_a());
+      weights = photometric_weights(grid, illuminant);
       return;
     }
   }
 }
 
 }  // namespace
+
+SpectralWeighting effective_weighting(const SpectralModel& model, const SpectralWeighting& requested,
+                                      std::string* note) {
+  if (note) note->clear();
+  if (!model.is_spectral() || requested.kind != SpectralWeighting::Kind::photometric ||
+      model.wavelengths().size() != 1) {
+    return requested;
+  }
+  SpectralWeighting w;
+  w.kind = SpectralWeighting::Kind::wavelength;
+  w.wavelength_nm = model.wavelengths().front();
+  if (note) {
+    *note = fmt::format("single-band model ({:g} nm): the r-table is at that wavelength (photometric weighting "
+                        "needs a spectrum)",
+                        w.wavelength_nm);
+  }
+  return w;
+}
 
 std::vector<double> weighted_brdf(const SpectralModel& model, const SpectralWeighting& weighting,
                                   const std::vector<Geometry>& geometries) {

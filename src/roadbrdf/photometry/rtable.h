@@ -79,11 +79,18 @@ struct SpectralWeighting {
   double band_lo_nm = 0.0, band_hi_nm = 0.0;  // band: unweighted mean over [lo, hi] (1 nm trapezoid)
 };
 
+// The weighting that applies to `model`: a model with a single wavelength has no spectrum to weigh
+// photometrically, so the photometric weighting becomes "at that wavelength". `note` (if given)
+// receives a one-line explanation when the weighting was changed, else "".
+SpectralWeighting effective_weighting(const SpectralModel& model, const SpectralWeighting& requested,
+                                      std::string* note = nullptr);
+
 // r-table of a model with one parameter set (wavelength independent). The ideal specular (delta)
 // part of a model never reaches the grid at alpha = 1 deg (its mirror direction is gamma = 89 deg,
 // beyond tan(gamma) = 12) and is not included.
 RTable compute_rtable(const Model& model, const std::vector<double>& parameters, double alpha_deg = 1.0);
-// r-table of a spectral model (fit file); a wavelength-independent SpectralModel ignores `weighting`.
+// r-table of a spectral model (fit file); a wavelength-independent SpectralModel ignores `weighting`;
+// a single-band one is taken at its wavelength (effective_weighting).
 RTable compute_rtable(const SpectralModel& model, const SpectralWeighting& weighting, double alpha_deg = 1.0);
 
 // Per-geometry weighted BRDF of a spectral model (the reduction above), for any geometries.
