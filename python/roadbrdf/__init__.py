@@ -744,3 +744,6 @@ def render_albedo(surface, sun_zenith, wavelengths=None, white_sky_nodes=8, samp
 # Spectroradiometer files and run manifests (instruments.py).
 from .instruments import (InstrumentSpectrum, read_instrument, instrument_dataset, read_manifest,  # noqa: E402
                           calibrate_manifest)
+
+# Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
+from .studies import study  # noqa: E402

@@ -1,0 +1,79 @@
+"""Design studies: sweep a formulation space, predict every candidate, collect the table (docs/studies.md).
+
+``roadbrdf.study(STUDY, output=...)`` and ``roadbrdf study STUDY.json -o RESULTS.csv`` are the same code: the
+command line runs :func:`main` (``python3 -m roadbrdf.studies``).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from .spec import InputError, read_study
+
+__all__ = ["study", "read_study", "main"]
+
+
+def _inputs(study):
+    files = [("STUDY", study.path), ("base", study.base_path)]
+    files += [("fit", path) for path in sorted(study.fit_hash)]
+    return [(role, path) for role, path in files if os.path.exists(path)]
+
+
+def study(source, output=None, store=None, scheduler=None, workers=None, progress=True, retry_failed=False):
+    """Run a design study and return its table as a list of dicts (CSV header -> value).
+
+    ``source``: a study file (``"format": "roadbrdf-study"``) or its content as a dict. ``output``: the results
+    CSV (``-`` = standard output), written once every candidate is done. ``store``: the results store (JSON
+    lines, appended as tasks finish; default ``OUTPUT.store.jsonl``, none without ``output``): a re-run computes
+    only what it lacks. ``scheduler``: a Dask scheduler address (``tcp://HOST:PORT``; default
+    ``$ROADBRDF_SCHEDULER``), else ``workers`` local processes (default: all cores). ``progress``: report on
+    standard error. ``retry_failed``: run failed candidates again. Errors in the study raise InputError naming
+    the file and the JSON key.
+    """
+    from .. import _roadbrdf
+    from .run import execute, table
+    from .store import Store, write_csv
+    s = read_study(source)
+    if scheduler is None:
+        scheduler = os.environ.get("ROADBRDF_SCHEDULER") or None
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InputError(f"workers: expected a positive integer, got {workers!r}")
+    if scheduler is not None and workers is not None:
+        raise InputError("give workers (local processes) or a scheduler (Dask), not both")
+    if store is None and output is not None and os.fspath(output) != "-":
+        store = os.fspath(output) + ".store.jsonl"
+    outputs = [("-o", os.fspath(output))] if output is not None else []
+    if store is not None:
+        outputs.append(("--store", os.fspath(store)))
+    _roadbrdf.check_distinct_files(_inputs(s), outputs)
+    results = Store(store)
+    try:
+        tasks, _ = execute(s, results, scheduler, workers, progress, retry_failed, _roadbrdf.__version__)
+    finally:
+        results.close()
+    header, rows = table(s, tasks, results)
+    if output is not None:
+        write_csv(os.fspath(output), header, rows)
+    return [dict(zip(header, row)) for row in rows]
+
+
+def main(argv=None):
+    """``roadbrdf study STUDY.json -o RESULTS.csv ...`` (``python3 -m roadbrdf.studies``)."""
+    import argparse
+    parser = argparse.ArgumentParser(prog="roadbrdf study",
+                                     description="Design study: predict every candidate formulation of STUDY.json "
+                                                 "(docs/studies.md).")
+    parser.add_argument("study", help="study file (\"format\": \"roadbrdf-study\")")
+    parser.add_argument("-o", "--output", required=True, help="results CSV (- = standard output)")
+    parser.add_argument("--store", help="results store (default: OUTPUT.store.jsonl)")
+    parser.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $ROADBRDF_SCHEDULER)")
+    parser.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    parser.add_argument("--retry-failed", action="store_true", help="run failed candidates again")
+    parser.add_argument("--quiet", action="store_true", help="no progress on standard error")
+    a = parser.parse_args(argv)
+    rows = study(a.study, a.output, a.store, a.scheduler, a.workers, not a.quiet, a.retry_failed)
+    if a.output != "-" and not a.quiet:
+        failed = sum(1 for r in rows if r["status"] == "failed")
+        print(f"{a.output}: {len(rows)} rows, {failed} failed", file=sys.stderr)
+    return 0

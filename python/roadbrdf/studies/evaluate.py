@@ -1,0 +1,253 @@
+"""One study task: a candidate formulation predicted by the fast or the physical path.
+
+:func:`run_task` is a pure function of the task (a dict that ``tasks.make_task`` builds) and of the fit files'
+contents (``fits``: SHA-256 -> text): it writes them to a private folder (once per process), writes the
+candidate's formulation there, and returns its result rows. It uses one thread, so a process pool or a Dask
+worker runs one task per core, and the same task gives the same numbers, bit for bit, everywhere.
+"""
+
+from __future__ import annotations
+
+import atexit
+import json
+import math
+import os
+import shutil
+import tempfile
+
+import numpy as np
+
+_FIT_FOLDER = None
+_REGION = None
+_WEIGHTS = {}
+
+
+def _fit_folder(fits):
+    """This process's private folder holding the fit files by hash (written once each)."""
+    global _FIT_FOLDER
+    if _FIT_FOLDER is None:
+        _FIT_FOLDER = tempfile.mkdtemp(prefix="roadbrdf-study-fits-")
+        atexit.register(shutil.rmtree, _FIT_FOLDER, True)
+    for digest, text in fits.items():
+        path = os.path.join(_FIT_FOLDER, digest + ".json")
+        if not os.path.exists(path):
+            tmp = path + f".{os.getpid()}.tmp"
+            with open(tmp, "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(tmp, path)
+    return _FIT_FOLDER
+
+
+def _materialise(formulation, folder):
+    """The formulation with its "sha256:..." fit references pointing to the fit files in ``folder``."""
+    f = json.loads(json.dumps(formulation))
+
+    def fix(entry):
+        ref = entry.get("fit")
+        if isinstance(ref, str) and ref.startswith("sha256:"):
+            entry["fit"] = os.path.join(folder, ref[7:] + ".json")
+
+    for c in f["components"]:
+        fix(c)
+    if isinstance(f.get("mastic"), dict):
+        fix(f["mastic"])
+    return f
+
+
+def _rtable_outputs(rt):
+    return {"Q0": rt["Q0"], "S1": rt["S1"], "Qd": rt["Qd"], "class": rt["class"]}
+
+
+def _albedo_outputs(a, zeniths):
+    """Broadband (solar-weighted) values of a ``roadbrdf.albedo`` result."""
+    b = a["broadband"]
+    out = {}
+    for i, z in enumerate(zeniths):
+        out[f"black_sky_{z:g}deg"] = b["black_sky"][i]
+        out[f"black_sky_{z:g}deg_error"] = b["black_sky_error"][i]
+    out["white_sky"] = b["white_sky"]
+    out["white_sky_error"] = b["white_sky_error"]
+    if b.get("blue_sky") is not None:
+        for i, z in enumerate(zeniths):
+            out[f"blue_sky_{z:g}deg"] = b["blue_sky"][i]
+            out[f"blue_sky_{z:g}deg_error"] = b["blue_sky_error"][i]
+    return out
+
+
+def _fast(task, path, work):
+    import roadbrdf
+    p = task["predictions"]
+    rows = []
+    for method in p["methods"]:
+        mix_path = os.path.join(work, f"{method}.mix.json")
+        roadbrdf.mix(path, method=method, output=mix_path)
+        model = roadbrdf.read_fit(mix_path, method)
+        a = roadbrdf.albedo(model, sun_zenith=p["sun_zenith_deg"], diffuse_fraction=p["diffuse_fraction"],
+                            atmosphere=p["atmosphere"], spectrum=p["spectrum"])
+        row = {"method": method}
+        row.update(_albedo_outputs(a, p["sun_zenith_deg"]))
+        row.update(_rtable_outputs(roadbrdf.rtable(model, illuminant=p["illuminant"])))
+        rows.append(row)
+    return rows
+
+
+def _table(path, columns):
+    """Columns of a bundled CSV table as arrays: the header is the first line naming ``columns[0]`` (title and
+    ``#`` lines before it are skipped)."""
+    with open(path, encoding="utf-8") as f:
+        lines = [line.strip() for line in f if line.strip() and not line.startswith("#")]
+    start = next(i for i, line in enumerate(lines) if columns[0] in line.split(","))
+    names = lines[start].split(",")
+    index = [names.index(c) for c in columns]
+    values = [[float(line.split(",")[i]) for i in index] for line in lines[start + 1:]]
+    return [np.asarray(col, dtype=float) for col in zip(*values)]
+
+
+def _band_weights(kind, wavelengths):
+    """Weights of the rendered bands for a broadband value: trapezoid weights on the bands times the spectrum
+    (the solar spectrum or V x illuminant) there; one band: weight 1."""
+    key = (kind, tuple(wavelengths))
+    if key not in _WEIGHTS:
+        import roadbrdf
+        data = roadbrdf.data_directory()
+        w = np.asarray(wavelengths, dtype=float)
+        if kind.startswith("astm"):
+            x, y = _table(os.path.join(data, "third-party", "solar", "astm-g173-03.csv"),
+                          ["wavelength", kind.split("-")[-1]])
+            e = np.interp(w, x, y)
+        else:
+            x, v, s = _table(os.path.join(data, "third-party", "photometry", "cie-1931-v-lambda-illuminants.csv"),
+                             ["wavelength_nm", "v_lambda", "illuminant_" + kind])
+            e = np.interp(w, x, v * s, left=0.0, right=0.0)
+        if w.size == 1:
+            t = np.ones(1)
+        else:
+            t = np.zeros(w.size)
+            t[1:] += np.diff(w) / 2
+            t[:-1] += np.diff(w) / 2
+        weights = t * e
+        if not np.sum(weights) > 0:
+            from .spec import InputError
+            raise InputError(f"the rendered bands {list(wavelengths)} nm carry no {kind} weight")
+        _WEIGHTS[key] = weights / np.sum(weights)
+    return _WEIGHTS[key]
+
+
+def _region():
+    """(row, column) cells of the CIE standard r-table region (the defined cells of the bundled R1 table)."""
+    global _REGION
+    if _REGION is None:
+        import roadbrdf
+        r1 = roadbrdf.read_rtable(os.path.join(roadbrdf.data_directory(), "third-party", "rtables", "r1-table.dat"))
+        rows, cols = np.nonzero(np.isfinite(np.asarray(r1["r"])))
+        _REGION = (rows, cols, np.asarray(r1["tan_gamma"], dtype=float), np.asarray(r1["beta_deg"], dtype=float))
+    return _REGION
+
+
+def _physical(task, path):
+    import roadbrdf
+    from .spec import InputError
+    p = task["predictions"]
+    q = p["physical"]
+    seed = task["seed"]
+    common = dict(samples=q["samples"], seed=seed, threads=1, max_bounces=q["max_bounces"])
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # generator notes (e.g. jamming): the row has the texture statistics
+        try:
+            s = roadbrdf.surface(path, size_mm=q["size_mm"], cell_mm=q["cell_mm"], seed=seed,
+                                 mastic_fraction=task["mastic_fraction"])
+        except ValueError as e:  # e.g. an exposed mastic fraction the sample cannot reach
+            raise InputError(str(e)) from None
+    row = {"method": "physical", "mpd_mm": s.mpd_mm,
+           "exposed_mastic_fraction": float(s.exposed_area_fraction[0])}
+    zen = p["sun_zenith_deg"]
+    a = roadbrdf.render_albedo(s, zen, wavelengths=q["wavelengths"], white_sky_nodes=q["white_sky_nodes"], **common)
+    w = _band_weights(p["spectrum"], q["wavelengths"])
+    # Broadband = weighted sum over the bands; its error is the weighted sum of the band errors (the bands share
+    # their paths, so their errors are correlated: this is the fully correlated bound).
+    black = a["black_sky"] @ w
+    black_err = a["black_sky_error"] @ w
+    white = float(a["white_sky"] @ w)
+    white_err = float(a["white_sky_error"] @ w)
+    for i, z in enumerate(zen):
+        row[f"black_sky_{z:g}deg"] = float(black[i])
+        row[f"black_sky_{z:g}deg_error"] = float(black_err[i])
+    row["white_sky"] = white
+    row["white_sky_error"] = white_err
+    d = p["diffuse_fraction"]
+    if d is not None:
+        for i, z in enumerate(zen):
+            row[f"blue_sky_{z:g}deg"] = float((1 - d) * black[i] + d * white)
+            row[f"blue_sky_{z:g}deg_error"] = float((1 - d) * black_err[i] + d * white_err)
+    if q["rtable"]:
+        rows, cols, tan_gamma, beta = _region()
+        gamma = np.degrees(np.arctan(tan_gamma[rows]))
+        # Road angles (core/geometry.h): theta_i = gamma, theta_r = 90 - alpha (alpha = 1 deg), phi_i = 0,
+        # phi_r = 180 - beta.
+        data = roadbrdf.render(s, gamma, 0.0, 89.0, 180.0 - beta[cols], wavelengths=q["wavelengths"],
+                               acceptance_deg=q["acceptance_deg"], **common)
+        wv = _band_weights(p["illuminant"], q["wavelengths"])
+        cos3 = np.cos(np.radians(gamma)) ** 3
+        r = np.full((tan_gamma.size, beta.size), np.nan)
+        r[rows, cols] = (data.brdf @ wv) * cos3
+        sigma = np.zeros_like(r)
+        sigma[rows, cols] = (data.sigma @ wv) * cos3
+        rt = roadbrdf._roadbrdf.rtable_summary(np.ascontiguousarray(r), "candidate", 1.0)
+        row.update(_rtable_outputs(rt))
+        # Q0 and Qd are linear in r: their standard errors follow from the same functional applied to the
+        # unit cells (weights computed once); S1 = r(0, 2) / r(0, 0) by the ratio rule.
+        c0, cd = _linear_weights(rows, cols, tan_gamma.size, beta.size)
+        s_cells = sigma[rows, cols]
+        row["Q0_error"] = float(math.sqrt(np.sum((c0 * s_cells) ** 2)))
+        row["Qd_error"] = float(math.sqrt(np.sum((cd * s_cells) ** 2)))
+        i0 = np.argmin(np.abs(tan_gamma - 0.0))
+        i2 = np.argmin(np.abs(tan_gamma - 2.0))
+        a0, a2 = r[i0, 0], r[i2, 0]
+        row["S1_error"] = float(abs(a2 / a0) * math.hypot(sigma[i2, 0] / a2, sigma[i0, 0] / a0))
+    return [row]
+
+
+def _linear_weights(rows, cols, nr, nc):
+    """Coefficients c with Q0 = sum c r and Qd = sum c r over the region's cells (from the summary itself)."""
+    key = ("linear", nr, nc, len(rows))
+    if key not in _WEIGHTS:
+        import roadbrdf
+        base = np.full((nr, nc), np.nan)
+        base[rows, cols] = 1.0
+        one = roadbrdf._roadbrdf.rtable_summary(np.ascontiguousarray(base), "", 1.0)
+        c0 = np.zeros(len(rows))
+        cd = np.zeros(len(rows))
+        for k, (i, j) in enumerate(zip(rows, cols)):
+            bumped = base.copy()
+            bumped[i, j] = 2.0
+            t = roadbrdf._roadbrdf.rtable_summary(np.ascontiguousarray(bumped), "", 1.0)
+            c0[k] = t["Q0"] - one["Q0"]
+            cd[k] = t["Qd"] - one["Qd"]
+        _WEIGHTS[key] = (c0, cd)
+    return _WEIGHTS[key]
+
+
+def run_task(task, fits):
+    """The result of one task: {"rows": [...], "error": None} or {"rows": [], "error": message}.
+
+    Input errors of the candidate (a formulation the mixing code refuses, a mastic fraction the generator cannot
+    reach, ...) become the candidate's recorded error; anything else is a bug and propagates (and stops the
+    study, keeping what the store holds).
+    """
+    from .spec import InputError
+    folder = _fit_folder(fits)
+    work = tempfile.mkdtemp(prefix="roadbrdf-study-task-")
+    try:
+        if task.get("error"):
+            return {"rows": [], "error": task["error"]}
+        path = os.path.join(work, "candidate.json")
+        with open(path, "w", encoding="utf-8") as f:
+            json.dump(_materialise(task["formulation"], folder), f)
+        try:
+            rows = _fast(task, path, work) if task["predictions"]["path"] == "fast" else _physical(task, path)
+        except InputError as e:
+            return {"rows": [], "error": str(e).replace(path, "<candidate formulation>")}
+        return {"rows": rows, "error": None}
+    finally:
+        shutil.rmtree(work, ignore_errors=True)

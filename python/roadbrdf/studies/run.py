@@ -1,0 +1,223 @@
+"""Running a study: tasks keyed by content, executors (local processes or a Dask cluster), progress, the table.
+
+A task's key is the SHA-256 of the canonical JSON of (the candidate's formulation with every fit file replaced by
+the SHA-256 of its bytes, its mastic exposure, the prediction settings, the replicate, the roadbrdf version).
+The same key means the same computation, so a result in the store is reused whatever study, order, executor or
+machine produced it; the random seed of the physical path is taken from the key.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import sys
+import time
+
+from .design import apply, candidates
+from .evaluate import run_task
+from .spec import InputError
+
+
+def _fit_ref(study, path):
+    return "sha256:" + study.fit_hash[os.path.abspath(path)]
+
+
+def make_tasks(study, version):
+    """(index, point, replicate, key, task) for every candidate."""
+    out = []
+    for index, point, replicate in candidates(study):
+        error = None
+        try:
+            formulation, mastic_fraction = apply(study, point)
+        except InputError as e:
+            formulation, mastic_fraction, error = None, None, str(e)
+        if formulation is not None:
+            for c in formulation["components"]:
+                if isinstance(c.get("fit"), str):
+                    c["fit"] = _fit_ref(study, c["fit"])
+            if isinstance(formulation.get("mastic"), dict) and isinstance(formulation["mastic"].get("fit"), str):
+                formulation["mastic"]["fit"] = _fit_ref(study, formulation["mastic"]["fit"])
+        entry = {"formulation": formulation, "mastic_fraction": mastic_fraction, "predictions": study.predictions,
+                 "replicate": replicate, "error": error, "roadbrdf": version}
+        key = hashlib.sha256(json.dumps(entry, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
+        task = dict(entry)
+        task["key"] = key
+        task["seed"] = int(key[:12], 16) % 2147483647 + 1
+        out.append((index, point, replicate, key, task))
+    return out
+
+
+class Progress:
+    """Done, in flight, failed and the estimated time left, on standard error (at most once a second)."""
+
+    def __init__(self, total, cached, enabled):
+        self.total, self.cached, self.enabled = total, cached, enabled
+        self.done = self.failed = 0
+        self.start = time.monotonic()
+        self.last = 0.0
+
+    def update(self, running, failed_now=False, force=False):
+        if failed_now:
+            self.failed += 1
+        now = time.monotonic()
+        if not self.enabled or (not force and now - self.last < 1.0):
+            return
+        self.last = now
+        left = self.total - self.cached - self.done
+        if self.done:
+            eta = (now - self.start) / self.done * left
+            eta_text = f"{int(eta) // 3600}:{int(eta) % 3600 // 60:02d}:{int(eta) % 60:02d}"
+        else:
+            eta_text = "?"
+        print(f"study: {self.cached + self.done}/{self.total} done ({self.cached} from the store), {running} running, "
+              f"{self.failed} failed, about {eta_text} left", file=sys.stderr, flush=True)
+
+
+def _local(pending, fits, workers, store, progress):
+    import concurrent.futures as cf
+    import multiprocessing
+    ctx = multiprocessing.get_context(_start_method())
+    with cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
+                                initargs=(fits,)) as pool:
+        started = {}
+        futures = {}
+        for key, task in pending:
+            futures[pool.submit(_run_cached, task)] = key
+            started[key] = time.monotonic()
+        try:
+            for future in cf.as_completed(futures):
+                key = futures[future]
+                result = future.result()
+                store.add(key, result, time.monotonic() - started[key])
+                progress.done += 1
+                running = min(workers, len(futures) - progress.done)
+                progress.update(running, failed_now=result["error"] is not None)
+        except BaseException:
+            for f in futures:
+                f.cancel()
+            raise
+
+
+_FITS = None
+
+
+def _start_method():
+    """'fork' when the caller runs a single thread (the usual script or the command line: the workers start at
+    once and the caller's main script is not run again), else 'forkserver' (forking a process with other threads
+    running can deadlock; the workers then import the caller's main module, which needs the usual
+    ``if __name__ == "__main__":`` guard)."""
+    try:
+        threads = len(os.listdir("/proc/self/task"))
+    except OSError:
+        threads = 2
+    return "fork" if threads == 1 else "forkserver"
+
+
+def _init_worker(fits):
+    global _FITS
+    _FITS = fits
+
+
+def _run_cached(task):
+    return run_task(task, _FITS)
+
+
+def _dask(pending, fits, scheduler, store, progress):
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise InputError(f"--scheduler {scheduler}: the Python package 'distributed' is not installed "
+                         "(Debian: apt-get install python3-distributed)") from None
+    try:
+        client = Client(scheduler, timeout=30)
+    except (OSError, TimeoutError) as e:
+        raise InputError(f"--scheduler {scheduler}: cannot connect: {e}") from None
+    try:
+        shared = client.scatter(fits, broadcast=True)
+        futures = {}
+        started = time.monotonic()
+        for key, task in pending:
+            futures[client.submit(run_task, task, shared, key=f"roadbrdf-study-{key}", pure=False)] = key
+        done = 0
+        for future in as_completed(list(futures)):
+            key = futures[future]
+            result = future.result()
+            store.add(key, result, time.monotonic() - started)
+            done += 1
+            progress.done += 1
+            progress.update(len(futures) - done, failed_now=result["error"] is not None)
+    finally:
+        client.close()
+
+
+def columns(study):
+    """The CSV header: identification, the variables (with units), the outputs (with units)."""
+    p = study.predictions
+    head = ["candidate", "replicate", "key", "status", "error", "method"]
+    for v in study.variables:
+        unit = {"%": "%", "1": "1", "": "library"}[v["unit"]]
+        head.append(f"{v['name']} [{unit}]")
+    out = []
+    for z in p["sun_zenith_deg"]:
+        out += [f"black_sky_{z:g}deg", f"black_sky_{z:g}deg_error"]
+    out += ["white_sky", "white_sky_error"]
+    if p["diffuse_fraction"] is not None or p["atmosphere"] is not None:
+        for z in p["sun_zenith_deg"]:
+            out += [f"blue_sky_{z:g}deg", f"blue_sky_{z:g}deg_error"]
+    units = {name: "1" for name in out}
+    rt = ["Q0", "Q0_error", "S1", "S1_error", "Qd", "Qd_error", "class"]
+    if p["path"] == "physical" and not p["physical"]["rtable"]:
+        rt = []
+    units.update({"Q0": "sr^-1", "Q0_error": "sr^-1", "Qd": "sr^-1", "Qd_error": "sr^-1", "S1": "1",
+                  "S1_error": "1", "class": "R"})
+    out += rt
+    if p["path"] == "physical":
+        out += ["mpd_mm", "exposed_mastic_fraction"]
+        units.update({"mpd_mm": "mm", "exposed_mastic_fraction": "1"})
+    return head, out, units
+
+
+def table(study, tasks, store):
+    """Header and rows of the results CSV, in candidate order (one row per candidate and method)."""
+    head, out, units = columns(study)
+    header = head + [f"{name} [{units[name]}]" for name in out]
+    rows = []
+    for index, point, replicate, key, _ in tasks:
+        record = store.results[key]
+        ident = [index + 1, replicate, key]
+        values = [point[v["name"]] for v in study.variables]
+        if record["error"] is not None:
+            rows.append(ident + ["failed", record["error"], ""] + values + [None] * len(out))
+            continue
+        for r in record["rows"]:
+            rows.append(ident + ["ok", "", r["method"]] + values + [r.get(name) for name in out])
+    return header, rows
+
+
+def execute(study, store, scheduler=None, workers=None, progress=True, retry_failed=False, version=""):
+    """Run the study's tasks that the store lacks; return (tasks, number computed)."""
+    from . import spec  # noqa: F401
+    tasks = make_tasks(study, version)
+    todo = []
+    seen = set()
+    for _, _, _, key, task in tasks:
+        if key in seen:
+            continue  # the same candidate twice in a design (e.g. a grid with repeated choices) runs once
+        seen.add(key)
+        record = store.results.get(key)
+        if record is None or (retry_failed and record["error"] is not None):
+            todo.append((key, task))
+    cached = len(seen) - len(todo)
+    bar = Progress(len(seen), cached, progress)
+    if progress:
+        print(f"study '{study.name}': {len(tasks)} candidates, {cached} already in the store, {len(todo)} to compute"
+              f"{' on ' + scheduler if scheduler else ''}", file=sys.stderr, flush=True)
+    if todo:
+        if scheduler:
+            _dask(todo, study.fits, scheduler, store, bar)
+        else:
+            n = workers or os.cpu_count() or 1
+            _local(todo, study.fits, min(n, len(todo)), store, bar)
+        bar.update(0, force=True)
+    return tasks, len(todo)

@@ -1,0 +1,170 @@
+"""Design studies (roadbrdf.study / roadbrdf study): the fast path against closed forms, designs, errors."""
+
+import csv
+import json
+import math
+
+import pytest
+
+import roadbrdf
+
+
+def lambert_fit(path, albedo, wavelengths=(400, 550, 700, 900)):
+    path.write_text(json.dumps({"format": "roadbrdf-fit", "version": 1, "best": "lambert",
+                                "fits": [{"model": "lambert", "options": {}, "wavelengths": list(wavelengths),
+                                          "parameters": {"albedo": [albedo] * len(wavelengths)}}]}))
+    return path
+
+
+def two_rock_study(tmp_path, design=None, variables=None):
+    """Two coarse Lambertian rocks (no binder, no mastic): the areal mixture is a Lambertian of albedo
+    sum a_k rho_k with a_k proportional to M_k / (rho_k D_k) (docs/mixing.md)."""
+    (tmp_path / "fits").mkdir(exist_ok=True)
+    lambert_fit(tmp_path / "fits" / "grey.fit.json", 0.3)
+    lambert_fit(tmp_path / "fits" / "dark.fit.json", 0.1)
+    lambert_fit(tmp_path / "fits" / "light.fit.json", 0.6)
+    (tmp_path / "base.json").write_text(json.dumps({
+        "format": "roadbrdf-formulation", "version": 1, "name": "two rocks",
+        "components": [
+            {"name": "Grey 2/6", "kind": "aggregate", "mass_percent": 40, "density_g_cm3": 2.65, "d_min_mm": 2,
+             "d_max_mm": 6, "fit": "fits/grey.fit.json"},
+            {"name": "Other 6/10", "kind": "aggregate", "mass_percent": 60, "density_g_cm3": 2.7, "d_min_mm": 6,
+             "d_max_mm": 10, "fit": "fits/dark.fit.json"}]}))
+    study = {"format": "roadbrdf-study", "version": 1, "name": "two rocks", "base": "base.json",
+             "library": {"dark": {"fit": "fits/dark.fit.json"},
+                         "light": {"fit": "fits/light.fit.json", "density_g_cm3": 2.5}},
+             "variables": variables if variables is not None else [
+                 {"name": "grey", "kind": "mass_percent", "component": "Grey 2/6", "values": [20, 50, 80],
+                  "balance": "Other 6/10"},
+                 {"name": "rock", "kind": "component", "component": "Other 6/10", "choices": ["dark", "light"]}],
+             "design": design or {"type": "grid"},
+             "predictions": {"path": "fast", "methods": ["areal"], "sun_zenith_deg": [0, 60],
+                             "diffuse_fraction": 0.25}}
+    path = tmp_path / "study.json"
+    path.write_text(json.dumps(study))
+    return path
+
+
+def d_eff(lo, hi):
+    return (hi - lo) / math.log(hi / lo)
+
+
+def expected_albedo(grey_percent, rock):
+    rho, density = {"dark": (0.1, 2.7), "light": (0.6, 2.5)}[rock]
+    w1 = grey_percent / (2.65 * d_eff(2, 6))
+    w2 = (100 - grey_percent) / (density * d_eff(6, 10))
+    return (w1 * 0.3 + w2 * rho) / (w1 + w2)
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_fast_path_matches_closed_form(cli, tmp_path):
+    study = two_rock_study(tmp_path)
+    out = tmp_path / "results.csv"
+    cli("study", study, "-o", out, "--workers", "2", "--quiet")
+    rows = read_csv(out)
+    assert len(rows) == 6
+    assert "Q0 [sr^-1]" in rows[0] and "grey [%]" in rows[0] and "white_sky [1]" in rows[0]
+    seen = set()
+    for r in rows:
+        assert r["status"] == "ok", r["error"]
+        grey, rock = float(r["grey [%]"]), r["rock [library]"]
+        seen.add((grey, rock))
+        a = expected_albedo(grey, rock)
+        # A Lambertian surface: every albedo is its albedo, q = rho / pi everywhere, so Q0 = Qd = rho / pi and
+        # S1 = r(0, tan 2) / r(0, 0) = cos^3(atan 2) = 5^-1.5.
+        for column in ("black_sky_0deg [1]", "black_sky_60deg [1]", "white_sky [1]", "blue_sky_60deg [1]"):
+            assert float(r[column]) == pytest.approx(a, abs=2e-5), column
+        assert float(r["Q0 [sr^-1]"]) == pytest.approx(a / math.pi, rel=1e-9)
+        assert float(r["Qd [sr^-1]"]) == pytest.approx(a / math.pi, rel=1e-9)
+        assert float(r["S1 [1]"]) == pytest.approx(5 ** -1.5, rel=1e-9)
+        assert r["class [R]"] == "R1"
+    assert seen == {(g, k) for g in (20.0, 50.0, 80.0) for k in ("dark", "light")}
+    # The same study from Python: the same table, number for number; and it comes from the store.
+    py = roadbrdf.study(study, output=tmp_path / "py.csv", progress=False)
+    assert (tmp_path / "py.csv").read_text() == out.read_text()
+    assert [r["key"] for r in py] == [r["key"] for r in rows]
+
+
+def test_rerun_costs_nothing_and_workers_do_not_matter(tmp_path, capfd):
+    study = two_rock_study(tmp_path)
+    roadbrdf.study(study, output=tmp_path / "a.csv", workers=1)
+    first = capfd.readouterr().err
+    assert "0 already in the store, 6 to compute" in first
+    roadbrdf.study(study, output=tmp_path / "a.csv", workers=2)
+    assert "6 already in the store, 0 to compute" in capfd.readouterr().err
+    roadbrdf.study(study, output=tmp_path / "b.csv", workers=2, progress=False)
+    assert (tmp_path / "a.csv").read_text() == (tmp_path / "b.csv").read_text()
+    lines = (tmp_path / "a.csv.store.jsonl").read_text().splitlines()
+    assert len(lines) == 1 + 6  # header and one line per candidate, nothing twice
+
+
+def test_share_and_envelope_failure(tmp_path):
+    # A share moves part of a component's mass to a library material (same size class); the balance envelope
+    # makes some candidates infeasible: they are recorded as failed, the others still run.
+    variables = [{"name": "light_share", "kind": "share", "component": "Other 6/10", "material": "light",
+                  "values": [0.0, 0.5]},
+                 {"name": "grey", "kind": "mass_percent", "component": "Grey 2/6", "values": [40, 70],
+                  "balance": "Other 6/10", "balance_range": [35, 100]}]
+    study = two_rock_study(tmp_path, variables=variables)
+    rows = roadbrdf.study(study, progress=False)
+    assert len(rows) == 4
+    failed = [r for r in rows if r["status"] == "failed"]
+    assert len(failed) == 2 and all(r["grey [%]"] == 70 for r in failed)
+    assert "outside its envelope [35, 100]" in failed[0]["error"]
+    for r in rows:
+        if r["status"] != "ok":
+            continue
+        s = r["light_share [1]"]
+        m = 60.0
+        w = [40 / (2.65 * d_eff(2, 6)), m * (1 - s) / (2.7 * d_eff(6, 10)), m * s / (2.5 * d_eff(6, 10))]
+        a = (w[0] * 0.3 + w[1] * 0.1 + w[2] * 0.6) / sum(w)
+        assert r["white_sky [1]"] == pytest.approx(a, abs=2e-5)
+
+
+def test_designs_are_seeded_and_latin(tmp_path):
+    variables = [{"name": "grey", "kind": "mass_percent", "component": "Grey 2/6", "range": [10, 90],
+                  "balance": "Other 6/10"},
+                 {"name": "rock", "kind": "component", "component": "Other 6/10", "choices": ["dark", "light"]}]
+    study = two_rock_study(tmp_path, design={"type": "lhs", "count": 8, "seed": 3}, variables=variables)
+    from roadbrdf.studies import design, read_study
+    s = read_study(study)
+    points = design.design_points(s)
+    again = design.design_points(read_study(study))
+    assert points == again
+    # One point in each eighth of the range, and each choice in half of the points.
+    strata = sorted(int((p["grey"] - 10) / 80 * 8) for p in points)
+    assert strata == list(range(8))
+    assert sorted(p["rock"] for p in points) == ["dark"] * 4 + ["light"] * 4
+    s.design["seed"] = 4
+    assert design.design_points(s) != points
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"format": "x"}, "format: expected \"roadbrdf-study\""),
+    ({"variables": [{"name": "g", "kind": "mass_percent", "component": "Nope", "values": [1],
+                     "balance": "Grey 2/6"}]}, "variables[0].component: the base formulation has no component 'Nope'"),
+    ({"variables": [{"name": "g", "kind": "mass_percent", "component": "Grey 2/6", "range": [5, 1],
+                     "balance": "Other 6/10"}]}, "variables[0].range: low 5 must be below high 1"),
+    ({"variables": [{"name": "r", "kind": "component", "component": "Grey 2/6", "choices": ["dark", "pink"]}]},
+     "variables[0].choices[1]: 'pink' is not in the library"),
+    ({"design": {"type": "grid", "count": 3}}, "design.count: a grid has"),
+    ({"predictions": {"path": "fast", "methods": ["fitted"]}}, "predictions.methods[0]: 'fitted' is not one of"),
+    ({"predictions": {"path": "physical", "physical": {"samples": 0}}}, "predictions.physical.samples: 0 is outside"),
+    ({"colour": 1}, "colour: unknown key"),
+])
+def test_errors_name_the_key_path_same_in_cli_and_python(cli, tmp_path, change, message):
+    study = two_rock_study(tmp_path)
+    data = json.loads(study.read_text())
+    data.update(change)
+    study.write_text(json.dumps(data))
+    with pytest.raises(roadbrdf.InputError) as e:
+        roadbrdf.study(study, progress=False)
+    assert f"{study}: {message}" in str(e.value)
+    result = cli("study", study, "-o", tmp_path / "r.csv", check=False)
+    assert result.returncode != 0
+    assert f"roadbrdf: error: {e.value}" in result.stderr
+    assert not (tmp_path / "r.csv").exists()
