@@ -457,6 +457,8 @@ def main(argv=None):
     p.add_argument("--band", help="fit file: unweighted mean over a band A:B [nm]")
     p.add_argument("--illuminant", default="A", help="fit file: photometric weighting V(lambda) x A|D65|FILE")
     output(p)
+    from .plot_study import add_parser as _add_study_parser, run as _run_study  # design studies (plot_study.py)
+    _add_study_parser(sub, output)
     a = parser.parse_args(argv)
     # As every roadbrdf command: the figure must not replace one of the files it is drawn from.
     inputs = []
@@ -489,6 +491,8 @@ def main(argv=None):
             band = (float(lo), float(hi))
         rtable(table, model_params(a.parameter), title=a.title, output=a.output, wavelength=a.wavelength,
                band=band, illuminant=a.illuminant)
+    elif a.kind == "study":
+        _run_study(a)
     print(a.output)
     return 0
 

@@ -7,13 +7,7 @@ import math
 import pytest
 
 import roadbrdf
-
-
-def lambert_fit(path, albedo, wavelengths=(400, 550, 700, 900)):
-    path.write_text(json.dumps({"format": "roadbrdf-fit", "version": 1, "best": "lambert",
-                                "fits": [{"model": "lambert", "options": {}, "wavelengths": list(wavelengths),
-                                          "parameters": {"albedo": [albedo] * len(wavelengths)}}]}))
-    return path
+from study_support import lambert_fit
 
 
 def two_rock_study(tmp_path, design=None, variables=None):
@@ -168,3 +162,27 @@ def test_errors_name_the_key_path_same_in_cli_and_python(cli, tmp_path, change, 
     assert result.returncode != 0
     assert f"roadbrdf: error: {e.value}" in result.stderr
     assert not (tmp_path / "r.csv").exists()
+
+
+def test_plot_study_plane_and_sensitivity(cli, tmp_path):
+    study = two_rock_study(tmp_path)
+    out = tmp_path / "results.csv"
+    roadbrdf.study(study, output=out, progress=False)
+    figure = tmp_path / "plane.png"
+    cli("plot", "study", out, "-o", figure, "--axis", "S1", "--method", "areal")
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    from roadbrdf import plot_study
+    plot_study.draw(str(out), "plane", output=tmp_path / "q0.png")
+    plot_study.draw(str(out), "sensitivity", output=tmp_path / "sensitivity.png")
+    assert (tmp_path / "q0.png").stat().st_size > 0 and (tmp_path / "sensitivity.png").stat().st_size > 0
+    result = cli("plot", "study", out, "-o", out, check=False)  # never over its own input
+    assert result.returncode != 0 and out.read_text().startswith("candidate,")
+
+
+def test_pareto_front():
+    from roadbrdf.plot_study import pareto
+    x = [0.1, 0.2, 0.3, 0.2, 0.15]
+    y = [0.09, 0.08, 0.05, 0.06, 0.07]
+    # (0.2, 0.06) is beaten by (0.2, 0.08), (0.15, 0.07) by (0.2, 0.08); the others trade albedo for Q0.
+    assert pareto(x, y) == [0, 1, 2]
+    assert pareto(x, y, maximise_y=False) == [2]  # the lightest rock is also the least specular here

@@ -106,24 +106,28 @@ def apply(study, point):
     additions = []
     for v in study.variables:
         if v["kind"] == "share":
-            s = float(point[v["name"]])
-            c = comps[v["index"]]
-            lib = study.library[v["material"]]
-            part = dict(c)
-            part["name"] = f"{c['name']} ({v['material']})"
-            part["fit"] = lib["fit"]
-            part.pop("fit_model", None)
-            part.pop("note", None)
-            if "fit_model" in lib:
-                part["fit_model"] = lib["fit_model"]
-            if "density_g_cm3" in lib:
-                part["density_g_cm3"] = lib["density_g_cm3"]
-            part["mass_percent"] = c["mass_percent"] * s
-            c["mass_percent"] = c["mass_percent"] * (1.0 - s)
-            additions.append(part)
+            for index in v["indices"]:
+                additions.append(_split(comps[index], study.library[v["material"]], v["material"],
+                                        float(point[v["name"]])))
     comps.extend(additions)
     # A component whose mass went to zero (mass 0, share 0 or 1) is left out: formulations hold positive masses.
     f["components"] = [c for c in comps if c["mass_percent"] > 0.0]
     if not any(c.get("kind") != "binder" for c in f["components"]):
         raise InputError("the candidate has no aggregate left")
     return f, mastic_fraction
+
+
+def _split(c, lib, material, s):
+    """Move the share s of component c's mass to a new component of the same size class made of ``material``."""
+    part = dict(c)
+    part["name"] = f"{c['name']} ({material})"
+    part["fit"] = lib["fit"]
+    part.pop("fit_model", None)
+    part.pop("note", None)
+    if "fit_model" in lib:
+        part["fit_model"] = lib["fit_model"]
+    if "density_g_cm3" in lib:
+        part["density_g_cm3"] = lib["density_g_cm3"]
+    part["mass_percent"] = c["mass_percent"] * s
+    c["mass_percent"] = c["mass_percent"] * (1.0 - s)
+    return part

@@ -61,6 +61,9 @@ def _rtable_outputs(rt):
 def _albedo_outputs(a, zeniths):
     """Broadband (solar-weighted) values of a ``roadbrdf.albedo`` result."""
     b = a["broadband"]
+    if b is None:  # a single-band fit has no solar-weighted value (docs/albedo.md)
+        from .spec import InputError
+        raise InputError("no solar-weighted albedo: " + "; ".join(a.get("notes", [])))
     out = {}
     for i, z in enumerate(zeniths):
         out[f"black_sky_{z:g}deg"] = b["black_sky"][i]

@@ -180,8 +180,18 @@ def _variables(study, where, data):
         if kind != "mastic_fraction":
             if "component" not in v:
                 _fail(where, f"{key}.component", "required key is missing")
-            item["component"] = _string(where, f"{key}.component", v["component"])
-            item["index"] = _component_index(where, f"{key}.component", study.base, item["component"])
+            if kind == "share" and isinstance(v["component"], list) and v["component"]:
+                # One share applied to several components (e.g. both coarse classes of a rock).
+                names = [_string(where, f"{key}.component[{j}]", c) for j, c in enumerate(v["component"])]
+                item["indices"] = [_component_index(where, f"{key}.component[{j}]", study.base, c)
+                                   for j, c in enumerate(names)]
+                if len(set(item["indices"])) != len(names):
+                    _fail(where, f"{key}.component", "components repeat")
+                item["component"] = names
+            else:
+                item["component"] = _string(where, f"{key}.component", v["component"])
+                item["index"] = _component_index(where, f"{key}.component", study.base, item["component"])
+                item["indices"] = [item["index"]]
         if kind == "mass_percent":
             item.update(_range_or_values(where, key, v, 0.0, 100.0))
             if "balance" not in v:
