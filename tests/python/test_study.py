@@ -99,7 +99,7 @@ def test_rerun_costs_nothing_and_workers_do_not_matter(tmp_path, capfd):
 def test_share_and_envelope_failure(tmp_path):
     # A share moves part of a component's mass to a library material (same size class); the balance envelope
     # makes some candidates infeasible: they are recorded as failed, the others still run.
-    variables = [{"name": "light_share", "kind": "share", "component": "Other 6/10", "material": "light",
+    variables = [{"name": "light_share", "kind": "share", "component": ["Other 6/10"], "material": "light",
                   "values": [0.0, 0.5]},
                  {"name": "grey", "kind": "mass_percent", "component": "Grey 2/6", "values": [40, 70],
                   "balance": "Other 6/10", "balance_range": [35, 100]}]

@@ -95,6 +95,8 @@ def _read_json(path, where, key):
         with open(path, encoding="utf-8") as f:
             text = f.read()
     except OSError as e:
+        if key is None:
+            raise InputError(f"{path}: cannot read: {e.strerror}") from None
         _fail(where, key, f"cannot read {path}: {e.strerror}")
     try:
         return json.loads(text), text
@@ -182,12 +184,12 @@ def _variables(study, where, data):
                 _fail(where, f"{key}.component", "required key is missing")
             if kind == "share" and isinstance(v["component"], list) and v["component"]:
                 # One share applied to several components (e.g. both coarse classes of a rock).
-                names = [_string(where, f"{key}.component[{j}]", c) for j, c in enumerate(v["component"])]
+                parts = [_string(where, f"{key}.component[{j}]", c) for j, c in enumerate(v["component"])]
                 item["indices"] = [_component_index(where, f"{key}.component[{j}]", study.base, c)
-                                   for j, c in enumerate(names)]
-                if len(set(item["indices"])) != len(names):
+                                   for j, c in enumerate(parts)]
+                if len(set(item["indices"])) != len(parts):
                     _fail(where, f"{key}.component", "components repeat")
-                item["component"] = names
+                item["component"] = parts
             else:
                 item["component"] = _string(where, f"{key}.component", v["component"])
                 item["index"] = _component_index(where, f"{key}.component", study.base, item["component"])
@@ -373,7 +375,7 @@ def read_study(source) -> Study:
     else:
         path = os.fspath(source)
         where = path
-        data, _ = _read_json(path, path, "(file)")
+        data, _ = _read_json(path, path, None)
     if not isinstance(data, dict):
         raise InputError(f"{where}: expected a JSON object")
     _object(where, "", data, _TOP_KEYS, ("format", "version", "base"))
