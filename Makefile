@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
 
-.PHONY: deps deps-app configure build build-app demo test bench install clean
+.PHONY: deps deps-app configure build build-app demo test test-sanitize fuzz bench install clean
 
 # Package sets of packages.txt: the demo needs [build] and [python], the tests every set.
 deps:
@@ -34,6 +34,34 @@ demo: build-app
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The whole suite (C++ and Python) built with clang 14, AddressSanitizer and UBSan, no recovery: any
+# sanitizer report fails its test. Python loads the ASan runtime through LD_PRELOAD (set by
+# tests/CMakeLists.txt for python_tests). The install checks are left out: they build and install
+# a separate, unsanitized copy.
+SANITIZE_BUILD ?= build-sanitize
+SANITIZE_CXX ?= clang++-14
+test-sanitize: deps
+	@mkdir -p $(SANITIZE_BUILD)
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=$(SANITIZE_CXX) \
+	  -DPYTHON_EXECUTABLE=$(PYTHON) -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_BUILD_TESTS=ON \
+	  -DROADBRDF_BUILD_BENCHMARKS=OFF > $(SANITIZE_BUILD)/configure.log || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '^install\.'
+
+# libFuzzer programs of tests/fuzz in build-fuzz (clang 14, ASan + UBSan), each run for FUZZ_SECONDS
+# on a copy of its corpus; crashes are written to build-fuzz/crashes/<name>/ (add them to the corpus
+# as regression inputs once fixed).
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 20
+fuzz: deps
+	@mkdir -p $(FUZZ_BUILD)
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=$(SANITIZE_CXX) \
+	  -DROADBRDF_FUZZ=ON -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_BUILD_TESTS=OFF \
+	  -DROADBRDF_BUILD_PYTHON=OFF -DROADBRDF_BUILD_BENCHMARKS=OFF > $(FUZZ_BUILD)/configure.log \
+	  || { cat $(FUZZ_BUILD)/configure.log; exit 1; }
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 bench: build
 	bash bench/run.sh $(BUILD)

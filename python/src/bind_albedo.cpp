@@ -8,6 +8,7 @@
 #include "binding.h"
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/json_input.h"
 
 namespace py = pybind11;
 
@@ -30,7 +31,7 @@ std::string report_text(const SpectralModel& model, const std::vector<double>& s
   request.illuminant = illuminant;
   request.tolerance = tolerance;
   py::gil_scoped_release release;
-  return albedo::compute_albedo(model, request).dump();
+  return roadbrdf::dump_json(albedo::compute_albedo(model, request));
 }
 
 }  // namespace

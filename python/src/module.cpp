@@ -14,6 +14,7 @@
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/description_json.h"
@@ -27,7 +28,7 @@ namespace {
 
 // Metadata as a Python dict, through the same JSON as `roadbrdf models --json`.
 py::object description_dict(const ModelDescription& md) {
-  return py::module_::import("json").attr("loads")(description_to_json(md).dump());
+  return py::module_::import("json").attr("loads")(roadbrdf::dump_json(description_to_json(md)));
 }
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -39,7 +40,8 @@ Array evaluate_flat(const Model& model, const Array& theta_i, const Array& phi_i
   const py::ssize_t n = theta_i.size();
   const auto P = static_cast<py::ssize_t>(model.parameter_count());
   if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || parameters.size() != n * P) {
-    throw InputError("internal: inputs of evaluate_flat do not have matching sizes");
+    throw InputError(
+        "evaluate_flat: the angle arrays need one length and the parameters that length x parameter count");
   }
   Array out(n);
   const double* ti = theta_i.data();
@@ -62,7 +64,8 @@ Array evaluate_spectral_flat(const SpectralModel& model, const Array& theta_i, c
                              const Array& theta_r, const Array& phi_r, const Array& wavelength) {
   const py::ssize_t n = theta_i.size();
   if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || wavelength.size() != n) {
-    throw InputError("internal: inputs of evaluate_flat do not have matching sizes");
+    throw InputError(
+        "evaluate_flat: the angle arrays need one length and the parameters that length x parameter count");
   }
   Array out(n);
   const double* ti = theta_i.data();
@@ -125,10 +128,11 @@ PYBIND11_MODULE(_roadbrdf, m) {
                                return names;
                              })
       .def("evaluate_flat", &evaluate_flat)
-      .def("check_parameters", [](const Model& model, const std::vector<double>& values) {
-        check_parameters(model.description(), values);
-      })
+      .def("check_parameters",
+           [](const Model& model, const std::vector<double>& values) { check_parameters(model.description(), values); })
       .def("delta_reflectance", [](const Model& model, const std::vector<double>& p, double cos_theta_i) {
+        check_parameters(model.description(), p);  // the model reads parameter_count() values
+        if (!(cos_theta_i >= 0.0 && cos_theta_i <= 1.0)) throw InputError("cos_theta_i must be in [0, 1]");
         return model.delta_reflectance(p.data(), cos_theta_i);
       });
 

@@ -4,13 +4,7 @@
 // exercise the same code. Rejecting an input with InputError/FileError is the expected outcome;
 // any other exception, a crash or a sanitizer report is a bug.
 //
-// Build and run a harness with clang (until tests/fuzz has a CMake rule for it), from the source
-// tree after a CMake configure of build/ (for the staged include folders):
-//   clang++ -std=c++20 -g -O1 -fsanitize=fuzzer,address,undefined -Ibuild/include/io -Ibuild/include/core
-//     -Ibuild/include/models -Itests tests/fuzz/asd_fuzz.cpp src/roadbrdf/io/{asd,sed,sig,instrument,manifest,
-//     calibration,resample,dataset_io,geometry_file}.cpp src/roadbrdf/core/{csv,geometry,atomic_file}.cpp -lfmt
-//     -o asd_fuzz        (one command line)
-//   ./asd_fuzz -max_total_time=60 tests/fuzz/corpus/asd
+// Built and run like every harness of tests/fuzz (tests/fuzz/README.md).
 // Seed corpora: tests/fuzz/corpus/<parser>/, copies of roadbrdf's own synthetic files
 // (tests/data/instruments/make_synthetic.py); no third-party file.
 #pragma once

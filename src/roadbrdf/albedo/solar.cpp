@@ -20,20 +20,30 @@ bool is_number(std::string_view text) {
   return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
 }
 
-// Reads a numeric table; rows whose first cell is not a number are header rows: the last one seen
-// before the data gives the column names.
+// Reads a numeric table. Header rows (every cell text, none a number) may come before the data; the
+// last one gives the column names. A row with any number in it is data, so a typo such as "4OO,1"
+// is an error at its cell instead of a silently dropped "header". A UTF-8 byte order mark at the
+// start of the file is not part of the first cell. With `non_negative`, the value columns (all but
+// the first) must be >= 0.
 struct Table {
   std::vector<std::string> names;
   std::vector<std::vector<double>> columns;
 };
 
-Table read_table(const std::string& path, std::size_t min_columns) {
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
+Table read_table(const std::string& path, std::size_t min_columns, bool non_negative) {
   CsvReader reader(path);
   std::vector<CsvCell> cells;
   Table table;
-  bool data_started = false;
+  bool data_started = false, first_row = true;
   while (reader.next_row(cells)) {
-    if (!data_started && !cells.empty() && !is_number(cells[0].text)) {
+    if (first_row && !cells.empty() && cells[0].text.substr(0, kByteOrderMark.size()) == kByteOrderMark) {
+      cells[0].text = cells[0].text.substr(kByteOrderMark.size());
+    }
+    first_row = false;
+    const bool any_number = std::any_of(cells.begin(), cells.end(), [](const CsvCell& c) { return is_number(c.text); });
+    if (!data_started && !cells.empty() && !any_number) {
       table.names.clear();
       for (const auto& c : cells) table.names.emplace_back(c.text);
       continue;
@@ -50,7 +60,12 @@ Table read_table(const std::string& path, std::size_t min_columns) {
       reader.fail(0, "expected " + std::to_string(table.columns.size()) + " columns, found " +
                          std::to_string(cells.size()));
     }
-    for (std::size_t k = 0; k < cells.size(); ++k) table.columns[k].push_back(reader.number(cells[k]));
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const double v = reader.number(cells[k]);
+      if (non_negative && k > 0 && v < 0.0)
+        reader.fail(cells[k].column, "negative irradiance '" + std::string(cells[k].text) + "'");
+      table.columns[k].push_back(v);
+    }
     const auto& w = table.columns[0];
     if (w.size() >= 2 && !(w.back() > w[w.size() - 2])) {
       reader.fail(cells[0].column, "wavelengths must be strictly increasing");
@@ -65,7 +80,7 @@ Table read_table(const std::string& path, std::size_t min_columns) {
 }  // namespace
 
 SolarSpectrum astm_g173(const std::string& which) {
-  static const Table table = read_table(data_file("third-party/solar/astm-g173-03.csv"), 4);
+  static const Table table = read_table(data_file("third-party/solar/astm-g173-03.csv"), 4, true);
   std::size_t column = 0;
   if (which == "extraterrestrial") column = 1;
   if (which == "global") column = 2;
@@ -75,16 +90,20 @@ SolarSpectrum astm_g173(const std::string& which) {
 }
 
 SolarSpectrum read_solar_spectrum(const std::string& path) {
-  const Table table = read_table(path, 2);
+  const Table table = read_table(path, 2, true);
   if (table.columns.size() != 2) {
     throw FileError(path, 0, 0, "a solar spectrum file has two columns: wavelength [nm], irradiance [W m^-2 nm^-1]");
   }
-  for (std::size_t k = 0; k < table.columns[1].size(); ++k) {
-    if (table.columns[1][k] < 0.0) {
-      throw FileError(path, 0, 0, "negative irradiance at " + std::to_string(table.columns[0][k]) + " nm");
-    }
+  SolarSpectrum e{path, table.columns[0], table.columns[1]};
+  // The spectrum weights by E / integral(E): the integral must be finite and positive (1e308
+  // irradiances overflow it, an all-zero spectrum has no weights).
+  const double total = integrate_spectrum(e);
+  if (!(std::isfinite(total) && total > 0.0)) {
+    throw FileError(path, 0, 0,
+                    "the irradiance integrates to " + std::to_string(total) +
+                        " (must be finite and > 0: values too large, or all zero)");
   }
-  return {path, table.columns[0], table.columns[1]};
+  return e;
 }
 
 SolarSpectrum solar_spectrum_from_name(const std::string& name) {
@@ -119,7 +138,7 @@ Spectrl2Output spectrl2(const Spectrl2Input& in) {
   if (!(in.day_of_year >= 1 && in.day_of_year <= 366)) throw InputError("SPECTRL2: day must be in 1..366");
 
   // Extraterrestrial spectrum and absorption coefficients (Bird & Riordan table, in W m^-2 nm^-1).
-  static const Table coefficients = read_table(data_file("third-party/solar/spectrl2-coefficients.csv"), 5);
+  static const Table coefficients = read_table(data_file("third-party/solar/spectrl2-coefficients.csv"), 5, false);
   const auto& wl = coefficients.columns[0];
   const auto& h0 = coefficients.columns[1];
   const auto& aw = coefficients.columns[2];
@@ -215,8 +234,13 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
     else if (name == "alpha") in.alpha = v;
     else if (name == "asymmetry") in.asymmetry = v;
     else if (name == "ground") in.ground_albedo = v;
-    else if (name == "day") in.day_of_year = static_cast<int>(v);
-    else {
+    else if (name == "day") {
+      // Day of year: an integer, checked as a double (casting 1e10 to int is undefined; 81.9 is no day).
+      if (!(v >= 1.0 && v <= 366.0) || v != std::floor(v)) {
+        throw InputError("--atmosphere spectrl2: day = '" + text + "' must be an integer day of year in 1..366");
+      }
+      in.day_of_year = static_cast<int>(v);
+    } else {
       throw InputError("--atmosphere spectrl2: unknown setting '" + name +
                        "' (known: aod, water [cm], ozone [atm-cm], pressure [Pa], alpha, asymmetry, ground, day)");
     }

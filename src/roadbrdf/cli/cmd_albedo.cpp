@@ -16,9 +16,10 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/json_input.h"
+#include "roadbrdf/core/math.h"
 #include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::cli {
@@ -59,7 +60,7 @@ void run(const AlbedoArgs& a) {
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
   const nlohmann::json report = albedo::compute_albedo(sm, request);
-  const std::string text = a.as_json ? report.dump(2) + "\n" : albedo::albedo_table(report);
+  const std::string text = a.as_json ? roadbrdf::dump_json(report, 2) + "\n" : albedo::albedo_table(report);
   AtomicFile out(a.output.empty() ? std::string("-") : a.output);
   out.stream() << text;
   out.commit();

@@ -6,6 +6,7 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/quality.h"
@@ -35,7 +36,7 @@ void run(CheckArgs& a) {
     nlohmann::json j = quality_report_json(d, r);
     j["file"] = a.data;
     AtomicFile out("-");
-    out.stream() << j.dump(2) << '\n';
+    out.stream() << roadbrdf::dump_json(j, 2) << '\n';
     out.commit();
   } else {
     AtomicFile out("-");

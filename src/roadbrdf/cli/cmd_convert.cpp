@@ -2,8 +2,10 @@
 // (instrument files and manifests: cli/instruments.h)
 #include <fmt/core.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
@@ -24,7 +26,7 @@ struct ConvertArgs {
   std::string to = "wide";
   std::string curet_table;
   int sample = -1;
-  double wavelength = 0.0;
+  std::optional<double> wavelength;
   std::string alta_output;
   bool exclude_grazing = false;
   bool average_duplicates = false;
@@ -53,11 +55,16 @@ void run(const ConvertArgs& a) {
                                   : a.curet_table;
     check_distinct_files({{"INPUT", a.input}, {"--curet-table", table}}, {{"-o", a.output}});
     CuretReadOptions o;
-    if (a.wavelength > 0) o.nominal_wavelength_nm = a.wavelength;
+    if (a.wavelength) {
+      if (!(std::isfinite(*a.wavelength) && *a.wavelength > 0.0)) {
+        throw InputError(fmt::format("--wavelength {} nm: must be finite and > 0", *a.wavelength));
+      }
+      o.nominal_wavelength_nm = *a.wavelength;
+    }
     d = read_curet(a.input, table, a.sample, o);
   } else if (a.from == "alta") {
     AltaReadOptions o;
-    o.wavelength_nm = a.wavelength;
+    o.wavelength_nm = a.wavelength.value_or(0.0);
     o.assumed_output = a.alta_output;
     o.exclude_grazing = a.exclude_grazing;
     o.average_duplicates = a.average_duplicates;

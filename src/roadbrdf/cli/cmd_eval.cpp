@@ -57,6 +57,12 @@ void run(const EvalArgs& a) {
       throw InputError("give either --geometry or the four angles, not both");
     }
     const GeometryTable table = read_geometry_file(a.geometry_file);
+    for (const auto& name : table.header) {
+      if (name == "brdf") {
+        throw FileError(a.geometry_file, 0, 0,
+                        "already has a 'brdf' column (an eval output?): a second one would be added");
+      }
+    }
     std::vector<double> brdf(table.geometries.size());
     m.model->evaluate_batch(table.geometries.data(), table.geometries.size(), m.parameters.data(), 1, brdf.data());
     AtomicFile out(a.output.empty() ? std::string("-") : a.output);

@@ -6,6 +6,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 
@@ -49,7 +50,7 @@ void run(bool as_json) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& name : model_names()) all.push_back(description_to_json(make_model(name)->description()));
     AtomicFile out("-");
-    out.stream() << all.dump(2) << '\n';
+    out.stream() << roadbrdf::dump_json(all, 2) << '\n';
     out.commit();
     return;
   }

@@ -13,12 +13,13 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/fitting/fit_file.h"
-#include "roadbrdf/spectra/cie.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_io.h"
+#include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::cli {
 
@@ -225,7 +226,7 @@ void run(const RTableArgs& a) {
                          {"S1_difference", comparison->s1_difference}};
     }
     if (!a.output.empty()) j["output"] = {{"file", a.output}, {"format", rtable_format_name(out_format)}};
-    std::cout << j.dump(2) << '\n';
+    std::cout << roadbrdf::dump_json(j, 2) << '\n';
     return;
   }
 

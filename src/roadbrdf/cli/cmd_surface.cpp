@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -18,20 +19,20 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/resample.h"
-#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/virtual_albedo.h"
-#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::cli {
 
@@ -39,7 +40,7 @@ namespace {
 
 struct SurfaceArgs {
   std::string input;
-  std::string size = "60mm";
+  std::string size;  // empty: 60mm
   double cell = 0.1;
   std::uint64_t seed = 1;
   std::optional<double> matrix_level;
@@ -69,7 +70,8 @@ double parse_length_mm(const std::string& text) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != t.size() || !(v > 0.0)) throw InputError("--size: expected a length such as 60mm, got '" + text + "'");
+  if (used != t.size() || !(v > 0.0) || !std::isfinite(v))
+    throw InputError("--size: expected a length such as 60mm, got '" + text + "'");
   return v * scale;
 }
 
@@ -117,6 +119,10 @@ void run_surface(const SurfaceArgs& a) {
   std::FILE* report = report_stream(a.output);
   surface::HeightField field;
   if (a.flat || a.gaussian_slopes) {
+    if (!a.size.empty()) {
+      throw InputError(
+          "--size is for samples of a formulation; a --flat or --gaussian-slopes surface is --cells x --cell");
+    }
     const surface::MaterialSpec m = material_from_argument(a);
     const int n = a.cells > 0 ? a.cells : (a.flat ? 16 : 128);
     if (a.flat) {
@@ -135,7 +141,7 @@ void run_surface(const SurfaceArgs& a) {
     check_distinct_files(inputs, outputs);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratorSettings s;
-    s.size_mm = parse_length_mm(a.size);
+    s.size_mm = parse_length_mm(a.size.empty() ? std::string("60mm") : a.size);
     s.cell_size_mm = a.cell;
     s.seed = a.seed;
     if ((a.matrix_level ? 1 : 0) + (a.target_mpd ? 1 : 0) + (a.mastic_fraction ? 1 : 0) > 1) {

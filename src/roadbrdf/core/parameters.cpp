@@ -26,7 +26,10 @@ OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo
                           const OptionSet& given) {
   OptionSet resolved;
   for (const auto& option : declared) resolved[option.name] = option.default_value;
-  for (const auto& [name, value] : given) {
+  for (const auto& entry : given) {
+    // Named copies: a lambda may not capture structured bindings before C++20 P1091 (clang 14).
+    const std::string& name = entry.first;
+    const std::string& value = entry.second;
     auto it = std::find_if(declared.begin(), declared.end(), [&](const OptionInfo& o) { return o.name == name; });
     if (it == declared.end()) {
       std::ostringstream msg;

@@ -4,11 +4,14 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/json_input.h"
+#include "roadbrdf/core/math.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -137,7 +140,7 @@ void write_fit_file(const std::string& path, const std::vector<FitResult>& fits)
   j["fits"] = json::array();
   for (const auto& f : fits) j["fits"].push_back(fit_to_json(f));
   AtomicFile out(path);
-  out.stream() << j.dump(1) << '\n';
+  out.stream() << dump_json(j, 1) << '\n';
   out.commit();
 }
 
@@ -166,44 +169,37 @@ bool is_fit_file_argument(const std::string& argument) {
 }
 
 SpectralModel read_fit_file(const std::string& path, const std::string& model_name) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open fit file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw FileError(path, 0, 0, std::string("not valid JSON: ") + e.what());
+  const Json document = parse_json_file(path);
+  const JsonNode root(document, input_display_name(path));
+  if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
+    throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
   }
-  try {
-    if (j.value("format", "") != "roadbrdf-fit") throw FileError(path, 0, 0, "not a roadbrdf fit file (format key)");
-    const std::string wanted = model_name.empty() ? j.at("best").get<std::string>() : model_name;
-    for (const auto& fit : j.at("fits")) {
-      if (fit.at("model").get<std::string>() != wanted) continue;
-      OptionSet options;
-      // Keep the options object alive: iterating items() of a temporary would dangle.
-      const nlohmann::json fit_options = fit.value("options", nlohmann::json::object());
-      for (const auto& [key, value] : fit_options.items()) options[key] = value.get<std::string>();
-      std::shared_ptr<const Model> model = make_model(wanted, options);
-      const auto wavelengths = fit.at("wavelengths").get<std::vector<double>>();
-      const auto& parameters = fit.at("parameters");
-      const std::size_t n = model->parameter_count();
-      std::vector<double> table(wavelengths.size() * n);
-      for (std::size_t q = 0; q < n; ++q) {
-        const std::string& name = model->description().parameters[q].name;
-        if (!parameters.contains(name)) throw FileError(path, 0, 0, "fit of '" + wanted + "' lacks parameter '" + name + "'");
-        const auto values = parameters.at(name).get<std::vector<double>>();
-        if (values.size() != wavelengths.size()) {
-          throw FileError(path, 0, 0, "parameter '" + name + "' has " + std::to_string(values.size()) +
-                                          " values for " + std::to_string(wavelengths.size()) + " wavelengths");
-        }
-        for (std::size_t w = 0; w < wavelengths.size(); ++w) table[w * n + q] = values[w];
-      }
-      return SpectralModel(model, wavelengths, table);
+  const std::string wanted = model_name.empty() ? root.at("best").string() : model_name;
+  const JsonNode fits = root.at("fits");
+  for (const JsonNode& fit : fits.elements()) {
+    const JsonNode model_node = fit.at("model");
+    if (model_node.string() != wanted) continue;
+    OptionSet options;
+    if (const auto o = fit.find("options")) options = o->string_map();
+    std::shared_ptr<const Model> model;
+    try {
+      model = make_model(wanted, options);
+    } catch (const FileError&) {
+      throw;
+    } catch (const InputError& e) {
+      model_node.fail(e.what());
     }
-    throw FileError(path, 0, 0, "no fit of model '" + wanted + "' in this file");
-  } catch (const nlohmann::json::exception& e) {
-    throw FileError(path, 0, 0, std::string("malformed fit file: ") + e.what());
+    const JsonNode wavelength_node = fit.at("wavelengths");
+    const auto wavelengths = wavelength_node.numbers();
+    if (wavelengths.empty()) wavelength_node.fail("no wavelengths");
+    for (std::size_t w = 1; w < wavelengths.size(); ++w) {
+      if (!(wavelengths[w] > wavelengths[w - 1])) wavelength_node[w].fail("wavelengths must be strictly increasing");
+    }
+    const auto table =
+        read_parameter_table(fit.at("parameters"), model->description(), wavelengths.size(), wavelengths);
+    return SpectralModel(model, wavelengths, table);
   }
+  fits.fail("no fit of model '" + wanted + "' in this file");
 }
 
 }  // namespace roadbrdf

@@ -1,6 +1,7 @@
 #include "roadbrdf/formulation/formulation.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,8 @@
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/json_input.h"
 
 namespace roadbrdf {
 
@@ -171,12 +174,7 @@ void validate_formulation(const Formulation& f) {
 }
 
 Formulation parse_formulation(const std::string& text, const std::string& path, bool check_files) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw FileError(path, 0, 0, std::string("not valid JSON: ") + e.what());
-  }
+  const json j = parse_json_text(text, path.empty() ? std::string("<formulation>") : path);
   if (!j.is_object()) fail(path, "(top level)", "must be a JSON object");
   Formulation f;
   f.path = path;
@@ -189,7 +187,7 @@ Formulation parse_formulation(const std::string& text, const std::string& path, 
     if (!j.contains("format") || j.at("format") != "roadbrdf-formulation") {
       fail(path, "format", "must be \"roadbrdf-formulation\"");
     }
-    if (!j.contains("version") || !j.at("version").is_number_integer() || j.at("version").get<int>() != 1) {
+    if (!j.contains("version") || !j.at("version").is_number_integer() || j.at("version").get<std::int64_t>() != 1) {
       fail(path, "version", "must be 1");
     }
     if (!j.contains("name")) fail(path, "name", "missing");
@@ -275,12 +273,6 @@ Formulation parse_formulation(const std::string& text, const std::string& path, 
   return f;
 }
 
-Formulation read_formulation(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open formulation file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_formulation(buffer.str(), path, true);
-}
+Formulation read_formulation(const std::string& path) { return parse_formulation(read_text_file(path), path, true); }
 
 }  // namespace roadbrdf

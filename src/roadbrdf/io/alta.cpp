@@ -3,14 +3,15 @@
 #include <fmt/core.h>
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/math.h"
 
 namespace roadbrdf {
 
@@ -30,6 +31,17 @@ std::string trim(const std::string& s) {
   if (b == std::string::npos) return {};
   const auto e = s.find_last_not_of(" \t\r\"");
   return s.substr(b, e - b + 1);
+}
+
+// A #DIM count: a whole number 1..16 (no trailing text such as "1junk").
+int dimension(const std::string& path, long line, long offset, const CsvCell& cell) {
+  int v = 0;
+  const auto [ptr, ec] = std::from_chars(cell.text.data(), cell.text.data() + cell.text.size(), v);
+  if (cell.text.empty() || ec != std::errc() || ptr != cell.text.data() + cell.text.size() || v < 1 || v > 16) {
+    throw FileError(path, line, offset + cell.column,
+                    fmt::format("#DIM count '{}' is not a whole number in 1..16", cell.text));
+  }
+  return v;
 }
 
 }  // namespace
@@ -65,12 +77,19 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
       const auto cells = split_whitespace(std::string_view(line).substr(b + 1));
       if (cells.empty()) continue;
       const std::string key(cells[0].text);
-      const std::string rest = trim(line.substr(b + 1 + cells[0].text.size()));
-      const long col = static_cast<long>(b + 2);
+      // Cell columns are 1-based within the text after '#' (spaces after '#' are allowed).
+      const std::size_t key_start = b + static_cast<std::size_t>(cells[0].column);
+      const std::string rest = trim(line.substr(key_start + cells[0].text.size()));
+      const long col = static_cast<long>(key_start) + 1;
+      const bool header_key = key == "DIM" || key == "PARAM_IN" || key == "PARAM_OUT" || key == "VS";
+      if (header_key && header_done) {
+        throw FileError(path, n, col,
+                        fmt::format("#{} after the data: the header must come before the first data line", key));
+      }
       if (key == "DIM") {
         if (cells.size() != 3) throw FileError(path, n, col, "#DIM expects two numbers (inputs, outputs)");
-        dim_in = std::atoi(std::string(cells[1].text).c_str());
-        dim_out = std::atoi(std::string(cells[2].text).c_str());
+        dim_in = dimension(path, n, static_cast<long>(b + 1), cells[1]);
+        dim_out = dimension(path, n, static_cast<long>(b + 1), cells[2]);
         if (dim_out != 1) {
           throw FileError(path, n, static_cast<long>(b + 1) + cells[2].column,
                           fmt::format("{} output values per line: only single-channel ALTA files are supported",

@@ -2,12 +2,14 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/math.h"
 
 namespace roadbrdf {
 
@@ -26,6 +28,16 @@ bool is_blank_or_comment(const std::string& line) {
   return b == std::string::npos || line[b] == '#';
 }
 
+// A sample number: an integer >= 1 (compared as a double first: casting an out-of-range double to int
+// is undefined).
+int sample_number(const std::string& path, long line, const CsvCell& cell) {
+  const double v = number_or_throw(path, line, cell, "sample number");
+  if (!(v >= 1.0 && v <= static_cast<double>(std::numeric_limits<int>::max())) || v != std::floor(v)) {
+    throw FileError(path, line, cell.column, fmt::format("sample number '{}' is not an integer >= 1", cell.text));
+  }
+  return static_cast<int>(v);
+}
+
 }  // namespace
 
 std::vector<int> curet_sample_numbers(const std::string& abrdf_path) {
@@ -37,9 +49,7 @@ std::vector<int> curet_sample_numbers(const std::string& abrdf_path) {
     ++n;
     if (is_blank_or_comment(line)) continue;
     const auto cells = split_whitespace(line);
-    const double v = number_or_throw(abrdf_path, n, cells[0], "sample number");
-    if (v != static_cast<int>(v)) throw FileError(abrdf_path, n, cells[0].column, "sample number is not an integer");
-    numbers.push_back(static_cast<int>(v));
+    numbers.push_back(sample_number(abrdf_path, n, cells[0]));
   }
   if (numbers.empty()) throw FileError(abrdf_path, n, 0, "file is empty (no sample lines)");
   return numbers;
@@ -96,9 +106,9 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
       ++n;
       if (is_blank_or_comment(line)) continue;
       const auto cells = split_whitespace(line);
-      const double number = number_or_throw(abrdf_path, n, cells[0], "sample number");
-      present.push_back(static_cast<int>(number));
-      if (static_cast<int>(number) != sample) continue;
+      const int number = sample_number(abrdf_path, n, cells[0]);
+      present.push_back(number);
+      if (number != sample) continue;
       if (found) throw FileError(abrdf_path, n, cells[0].column, fmt::format("sample {} appears twice", sample));
       found = true;
       if (cells.size() != count + 1) {

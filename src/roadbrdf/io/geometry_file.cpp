@@ -57,7 +57,17 @@ GeometryTable read_geometry_file(const std::string& path) {
                                                    table.header.size()));
     }
     double angles[4];
-    for (int k = 0; k < 4; ++k) angles[k] = reader.number(cells[angle_columns[k]], "number (angle in degrees)");
+    for (int k = 0; k < 4; ++k) {
+      const CsvCell& cell = cells[angle_columns[static_cast<std::size_t>(k)]];
+      angles[k] = reader.number(cell, "number (angle in degrees)");
+      // Zenith-like angles (theta_i, theta_r; gamma, alpha) are checked here, at their own cell.
+      if ((k == 0 || (k == 2 && table.convention != AngleConvention::kRoad) ||
+           (k == 1 && table.convention == AngleConvention::kRoad)) &&
+          !(angles[k] >= 0.0 && angles[k] <= 90.0)) {
+        reader.fail(cell.column, fmt::format("{} = {} deg is outside [0, 90] deg", table.header[angle_columns[k]],
+                                             std::string(cell.text)));
+      }
+    }
     try {
       table.geometries.push_back(geometry_from_angle_values(table.convention, angles));
     } catch (const FileError&) {

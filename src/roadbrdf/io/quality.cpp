@@ -213,7 +213,7 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
   // fit (plane in the 3 angular coordinates, least squares with a small ridge) when there are
   // enough neighbours, else their median. A linear fit follows smooth angular gradients, also at
   // the edge of the grid where every neighbour lies on one side.
-  const std::size_t k_wanted = static_cast<std::size_t>(std::max(2, o.neighbours));
+  const std::size_t k_wanted = static_cast<std::size_t>(o.neighbours);
   std::vector<double> residual(n, std::nan(""));
   std::vector<std::pair<double, std::size_t>> cand;
   for (std::size_t g = 0; g < n; ++g) {
@@ -342,7 +342,14 @@ std::string join(const std::vector<double>& v) {
 
 QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
   validate_dataset(d);
-  if (!(o.angle_tolerance_deg > 0.0)) throw InputError("angle tolerance must be positive [deg]");
+  // Angles are bucketed as floor(angle / tolerance) in a long: below 1e-6 deg the buckets would not
+  // fit, and no goniometer resolves that.
+  if (!(o.angle_tolerance_deg >= 1e-6 && o.angle_tolerance_deg <= 90.0)) {
+    throw InputError(fmt::format("angle tolerance must be in [1e-6, 90] deg, got {:g}", o.angle_tolerance_deg));
+  }
+  if (o.neighbours < 2) {
+    throw InputError(fmt::format("neighbours must be >= 2 (a prediction needs two neighbours), got {}", o.neighbours));
+  }
   QualityReport r;
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
   r.geometry_count = n;

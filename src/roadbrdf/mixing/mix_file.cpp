@@ -5,8 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
 
@@ -14,7 +16,6 @@ namespace roadbrdf::mixing {
 
 namespace {
 
-using nlohmann::json;
 using ordered = nlohmann::ordered_json;
 
 ordered number_or_null(double x) { return std::isfinite(x) ? ordered(x) : ordered(nullptr); }
@@ -138,7 +139,7 @@ void write_mix_file(const std::string& path, const MixFileContent& content) {
   }
   j["methods"] = methods;
   AtomicFile out(path);
-  out.stream() << j.dump(1) << '\n';
+  out.stream() << dump_json(j, 1) << '\n';
   out.commit();
 }
 
@@ -146,77 +147,84 @@ bool is_mix_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) return false;
   try {
-    const json j = json::parse(in);
-    return j.is_object() && j.value("format", "") == "roadbrdf-mix";
-  } catch (const json::exception&) {
-    return false;
+    const Json j = parse_json(in, path);
+    return j.is_object() && j.contains("format") && j.at("format") == "roadbrdf-mix";
+  } catch (const InputError&) {
+    return false;  // not JSON at all: read_spectral_model_file reports it as a fit file
   }
 }
 
+namespace {
+
+// Runs `make` and reports an InputError (unknown model, option, mixture kind) at `node`.
+template <class Make>
+auto located(const JsonNode& node, Make make) -> decltype(make()) {
+  try {
+    return make();
+  } catch (const FileError&) {
+    throw;
+  } catch (const InputError& e) {
+    node.fail(e.what());
+  }
+}
+
+}  // namespace
+
 SpectralModel read_mix_file(const std::string& path, const std::string& method) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open mix file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw FileError(path, 0, 0, std::string("not valid JSON: ") + e.what());
+  const Json document = parse_json_file(path);
+  const JsonNode root(document, input_display_name(path));
+  if (!root.is_object() || root.string_or("format", "") != "roadbrdf-mix") {
+    throw FileError(root.file(), 0, 0, "not a roadbrdf mix file (format key)");
   }
-  try {
-    if (j.value("format", "") != "roadbrdf-mix") throw FileError(path, 0, 0, "not a roadbrdf mix file (format key)");
-    const auto& methods = j.at("methods");
-    if (!methods.is_array() || methods.empty()) throw FileError(path, 0, 0, "no methods in this mix file");
-    std::string wanted = method;
-    if (wanted.empty()) {
-      wanted = j.at("best").is_string() ? j.at("best").get<std::string>() : methods.at(0).at("method").get<std::string>();
-    }
-    for (const auto& m : methods) {
-      if (m.at("method").get<std::string>() != wanted) continue;
-      const std::string model_name = m.at("model").get<std::string>();
-      const std::string prefix = "mixture-";
-      if (model_name.rfind(prefix, 0) != 0) throw FileError(path, 0, 0, "method '" + wanted + "': unknown model " + model_name);
-      const MixtureKind kind = mixture_kind_from_string(model_name.substr(prefix.size()));
-      std::vector<std::shared_ptr<const Model>> models;
-      std::vector<std::string> names = m.at("end_members").get<std::vector<std::string>>();
-      for (const auto& name : names) {
-        bool found = false;
-        for (const auto& e : j.at("end_members")) {
-          if (e.at("name").get<std::string>() != name) continue;
-          OptionSet options;
-          const json option_values = e.value("options", json::object());  // named: items() must not outlive it
-          for (const auto& [key, value] : option_values.items()) options[key] = value.get<std::string>();
-          models.push_back(std::shared_ptr<const Model>(make_model(e.at("model").get<std::string>(), options)));
-          found = true;
-          break;
-        }
-        if (!found) throw FileError(path, 0, 0, "method '" + wanted + "': end-member '" + name + "' is not described");
-      }
-      std::vector<bool> coarse = m.value("coarse", std::vector<bool>{});
-      auto mixture = std::make_shared<const MixtureModel>(kind, models, names, coarse);
-      const auto wavelengths = m.at("wavelengths").get<std::vector<double>>();
-      const std::size_t rows = wavelengths.empty() ? 1 : wavelengths.size();
-      const std::size_t n = mixture->parameter_count();
-      std::vector<double> table(rows * n);
-      const auto& parameters = m.at("parameters");
-      for (std::size_t q = 0; q < n; ++q) {
-        const std::string& pname = mixture->description().parameters[q].name;
-        if (!parameters.contains(pname)) {
-          throw FileError(path, 0, 0, "method '" + wanted + "' lacks parameter '" + pname + "'");
-        }
-        const auto values = parameters.at(pname).get<std::vector<double>>();
-        if (values.size() != rows) {
-          throw FileError(path, 0, 0, "parameter '" + pname + "' has " + std::to_string(values.size()) + " values for " +
-                                          std::to_string(rows) + " wavelengths");
-        }
-        for (std::size_t w = 0; w < rows; ++w) table[w * n + q] = values[w];
-      }
-      if (wavelengths.empty()) return SpectralModel(mixture, table);
-      return SpectralModel(mixture, wavelengths, table);
-    }
-    throw FileError(path, 0, 0, "no method '" + wanted + "' in this mix file");
-  } catch (const json::exception& e) {
-    throw FileError(path, 0, 0, std::string("malformed mix file: ") + e.what());
+  const JsonNode methods = root.at("methods");
+  if (methods.size() == 0) methods.fail("no methods in this mix file");
+  std::string wanted = method;
+  if (wanted.empty()) {
+    const auto best = root.find("best");
+    wanted = best && best->is_string() ? best->string() : methods[0].at("method").string();
   }
+  const JsonNode end_members = root.at("end_members");
+  for (const JsonNode& m : methods.elements()) {
+    if (m.at("method").string() != wanted) continue;
+    const JsonNode model_node = m.at("model");
+    const std::string model_name = model_node.string();
+    const std::string prefix = "mixture-";
+    if (model_name.rfind(prefix, 0) != 0) model_node.fail("unknown model '" + model_name + "' (expected mixture-...)");
+    const MixtureKind kind =
+        located(model_node, [&] { return mixture_kind_from_string(model_name.substr(prefix.size())); });
+    std::vector<std::shared_ptr<const Model>> models;
+    const JsonNode names_node = m.at("end_members");
+    const std::vector<std::string> names = names_node.strings();
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      bool found = false;
+      for (const JsonNode& e : end_members.elements()) {
+        if (e.at("name").string() != names[k]) continue;
+        OptionSet options;
+        if (const auto o = e.find("options")) options = o->string_map();
+        const JsonNode member_model = e.at("model");
+        models.push_back(located(
+            member_model, [&] { return std::shared_ptr<const Model>(make_model(member_model.string(), options)); }));
+        found = true;
+        break;
+      }
+      if (!found) names_node[k].fail("end-member '" + names[k] + "' is not described in end_members");
+    }
+    std::vector<bool> coarse;
+    if (const auto c = m.find("coarse")) {
+      for (const JsonNode& flag : c->elements()) coarse.push_back(flag.boolean());
+    }
+    auto mixture = located(m, [&] { return std::make_shared<const MixtureModel>(kind, models, names, coarse); });
+    const JsonNode wavelength_node = m.at("wavelengths");
+    const auto wavelengths = wavelength_node.numbers();
+    for (std::size_t w = 1; w < wavelengths.size(); ++w) {
+      if (!(wavelengths[w] > wavelengths[w - 1])) wavelength_node[w].fail("wavelengths must be strictly increasing");
+    }
+    const std::size_t rows = wavelengths.empty() ? 1 : wavelengths.size();
+    const auto table = read_parameter_table(m.at("parameters"), mixture->description(), rows, wavelengths);
+    if (wavelengths.empty()) return SpectralModel(mixture, table);
+    return SpectralModel(mixture, wavelengths, table);
+  }
+  methods.fail("no method '" + wanted + "' in this mix file");
 }
 
 SpectralModel read_spectral_model_file(const std::string& path, const std::string& selection) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "roadbrdf/core/math.h"
 
@@ -67,9 +68,17 @@ T fresnel_conductor(T cos_i, const T& eta, const T& k) {
   const T t0 = eta * eta - k * k - sin2;
   const T a2_plus_b2 = sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
   const T a = safe_sqrt(0.5 * (a2_plus_b2 + t0));
-  const T rs = (a2_plus_b2 - 2.0 * a * cos_i + cos2) / (a2_plus_b2 + 2.0 * a * cos_i + cos2);
-  const T rp = rs * (cos2 * a2_plus_b2 - 2.0 * a * cos_i * sin2 + sin2 * sin2) /
-               (cos2 * a2_plus_b2 + 2.0 * a * cos_i * sin2 + sin2 * sin2);
+  // b^2 = (a^2 + b^2 - t0) / 2 >= 0; clamped because a2_plus_b2 may round one ulp below |t0|.
+  const T b2 = clamp_value(T(0.5 * (a2_plus_b2 - t0)), 0.0, std::numeric_limits<double>::infinity());
+  // Both factors written as sums of squares, (a - cos)^2 + b^2 over (a + cos)^2 + b^2 and
+  // (a cos - sin^2)^2 + b^2 cos^2 over (a cos + sin^2)^2 + b^2 cos^2 (the same algebra as the
+  // expanded a^2 + b^2 form), so that rounding cannot make the reflectance negative (k = 0 at
+  // grazing incidence gave -5e-17).
+  const T rs_denominator = sqr(a + cos_i) + b2;
+  // a = b = 0 at grazing incidence only for n = 1, k = 0: the grazing limit of every interface, 1.
+  if (scalar_value(rs_denominator) == 0.0) return T(1.0);
+  const T rs = (sqr(a - cos_i) + b2) / rs_denominator;
+  const T rp = rs * (sqr(a * cos_i - sin2) + b2 * cos2) / (sqr(a * cos_i + sin2) + b2 * cos2);
   return 0.5 * (rs + rp);
 }
 

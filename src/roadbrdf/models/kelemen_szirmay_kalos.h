@@ -99,7 +99,7 @@ AlphaStencil alpha_stencil(const AlbedoTable& table, const T& alpha, T w[4]) {
   T u = (log(alpha) - table.log_alpha_min) / table.log_alpha_step;
   const double uv = scalar_value(u);
   const int last = AlbedoTable::kAlpha - 1;
-  if (uv <= 0.0) u = T(0.0);
+  if (!(uv > 0.0)) u = T(0.0);  // also NaN (alpha <= 0): no undefined int cast below
   if (uv >= last) u = T(static_cast<double>(last));
   int i = static_cast<int>(std::floor(scalar_value(u)));
   if (i > last - 1) i = last - 1;

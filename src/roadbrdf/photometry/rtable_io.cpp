@@ -145,7 +145,8 @@ RTable read_csv(const std::string& path, double scale) {
         header_seen = true;
         with_tan_column = true;
         if (cells.size() != kColumns + 1) {
-          reader.fail(0, "header: expected tan_gamma and 20 beta values, got " + std::to_string(cells.size()) + " cells");
+          reader.fail(cells.size() > kColumns + 1 ? cells[kColumns + 1].column : cells.back().column,
+                      "header: expected tan_gamma and 20 beta values, got " + std::to_string(cells.size()) + " cells");
         }
         for (std::size_t j = 0; j < kColumns; ++j) {
           const double b = reader.number(cells[j + 1], "beta [deg]");
@@ -158,10 +159,13 @@ RTable read_csv(const std::string& path, double scale) {
       }
       with_tan_column = cells.size() == kColumns + 1;
     }
-    if (row >= kRows) reader.fail(0, "more than 29 rows of values");
+    if (row >= kRows) reader.fail(cells.front().column, "more than 29 rows of values");
     const std::size_t expected = with_tan_column ? kColumns + 1 : kColumns;
     if (cells.size() != expected) {
-      reader.fail(0, "expected " + std::to_string(expected) + " cells, got " + std::to_string(cells.size()));
+      // Located at the first extra cell, or after the last one when cells are missing.
+      const long column = cells.size() > expected ? cells[expected].column
+                                                  : cells.back().column + static_cast<long>(cells.back().text.size());
+      reader.fail(column, "expected " + std::to_string(expected) + " cells, got " + std::to_string(cells.size()));
     }
     std::size_t first = 0;
     if (with_tan_column) {
@@ -182,16 +186,22 @@ RTable read_csv(const std::string& path, double scale) {
     ++row;
   }
   if (row != kRows) throw FileError(path, reader.line_number(), 0, "expected 29 rows of values, got " + std::to_string(row));
-  for (const std::string& comment : reader.comments()) {
-    std::string c = comment;
+  for (std::size_t k = 0; k < reader.comments().size(); ++k) {
+    const std::string c = reader.comments()[k];
     const auto key = c.find("alpha_deg");
     const auto eq = c.find('=');
     if (key != std::string::npos && eq != std::string::npos && eq > key) {
-      std::string v = c.substr(eq + 1);
-      v.erase(0, v.find_first_not_of(" \t"));
+      // The whole value must be the observation angle in degrees, 0 < alpha < 90 ("1abc" is no angle).
+      const auto start = c.find_first_not_of(" \t", eq + 1);
+      const auto end = c.find_last_not_of(" \t\r");
+      const std::string v = start == std::string::npos ? std::string() : c.substr(start, end - start + 1);
       double a = 0.0;
-      const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), a);
-      if (ec == std::errc() && std::isfinite(a)) table.alpha_deg = a;
+      if (!parse_finite_double(v, a) || !(a > 0.0 && a < 90.0)) {
+        // +2: the comment text starts after '#' in column 1.
+        throw FileError(path, reader.comment_lines()[k], static_cast<long>(start == std::string::npos ? eq : start) + 2,
+                        "alpha_deg = '" + v + "' is not an observation angle in (0, 90) deg");
+      }
+      table.alpha_deg = a;
     }
     const auto name = c.find("name:");
     if (name != std::string::npos) {
@@ -449,7 +459,36 @@ RTableFile read_rtable(const std::string& path, std::optional<RTableFormat> form
   return file;
 }
 
+namespace {
+
+// A table is written only if every reader reads it back: defined cells finite and >= 0 (below
+// 1e15, so that no reader's unit scaling overflows), at least one defined cell, a one-line name and
+// an observation angle in (0, 90) deg.
+void check_writable(const RTable& table) {
+  if (table.scaled.size() != kRows * kColumns) throw InputError("r-table: expected 29 x 20 cells");
+  for (std::size_t i = 0; i < kRows; ++i) {
+    for (std::size_t j = 0; j < kColumns; ++j) {
+      const double v = table.at(i, j);
+      if (std::isnan(v)) continue;
+      if (!(v >= 0.0 && v < 1e15)) {
+        throw InputError(
+            fmt::format("r-table cell (tan gamma {}, beta {} deg) = {} cannot be written: R = 1e4 r "
+                        "must be finite, >= 0 and < 1e15",
+                        standard_tan_gamma()[i], standard_beta_deg()[j], v));
+      }
+    }
+  }
+  if (table.defined_count() == 0) throw InputError("r-table has no defined cell: nothing to write");
+  if (table.name.find_first_of("\r\n") != std::string::npos) throw InputError("r-table name must be one line");
+  if (!(table.alpha_deg > 0.0 && table.alpha_deg < 90.0)) {
+    throw InputError(fmt::format("r-table observation angle alpha = {} deg must be in (0, 90)", table.alpha_deg));
+  }
+}
+
+}  // namespace
+
 void write_rtable(std::ostream& out, const RTable& table, RTableFormat format) {
+  check_writable(table);
   switch (format) {
     case RTableFormat::csv:
       write_csv(out, table);
@@ -464,6 +503,7 @@ void write_rtable(std::ostream& out, const RTable& table, RTableFormat format) {
 }
 
 void write_rtable_file(const std::string& path, const RTable& table, RTableFormat format) {
+  check_writable(table);  // before the output file is touched
   AtomicFile file(path);
   write_rtable(file.stream(), table, format);
   file.commit();

@@ -5,12 +5,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/json_input.h"
 
 namespace roadbrdf::surface {
 
@@ -152,12 +155,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) { throw FileError(path, 0, 0, what); }
 
-const json& required(const json& j, const char* key, const std::string& path, const std::string& where = "") {
-  auto it = j.find(key);
-  if (it == j.end()) fail(path, "missing key " + where + key);
-  return *it;
-}
-
 std::string relative_to(const std::string& target, const std::string& file) {
   if (target.empty()) return target;
   fs::path folder = fs::path(file).parent_path();
@@ -177,51 +174,45 @@ std::string resolve_from(const std::string& target, const std::string& file) {
 }  // namespace
 
 HeightField read_surface(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, 0, 0, "cannot open the surface file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    fail(path, std::string("not valid JSON: ") + e.what());
+  const Json document = parse_json_file(path);
+  const JsonNode root(document, input_display_name(path));
+  if (!root.is_object()) root.fail("a surface file is a JSON object");
+  if (root.string_or("format", "") != "roadbrdf-surface") root.fail("\"format\" must be \"roadbrdf-surface\"");
+  if (root.at("version").integer(1, 1) != 1) root.fail("unsupported \"version\" (expected 1)");
+  HeightField f;
+  f.name = root.string_or("name", "");
+  f.description = root.string_or("description", "");
+  f.cell_size_mm = root.at("cell_size_mm").number();
+  constexpr long long kMaxCells = std::numeric_limits<int>::max();
+  f.nx = static_cast<int>(root.at("nx").integer(2, kMaxCells));
+  f.ny = static_cast<int>(root.at("ny").integer(2, kMaxCells));
+  if (!root.boolean_or("periodic", true)) root.at("periodic").fail("only periodic surfaces are supported");
+  f.heights = root.at("heights_mm").numbers();
+  const JsonNode mats = root.at("materials");
+  const JsonNode material = root.at("material");
+  const long long last_material = static_cast<long long>(std::min<std::size_t>(mats.size(), 65536)) - 1;
+  if (last_material < 0) mats.fail("no materials");
+  f.material.reserve(material.size());
+  for (const long long m : material.integers(0, last_material)) f.material.push_back(static_cast<std::uint16_t>(m));
+  for (std::size_t k = 0; k < mats.size(); ++k) {
+    const JsonNode m = mats[k];
+    MaterialSpec spec;
+    spec.name = m.at("name").string();
+    spec.fit = m.string_or("fit", "");
+    spec.fit_model = m.string_or("fit_model", "");
+    spec.model = m.string_or("model", "");
+    if (const auto p = m.find("parameters")) spec.parameters = p->number_map();
+    if (const auto o = m.find("options")) spec.options = o->string_map();
+    if (spec.fit.empty() == spec.model.empty()) m.fail("give exactly one of \"fit\" and \"model\"");
+    spec.fit_path = resolve_from(spec.fit, path);
+    f.materials.push_back(std::move(spec));
   }
   try {
-    if (j.value("format", std::string()) != "roadbrdf-surface") fail(path, "\"format\" must be \"roadbrdf-surface\"");
-    if (j.value("version", 0) != 1) fail(path, "unsupported \"version\" (expected 1)");
-    HeightField f;
-    f.name = j.value("name", std::string());
-    f.description = j.value("description", std::string());
-    f.cell_size_mm = required(j, "cell_size_mm", path).get<double>();
-    f.nx = required(j, "nx", path).get<int>();
-    f.ny = required(j, "ny", path).get<int>();
-    if (!j.value("periodic", true)) fail(path, "\"periodic\": only periodic surfaces are supported");
-    f.heights = required(j, "heights_mm", path).get<std::vector<double>>();
-    f.material = required(j, "material", path).get<std::vector<std::uint16_t>>();
-    const json& mats = required(j, "materials", path);
-    if (!mats.is_array()) fail(path, "\"materials\" must be an array");
-    for (std::size_t k = 0; k < mats.size(); ++k) {
-      const json& m = mats[k];
-      const std::string where = "materials[" + std::to_string(k) + "].";
-      MaterialSpec spec;
-      spec.name = required(m, "name", path, where).get<std::string>();
-      spec.fit = m.value("fit", std::string());
-      spec.fit_model = m.value("fit_model", std::string());
-      spec.model = m.value("model", std::string());
-      if (m.contains("parameters")) spec.parameters = m["parameters"].get<std::map<std::string, double>>();
-      if (m.contains("options")) spec.options = m["options"].get<std::map<std::string, std::string>>();
-      if (spec.fit.empty() == spec.model.empty()) fail(path, where + ": give exactly one of \"fit\" and \"model\"");
-      spec.fit_path = resolve_from(spec.fit, path);
-      f.materials.push_back(std::move(spec));
-    }
-    try {
-      validate(f);
-    } catch (const InputError& e) {
-      fail(path, e.what());
-    }
-    return f;
-  } catch (const json::exception& e) {
-    fail(path, std::string("wrong value type: ") + e.what());
+    validate(f);
+  } catch (const InputError& e) {
+    fail(root.file(), e.what());
   }
+  return f;
 }
 
 void write_surface(const HeightField& f, const std::string& path, const TextureStatistics* statistics) {
@@ -269,7 +260,7 @@ void write_surface(const HeightField& f, const std::string& path, const TextureS
   j["heights_mm"] = rounded;
   j["material"] = f.material;
   AtomicFile out(path);
-  out.stream() << j.dump() << '\n';
+  out.stream() << dump_json(j) << '\n';
   out.commit();
 }
 

@@ -1,0 +1,342 @@
+// Adversarial command lines for every class of issue 15 beyond data loss (cli_data_loss_test.cpp):
+// deeply nested and malformed JSON, float-to-int casts of untrusted numbers, parameters outside
+// their declared bounds, silently accepted inputs, errors without a location. Every case asserts a
+// clear message naming the file (and the key path or line where there is one), a non-zero exit
+// that is neither an internal error nor a crash, no input modified and no temporary file left.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/case_folder.h"
+#include "support/cli.h"
+
+namespace roadbrdf {
+namespace {
+
+using test::CaseFolder;
+using test::refused_with;
+using test::run_cli;
+
+std::string lambert_fit(const std::string& albedo_values, const std::string& extra = "") {
+  return R"({"format": "roadbrdf-fit", "version": 1, "best": "lambert", )" + extra +
+         R"("fits": [{"model": "lambert", "options": {}, "wavelengths": [400, 500, 600],
+            "parameters": {"albedo": )" +
+         albedo_values + "}}]}";
+}
+
+const std::string kGrid = "theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,0,0\n";
+const std::string kCuretTable = "1 0.1 0.2 0.3 0.4\n2 0.5 0.6 0.7 0.8\n";  // CUReT table.txt, radians
+
+std::string nested(std::size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
+
+struct Case {
+  std::string name;           // names the case in failures
+  std::string file, content;  // the input written into the case folder
+  std::string arguments;      // command line; {} = the input's path, {out} = an output, {dir} = the case folder
+  std::vector<std::string> fragments;  // expected in the message (besides the file name)
+  bool names_file = true;              // false for errors in an option, not in the file
+};
+
+std::string substitute(std::string text, const std::string& placeholder, const std::string& value) {
+  for (auto at = text.find(placeholder); at != std::string::npos; at = text.find(placeholder, at + value.size())) {
+    text.replace(at, placeholder.size(), value);
+  }
+  return text;
+}
+
+// Runs every case in a fresh folder: refused, message naming the file and the fragments, no input
+// modified and no file added (temporary outputs included).
+void expect_refused(const std::vector<Case>& cases) {
+  for (const Case& c : cases) {
+    CaseFolder f("adversarial-" + c.name);
+    const std::string input = f.write(c.file, c.content);
+    f.write("grid.csv", kGrid);
+    f.write("table.txt", kCuretTable);
+    f.write("lambert.fit.json", lambert_fit("[0.2, 0.3, 0.4]"));
+    f.snapshot();
+    std::string arguments = substitute(c.arguments, "{out}", f.path("out.csv"));
+    arguments = substitute(substitute(arguments, "{dir}", f.dir()), "{}", input);
+    const auto r = run_cli(arguments);
+    std::vector<std::string> fragments = c.fragments;
+    if (c.names_file) fragments.push_back(c.file);
+    EXPECT_TRUE(refused_with(r, fragments)) << c.name;
+    EXPECT_EQ(f.changes(), std::vector<std::string>{}) << c.name;
+  }
+}
+
+TEST(CliAdversarial, DeeplyNestedJsonIsRefusedAtTheDepthLimit) {
+  const std::string deep = nested(200000);
+  const std::string surface = R"({"format": "roadbrdf-surface", "version": 1, "extra": )" + deep + "}";
+  expect_refused({
+      {"fit-options",
+       "deep.fit.json",
+       lambert_fit("[0.2, 0.3, 0.4]", R"("junk": )" + deep + ", "),
+       "rtable {} -o {out}",
+       {"nested deeper than 64 levels", "junk"}},
+      {"fit-in-options",
+       "deep2.fit.json",
+       R"({"format": "roadbrdf-fit", "fits": [{"model": "lambert", "options": )" + deep + "}]}",
+       "rtable {} -o {out}",
+       {"nested deeper than 64 levels", "fits[0].options"}},
+      {"mix",
+       "deep.mix.json",
+       R"({"format": "roadbrdf-mix", "end_members": [{"options": )" + deep + "}]}",
+       "rtable {} -o {out}",
+       {"nested deeper than 64 levels", "end_members[0].options"}},
+      {"formulation",
+       "F.json",
+       R"({"format": "roadbrdf-formulation", "components": )" + deep + "}",
+       "mix {} -o {out}",
+       {"nested deeper than 64 levels", "components"}},
+      {"surface",
+       "S.json",
+       surface,
+       "render {} --grid {dir}/grid.csv -o {out}",
+       {"nested deeper than 64 levels", "extra"}},
+  });
+}
+
+TEST(CliAdversarial, MalformedJsonNumbersKeysAndTypesNameTheKeyPath) {
+  expect_refused({
+      {"overflow",
+       "big.fit.json",
+       lambert_fit("[0.2, 1e400, 0.3]"),
+       "rtable {} -o {out}",
+       {":2:", "fits[0].parameters.albedo[1]", "number overflow"}},
+      {"duplicate",
+       "dup.fit.json",
+       lambert_fit("[0.2, 0.3, 0.4]", R"("best": "lambert", )"),
+       "rtable {} -o {out}",
+       {"best: duplicate key", ":1:"}},
+      {"type",
+       "type.fit.json",
+       lambert_fit("[0.2, \"x\", 0.4]"),
+       "rtable {} -o {out}",
+       {"fits[0].parameters.albedo[1]: must be a number, not string"}},
+      {"syntax",
+       "syntax.fit.json",
+       "{\"format\": \"roadbrdf-fit\",\n \"fits\": [}",
+       "rtable {} -o {out}",
+       {":2:", "not valid JSON"}},
+      {"unknown-model",
+       "model.fit.json",
+       R"({"format": "roadbrdf-fit", "best": "nope", "fits": [{"model": "nope", "wavelengths": [500],
+          "parameters": {}}]})",
+       "rtable {} -o {out}",
+       {"fits[0].model", "nope"}},
+      {"wavelength-order",
+       "order.fit.json",
+       R"({"format": "roadbrdf-fit", "best": "lambert", "fits": [{"model": "lambert", "wavelengths": [500, 400],
+          "parameters": {"albedo": [0.2, 0.3]}}]})",
+       "rtable {} -o {out}",
+       {"fits[0].wavelengths[1]", "strictly increasing"}},
+  });
+}
+
+TEST(CliAdversarial, ParametersOutsideTheirDeclaredBoundsAreRefused) {
+  expect_refused({
+      {"lambert",
+       "neg.fit.json",
+       lambert_fit("[0.2, -5, 0.3]"),
+       "rtable {} -o {out}",
+       {"fits[0].parameters.albedo[1]", "outside its bounds [0, 1]"}},
+      {"oren-nayar",
+       "on.fit.json",
+       R"({"format": "roadbrdf-fit", "best": "oren-nayar", "fits": [{"model": "oren-nayar", "wavelengths": [500],
+          "parameters": {"albedo": [0.3], "sigma": [50]}}]})",
+       "rtable {} -o {out}",
+       {"fits[0].parameters.sigma[0]", "outside its bounds"}},
+      {"hapke",
+       "hapke.fit.json",
+       R"({"format": "roadbrdf-fit", "best": "hapke", "fits": [{"model": "hapke", "wavelengths": [500],
+          "parameters": {"w": [-3], "b": [0.3], "c": [0.5], "B0": [0.5], "h": [0.1], "theta_bar": [0.2]}}]})",
+       "rtable {} -o {out}",
+       {"fits[0].parameters.", "outside its bounds"}},
+  });
+}
+
+TEST(CliAdversarial, BadIntegersInSurfaceAndFormulationFilesAreRefused) {
+  const std::string surface_head = R"({"format": "roadbrdf-surface", "cell_size_mm": 1, "periodic": true, )";
+  const std::string surface_tail =
+      R"("heights_mm": [0, 0, 0, 0], "materials": [{"name": "a", "model": "lambert", "parameters": {"albedo": 0.3}}]})";
+  const std::string formulation_tail = R"(, "name": "T", "components": [{"name": "G", "kind": "binder",
+      "mass_percent": 100, "density_g_cm3": 1.0, "fit": "lambert.fit.json"}]})";
+  expect_refused({
+      {"nx",
+       "nx.json",
+       surface_head + R"("version": 1, "nx": 1e10, "ny": 2, "material": [0, 0, 0, 0], )" + surface_tail,
+       "render {} --grid {dir}/grid.csv -o {out}",
+       {"nx: must be an integer in [2, 2147483647], got 10000000000"}},
+      {"version",
+       "version.json",
+       surface_head + R"("version": 1.9, "nx": 2, "ny": 2, "material": [0, 0, 0, 0], )" + surface_tail,
+       "render {} --grid {dir}/grid.csv -o {out}",
+       {"version: must be an integer in [1, 1], got 1.9"}},
+      {"material",
+       "material.json",
+       surface_head + R"("version": 1, "nx": 2, "ny": 2, "material": [0, 65536, 0, 0], )" + surface_tail,
+       "render {} --grid {dir}/grid.csv -o {out}",
+       {"material[1]: must be an integer in [0, 0], got 65536"}},
+      {"formulation-version",
+       "F.json",
+       R"({"format": "roadbrdf-formulation", "version": 4294967297)" + formulation_tail,
+       "mix {} -o {out}",
+       {"version: must be 1"}},
+  });
+}
+
+TEST(CliAdversarial, UntrustedNumbersAreRangeAndIntegralityChecked) {
+  const std::string data =
+      "theta_i,phi_i,theta_r,phi_r,500,600\n0,0,30,180,0.1,0.2\n30,0,0,0,0.1,0.2\n"
+      "30,0,30,180,0.12,0.2\n45,0,30,0,0.1,0.2\n";
+  expect_refused({
+      {"curet-huge",
+       "abrdf.dat",
+       "1e10 0.1 0.2\n",
+       "convert {} --from curet --curet-table {dir}/table.txt --sample 1 -o {out}",
+       {"abrdf.dat:1:1", "sample number '1e10' is not an integer >= 1"}},
+      {"curet-fraction",
+       "abrdf.dat",
+       "1 0.1 0.2\n1.7 0.1 0.2\n",
+       "convert {} --from curet --curet-table {dir}/table.txt --sample 1 -o {out}",
+       {"abrdf.dat:2:1", "sample number '1.7'"}},
+      {"curet-wavelength",
+       "abrdf.dat",
+       "1 0.1 0.2\n",
+       "convert {} --from curet --curet-table {dir}/table.txt --sample 1 --wavelength -5 -o {out}",
+       {"--wavelength -5 nm: must be finite and > 0"},
+       false},
+      {"check-tolerance",
+       "data.csv",
+       data,
+       "check {} --tolerance 1e-310",
+       {"angle tolerance must be in [1e-6, 90] deg"},
+       false},
+      {"check-neighbours", "data.csv", data, "check {} --neighbours -5", {"neighbours must be >= 2"}, false},
+      {"flat-size",
+       "unused.txt",
+       "",
+       "surface lambert -p albedo=0.3 --flat --size nanmm -o {out}",
+       {"--size is for samples of a formulation"},
+       false},
+  });
+}
+
+TEST(CliAdversarial, AtmosphereDayIsAWholeDayOfTheYear) {
+  for (const std::string day : {"1e10", "81.9", "0", "367"}) {
+    CaseFolder f("adversarial-day-" + day);
+    f.snapshot();
+    const auto r = run_cli("albedo lambert -p albedo=0.3 --atmosphere spectrl2:day=" + day + " -o " + f.path("a.csv"));
+    EXPECT_TRUE(refused_with(r, {"day = '" + day + "' must be an integer day of year in 1..366"})) << day;
+    EXPECT_EQ(f.changes(), std::vector<std::string>{}) << day;
+  }
+}
+
+TEST(CliAdversarial, SolarSpectrumFilesAreReadWhole) {
+  expect_refused({
+      {"typo",
+       "solar.csv",
+       "wavelength,irradiance\n4OO,1\n500,1.2\n600,1\n",
+       "albedo {dir}/lambert.fit.json --spectrum {} -o {out}",
+       {"solar.csv:2:1", "4OO"}},
+      {"negative",
+       "solar.csv",
+       "400,1\n500,-1.2\n600,1\n",
+       "albedo {dir}/lambert.fit.json --spectrum {} -o {out}",
+       {"solar.csv:2:5", "negative irradiance '-1.2'"}},
+      {"huge",
+       "solar.csv",
+       "400,1e308\n500,1e308\n600,1e308\n",
+       "albedo {dir}/lambert.fit.json --spectrum {} -o {out}",
+       {"must be finite and > 0"}},
+  });
+}
+
+TEST(CliAdversarial, AltaHeadersAreStrict) {
+  const std::string head = "#DIM 3 1\n#PARAM_IN ISOTROPIC_TL_TV_PROJ_DPHI\n#PARAM_OUT INV_STERADIAN\n";
+  expect_refused({
+      {"dim-junk",
+       "a.alta",
+       "#DIM 4 1junk\n",
+       "convert {} --from alta --wavelength 550 -o {out}",
+       {"a.alta:1:8", "#DIM count '1junk'"}},
+      {"late-param",
+       "a.alta",
+       head + "0.1 0.2 0.3 0.5\n#PARAM_IN SPHERICAL_TL_PL_TV_PV\n0.1 0.2 0.3 0.4 0.5\n",
+       "convert {} --from alta --wavelength 550 -o {out}",
+       {"a.alta:5:2", "#PARAM_IN after the data"}},
+  });
+  // "#  PARAM_IN" with spaces after '#' is the same header line.
+  CaseFolder f("adversarial-alta-spaces");
+  const std::string in = f.write("a.alta",
+                                 "#  DIM 3 1\n#  PARAM_IN ISOTROPIC_TL_TV_PROJ_DPHI\n#  PARAM_OUT INV_STERADIAN\n"
+                                 "0.1 0.2 0.3 0.5\n0.2 0.1 0.1 0.4\n");
+  const auto r = run_cli("convert " + in + " --from alta --wavelength 550 -o " + f.path("out.csv"));
+  EXPECT_EQ(r.status, 0) << r.output;
+}
+
+TEST(CliAdversarial, SilentlyAcceptedInputsAreRefused) {
+  CaseFolder grids("adversarial-rtable-alpha");
+  const std::string table = grids.path("r.csv");
+  ASSERT_EQ(run_cli("rtable lambert -p albedo=0.3 -o " + table).status, 0);
+  std::string text;
+  {
+    std::ifstream in(table);
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  const auto alpha_at = text.find("alpha_deg = ");
+  ASSERT_NE(alpha_at, std::string::npos);
+  auto with_alpha = [&](const std::string& a) {
+    std::string t = text;
+    t.replace(alpha_at, t.find('\n', alpha_at) - alpha_at, "alpha_deg = " + a);
+    return t;
+  };
+  expect_refused({
+      {"alpha-junk", "r.csv", with_alpha("1abc"), "rtable --import {} -o {out}", {":3:", "alpha_deg = '1abc'"}},
+      {"alpha-negative", "r.csv", with_alpha("-7"), "rtable --import {} -o {out}", {":3:", "alpha_deg = '-7'"}},
+  });
+}
+
+TEST(CliAdversarial, EvalRefusesItsOwnOutputAsGeometry) {
+  CaseFolder f("adversarial-eval-twice");
+  const std::string grid = f.write("g.csv", "theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,0,0\n");
+  ASSERT_EQ(run_cli("eval lambert -p albedo=0.3 --geometry " + grid + " -o " + f.path("e.csv")).status, 0);
+  f.snapshot();
+  const auto r = run_cli("eval lambert -p albedo=0.3 --geometry " + f.path("e.csv") + " -o " + f.path("e2.csv"));
+  EXPECT_TRUE(refused_with(r, {"e.csv", "already has a 'brdf' column"}));
+  EXPECT_EQ(f.changes(), std::vector<std::string>{});
+}
+
+TEST(CliAdversarial, GeometryErrorsPointAtTheirOwnCell) {
+  expect_refused({
+      {"theta-r",
+       "g.csv",
+       "theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n10,0,95,0\n",
+       "eval lambert -p albedo=0.3 --geometry {} -o {out}",
+       {"g.csv:3:6", "theta_r = 95 deg is outside [0, 90] deg"}},
+      {"road-alpha",
+       "g.csv",
+       "gamma,alpha,beta,delta\n0,1,0,0\n10,-5,0,0\n",
+       "eval lambert -p albedo=0.3 --geometry {} -o {out}",
+       {"g.csv:3:4", "alpha = -5 deg"}},
+  });
+}
+
+TEST(CliAdversarial, NonUtf8FileNamesAreReportedNotCrashed) {
+  CaseFolder f("adversarial-utf8");
+  const std::string bad = f.path("bad\xff.csv");
+  f.write("bad\xff.csv", "theta_i,phi_i,theta_r,phi_r,brdf_500\n0,0,30,180,0.1\n30,0,0,0,0.1\n");
+  f.snapshot();
+  const auto r = run_cli("check '" + bad + "' --json");
+  EXPECT_NE(r.status, 3) << r.output;
+  EXPECT_LT(r.status, 128) << r.output;
+  EXPECT_EQ(f.changes(), std::vector<std::string>{});
+}
+
+}  // namespace
+}  // namespace roadbrdf

@@ -1,0 +1,83 @@
+// core/json_input.h: the one reader of user JSON. Depth limit, duplicate keys, number overflow,
+// located errors (line, column, key path), integrality and range checks, and dumps of invalid UTF-8.
+#include "roadbrdf/core/json_input.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "roadbrdf/core/error.h"
+
+namespace roadbrdf {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_json_text(text, "f.json");
+  } catch (const FileError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(JsonInput, NestingBeyondTheLimitIsAnErrorNotAStackOverflow) {
+  const std::string deep = "{\"a\": " + std::string(200000, '[') + std::string(200000, ']') + "}";
+  const std::string message = error_of(deep);
+  EXPECT_NE(message.find("f.json:1:"), std::string::npos) << message;
+  EXPECT_NE(message.find("a[0][0]"), std::string::npos) << message;
+  EXPECT_NE(message.find("nested deeper than 64 levels"), std::string::npos) << message;
+  // 64 levels are fine.
+  EXPECT_NO_THROW(parse_json_text(std::string(64, '[') + std::string(64, ']'), "f.json"));
+  EXPECT_THROW(parse_json_text(std::string(65, '[') + std::string(65, ']'), "f.json"), FileError);
+}
+
+TEST(JsonInput, DuplicateKeysAreErrorsNamingTheKeyPath) {
+  const std::string message = error_of("{\"a\": {\"x\": 1,\n \"x\": 2}}");
+  EXPECT_NE(message.find("f.json:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("a.x: duplicate key"), std::string::npos) << message;
+  // The same key in different objects is fine.
+  EXPECT_NO_THROW(parse_json_text("[{\"x\": 1}, {\"x\": 2}]", "f.json"));
+}
+
+TEST(JsonInput, NumbersOutsideTheDoubleRangeAreLocated) {
+  const std::string message = error_of("{\"p\": [1,\n 2, 1e400]}");
+  EXPECT_NE(message.find("f.json:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("p[2]"), std::string::npos) << message;
+  EXPECT_NE(message.find("1e400"), std::string::npos) << message;
+}
+
+TEST(JsonInput, SyntaxErrorsHaveLineAndColumn) {
+  const std::string message = error_of("{\n  \"a\": tru }");
+  EXPECT_NE(message.find("f.json:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("not valid JSON"), std::string::npos) << message;
+}
+
+TEST(JsonInput, NodesNameTheKeyPathOfEveryTypeError) {
+  const Json j = parse_json_text(R"({"fits": [{"model": 3, "n": 1.5, "big": 1e10, "ok": 2.0}]})", "f.json");
+  const JsonNode root(j, "f.json");
+  const JsonNode fit = root.at("fits")[0];
+  try {
+    fit.at("model").string();
+    FAIL();
+  } catch (const FileError& e) {
+    EXPECT_STREQ(e.what(), "f.json: fits[0].model: must be a string, not number");
+  }
+  EXPECT_THROW(fit.at("n").integer(0, 10), FileError);      // 1.5 is not an integer
+  EXPECT_THROW(fit.at("big").integer(0, 1000), FileError);  // out of range, no undefined cast
+  EXPECT_EQ(fit.at("ok").integer(0, 10), 2);
+  try {
+    fit.at("missing");
+    FAIL();
+  } catch (const FileError& e) {
+    EXPECT_STREQ(e.what(), "f.json: fits[0].missing: missing");
+  }
+}
+
+TEST(JsonInput, DumpsReplaceInvalidUtf8) {
+  Json j;
+  j["path"] = std::string("bad\xff.csv");
+  EXPECT_EQ(dump_json(j), "{\"path\":\"bad\xef\xbf\xbd.csv\"}");
+}
+
+}  // namespace
+}  // namespace roadbrdf

@@ -1,0 +1,150 @@
+// libFuzzer entry points of the file parsers (datasets, geometry tables, CUReT, ALTA, formulations,
+// fit and MIX files, r-tables, solar spectra, surfaces), as inline functions shared by the harness
+// programs (*_fuzz.cpp, one LLVMFuzzerTestOneInput each). Rejecting an input with InputError or
+// FileError is the expected outcome; any other exception, a crash or a sanitizer report is a bug.
+//
+// Parsers that read a path get the input in a per-process scratch file. Warnings are swallowed.
+// Built two ways (tests/fuzz/CMakeLists.txt): with -DROADBRDF_FUZZ=ON as libFuzzer programs
+// (build-fuzz/tests/fuzz/<name>_fuzz), and in every normal build linked with replay_main.cpp as
+// the ctest test fuzz_corpus.<name>, which runs each file of tests/fuzz/corpus/<name>/.
+#pragma once
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#include "roadbrdf/albedo/solar.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/formulation/formulation.h"
+#include "roadbrdf/io/alta.h"
+#include "roadbrdf/io/curet.h"
+#include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/geometry_file.h"
+#include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/photometry/rtable_io.h"
+#include "roadbrdf/surface/height_field.h"
+
+namespace roadbrdf::fuzz {
+
+inline std::string_view bytes(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+// A file holding `content`, removed when it goes out of scope.
+class ScratchFile {
+ public:
+  ScratchFile(const std::string& name, std::string_view content)
+      : path_((std::filesystem::temp_directory_path() / ("roadbrdf-fuzz-" + std::to_string(::getpid()) + "-" + name))
+                  .string()) {
+    std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  }
+  ~ScratchFile() {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// Runs `parse`; an InputError (FileError included) is a correct refusal.
+template <class Parse>
+int refusing(Parse parse) {
+  try {
+    parse();
+  } catch (const InputError&) {
+  }
+  return 0;
+}
+
+inline void quiet(const std::string&) {}
+
+inline int dataset_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("dataset.csv", bytes(data, size));
+  for (bool average : {false, true}) {
+    DatasetReadOptions o;
+    o.average_duplicates = average;
+    o.allow_missing = average;
+    o.warn = quiet;
+    refusing([&] { read_dataset(file.path(), o); });
+  }
+  return 0;
+}
+
+inline int geometry_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("geometry.csv", bytes(data, size));
+  return refusing([&] { read_geometry_file(file.path()); });
+}
+
+// CUReT needs two files: the input is the geometry table, a NUL byte, then abrdf.dat (without a
+// NUL, a fixed two-geometry table is used). The first sample listed is read.
+inline int curet_one_input(const std::uint8_t* data, std::size_t size) {
+  const std::string_view all = bytes(data, size);
+  const auto nul = all.find('\0');
+  const std::string_view table_text =
+      nul == std::string_view::npos ? std::string_view("1 0.1 0.2 0.3 0.4\n2 0.5 0.6 0.7 0.8\n") : all.substr(0, nul);
+  const std::string_view abrdf_text = nul == std::string_view::npos ? all : all.substr(nul + 1);
+  const ScratchFile table("table.txt", table_text), abrdf("abrdf.dat", abrdf_text);
+  return refusing([&] {
+    const auto samples = curet_sample_numbers(abrdf.path());
+    CuretReadOptions o;
+    o.warn = quiet;
+    read_curet(abrdf.path(), table.path(), samples.front(), o);
+  });
+}
+
+inline int alta_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("data.alta", bytes(data, size));
+  for (bool average : {false, true}) {
+    AltaReadOptions o;
+    o.wavelength_nm = 550.0;
+    o.assumed_output = average ? "INV_STERADIAN_COSINE_FACTOR" : "";
+    o.exclude_grazing = average;
+    o.average_duplicates = average;
+    o.warn = quiet;
+    refusing([&] { read_alta(file.path(), o); });
+  }
+  return 0;
+}
+
+inline int formulation_one_input(const std::uint8_t* data, std::size_t size) {
+  return refusing([&] { parse_formulation(std::string(bytes(data, size)), "fuzz.json", false); });
+}
+
+inline int fit_file_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("fit.json", bytes(data, size));
+  return refusing([&] { read_fit_file(file.path()); });
+}
+
+inline int mix_file_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("mix.json", bytes(data, size));
+  return refusing([&] { mixing::read_mix_file(file.path()); });
+}
+
+inline int rtable_one_input(const std::uint8_t* data, std::size_t size, photometry::RTableFormat format,
+                            const char* name) {
+  const ScratchFile file(name, bytes(data, size));
+  return refusing([&] { photometry::read_rtable(file.path(), format); });
+}
+
+inline int solar_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("solar.csv", bytes(data, size));
+  return refusing([&] { albedo::read_solar_spectrum(file.path()); });
+}
+
+inline int surface_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("surface.json", bytes(data, size));
+  return refusing([&] { surface::read_surface(file.path()); });
+}
+
+}  // namespace roadbrdf::fuzz

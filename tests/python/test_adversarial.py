@@ -1,0 +1,84 @@
+"""Bad input from Python (issue 15): every case raises roadbrdf.InputError with the CLI's message,
+never a crash or a RuntimeError."""
+import json
+
+import numpy as np
+import pytest
+
+import roadbrdf
+from roadbrdf import _roadbrdf
+
+
+def test_low_level_delta_reflectance_checks_the_parameter_count():
+    model = _roadbrdf.make_model("simonot")
+    with pytest.raises(roadbrdf.InputError, match="parameters"):
+        model.delta_reflectance([], 0.5)
+    with pytest.raises(roadbrdf.InputError, match="parameters"):
+        model.delta_reflectance([0.5], 0.5)
+
+
+def test_low_level_evaluate_flat_checks_lengths():
+    model = _roadbrdf.make_model("lambert")
+    a = np.zeros(3)
+    with pytest.raises(roadbrdf.InputError):
+        model.evaluate_flat(a, a, a, np.zeros(2), np.full(3, 0.3))
+
+
+def write(tmp_path, name, text):
+    path = tmp_path / name
+    path.write_text(text)
+    return str(path)
+
+
+def lambert_fit(albedo):
+    return json.dumps({"format": "roadbrdf-fit", "version": 1, "best": "lambert",
+                       "fits": [{"model": "lambert", "wavelengths": [400, 500],
+                                 "parameters": {"albedo": albedo}}]})
+
+
+@pytest.mark.parametrize("text, fragment", [
+    ('{"format": "roadbrdf-fit", "fits": [{"options": ' + "[" * 100000 + "]" * 100000 + "}]}",
+     "nested deeper than 64 levels"),
+    (lambert_fit([0.2, 0.3]).replace('"best": "lambert"', '"best": "lambert", "best": "x"'), "best: duplicate key"),
+    (lambert_fit([0.2, 0.3]).replace("0.3", "1e400"), "number overflow"),
+    (lambert_fit([0.2, -5]), "outside its bounds"),
+    (lambert_fit([0.2, "x"]), "fits[0].parameters.albedo[1]: must be a number"),
+])
+def test_bad_fit_files_raise_input_error(tmp_path, text, fragment):
+    path = write(tmp_path, "bad.fit.json", text)
+    with pytest.raises(roadbrdf.InputError, match=None) as error:
+        roadbrdf.read_fit(path)
+    assert fragment in str(error.value)
+    assert "bad.fit.json" in str(error.value)
+
+
+@pytest.mark.parametrize("change, fragment", [
+    (dict(wavelengths=[np.nan, 600.0]), "wavelengths[0]"),
+    (dict(brdf=[[np.inf, 0.1]]), "infinite"),
+    (dict(metadata={"bad\nkey": "x"}), "metadata key"),
+    (dict(metadata={"note": "two\nlines"}), "one line"),
+])
+def test_dataset_write_refuses_what_its_reader_would_refuse(tmp_path, change, fragment):
+    fields = dict(angles=[[0, 0, 30, 180]], wavelengths=[500.0, 600.0], brdf=[[0.1, 0.1]])
+    fields.update(change)
+    target = tmp_path / "out.csv"
+    with pytest.raises(roadbrdf.InputError, match=None) as error:
+        roadbrdf.Dataset(**fields).write(target)
+    assert fragment in str(error.value)
+    assert not target.exists()
+
+
+@pytest.mark.parametrize("cells, fragment", [
+    (np.full((29, 20), np.nan), "no defined cell"),
+    (np.full((29, 20), 1e308), "cannot be written"),
+    (np.full((29, 20), -0.01), "cannot be written"),
+])
+def test_rtable_write_refuses_what_its_readers_would_refuse(tmp_path, cells, fragment):
+    table = roadbrdf.rtable(roadbrdf.Model("lambert"), {"albedo": 0.3})
+    table["r"] = cells
+    for format in ("csv", "rtb", "radiance"):
+        target = tmp_path / f"r.{format}"
+        with pytest.raises(roadbrdf.InputError, match=None) as error:
+            table.write(target, format)
+        assert fragment in str(error.value)
+        assert not target.exists()
