@@ -238,6 +238,14 @@ def run_task(task, fits):
     reach, ...) become the candidate's recorded error; anything else is a bug and propagates (and stops the
     study, keeping what the store holds).
     """
+    import time
+    start = time.process_time()
+    result = _run(task, fits)
+    result["seconds"] = time.process_time() - start  # CPU time of the task (the store keeps it; not in the CSV)
+    return result
+
+
+def _run(task, fits):
     from .spec import InputError
     folder = _fit_folder(fits)
     work = tempfile.mkdtemp(prefix="roadbrdf-study-task-")

@@ -51,8 +51,8 @@ def make_tasks(study, version):
 class Progress:
     """Done, in flight, failed and the estimated time left, on standard error (at most once a second)."""
 
-    def __init__(self, total, cached, enabled):
-        self.total, self.cached, self.enabled = total, cached, enabled
+    def __init__(self, total, cached, enabled, running="running"):
+        self.total, self.cached, self.enabled, self.running = total, cached, enabled, running
         self.done = self.failed = 0
         self.start = time.monotonic()
         self.last = 0.0
@@ -70,7 +70,7 @@ class Progress:
             eta_text = f"{int(eta) // 3600}:{int(eta) % 3600 // 60:02d}:{int(eta) % 60:02d}"
         else:
             eta_text = "?"
-        print(f"study: {self.cached + self.done}/{self.total} done ({self.cached} from the store), {running} running, "
+        print(f"study: {self.cached + self.done}/{self.total} done ({self.cached} from the store), {running} {self.running}, "
               f"{self.failed} failed, about {eta_text} left", file=sys.stderr, flush=True)
 
 
@@ -80,16 +80,14 @@ def _local(pending, fits, workers, store, progress):
     ctx = multiprocessing.get_context(_start_method())
     with cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
                                 initargs=(fits,)) as pool:
-        started = {}
         futures = {}
         for key, task in pending:
             futures[pool.submit(_run_cached, task)] = key
-            started[key] = time.monotonic()
         try:
             for future in cf.as_completed(futures):
                 key = futures[future]
                 result = future.result()
-                store.add(key, result, time.monotonic() - started[key])
+                store.add(key, result)
                 progress.done += 1
                 running = min(workers, len(futures) - progress.done)
                 progress.update(running, failed_now=result["error"] is not None)
@@ -136,14 +134,13 @@ def _dask(pending, fits, scheduler, store, progress):
     try:
         shared = client.scatter(fits, broadcast=True)
         futures = {}
-        started = time.monotonic()
         for key, task in pending:
             futures[client.submit(run_task, task, shared, key=f"roadbrdf-study-{key}", pure=False)] = key
         done = 0
         for future in as_completed(list(futures)):
             key = futures[future]
             result = future.result()
-            store.add(key, result, time.monotonic() - started)
+            store.add(key, result)
             done += 1
             progress.done += 1
             progress.update(len(futures) - done, failed_now=result["error"] is not None)
@@ -209,7 +206,7 @@ def execute(study, store, scheduler=None, workers=None, progress=True, retry_fai
         if record is None or (retry_failed and record["error"] is not None):
             todo.append((key, task))
     cached = len(seen) - len(todo)
-    bar = Progress(len(seen), cached, progress)
+    bar = Progress(len(seen), cached, progress, "running or queued" if scheduler else "running")
     if progress:
         print(f"study '{study.name}': {len(tasks)} candidates, {cached} already in the store, {len(todo)} to compute"
               f"{' on ' + scheduler if scheduler else ''}", file=sys.stderr, flush=True)

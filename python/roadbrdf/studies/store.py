@@ -76,8 +76,9 @@ class Store:
             raise OSError(f"{self.path}: short write ({written} of {len(line)} bytes)")
         os.fsync(self._fd)
 
-    def add(self, key, result, seconds):
-        record = {"key": key, "error": result["error"], "rows": result["rows"], "seconds": round(seconds, 6)}
+    def add(self, key, result):
+        record = {"key": key, "error": result["error"], "rows": result["rows"],
+                  "cpu_seconds": round(result.get("seconds", 0.0), 6)}
         if self._fd is not None:
             self._append(record)
         self.results[key] = record
