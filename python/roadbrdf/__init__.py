@@ -259,14 +259,17 @@ class Dataset:
         write_dataset(self, path, format)
 
 
-def read_dataset(path, average_duplicates=False, allow_missing=False) -> Dataset:
+def read_dataset(path, average_duplicates=False, allow_missing=False, delimiter="auto", decimal="auto") -> Dataset:
     """Read a wide or long CSV dataset (the format is detected from the header).
 
     Duplicate geometries are an error unless ``average_duplicates``; missing values (empty, nan,
     NA) are an error unless ``allow_missing`` (then kept as NaN). Negative values are kept and
     reported with a :class:`UserWarning`. Malformed files raise InputError naming file:line:column.
+    ``delimiter`` ("auto", ",", ";", "tab") and ``decimal`` ("auto", ".", ",") are the command line's
+    ``--delimiter`` / ``--decimal``: by default the dialect is detected (docs/data.md).
     """
-    return Dataset._from_dict(_roadbrdf.read_dataset(str(path), average_duplicates, allow_missing))
+    return Dataset._from_dict(_roadbrdf.read_dataset(str(path), average_duplicates, allow_missing, str(delimiter),
+                                                     str(decimal)))
 
 
 def write_dataset(dataset: Dataset, path, format="wide"):

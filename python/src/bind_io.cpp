@@ -14,6 +14,7 @@
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
+#include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
@@ -206,14 +207,20 @@ void check_metadata_writable(const std::map<std::string, std::string>& metadata)
 void bind_io(py::module_& m) {
   m.def(
       "read_dataset",
-      [](const std::string& path, bool average_duplicates, bool allow_missing) {
+      [](const std::string& path, bool average_duplicates, bool allow_missing, const std::string& delimiter,
+         const std::string& decimal) {
         DatasetReadOptions options;
         options.average_duplicates = average_duplicates;
         options.allow_missing = allow_missing;
+        // The same names and the same validation as the command line's --delimiter / --decimal.
+        options.delimiter = delimiter_from_name(delimiter, "delimiter");
+        options.decimal = decimal_from_name(decimal, "decimal");
+        validate_read_options(options);
         options.warn = python_warning();
         return dataset_to_dict(read_dataset(path, options));
       },
-      py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = false);
+      py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = false,
+      py::arg("delimiter") = "auto", py::arg("decimal") = "auto");
   m.def("write_dataset", [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
                             const std::map<std::string, std::string>& metadata, const std::string& convention,
                             const std::string& path, const std::string& format) {

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/cli/instruments.h"
 #include "roadbrdf/core/atomic_file.h"
@@ -20,6 +21,7 @@ namespace roadbrdf::cli {
 namespace {
 
 struct CalibrateArgs {
+  DatasetReadFlags read;
   std::string sample, reference, dark, panel, panel_brf;
   std::optional<double> brf_start, brf_step;
   std::string format = "wide";
@@ -42,7 +44,7 @@ void run(const CalibrateArgs& a) {
     return;
   }
   if (a.sample.empty() || a.reference.empty()) throw InputError("give SAMPLE and --reference, or --manifest RUN.csv");
-  DatasetReadOptions radiance;
+  DatasetReadOptions radiance = dataset_read_options(a.read);
   radiance.any_units = true;
   CalibrationInput in;
   in.sample = read_dataset(a.sample, radiance);
@@ -78,6 +80,7 @@ void register_calibrate_command(CLI::App& app) {
                 "Instrument run: CSV of file,role (sample|white|dark) and angles, mapping .asd/.sed/.sig files to "
                 "geometries (replaces SAMPLE, --reference and --dark; docs/data.md)");
   add_instrument_flags(c, args.instrument, false);
+  add_dataset_read_flags(c, args.read);
   c->add_option("--dark", args.dark, "Dark signal: same geometries, or a single row (default: none)");
   c->add_option("--panel-reflectance", args.panel,
                 "Calibrated panel reflectance rho_ref: wavelength [nm], value [, sigma] (e.g. Spectralon_Num4.txt)")

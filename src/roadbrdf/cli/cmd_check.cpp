@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
@@ -18,16 +19,15 @@ namespace {
 struct CheckArgs {
   std::string data;
   bool json = false;
-  bool average_duplicates = false;
+  DatasetReadFlags read;
   std::string panel;
   QualityOptions options;
 };
 
 void run(CheckArgs& a) {
   check_distinct_files({{"DATA", a.data}, {"--panel-reflectance", a.panel}}, {});
-  DatasetReadOptions read;
+  DatasetReadOptions read = dataset_read_options(a.read);
   read.allow_missing = true;  // counted in the report
-  read.average_duplicates = a.average_duplicates;
   const SpectralDataset d = read_dataset(a.data, read);
   QualityOptions o = a.options;
   if (!a.panel.empty()) o.panel_reflectance = read_spectrum(a.panel);
@@ -54,7 +54,7 @@ void register_check_command(CLI::App& app) {
                                "noisy bands, outlier geometries, reference-panel validation");
   c->add_option("data", args.data, "Dataset CSV (wide or long)")->required();
   c->add_flag("--json", args.json, "Machine-readable report");
-  c->add_flag("--average-duplicates", args.average_duplicates, "Average rows with the same geometry (else an error)");
+  add_dataset_read_flags(c, args.read);
   c->add_option("--panel-reflectance", args.panel,
                 "The dataset is a reference panel: compare it with rho/pi, rho from this file (wavelength [nm], "
                 "reflectance [, sigma])");

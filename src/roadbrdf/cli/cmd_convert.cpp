@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/cli/instruments.h"
 #include "roadbrdf/core/atomic_file.h"
@@ -29,7 +30,7 @@ struct ConvertArgs {
   std::optional<double> wavelength;
   std::string alta_output;
   bool exclude_grazing = false;
-  bool average_duplicates = false;
+  DatasetReadFlags read;
   std::string convention;
   std::string output;
   InstrumentArgs instrument;
@@ -41,9 +42,7 @@ void run(const ConvertArgs& a) {
   if (is_instrument_input(a.from, a.input)) {
     d = convert_instrument_input(a.from, a.input, a.instrument);
   } else if (a.from == "auto" || a.from == "wide" || a.from == "long") {
-    DatasetReadOptions o;
-    o.average_duplicates = a.average_duplicates;
-    d = read_dataset(a.input, o);
+    d = read_dataset(a.input, dataset_read_options(a.read));
   } else if (a.from == "curet") {
     if (a.sample < 0) {
       std::string list;
@@ -67,7 +66,7 @@ void run(const ConvertArgs& a) {
     o.wavelength_nm = a.wavelength.value_or(0.0);
     o.assumed_output = a.alta_output;
     o.exclude_grazing = a.exclude_grazing;
-    o.average_duplicates = a.average_duplicates;
+    o.average_duplicates = a.read.average_duplicates;
     d = read_alta(a.input, o);
   } else {
     throw InputError("--from: unknown format '" + a.from + "' (auto, wide, long, curet, alta, asd, sed, sig, manifest)");
@@ -99,7 +98,7 @@ void register_convert_command(CLI::App& app) {
                 "ALTA output unit when the file lacks #PARAM_OUT: INV_STERADIAN or INV_STERADIAN_COSINE_FACTOR");
   c->add_flag("--exclude-grazing", args.exclude_grazing,
               "ALTA BRDF x cos(theta_v): leave out (and report) rows at grazing view, which cannot be converted");
-  c->add_flag("--average-duplicates", args.average_duplicates, "Average rows with the same geometry (else an error)");
+  add_dataset_read_flags(c, args.read);
   c->add_option("--convention", args.convention, "Angle columns of the output: zenith or road (default: as read)");
   add_instrument_flags(c, args.instrument, true);
   c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");

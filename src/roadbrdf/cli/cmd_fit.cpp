@@ -10,6 +10,7 @@
 #include <set>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
@@ -25,6 +26,7 @@ namespace {
 
 struct FitArgs {
   std::string data;
+  DatasetReadFlags read;
   std::vector<std::string> models;
   std::vector<std::string> options;
   std::vector<std::string> shared;
@@ -100,7 +102,7 @@ void run(const FitArgs& a) {
   if (a.output.empty()) throw InputError("give the output fit file with -o FIT.json");
   check_distinct_files({{"DATA", a.data}}, {{"-o", a.output}, {"--residuals", a.residuals}});
   std::FILE* report = report_stream(a.output);
-  SpectralDataset data = read_dataset(a.data);
+  SpectralDataset data = read_dataset(a.data, dataset_read_options(a.read));
   if (!a.wavelengths.empty()) data = subset_wavelengths(data, select_wavelengths(data.wavelengths, a.wavelengths));
 
   const OptionSet given_options = parse_option_assignments(a.options, "--option");
@@ -238,6 +240,7 @@ void register_fit_command(CLI::App& app) {
       "Fit models to a measured spectral BRDF (per wavelength, or jointly with --shared); rank them by BIC; "
       "write a fit file usable as a model");
   c->add_option("data", args.data, "Dataset CSV (wide or long, BRDF in sr^-1, angles in degrees)")->required();
+  add_dataset_read_flags(c, args.read);
   c->add_option("-m,--model", args.models, "Model to fit (repeatable), e.g. oren-nayar or oren-nayar+torrance-sparrow")
       ->allow_extra_args(false);
   c->add_option("--option", args.options, "Model option NAME=VALUE (repeatable), for every model declaring it")

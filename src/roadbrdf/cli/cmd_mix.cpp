@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
@@ -27,6 +28,7 @@ namespace {
 struct MixArgs {
   std::string formulation;
   std::string data;
+  DatasetReadFlags read;
   std::string method = "all";
   int folds = 5;
   unsigned seed = 1;
@@ -81,7 +83,7 @@ void run(const MixArgs& a) {
     methods = {method_from_string(a.method)};
   }
   std::optional<SpectralDataset> data;
-  if (!a.data.empty()) data = read_dataset(a.data);
+  if (!a.data.empty()) data = read_dataset(a.data, dataset_read_options(a.read));
   std::optional<SpectralModel> reference;
   if (!a.reference.empty()) {
     if (!data) throw InputError("--reference needs --data (the albedo is compared at the data's wavelengths)");
@@ -162,6 +164,7 @@ void register_mix_command(CLI::App& app) {
   command->add_option("formulation", args.formulation, "Formulation file (JSON, see data/examples/formulations/README.md)")
       ->required();
   command->add_option("--data", args.data, "Measured BRDF of the mixed sample (CSV): compare the methods on it");
+  add_dataset_read_flags(command, args.read);
   command->add_option("--method", args.method, "areal | fitted | mastic | hapke | shadowed | all (default all)")
       ->check(CLI::IsMember({"areal", "fitted", "mastic", "hapke", "shadowed", "all"}));
   command->add_option("--folds", args.folds, "Cross-validation folds over geometries (default 5)")

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
@@ -17,6 +18,7 @@ namespace {
 
 struct ResampleArgs {
   std::string data;
+  DatasetReadFlags read;
   std::string wavelengths;
   std::vector<std::string> drop;
   bool drop_noisy = false;
@@ -27,7 +29,7 @@ struct ResampleArgs {
 
 void run(const ResampleArgs& a) {
   check_distinct_files({{"DATA", a.data}}, {{"-o", a.output}});
-  const SpectralDataset d = read_dataset(a.data);
+  const SpectralDataset d = read_dataset(a.data, dataset_read_options(a.read));
   const WavelengthBands bands = bands_from_edges(parse_wavelength_range(a.wavelengths));
   std::vector<std::pair<double, double>> drop;
   for (const auto& item : a.drop) {
@@ -60,6 +62,7 @@ void register_resample_command(CLI::App& app) {
   auto* c = app.add_subcommand("resample",
                                "Band-average a dataset onto new wavelength intervals (not point picks); drop bands");
   c->add_option("data", args.data, "Dataset CSV (wide or long)")->required();
+  add_dataset_read_flags(c, args.read);
   c->add_option("--wavelengths", args.wavelengths,
                 "Band edges START:STOP:STEP [nm]: bands [START, START+STEP], ... reported at their centres")
       ->required();

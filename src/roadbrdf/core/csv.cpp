@@ -69,9 +69,10 @@ bool parse_finite_double(std::string_view text, double& value) {
 CsvReader::CsvReader(std::string path)
     : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
 
-bool CsvReader::next_row(std::vector<CsvCell>& cells) {
+bool CsvReader::next_line(std::string_view& line) {
   while (in_->read_line(line_)) {
     ++line_number_;
+    if (line_number_ == 1 && line_.compare(0, 3, "\xEF\xBB\xBF") == 0) line_.erase(0, 3);
     std::size_t offset = 0;
     const std::string_view text = trim(line_, offset);
     if (text.empty()) continue;
@@ -80,10 +81,18 @@ bool CsvReader::next_row(std::vector<CsvCell>& cells) {
       comment_lines_.push_back(line_number_);
       continue;
     }
-    cells = split_cells(line_, ',', cell_limit_, &cell_count_);
+    line = line_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     return true;
   }
   return false;
+}
+
+bool CsvReader::next_row(std::vector<CsvCell>& cells) {
+  std::string_view line;
+  if (!next_line(line)) return false;
+  cells = split_cells(line, delimiter_, cell_limit_, &cell_count_);
+  return true;
 }
 
 double CsvReader::number(const CsvCell& cell, std::string_view what) const {

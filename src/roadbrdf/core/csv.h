@@ -1,7 +1,7 @@
 // Minimal streaming CSV tokenizer that remembers where every cell came from, so that every
 // error names file, line and column. Lines starting with '#' are comments; blank lines are
-// skipped. Cells are separated by ',' (surrounding spaces trimmed); no quoting (not needed by
-// any format roadbrdf reads). "-" reads standard input; read errors are errors (core/input_file.h).
+// skipped; a UTF-8 byte order mark is ignored. Cells are separated by ',' (or set_delimiter;
+// surrounding spaces trimmed); no quoting (not needed by any format roadbrdf reads). "-" reads standard input; read errors are errors (core/input_file.h).
 #pragma once
 
 #include <cstddef>
@@ -30,6 +30,11 @@ class CsvReader {
   // on the way are collected in comments() (without the leading '#'). Throws FileError on a read
   // error.
   bool next_row(std::vector<CsvCell>& cells);
+  // Same, without splitting: the line as it is (a trailing '\r' removed), valid until the next call.
+  // A UTF-8 byte order mark at the start of the file is skipped (columns count after it).
+  bool next_line(std::string_view& line);
+  // The separator next_row splits on (default ',').
+  void set_delimiter(char delimiter) { delimiter_ = delimiter; }
 
   // Split rows into at most `limit` + 1 cells; cell_count() still gives the row's true count. A
   // reader that knows how many cells a row must have sets this, so that an overlong row costs no
@@ -58,6 +63,7 @@ class CsvReader {
   long line_number_ = 0;
   std::size_t cell_limit_ = std::numeric_limits<std::size_t>::max() - 1;
   std::size_t cell_count_ = 0;
+  char delimiter_ = ',';
   std::vector<std::string> comments_;
   std::vector<long> comment_lines_;
 };

@@ -13,6 +13,9 @@
 // Long CSV: the four angle columns plus wavelength,brdf[,sigma]; one row per (geometry, wavelength).
 //   Every geometry must have every wavelength exactly once.
 //
+// Files as people write them are read alike: ';' or tab delimiters, decimal commas, a byte order
+// mark, CRLF, header names in any case, with units or aliases (io/dataset_dialect.h).
+//
 // Both are streamed line by line. Every problem is reported as FileError (file:line:column and
 // the offending text); nothing is dropped silently. Negative BRDF values are kept, counted and
 // reported as a warning (measurement noise is real).
@@ -29,7 +32,13 @@ namespace roadbrdf {
 
 enum class DatasetFormat { kWide, kLong };
 
+// How a dataset file is read. The same options, validated by validate_read_options, are offered
+// by every command that reads datasets (cli/dataset_flags.h) and by Python (read_dataset, fit, ...).
 struct DatasetReadOptions {
+  // Dialect (io/dataset_dialect.h): cell delimiter ',', ';' or '\t', 0 = detect from the header
+  // line; decimal separator '.' or ',' (not with ','), 0 = detect from the numbers.
+  char delimiter = 0;
+  char decimal = 0;
   // Two rows with the same four angles: error (default), or average them (sigma of the mean
   // = sqrt(sum sigma^2)/n when sigmas are given; the count is recorded in metadata
   // "averaged_duplicate_rows").
@@ -43,6 +52,9 @@ struct DatasetReadOptions {
   // error, prefixed by "roadbrdf: warning: ".
   std::function<void(const std::string&)> warn;
 };
+
+// Throws InputError for contradictory options (e.g. decimal ',' with delimiter ',').
+void validate_read_options(const DatasetReadOptions& options);
 
 // Counts found while reading (also in the warnings).
 struct DatasetReadStats {

@@ -6,17 +6,21 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/io/dataset_dialect.h"
 
 namespace roadbrdf {
 
 std::vector<std::size_t> find_angle_columns(const std::vector<std::string>& header, const std::string& file,
                                             long line, AngleConvention& convention) {
+  // Names in any case, with units or aliases (io/dataset_dialect.h).
+  std::vector<std::string> canonical;
+  for (const auto& h : header) canonical.push_back(canonical_column_name(h));
   auto locate = [&](const std::vector<std::string>& names) {
     std::vector<std::size_t> idx;
     for (const auto& n : names) {
-      const auto it = std::find(header.begin(), header.end(), n);
-      if (it == header.end()) return std::vector<std::size_t>{};
-      idx.push_back(static_cast<std::size_t>(it - header.begin()));
+      const auto it = std::find(canonical.begin(), canonical.end(), n);
+      if (it == canonical.end()) return std::vector<std::size_t>{};
+      idx.push_back(static_cast<std::size_t>(it - canonical.begin()));
     }
     return idx;
   };

@@ -1,0 +1,334 @@
+// Reading spectral BRDF datasets (wide and long CSV, every dialect of io/dataset_dialect.h).
+//
+// Speed: a wide row is scanned once, cell by cell, without allocating (CellScanner), and each number
+// is parsed with std::from_chars in place; only a cell that is not a plain number takes the slow
+// path (decimal comma, missing value, error message). Memory: the dataset itself, plus the current
+// line; the header costs a few bytes per column; a long file holds one record per row until its
+// shape has been checked, and only then the geometries x wavelengths table is allocated.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+
+#include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/io/dataset_dialect.h"
+#include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/dataset_read_support.h"
+
+namespace roadbrdf {
+
+namespace {
+
+using namespace dataset_read;
+
+// ---- header -------------------------------------------------------------------------------------
+
+bool is_angle_name(std::string_view n) {
+  for (const char* a : {"theta_i", "phi_i", "theta_r", "phi_r", "gamma", "alpha", "beta", "delta"}) {
+    if (n == a) return true;
+  }
+  return false;
+}
+
+bool is_long_name(std::string_view n) { return n == "wavelength" || n == "brdf" || n == "sigma"; }
+
+// Whether a canonical header name is one a dataset can have, for delimiter detection.
+bool known_name(std::string_view n, char delimiter) {
+  if (is_angle_name(n) || is_long_name(n)) return true;
+  if (n.rfind("sigma_", 0) == 0) n.remove_prefix(6);
+  NumberParser numbers(delimiter, 0);
+  double v = 0.0;
+  return numbers.parse(n, v, 1, 1) && v > 0.0;
+}
+
+struct HeaderCell {
+  std::string canonical;
+  std::string_view text;
+  long column;
+  std::size_t index;
+};
+
+// The header's non-numeric cells (names), and its cell count. A numeric cell (a wavelength column)
+// costs nothing here: the wide reader reads them in its own pass.
+std::vector<HeaderCell> header_names(Reading& r, std::string_view header, std::size_t& count, bool& is_long) {
+  std::vector<HeaderCell> names;
+  CellScanner cells(header, r.delimiter);
+  std::string_view text;
+  long column = 0;
+  count = 0;
+  is_long = false;
+  while (cells.next(text, column)) {
+    const std::size_t index = count++;
+    if (!text.empty() && (std::isdigit(static_cast<unsigned char>(text.front())) || text.front() == '.')) continue;
+    bool radians = false;
+    std::string canonical = canonical_column_name(text, &radians);
+    if (radians) {
+      r.reader.fail(column, fmt::format("column '{}' is in radians: dataset angles are in degrees (convert them, "
+                                        "e.g. x 180/pi)",
+                                        text));
+    }
+    if (canonical == "wavelength") is_long = true;
+    names.push_back({std::move(canonical), text, column, index});
+  }
+  return names;
+}
+
+// The four angle columns (indices into the header) and the convention.
+std::vector<std::size_t> angle_columns_of(Reading& r, const std::vector<HeaderCell>& names, long header_line,
+                                          AngleConvention& convention) {
+  std::vector<std::string> canonical;
+  for (const auto& n : names) canonical.push_back(n.canonical);
+  std::vector<std::size_t> columns = find_angle_columns(canonical, r.reader.path(), header_line, convention);
+  for (auto& c : columns) {
+    const std::size_t k = c;
+    c = names[k].index;
+    // An angle column given twice (e.g. "theta_i" and its alias "inc") is an error, not a choice.
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      if (j != k && names[j].canonical == names[k].canonical) {
+        r.reader.fail(names[j].column, fmt::format("column '{}' is a second '{}' column (first: '{}')", names[j].text,
+                                                   names[k].canonical, names[k].text));
+      }
+    }
+  }
+  return columns;
+}
+
+// ---- wide ---------------------------------------------------------------------------------------
+
+struct Role {
+  enum Kind : std::uint8_t { kAngle, kValue, kSigma } kind;
+  std::uint32_t index;  // angle 0-3, or wavelength index
+};
+
+SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector<HeaderCell>& names,
+                          std::size_t column_count) {
+  CsvReader& reader = r.reader;
+  SpectralDataset d;
+  read_metadata(r, d);
+  const long header_line = reader.line_number();
+  const std::vector<std::size_t> angle_columns = angle_columns_of(r, names, header_line, d.convention);
+
+  std::vector<Role> roles(column_count, Role{Role::kValue, 0});
+  for (int k = 0; k < 4; ++k) roles[angle_columns[static_cast<std::size_t>(k)]] = {Role::kAngle, static_cast<std::uint32_t>(k)};
+  std::vector<double> sigma_wavelengths;
+  std::vector<long> sigma_header_columns;
+  std::vector<std::string_view> value_header_texts, sigma_header_texts;
+  {
+    CellScanner cells(header, r.delimiter);
+    std::string_view text;
+    long column = 0;
+    std::size_t k = 0;
+    for (; cells.next(text, column); ++k) {
+      if (roles[k].kind == Role::kAngle) continue;
+      std::string lower(text.substr(0, std::min<std::size_t>(text.size(), 6)));
+      for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const bool sigma = lower == "sigma_";
+      std::string_view number = sigma ? text.substr(6) : text;
+      // "400nm", "400 nm"
+      std::string stripped = canonical_column_name(number);
+      double wl = 0.0;
+      if (!r.numbers.parse(stripped, wl, header_line, column) || !(wl > 0.0)) {
+        reader.fail(column, fmt::format("column '{}' is neither an angle column, a wavelength in nm (e.g. 550) "
+                                        "nor an uncertainty column sigma_<nm>{}",
+                                        text, r.numbers.hint(stripped)));
+      }
+      if (sigma) {
+        if (!sigma_wavelengths.empty() && wl <= sigma_wavelengths.back()) {
+          reader.fail(column, fmt::format("uncertainty column '{}' follows sigma_{}: wavelengths must be strictly "
+                                          "increasing (no duplicates)",
+                                          text, sigma_wavelengths.back()));
+        }
+        roles[k] = {Role::kSigma, static_cast<std::uint32_t>(sigma_wavelengths.size())};
+        sigma_wavelengths.push_back(wl);
+        sigma_header_columns.push_back(column);
+        sigma_header_texts.push_back(text);
+      } else {
+        if (!sigma_wavelengths.empty()) {
+          reader.fail(column, fmt::format("wavelength column '{}' after the sigma_<nm> block: put every "
+                                          "wavelength column before the uncertainties",
+                                          text));
+        }
+        if (!d.wavelengths.empty() && wl <= d.wavelengths.back()) {
+          reader.fail(column, fmt::format("wavelength '{}' nm is {} the previous column's {} nm: wavelengths must be "
+                                          "strictly increasing (no duplicates)",
+                                          text, wl == d.wavelengths.back() ? "equal to" : "below",
+                                          d.wavelengths.back()));
+        }
+        roles[k] = {Role::kValue, static_cast<std::uint32_t>(d.wavelengths.size())};
+        d.wavelengths.push_back(wl);
+        value_header_texts.push_back(text);
+      }
+    }
+  }
+  const long header_end = static_cast<long>(header.size()) + 1;
+  if (d.wavelengths.empty()) {
+    reader.fail(header_end, "header has no wavelength columns (one column per wavelength, named by its value in nm)");
+  }
+  const std::size_t m = d.wavelengths.size();
+  const bool with_sigma = !sigma_wavelengths.empty();
+  if (with_sigma) {
+    for (std::size_t k = 0; k < std::max(sigma_wavelengths.size(), m); ++k) {
+      if (k >= sigma_wavelengths.size()) {
+        reader.fail(header_end, fmt::format("uncertainty block lacks sigma_{} (it must list the same wavelengths)",
+                                            d.wavelengths[k]));
+      }
+      if (k >= m || sigma_wavelengths[k] != d.wavelengths[k]) {
+        reader.fail(sigma_header_columns[k],
+                    fmt::format("uncertainty column '{}' does not match wavelength column {} (the sigma_<nm> "
+                                "block must list the same wavelengths in the same order)",
+                                sigma_header_texts[k], k < m ? std::string(value_header_texts[k]) : "none"));
+      }
+    }
+  }
+
+  std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen;
+  std::vector<long> row_lines;
+  std::vector<int> multiplicity;  // only when averaging
+  std::vector<double> row(m), srow(with_sigma ? m : 0);
+  AngleCells angles;
+  bool reserved = false;
+  std::string_view line;
+  while (reader.next_line(line)) {
+    if (!reserved) {
+      // Reserve for the whole file from the length of the first row (memory proportional to the
+      // data, without the copies of repeated growth).
+      reserved = true;
+      const auto size = reader.size_hint();
+      if (size > 0 && !line.empty()) {
+        const std::size_t rows = static_cast<std::size_t>(size / (line.size() + 1)) + 1;
+        if (rows < (std::size_t{1} << 26) / std::max<std::size_t>(m, 1)) {
+          d.brdf.reserve(rows * m);
+          d.geometries.reserve(rows);
+          if (with_sigma) d.sigma.reserve(rows * m);
+        }
+      }
+    }
+    CellScanner cells(line, r.delimiter);
+    std::string_view text;
+    long column = 0;
+    std::size_t k = 0;
+    while (cells.next(text, column)) {
+      if (k == column_count) ragged(r, line, column_count, text, column, true);
+      const Role role = roles[k++];
+      switch (role.kind) {
+        case Role::kAngle:
+          angles.text[role.index] = text;
+          angles.column[role.index] = column;
+          angles.value[role.index] = number(r, text, column, "angle in degrees");
+          break;
+        case Role::kValue:
+          row[role.index] = parse_brdf(r, text, column);
+          break;
+        case Role::kSigma:
+          srow[role.index] = parse_sigma(r, text, column);
+          break;
+      }
+    }
+    if (k != column_count) ragged(r, line, column_count, text, column, false);
+    const Geometry g = parse_geometry(r, d.convention, angles);
+    const auto [it, inserted] = seen.emplace(key_of(g), d.geometries.size());
+    if (!inserted) {
+      if (!r.options.average_duplicates) {
+        reader.fail(angles.column[0], fmt::format("duplicate geometry: same angles as line {} ({})",
+                                                  row_lines[it->second], duplicates_hint()));
+      }
+      const std::size_t n = it->second;
+      if (multiplicity.empty()) multiplicity.assign(d.geometries.size(), 1);
+      ++multiplicity[n];
+      ++r.stats.averaged_duplicate_rows;
+      for (std::size_t j = 0; j < m; ++j) d.brdf[n * m + j] += row[j];
+      if (with_sigma) {
+        for (std::size_t j = 0; j < m; ++j) d.sigma[n * m + j] += srow[j] * srow[j];
+      }
+      continue;
+    }
+    d.geometries.push_back(g);
+    row_lines.push_back(reader.line_number());
+    if (!multiplicity.empty()) multiplicity.push_back(1);
+    d.brdf.insert(d.brdf.end(), row.begin(), row.end());
+    if (with_sigma) {
+      if (r.options.average_duplicates) {
+        for (std::size_t j = 0; j < m; ++j) d.sigma.push_back(srow[j] * srow[j]);
+      } else {
+        d.sigma.insert(d.sigma.end(), srow.begin(), srow.end());
+      }
+    }
+  }
+  if (d.geometries.empty()) throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
+  if (r.options.average_duplicates) {
+    for (std::size_t n = 0; n < d.geometries.size(); ++n) {
+      const double c = multiplicity.empty() ? 1.0 : multiplicity[n];
+      for (std::size_t j = 0; j < m; ++j) {
+        d.brdf[n * m + j] /= c;
+        if (with_sigma) d.sigma[n * m + j] = std::sqrt(d.sigma[n * m + j]) / c;
+      }
+    }
+    if (r.stats.averaged_duplicate_rows) d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
+  }
+  return d;
+}
+
+}  // namespace
+
+SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options, DatasetReadStats& stats) {
+  validate_read_options(options);
+  stats = {};
+  CsvReader reader(path);
+  std::string_view first;
+  if (!reader.next_line(first)) throw FileError(reader.path(), reader.line_number(), 0, "file is empty (no header line)");
+  const std::string header(first);  // the reader reuses its line buffer
+  char delimiter = options.delimiter;
+  if (delimiter == 0) {
+    try {
+      delimiter = detect_delimiter(header, &known_name);
+    } catch (const FileError&) {
+      throw;
+    } catch (const InputError& e) {
+      throw FileError(reader.path(), reader.line_number(), 0, e.what());
+    }
+  }
+  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}};
+  std::size_t column_count = 0;
+  bool is_long = false;
+  const std::vector<HeaderCell> names = header_names(r, header, column_count, is_long);
+  SpectralDataset d;
+  if (is_long) {
+    AngleConvention convention = AngleConvention::kZenithAzimuth;
+    const std::vector<std::size_t> angle_columns = angle_columns_of(r, names, reader.line_number(), convention);
+    std::vector<LongColumn> columns;
+    for (const auto& n : names) {
+      if (std::find(angle_columns.begin(), angle_columns.end(), n.index) == angle_columns.end()) {
+        columns.push_back({n.canonical, std::string(n.text), n.column, n.index});
+      }
+    }
+    // Numeric header cells have no place in a long file.
+    if (columns.size() + 4 != column_count) {
+      CellScanner cells(header, delimiter);
+      std::string_view text;
+      long column = 0;
+      for (std::size_t k = 0; cells.next(text, column); ++k) {
+        const bool named = std::any_of(names.begin(), names.end(), [&](const HeaderCell& n) { return n.index == k; });
+        if (!named) columns.push_back({std::string(text), std::string(text), column, k});
+      }
+    }
+    d = read_long(r, columns, column_count, angle_columns, convention);
+  } else {
+    d = read_wide(r, header, names, column_count);
+  }
+  finish_warnings(r, d);
+  return d;
+}
+
+SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options) {
+  DatasetReadStats stats;
+  return read_dataset(path, options, stats);
+}
+
+}  // namespace roadbrdf

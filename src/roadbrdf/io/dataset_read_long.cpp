@@ -1,0 +1,347 @@
+// The long dataset format, and the per-cell helpers of both formats (dataset_read_support.h).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/io/dataset_read_support.h"
+
+namespace roadbrdf::dataset_read {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool is_missing_text(std::string_view t) {
+  if (t.empty()) return true;
+  if (t.size() > 4) return false;
+  std::string lower;
+  for (char c : t) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower == "nan" || lower == "na" || lower == "-nan";
+}
+
+std::string trim_copy(const std::string& s) {
+  std::size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  std::size_t e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+bool is_metadata_key(const std::string& key) {
+  if (key.empty()) return false;
+  for (char c : key) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  }
+  return true;
+}
+
+void default_warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
+
+// Why a cell is no number, for an error message: out of range, not finite, or not a number at all.
+[[noreturn]] void not_a_number(Reading& r, std::string_view text, long column, std::string_view what) {
+  if (text.empty()) r.reader.fail(column, fmt::format("empty cell where a {} was expected", what));
+  double value = 0.0;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (*first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (ptr == last && ec == std::errc::result_out_of_range) {
+    r.reader.fail(column, fmt::format("'{}' is out of the range of double-precision numbers ({})", text, what));
+  }
+  if (ptr == last && ec == std::errc() && !std::isfinite(value)) {
+    r.reader.fail(column, fmt::format("'{}' is not a finite {}", text, what));
+  }
+  r.reader.fail(column, fmt::format("'{}' is not a {}{}", text, what, r.numbers.hint(text)));
+}
+
+}  // namespace
+
+GeometryKey key_of(const Geometry& g) {
+  auto az = [](double phi_rad, double theta_rad) {
+    if (theta_rad == 0.0) return 0.0;
+    double d = std::fmod(rad_to_deg(phi_rad), 360.0);
+    if (d < 0) d += 360.0;
+    if (d >= 360.0 - 5e-8) d = 0.0;
+    return d;
+  };
+  auto q = [](double deg) { return static_cast<long long>(std::llround(deg * 1e7)); };
+  return {{q(rad_to_deg(g.theta_i)), q(az(g.phi_i, g.theta_i)), q(rad_to_deg(g.theta_r)), q(az(g.phi_r, g.theta_r))}};
+}
+
+void read_metadata(Reading& r, SpectralDataset& d) {
+  const auto& comments = r.reader.comments();
+  const auto& lines = r.reader.comment_lines();
+  for (std::size_t k = 0; k < comments.size(); ++k) {
+    const std::string& c = comments[k];
+    const auto colon = c.find(':');
+    if (colon == std::string::npos) continue;  // a free comment
+    const std::string key = trim_copy(c.substr(0, colon));
+    if (!is_metadata_key(key)) continue;  // a free comment containing ':'
+    const std::string value = trim_copy(c.substr(colon + 1));
+    if (d.metadata.count(key)) {
+      throw FileError(r.reader.path(), k < lines.size() ? lines[k] : 0, 0,
+                      fmt::format("metadata key '{}' is given twice", key));
+    }
+    if (key == "units" && !r.options.any_units) {
+      if (value != "sr^-1" && value != "1/sr" && value != "sr-1") {
+        throw FileError(r.reader.path(), k < lines.size() ? lines[k] : 0, 0,
+                        fmt::format("units '{}' are not supported: a BRDF dataset holds sr^-1 "
+                                    "(convert reflectance factors with BRDF = BRF/pi)",
+                                    value));
+      }
+    }
+    d.metadata[key] = value;
+  }
+  if (!d.metadata.count("units")) d.metadata["units"] = "sr^-1";
+}
+
+double number(Reading& r, std::string_view text, long column, std::string_view what) {
+  double v = 0.0;
+  if (r.numbers.parse(text, v, r.reader.line_number(), column)) return v;
+  not_a_number(r, text, column, what);
+}
+
+double parse_brdf(Reading& r, std::string_view text, long column) {
+  double v = 0.0;
+  if (r.numbers.parse(text, v, r.reader.line_number(), column)) {
+    if (v < 0.0 && r.stats.negative_values++ == 0) {
+      r.first_negative = fmt::format("{}:{}:{}", r.reader.path(), r.reader.line_number(), column);
+    }
+    return v;
+  }
+  if (r.options.allow_missing && is_missing_text(text)) {
+    if (r.stats.missing_values++ == 0) {
+      r.first_missing = fmt::format("{}:{}:{}", r.reader.path(), r.reader.line_number(), column);
+    }
+    return kNaN;
+  }
+  if (text.empty()) r.reader.fail(column, "empty cell where a BRDF value [sr^-1] was expected");
+  not_a_number(r, text, column, "BRDF value [sr^-1]");
+}
+
+double parse_sigma(Reading& r, std::string_view text, long column) {
+  double v = 0.0;
+  if (r.numbers.parse(text, v, r.reader.line_number(), column)) {
+    if (v < 0.0) r.reader.fail(column, fmt::format("'{}': an uncertainty cannot be negative", text));
+    return v;
+  }
+  if (r.options.allow_missing && is_missing_text(text)) return kNaN;
+  if (text.empty()) r.reader.fail(column, "empty cell where an uncertainty [sr^-1] was expected");
+  not_a_number(r, text, column, "uncertainty [sr^-1]");
+}
+
+Geometry parse_geometry(Reading& r, AngleConvention convention, const AngleCells& a) {
+  static const char* zenith_names[4] = {"theta_i", "phi_i", "theta_r", "phi_r"};
+  static const char* road_names[4] = {"gamma", "alpha", "beta", "delta"};
+  const bool road = convention == AngleConvention::kRoad;
+  // Zenith-range check of the raw angle cells, so that the error points at the offending column.
+  for (int k : {0, 2}) {
+    const std::size_t col = road ? (k == 0 ? 0 : 1) : static_cast<std::size_t>(k);
+    const double v = a.value[col];
+    if (v < 0.0 || v > 90.0) {
+      r.reader.fail(a.column[col], fmt::format("{} = '{}' is outside [0, 90] deg ({} zenith angle)",
+                                               road ? road_names[col] : zenith_names[col], a.text[col],
+                                               road && col == 1 ? "90 - viewing" : "a"));
+    }
+  }
+  try {
+    return geometry_from_angle_values(convention, a.value.data());
+  } catch (const FileError&) {
+    throw;
+  } catch (const InputError& e) {
+    r.reader.fail(a.column[0], e.what());
+  }
+}
+
+void ragged(Reading& r, std::string_view line, std::size_t expected, std::string_view text, long column, bool extra) {
+  const std::size_t count = static_cast<std::size_t>(std::count(line.begin(), line.end(), r.delimiter)) + 1;
+  if (extra) {
+    r.reader.fail(column, fmt::format("row has {} cells but the header has {} columns (extra cell '{}')", count,
+                                      expected, text));
+  }
+  r.reader.fail(column + static_cast<long>(text.size()),
+                fmt::format("row has {} cells but the header has {} columns (row ends after '{}')", count, expected,
+                            text));
+}
+
+std::string duplicates_hint() {
+  return "ask for averaging of duplicates, e.g. --average-duplicates, to average them";
+}
+
+void finish_warnings(Reading& r, const SpectralDataset& d) {
+  auto warn = r.options.warn ? r.options.warn : default_warn;
+  const std::size_t total = d.brdf.size();
+  if (r.stats.negative_values > 0) {
+    warn(fmt::format("{}: {} of {} BRDF values are negative (kept: measurement noise; first at {})", r.reader.path(),
+                     r.stats.negative_values, total, r.first_negative));
+  }
+  if (r.stats.missing_values > 0) {
+    warn(fmt::format("{}: {} of {} BRDF values are missing (kept as NaN; first at {})", r.reader.path(),
+                     r.stats.missing_values, total, r.first_missing));
+  }
+  if (r.stats.averaged_duplicate_rows > 0) {
+    warn(fmt::format("{}: {} duplicate geometry rows were averaged", r.reader.path(), r.stats.averaged_duplicate_rows));
+  }
+}
+
+// ---- long ---------------------------------------------------------------------------------------
+
+SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, std::size_t column_count,
+                          const std::vector<std::size_t>& angle_columns, AngleConvention convention) {
+  CsvReader& reader = r.reader;
+  SpectralDataset d;
+  d.convention = convention;
+  read_metadata(r, d);
+  std::size_t wl_col = column_count, brdf_col = column_count, sigma_col = column_count;
+  for (const auto& c : columns) {
+    std::size_t* target = c.canonical == "wavelength" ? &wl_col
+                          : c.canonical == "brdf"     ? &brdf_col
+                          : c.canonical == "sigma"    ? &sigma_col
+                                                      : nullptr;
+    if (!target) {
+      reader.fail(c.column, fmt::format("unexpected column '{}' in a long dataset (expected the angle columns and "
+                                        "wavelength,brdf[,sigma])",
+                                        c.text));
+    }
+    if (*target != column_count) reader.fail(c.column, fmt::format("column '{}' appears twice", c.text));
+    *target = c.index;
+  }
+  if (brdf_col == column_count) {
+    throw FileError(reader.path(), reader.line_number(), 0, "long dataset header lacks the 'brdf' column");
+  }
+  const bool with_sigma = sigma_col != column_count;
+  // Column -> role: 0-3 angle, 4 wavelength, 5 brdf, 6 sigma.
+  std::vector<int> role(column_count, -1);
+  for (int k = 0; k < 4; ++k) role[angle_columns[static_cast<std::size_t>(k)]] = k;
+  role[wl_col] = 4;
+  role[brdf_col] = 5;
+  if (with_sigma) role[sigma_col] = 6;
+
+  // One record per row; the table is allocated only once its shape is known to be complete.
+  struct Record {
+    std::size_t geometry;
+    double wavelength, brdf, sigma;
+    long line, column;
+  };
+  std::vector<Record> records;
+  std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen;
+  std::vector<long> first_lines;
+  AngleCells angles;
+  std::string_view line;
+  while (reader.next_line(line)) {
+    CellScanner cells(line, r.delimiter);
+    std::string_view text;
+    long column = 0;
+    std::size_t k = 0;
+    double wl = 0.0, v = 0.0, s = 0.0;
+    while (cells.next(text, column)) {
+      if (k == column_count) ragged(r, line, column_count, text, column, true);
+      const int what = role[k++];
+      if (what < 4) {
+        angles.text[static_cast<std::size_t>(what)] = text;
+        angles.column[static_cast<std::size_t>(what)] = column;
+        angles.value[static_cast<std::size_t>(what)] = number(r, text, column, "angle in degrees");
+      } else if (what == 4) {
+        wl = number(r, text, column, "wavelength in nm");
+        if (wl <= 0.0) reader.fail(column, fmt::format("wavelength '{}' nm is not positive", text));
+      } else if (what == 5) {
+        v = parse_brdf(r, text, column);
+      } else {
+        s = parse_sigma(r, text, column);
+      }
+    }
+    if (k != column_count) ragged(r, line, column_count, text, column, false);
+    const Geometry g = parse_geometry(r, d.convention, angles);
+    const auto [it, inserted] = seen.emplace(key_of(g), d.geometries.size());
+    if (inserted) {
+      d.geometries.push_back(g);
+      first_lines.push_back(reader.line_number());
+    }
+    records.push_back({it->second, wl, v, s, reader.line_number(), angles.column[0]});
+  }
+  if (records.empty()) throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
+  std::vector<double> wls;
+  wls.reserve(records.size());
+  for (const auto& rec : records) wls.push_back(rec.wavelength);
+  std::sort(wls.begin(), wls.end());
+  wls.erase(std::unique(wls.begin(), wls.end()), wls.end());
+  const std::size_t n = d.geometries.size(), m = wls.size();
+
+  // Shape check on the records themselves (sorted by geometry, wavelength, line): memory stays
+  // proportional to the file, whatever geometries x wavelengths would be.
+  std::vector<std::uint32_t> wl_index(records.size());
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    wl_index[k] = static_cast<std::uint32_t>(std::lower_bound(wls.begin(), wls.end(), records[k].wavelength) -
+                                             wls.begin());
+  }
+  std::vector<std::size_t> order(records.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (records[a].geometry != records[b].geometry) return records[a].geometry < records[b].geometry;
+    if (wl_index[a] != wl_index[b]) return wl_index[a] < wl_index[b];
+    return a < b;
+  });
+  // Duplicates: report the first one in file order (a group's members are in file order).
+  auto same = [&](std::size_t a, std::size_t b) {
+    return records[a].geometry == records[b].geometry && wl_index[a] == wl_index[b];
+  };
+  if (!r.options.average_duplicates) {
+    std::size_t worst = records.size(), earlier = 0;
+    for (std::size_t k = 0; k < order.size();) {
+      std::size_t e = k + 1;
+      while (e < order.size() && same(order[e], order[k])) ++e;
+      if (e - k > 1 && order[k + 1] < worst) {
+        worst = order[k + 1];
+        earlier = order[k];
+      }
+      k = e;
+    }
+    if (worst < records.size()) {
+      const auto& rec = records[worst];
+      throw FileError(reader.path(), rec.line, rec.column,
+                      fmt::format("duplicate value: this geometry already has wavelength {} nm at line {} ({})",
+                                  rec.wavelength, records[earlier].line, duplicates_hint()));
+    }
+  }
+  // Completeness: every geometry has every wavelength.
+  {
+    std::size_t k = 0;
+    for (std::size_t g = 0; g < n; ++g) {
+      for (std::size_t j = 0; j < m; ++j) {
+        if (k >= order.size() || records[order[k]].geometry != g || wl_index[order[k]] != j) {
+          throw FileError(reader.path(), first_lines[g], 0,
+                          fmt::format("the geometry first given on this line has no value at wavelength {} nm (every "
+                                      "geometry needs every wavelength)",
+                                      wls[j]));
+        }
+        while (k < order.size() && records[order[k]].geometry == g && wl_index[order[k]] == j) ++k;
+      }
+    }
+  }
+
+  d.wavelengths = wls;
+  d.brdf.assign(n * m, 0.0);
+  if (with_sigma) d.sigma.assign(n * m, 0.0);
+  std::vector<std::uint32_t> count(n * m, 0);
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    const auto& rec = records[k];
+    const std::size_t idx = rec.geometry * m + wl_index[k];
+    if (count[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
+    d.brdf[idx] += rec.brdf;
+    if (with_sigma) d.sigma[idx] += rec.sigma * rec.sigma;
+  }
+  for (std::size_t idx = 0; idx < n * m; ++idx) {
+    d.brdf[idx] /= count[idx];
+    if (with_sigma) d.sigma[idx] = std::sqrt(d.sigma[idx]) / count[idx];
+  }
+  if (r.stats.averaged_duplicate_rows) d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
+  return d;
+}
+
+}  // namespace roadbrdf::dataset_read

@@ -1,0 +1,75 @@
+// Internal to the dataset reader (dataset_read.cpp, dataset_read_long.cpp): the reading state and
+// the per-cell helpers shared by the wide and the long format.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "roadbrdf/core/csv.h"
+#include "roadbrdf/io/dataset.h"
+#include "roadbrdf/io/dataset_dialect.h"
+#include "roadbrdf/io/dataset_io.h"
+
+namespace roadbrdf::dataset_read {
+
+struct Reading {
+  const DatasetReadOptions& options;
+  DatasetReadStats& stats;
+  CsvReader& reader;
+  char delimiter;
+  NumberParser numbers;
+  std::string first_negative;  // location of the first negative value
+  std::string first_missing;
+};
+
+// Key identifying a geometry: zenith angles and azimuths (azimuth mod 360, undefined azimuth at
+// zenith 0 set to 0), rounded to 1e-7 degree.
+struct GeometryKey {
+  std::array<long long, 4> v;
+  bool operator==(const GeometryKey& o) const { return v == o.v; }
+};
+struct GeometryKeyHash {
+  std::size_t operator()(const GeometryKey& k) const {
+    std::size_t h = 1469598103934665603ull;
+    for (long long x : k.v) h = (h ^ static_cast<std::size_t>(x)) * 1099511628211ull;
+    return h;
+  }
+};
+GeometryKey key_of(const Geometry& g);
+
+// The four angle cells of a row, in the convention's column order.
+struct AngleCells {
+  std::array<std::string_view, 4> text;
+  std::array<long, 4> column{};
+  std::array<double, 4> value{};
+};
+
+// Metadata from the comment lines seen before the header.
+void read_metadata(Reading& r, SpectralDataset& d);
+// A finite number (with the file's decimal separator); FileError naming `what` otherwise.
+double number(Reading& r, std::string_view text, long column, std::string_view what);
+double parse_brdf(Reading& r, std::string_view text, long column);
+double parse_sigma(Reading& r, std::string_view text, long column);
+Geometry parse_geometry(Reading& r, AngleConvention convention, const AngleCells& angles);
+// A row with the wrong number of cells: `extra` = the cell at `column` is one too many, else the
+// row ended after it.
+[[noreturn]] void ragged(Reading& r, std::string_view line, std::size_t expected, std::string_view text, long column,
+                         bool extra);
+// What to say about duplicate geometries.
+std::string duplicates_hint();
+void finish_warnings(Reading& r, const SpectralDataset& d);
+
+// A non-angle column of a long file's header.
+struct LongColumn {
+  std::string canonical;
+  std::string text;
+  long column;
+  std::size_t index;
+};
+SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, std::size_t column_count,
+                          const std::vector<std::size_t>& angle_columns, AngleConvention convention);
+
+}  // namespace roadbrdf::dataset_read
