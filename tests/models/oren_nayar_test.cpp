@@ -2,9 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/models/registry.h"
+#include "support/reference_quadrature.h"
 
 namespace roadbrdf {
 namespace {
@@ -74,6 +78,46 @@ TEST(OrenNayar, InterreflectionIsQuadraticInAlbedo) {
   const double beta = 20.0 * kDegree;
   const double inter = 0.17 / kPi * s2 / (s2 + 0.13) * (1.0 - 1.0 * std::pow(2 * beta / kPi, 2));
   EXPECT_NEAR(second, 2 * r * r * inter, 1e-14);
+}
+
+// Directional albedo by the test's own rule: Gauss-Legendre in mu_r on [0, mu_i] and [mu_i, 1] (the
+// min/max kink of eq. 30 at theta_r = theta_i) times Gauss-Legendre in dphi on [0, pi/2] and
+// [pi/2, pi] (the max(0, cos dphi) kink), x 2 for the mirror symmetry in dphi.
+double directional_albedo(const Model& m, const std::vector<double>& p, double theta_i) {
+  std::vector<double> x, w;
+  test::gauss_legendre_01(48, x, w);
+  const double mu_i = std::cos(theta_i);
+  double sum = 0.0;
+  for (auto [a, b] : {std::pair{0.0, mu_i}, std::pair{mu_i, 1.0}}) {
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const double mu = a + (b - a) * x[k];
+      for (auto [c, d] : {std::pair{0.0, kPi / 2}, std::pair{kPi / 2, kPi}}) {
+        for (std::size_t j = 0; j < x.size(); ++j) {
+          const double dphi = c + (d - c) * x[j];
+          const double f = m.evaluate(p.data(), geometry_from_radians(theta_i, 0.0, std::acos(mu), dphi));
+          sum += 2.0 * (b - a) * w[k] * (d - c) * w[j] * mu * f;
+        }
+      }
+    }
+  }
+  return sum;
+}
+
+TEST(OrenNayar, NotEnergyConservingTowardsGrazingAsDeclared) {
+  // The paper's closed forms are fitted approximations: with albedo 1 their directional albedo
+  // exceeds 1 at grazing sun (issue 17's independent re-implementation: 1.044 at sigma = 0.3, 89 deg).
+  // The metadata must say so (the model-property test checks albedo <= 1 only where it is declared).
+  for (const std::string form : {"full", "qualitative"}) {
+    auto m = make_model("oren-nayar", {{"form", form}});
+    EXPECT_FALSE(m->description().energy_conserving) << form;
+    EXPECT_FALSE(m->description().notes.empty()) << form;
+  }
+  auto full = make_model("oren-nayar");
+  EXPECT_NEAR(directional_albedo(*full, {1.0, 0.3}, 89.0 * kDegree), 1.044, 1e-3);
+  EXPECT_GT(directional_albedo(*full, {1.0, 0.1}, 60.0 * kDegree), 1.0);
+  EXPECT_LT(directional_albedo(*full, {1.0, 0.1}, 45.0 * kDegree), 1.0);
+  auto qualitative = make_model("oren-nayar", {{"form", "qualitative"}});
+  EXPECT_GT(directional_albedo(*qualitative, {1.0, 0.1}, 89.0 * kDegree), 1.0);
 }
 
 }  // namespace

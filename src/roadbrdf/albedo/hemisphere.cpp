@@ -551,6 +551,9 @@ bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) 
   return isotropic_strided(model, params, model.parameter_count(), n_sets);
 }
 
+// Sun zenith from which black_sky() cross-checks the (mu, dphi) rule with the mirror-polar rule.
+constexpr double kGrazingCheck = 70.0 * kDegree;
+
 SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s,
                            double phi_s, const QuadratureSettings& settings) {
   const bool isotropic = is_isotropic(model, params, n_sets);
@@ -560,7 +563,30 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
   first.max_geometries = std::max<std::size_t>(1, settings.max_geometries / 4);
   BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, isotropic);
   SpectralIntegral a = integrator.run(first);
-  if (a.converged) return a;
+  if (a.converged && theta_s < kGrazingCheck) return a;
+  if (a.converged) {
+    // Towards grazing incidence a specular lobe of width alpha is only ~2 alpha cos(theta_s) wide in
+    // azimuth: the (mu, dphi) rule's first nodes can all miss it, and then every error estimate is
+    // zero (a KSK lobe of roughness 0.01 at 89 deg was missed entirely). The mirror-polar rule centres
+    // its graded panels on the lobe. Both are run; where they disagree beyond their error estimates,
+    // the larger value is kept for a non-negative BRDF (an unresolved peak of a positive integrand
+    // can only be missed, never invented).
+    BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true);
+    SpectralIntegral b = polar.run(settings);
+    const bool non_negative = model.description().non_negative;
+    SpectralIntegral out = a;
+    out.geometries = a.geometries + b.geometries;
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      const double gap = std::fabs(a.value[s] - b.value[s]);
+      if (gap <= a.error[s] + b.error[s] + settings.tolerance) continue;
+      const bool take_b = b.converged && (non_negative ? b.value[s] > a.value[s] : b.error[s] < a.error[s]);
+      if (take_b) {
+        out.value[s] = b.value[s];
+        out.error[s] = b.error[s];
+      }
+    }
+    return out;
+  }
   QuadratureSettings second = settings;
   second.max_geometries = settings.max_geometries - std::min(settings.max_geometries, a.geometries);
   BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true);

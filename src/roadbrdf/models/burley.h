@@ -10,8 +10,9 @@
 //   D: berry (GTR gamma = 1), ggx (GTR gamma = 2), gtr (gamma = gtr_gamma), normalised as in Burley
 //      appendix B.2 (cos-weighted integral 1), with alpha = roughness^2 (Burley section 5.4).
 //   G: Smith, uncorrelated, with Walter's GGX G1 (Walter 2007 eq. 34) for every D, as Burley does.
-//      (Burley 2012 also remaps alpha_g = (0.5 + roughness/2)^2 for G "to reduce hotness"; we use
-//      alpha = roughness^2, the plain Walter form the report describes.)
+//      alpha_g = roughness^2 as in Burley's 2014 revision of the notes (addendum "specular G
+//      revisited", which withdraws the 2012 section 5.6 remap alpha_g = (0.5 + roughness/2)^2; see
+//      docs/report-corrections.md).
 //   F: Schlick (report eq. 2.15), F0 = ((n - 1)/(n + 1))^2.
 // The report writes F_D(theta'_i) with a roughness alpha_d; we follow the paper (perceptual roughness).
 // The diffuse part is not energy conserving (it exceeds rho at grazing for rough surfaces and its

@@ -1,136 +1,118 @@
-// Tabulation of the specular directional albedo of the Kelemen & Szirmay-Kalos model.
-//
-// rho_s(theta_i) = int f_s cos theta_r dw_r with f_s = P_H(h) F(l.h) / (4 (l.h)^2). Changing the
-// variable to the half vector (dw_r = 4 (l.h) dw_h; Walter 2007 eq. 14):
-//   rho_s = int P_H(h) F(l.h) cos theta_r / (l.h) dw_h   over the h with cos theta_r > 0,
-//   cos theta_r = 2 (l.h)(n.h) - cos theta_i.
-// With l = (sin t_i, 0, cos t_i) and h = (sin t_h cos p, sin t_h sin p, cos t_h) the condition
-// cos theta_r > 0 is cos p > cos t_i (1 - 2 cos^2 t_h) / (2 cos t_h sin t_i sin t_h), which is
-// always true for t_h < pi/4 - t_i/2 and never for t_h > pi/4 + t_i/2 (derived here). The azimuth
-// integral therefore runs over [0, p_max] (x 2, symmetry) with a smooth integrand, and the polar
-// integral is split at those two angles and at multiples of the lobe width, each piece by
-// Gauss-Legendre.
-// Schlick F = F0 (1 - w) + w with w = (1 - l.h)^5, so rho_s = F0 A + B with A = int K (1 - w),
-// B = int K w, K = P_H cos_r / (l.h).
+// Table of the specular directional albedo of the Kelemen & Szirmay-Kalos model (see
+// kelemen_szirmay_kalos_albedo.h for the quadrature and the interpolation).
+#include <cmath>
+#include <limits>
+
 #include "roadbrdf/models/kelemen_szirmay_kalos.h"
 
-#include <algorithm>
-#include <cmath>
+namespace roadbrdf::ksk {
 
-namespace roadbrdf {
-namespace ksk {
-
-void specular_albedo_parts(Distribution d, double mu, double alpha, double* a_out, double* b_out) {
-  const int kNodesTheta = 20;
-  const int kNodesPhi = 20;
-  const QuadratureRule& rt = microfacet::gauss_legendre_01(kNodesTheta);
-  const QuadratureRule& rp = microfacet::gauss_legendre_01(kNodesPhi);
-  mu = std::fmin(std::fmax(mu, 0.0), 1.0);
-  const double theta_i = std::acos(mu);
-  const double sin_i = std::sqrt(std::fmax(0.0, 1.0 - mu * mu));
-  const double t_full = kPi / 4 - theta_i / 2;  // below: the whole azimuth circle reflects upwards
-  const double t_end = kPi / 4 + theta_i / 2;   // above: nothing does
-  std::vector<double> breaks = {0.0, t_end};
-  if (t_full > 0.0) breaks.push_back(t_full);
-  for (double k : {0.5, 1.0, 2.0, 3.5, 6.0}) {
-    const double t = std::atan(k * alpha);
-    if (t < t_end) breaks.push_back(t);
+double azimuth_inverse_integral(double a, double b, double big_p) {
+  const double t = big_p >= kPi ? std::numeric_limits<double>::infinity() : std::tan(0.5 * big_p);
+  const double s = (a - b) / (a + b);
+  double integral;  // int_0^T dt / (1 - s t^2)
+  if (std::isfinite(t) && std::fabs(s) * t * t < 1e-4) {
+    const double x = s * t * t;
+    integral = t * (1.0 + x * (1.0 / 3.0 + x * (1.0 / 5.0 + x / 7.0)));
+  } else if (s > 0.0) {
+    integral = std::atanh(std::sqrt(s) * t) / std::sqrt(s);
+  } else {
+    integral = std::atan(std::sqrt(-s) * t) / std::sqrt(-s);
   }
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end(),
-                           [](double x, double y) { return std::fabs(x - y) < 1e-12; }),
-               breaks.end());
-  double sum_a = 0.0, sum_b = 0.0;
-  for (std::size_t seg = 0; seg + 1 < breaks.size(); ++seg) {
-    const double t0 = breaks[seg];
-    const double t1 = breaks[seg + 1];
-    for (std::size_t it = 0; it < rt.nodes.size(); ++it) {
-      const double th = t0 + (t1 - t0) * rt.nodes[it];
-      const double ch = std::cos(th);
-      const double sh = std::sin(th);
-      const double ph = halfway_density(d, ch, alpha);
-      if (ph == 0.0) continue;
-      double phi_max = kPi;
-      const double num = mu * (1.0 - 2.0 * ch * ch);
-      const double den = 2.0 * ch * sin_i * sh;
-      if (den <= 1e-300) {
-        phi_max = num < 0.0 ? kPi : 0.0;
-      } else {
-        phi_max = std::acos(std::fmin(1.0, std::fmax(-1.0, num / den)));
-      }
-      if (phi_max <= 0.0) continue;
-      double inner_a = 0.0, inner_b = 0.0;
-      for (std::size_t ip = 0; ip < rp.nodes.size(); ++ip) {
-        const double p = phi_max * rp.nodes[ip];
-        const double lh = sin_i * sh * std::cos(p) + mu * ch;
-        if (lh <= 0.0) continue;
-        const double cr = 2.0 * lh * ch - mu;
-        if (cr <= 0.0) continue;
-        const double k = cr / lh;
-        const double m = 1.0 - lh;
-        const double w = (m * m) * (m * m) * m;
-        inner_a += rp.weights[ip] * k * (1.0 - w);
-        inner_b += rp.weights[ip] * k * w;
-      }
-      const double weight = rt.weights[it] * (t1 - t0) * sh * ph * 2.0 * phi_max;
-      sum_a += weight * inner_a;
-      sum_b += weight * inner_b;
-    }
-  }
-  *a_out = sum_a;
-  *b_out = sum_b;
+  return 2.0 * integral / (a + b);
 }
 
-namespace {
+AlbedoTable::AlbedoTable(Distribution d)
+    : dist_(d),
+      log_alpha_min_(std::log(kAlphaMin)),
+      log_alpha_step_((std::log(kAlphaMax) - std::log(kAlphaMin)) / (kAlpha - 1)),
+      v_min_(mu_variable(kMuTable)),
+      v_step_((mu_variable(1.0) - mu_variable(kMuTable)) / (kMu - 1)),
+      rows_(kAlpha + 2 * kGhost),
+      once_(new std::once_flag[kAlpha + 2 * kGhost]) {}
 
-AlbedoTable build_table(Distribution d) {
-  AlbedoTable t;
-  t.log_alpha_min = std::log(kAlphaMin);
-  t.log_alpha_step = (std::log(kAlphaMax) - std::log(kAlphaMin)) / (AlbedoTable::kAlpha - 1);
-  t.a.resize(static_cast<std::size_t>(AlbedoTable::kAlpha) * AlbedoTable::kMu);
-  t.b.resize(t.a.size());
-  t.a_avg.resize(AlbedoTable::kAlpha);
-  t.b_avg.resize(AlbedoTable::kAlpha);
-  const QuadratureRule& rmu = microfacet::gauss_legendre_01(24);
-  for (int ia = 0; ia < AlbedoTable::kAlpha; ++ia) {
-    const double alpha = std::exp(t.log_alpha_min + ia * t.log_alpha_step);
-    for (int im = 0; im < AlbedoTable::kMu; ++im) {
-      const double mu = static_cast<double>(im) / (AlbedoTable::kMu - 1);
-      const std::size_t idx = static_cast<std::size_t>(ia) * AlbedoTable::kMu + static_cast<std::size_t>(im);
-      specular_albedo_parts(d, mu, alpha, &t.a[idx], &t.b[idx]);
+const AlbedoTable::Row& AlbedoTable::row(int i) const {
+  const std::size_t slot = static_cast<std::size_t>(i + kGhost);
+  std::call_once(once_[slot], [&] {
+    auto r = std::make_unique<Row>();
+    // Ghost rows lie beyond the roughness range; the quadrature is smooth in alpha there too (for
+    // phong, m = 2/alpha^2 - 2 > -1 still gives an integrable density).
+    const double alpha = row_alpha(i);
+    r->a.resize(kMu);
+    r->b.resize(kMu);
+    for (int j = 0; j < kMu; ++j) {
+      const double mu = j == kMu - 1 ? 1.0 : mu_of_variable(v_min_ + j * v_step_);
+      specular_albedo_parts(dist_, mu, alpha, &r->a[static_cast<std::size_t>(j)], &r->b[static_cast<std::size_t>(j)]);
     }
-    // rho_bar = 2 int_0^1 rho_s(mu) mu dmu, by its own Gauss-Legendre rule (not from the table).
-    double avg_a = 0.0, avg_b = 0.0;
-    for (std::size_t k = 0; k < rmu.nodes.size(); ++k) {
-      double a = 0.0, b = 0.0;
-      specular_albedo_parts(d, rmu.nodes[k], alpha, &a, &b);
-      avg_a += 2.0 * rmu.weights[k] * rmu.nodes[k] * a;
-      avg_b += 2.0 * rmu.weights[k] * rmu.nodes[k] * b;
+    // rho_bar = 2 int_0^1 rho_s(mu) mu dmu by its own rules (not from the table): Gauss-Legendre in mu
+    // on [0, kMuTable], and in v = log mu on [log kMuTable, 0] (dmu = mu dv), in equal panels.
+    double sa = 0.0, sb = 0.0;
+    const QuadratureRule& g = microfacet::gauss_legendre_01(10);
+    for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+      const double mu = kMuTable * g.nodes[k];
+      double a, b;
+      specular_albedo_parts(dist_, mu, alpha, &a, &b);
+      sa += 2.0 * kMuTable * g.weights[k] * mu * a;
+      sb += 2.0 * kMuTable * g.weights[k] * mu * b;
     }
-    t.a_avg[static_cast<std::size_t>(ia)] = avg_a;
-    t.b_avg[static_cast<std::size_t>(ia)] = avg_b;
-  }
-  return t;
+    const int panels = 8;
+    const double log_mu_min = std::log(kMuTable);
+    const double span = -log_mu_min / panels;
+    for (int p = 0; p < panels; ++p) {
+      for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+        const double v = log_mu_min + span * (p + g.nodes[k]);
+        const double mu = std::exp(v);
+        double a, b;
+        specular_albedo_parts(dist_, mu, alpha, &a, &b);
+        sa += 2.0 * span * g.weights[k] * mu * mu * a;
+        sb += 2.0 * span * g.weights[k] * mu * mu * b;
+      }
+    }
+    r->a_avg = sa;
+    r->b_avg = sb;
+    rows_[slot] = std::move(r);
+  });
+  return *rows_[slot];
 }
 
-}  // namespace
+double mu_of_variable(double v) {
+  // Newton on x = log mu: x + k e^x = v (increasing, convex in x); from below it converges monotonically.
+  double x = std::fmin(v, 0.0) - 1.0;
+  for (int it = 0; it < 100; ++it) {
+    const double e = std::exp(x);
+    const double dx = (x + kMuLinear * e - v) / (1.0 + kMuLinear * e);
+    x -= dx;
+    if (std::fabs(dx) < 1e-15) break;
+  }
+  return std::exp(x);
+}
+
+int mu_weights(const AlbedoTable& table, double mu, double w[4]) {
+  const double s = (mu_variable(std::fmin(mu, 1.0)) - table.v_min()) / table.v_step();
+  const int j = std::clamp(static_cast<int>(std::floor(s)), 1, AlbedoTable::kMu - 3);
+  const double t = s - j;  // nodes at -1, 0, 1, 2
+  w[0] = -t * (t - 1.0) * (t - 2.0) / 6.0;
+  w[1] = (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0;
+  w[2] = -(t + 1.0) * t * (t - 2.0) / 2.0;
+  w[3] = (t + 1.0) * t * (t - 1.0) / 6.0;
+  return j - 1;
+}
 
 const AlbedoTable& albedo_table(Distribution d) {
   switch (d) {
     case Distribution::kWard: {
-      static const AlbedoTable ward = build_table(Distribution::kWard);
+      static const AlbedoTable ward(Distribution::kWard);
       return ward;
     }
     case Distribution::kPhong: {
-      static const AlbedoTable phong = build_table(Distribution::kPhong);
+      static const AlbedoTable phong(Distribution::kPhong);
       return phong;
     }
     case Distribution::kBeckmann:
       break;
   }
-  static const AlbedoTable beckmann = build_table(Distribution::kBeckmann);
+  static const AlbedoTable beckmann(Distribution::kBeckmann);
   return beckmann;
 }
 
-}  // namespace ksk
-}  // namespace roadbrdf
+}  // namespace roadbrdf::ksk

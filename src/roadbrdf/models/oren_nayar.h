@@ -47,6 +47,15 @@ struct OrenNayar {
         {"sigma", "rad", "standard deviation of the facet slope angle", 0.3, 0.0,
          full ? kMaxSigmaFull : kMaxSigmaQualitative, false, false},
     };
+    // The closed forms are fits to the numerically integrated V-cavity model, not the model itself,
+    // and do not conserve energy: with albedo 1 the black-sky albedo (albedo/hemisphere.h) exceeds 1
+    // towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, 1.014 at 89 deg; 1.044 at
+    // sigma = 0.3, 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). Checked in oren_nayar_test.
+    d.energy_conserving = false;
+    d.notes = "Not energy conserving: the paper's closed forms are fitted approximations; with albedo 1 the "
+              "black-sky albedo exceeds 1 towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, "
+              "1.044 at sigma = 0.3 and theta_i = 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). "
+              "Fitted albedos near 1 can therefore give albedos slightly above 1 at grazing sun.";
     return d;
   }
   explicit OrenNayar(const OptionSet& options) : full_(options.at("form") == "full") {}
