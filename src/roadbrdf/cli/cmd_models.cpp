@@ -27,7 +27,6 @@ void print_markdown() {
     fmt::print("- Reciprocal: {}; energy conserving: {}; non-negative: {}; ideal specular (delta) part: {}\n",
                d.reciprocal ? "yes" : "no", d.energy_conserving ? "yes" : "no", d.non_negative ? "yes" : "no",
                d.has_delta ? "yes" : "no");
-    if (!d.notes.empty()) fmt::print("- Notes: {}\n", d.notes);
     fmt::print("\n| parameter | unit | default | lower | upper | spectral | description |\n");
     fmt::print("|---|---|---|---|---|---|---|\n");
     for (const auto& p : d.parameters) {
@@ -61,7 +60,6 @@ void run(bool as_json) {
     fmt::print("    reciprocal: {}   energy conserving: {}{}\n", d.reciprocal ? "yes" : "no",
                d.energy_conserving ? "yes" : "no", d.has_delta ? "   ideal specular part: yes" : "");
     fmt::print("    {}\n", d.citation);
-    if (!d.notes.empty()) fmt::print("    note: {}\n", d.notes);
     for (const auto& p : d.parameters) {
       fmt::print("    {:<14} [{}] {:g} in [{:g}, {:g}]{}  {}\n", p.name, p.unit, p.default_value, p.lower, p.upper,
                  p.spectral ? ", spectral" : "", p.description);

@@ -44,9 +44,6 @@ struct ModelDescription {
   bool energy_conserving = true;
   bool non_negative = true;  // f >= 0 for every geometry and every parameter set inside the bounds
   bool has_delta = false;   // has an ideal specular part, handled separately from the smooth BRDF
-  // Physics notes that qualify the flags above (e.g. where a declared property fails and why); one
-  // paragraph, printed by `roadbrdf models` and in docs/models.md.
-  std::string notes;
 
   // Index of a parameter by name, or nullopt.
   std::optional<std::size_t> parameter_index(const std::string& parameter_name) const;

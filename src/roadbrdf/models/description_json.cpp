@@ -11,7 +11,6 @@ nlohmann::json description_to_json(const ModelDescription& d) {
   j["energy_conserving"] = d.energy_conserving;
   j["non_negative"] = d.non_negative;
   j["has_delta"] = d.has_delta;
-  j["notes"] = d.notes;
   j["parameters"] = nlohmann::json::array();
   for (const auto& p : d.parameters) {
     j["parameters"].push_back({{"name", p.name},

@@ -52,10 +52,8 @@ struct OrenNayar {
     // towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, 1.014 at 89 deg; 1.044 at
     // sigma = 0.3, 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). Checked in oren_nayar_test.
     d.energy_conserving = false;
-    d.notes = "Not energy conserving: the paper's closed forms are fitted approximations; with albedo 1 the "
-              "black-sky albedo exceeds 1 towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, "
-              "1.044 at sigma = 0.3 and theta_i = 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). "
-              "Fitted albedos near 1 can therefore give albedos slightly above 1 at grazing sun.";
+    d.summary += "; not energy conserving (fitted closed form: with albedo 1 the black-sky albedo exceeds 1 towards "
+                 "grazing sun, 1.044 at sigma = 0.3 rad and 89 deg)";
     return d;
   }
   explicit OrenNayar(const OptionSet& options) : full_(options.at("form") == "full") {}
