@@ -80,6 +80,12 @@ def test_mix_with_data_is_identical(cli, case, options):
     best = result.best
     assert best is not None and best.comparison["rmse"] > 0
     assert result.spectral_model().evaluate(30, 0, 30, 180, 500.0) > 0
+    assert "held-out" in result.summary and "roadbrdf.MixResult" in repr(result)
+    pd = pytest.importorskip("pandas")
+    df = result.to_dataframe()
+    assert isinstance(df, pd.DataFrame)
+    assert list(df["method"]) == [m.method for m in result.methods]
+    assert list(df["rmse"]) == [m.comparison["rmse"] for m in result.methods]
 
 
 ERRORS = [

@@ -132,13 +132,13 @@ void run(const FitArgs& a) {
   request.validate();  // before reading the data: a misspelt name fails at once
 
   const SpectralDataset data = read_dataset(a.data);
-  std::vector<std::unique_ptr<ProgressBar>> bars;
-  const FitSummary summary = run_fit(request, data, [&bars](const std::string& label) {
-    bars.push_back(std::make_unique<ProgressBar>(label));
-    ProgressBar* bar = bars.back().get();
-    return [bar](std::size_t done, std::size_t total) { bar->update(done, total); };
+  // One bar per model; the models are fitted one after the other, so a new bar ends the previous one.
+  std::unique_ptr<ProgressBar> bar;
+  const FitSummary summary = run_fit(request, data, [&bar](const std::string& label) {
+    bar = std::make_unique<ProgressBar>(label);
+    return [current = bar.get()](std::size_t done, std::size_t total) { current->update(done, total); };
   });
-  bars.clear();
+  bar.reset();
   std::FILE* report = report_stream(a.output);
   fmt::print(report, "{}", summary.table());
   for (const auto& w : summary.warnings(a.output)) fmt::print(stderr, "roadbrdf: warning: {}\n", w);
