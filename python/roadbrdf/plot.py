@@ -19,6 +19,7 @@ Angles in degrees, BRDF in sr^-1, wavelengths in nm.
 
 from __future__ import annotations
 
+import argparse
 import os
 import textwrap
 import tempfile
@@ -400,59 +401,138 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
 
 
 # ---- command line ----------------------------------------------------------------------------
+class _Parser(argparse.ArgumentParser):
+    """argparse with the errors of the roadbrdf program: ``roadbrdf: error: ...`` naming the nearest
+    valid sub-command or option (the same edit-distance helper as the C++ program)."""
+
+    def error(self, message):
+        import re
+        from . import _roadbrdf
+        hint = ""
+        unknown = re.search(r"unrecognized arguments: (\S+)", message)
+        choice = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+        if unknown:
+            word = unknown.group(1).split("=")[0]
+            names = [o for a in self._all_actions() for o in a.option_strings]
+            message = f"unknown option '{word}' of '{self.prog}'"
+            hint = _roadbrdf.did_you_mean(word, names)
+        elif choice:
+            word = choice.group(1)
+            names = re.findall(r"'([^']*)'", choice.group(2))
+            message = f"unknown kind of figure '{word}' (one of {', '.join(names)})"
+            hint = _roadbrdf.did_you_mean(word, names)
+        self.exit(2, f"roadbrdf: error: {message}{hint}; see '{self.prog} --help'\n")
+
+    def _all_actions(self):
+        actions = list(self._actions)
+        for a in self._actions:
+            if isinstance(a, argparse._SubParsersAction):
+                for parser in a.choices.values():
+                    actions += parser._actions
+        return actions
+
+
+def _assignments(items, what, number):
+    """``NAME=VALUE`` items of a repeatable option; ``number``: values are finite floats."""
+    out = {}
+    for item in items or []:
+        name, eq, value = item.partition("=")
+        if not eq or not name:
+            raise ValueError(f"{what} expects NAME=VALUE, got '{item}'")
+        if name in out:
+            raise ValueError(f"{what} {name} is given twice")
+        if number:
+            try:
+                v = float(value)
+            except ValueError:
+                v = float("nan")
+            if not np.isfinite(v):
+                raise ValueError(f"{what} {name}: '{value}' is not a finite number")
+            value = v
+        out[name] = value
+    return out
+
+
+def _model_argument(text, a):
+    """A model name (with -p/--option) or a fit file (with --fit) as the object the figures take."""
+    params = _assignments(getattr(a, "parameter", None), "-p", True)
+    options = _assignments(getattr(a, "option", None), "--option", False)
+    if str(text).endswith(".json"):
+        if params or options:
+            raise ValueError(f"-p/--option cannot be combined with a fit file ('{text}')")
+        return read_fit(text, a.fit), {}
+    if a.fit:
+        raise ValueError(f"--fit selects a fit of a fit file; '{text}' is a model name")
+    return Model(text, options), params
+
+
+def _renamed(new):
+    """An old option spelling, refused with a message naming the new one."""
+    class Renamed(argparse.Action):
+        def __call__(self, parser, namespace, values, option_string=None):
+            raise ValueError(f"{option_string}: renamed: use {new}")
+    return Renamed
+
+
 def main(argv=None):
     """``python3 -m roadbrdf.plot KIND ... -o FILE`` (also ``roadbrdf plot``)."""
-    import argparse
-    parser = argparse.ArgumentParser(prog="roadbrdf plot", description="roadbrdf figures (PNG, SVG or PDF).")
-    sub = parser.add_subparsers(dest="kind", required=True)
+    parser = _Parser(prog="roadbrdf plot", description="roadbrdf figures (PNG, SVG or PDF).")
+    sub = parser.add_subparsers(dest="kind", required=True, parser_class=_Parser)
 
     def output(p):
         p.add_argument("-o", "--output", required=True, help="figure file (.png, .svg, .pdf)")
-        p.add_argument("--title")
+        p.add_argument("--title", help="figure title (default: from the inputs)")
+
+    def model_flags(p, options=True):
+        p.add_argument("-p", "--parameter", action="append", metavar="NAME=VALUE",
+                       help="model parameter (repeatable); defaults otherwise")
+        if options:
+            p.add_argument("--option", action="append", metavar="NAME=VALUE",
+                           help="model option (repeatable), e.g. distribution=ggx")
+        p.add_argument("--fit", metavar="NAME", help="which fit of FIT.json (its model name) or which method of a "
+                       "MIX.json (default: the best-ranked)")
 
     def geometry(text):
-        values = [float(x) for x in text.split(",")]
-        if len(values) != 4:
+        try:
+            values = [float(x) for x in text.split(",")]
+        except ValueError:
+            values = []
+        if len(values) != 4 or not all(np.isfinite(values)):
             raise argparse.ArgumentTypeError("geometry is theta_i,phi_i,theta_r,phi_r [deg]")
         return tuple(values)
 
-    def model_params(items):
-        params = {}
-        for item in items or []:
-            name, _, value = item.partition("=")
-            params[name] = float(value)
-        return params
-
     p = sub.add_parser("spectral", help="BRDF vs wavelength at one geometry for several datasets")
-    p.add_argument("data", nargs="+")
-    p.add_argument("--geometry", type=geometry, default=(30.0, 0.0, 30.0, 0.0))
+    p.add_argument("data", nargs="+", help="dataset CSV files")
+    p.add_argument("--geometry", type=geometry, default=(30.0, 0.0, 30.0, 0.0),
+                   help="theta_i,phi_i,theta_r,phi_r [deg] (the nearest measured geometry; default 30,0,30,0)")
     output(p)
     p = sub.add_parser("hemisphere", help="BRDF over the viewing hemisphere (heat map and lobe)")
-    p.add_argument("model", help="model name or fit file")
-    p.add_argument("-p", "--parameter", action="append")
-    p.add_argument("--theta-i", type=float, default=45.0)
-    p.add_argument("--wavelength", type=float)
-    p.add_argument("--log", action="store_true")
+    p.add_argument("model", help="model name (with -p/--option) or fit file (with --fit)")
+    model_flags(p)
+    p.add_argument("--theta-i", type=float, default=45.0, help="incidence zenith angle [deg] (default 45)")
+    p.add_argument("--wavelength", type=float, help="wavelength [nm] of a fit file (default: 550 or the middle)")
+    p.add_argument("--log", action="store_true", help="logarithmic colour scale")
     output(p)
     p = sub.add_parser("plane", help="BRDF in the plane of incidence")
     p.add_argument("--model", action="append", default=[], help="model name or fit file (repeatable)")
     p.add_argument("--data", action="append", default=[], help="dataset (repeatable)")
-    p.add_argument("-p", "--parameter", action="append")
-    p.add_argument("--theta-i", type=float, default=45.0)
-    p.add_argument("--wavelength", type=float)
+    model_flags(p)
+    p.add_argument("--theta-i", type=float, default=45.0, help="incidence zenith angle [deg] (default 45)")
+    p.add_argument("--wavelength", type=float, help="wavelength [nm] of fit files and datasets (default: 550 or the middle)")
     output(p)
     p = sub.add_parser("fit", help="fit quality: measured vs fitted, residuals, RMSE vs wavelength")
-    p.add_argument("data")
-    p.add_argument("fit")
-    p.add_argument("--model")
-    p.add_argument("--wavelength", type=float)
+    p.add_argument("data", help="the dataset CSV that was fitted")
+    p.add_argument("fit_file", metavar="FIT.json", help="fit file written by roadbrdf fit")
+    p.add_argument("--fit", metavar="NAME", help="which fit of FIT.json (its model name; default: the best-ranked)")
+    p.add_argument("--model", action=_renamed("--fit NAME"), help=argparse.SUPPRESS)
+    p.add_argument("--wavelength", type=float, help="wavelength [nm] of the left panels (default: 550 or the middle)")
     output(p)
     p = sub.add_parser("albedo", help="albedo figure from `roadbrdf albedo --json` output")
-    p.add_argument("result")
+    p.add_argument("result", help="JSON written by roadbrdf albedo --json")
     output(p)
     p = sub.add_parser("rtable", help="r-table heat map and class diagram")
-    p.add_argument("table", help="r-table file, fit file or model name")
-    p.add_argument("-p", "--parameter", action="append")
+    p.add_argument("table", help="r-table file, fit file (with --fit) or model name (with -p/--option)")
+    model_flags(p)
     p.add_argument("--wavelength", type=float, help="fit file: the r-table at one wavelength [nm]")
     p.add_argument("--band", help="fit file: unweighted mean over a band A:B [nm]")
     p.add_argument("--illuminant", default="A", help="fit file: photometric weighting V(lambda) x A|D65|FILE")
@@ -462,35 +542,43 @@ def main(argv=None):
     a = parser.parse_args(argv)
     # As every roadbrdf command: the figure must not replace one of the files it is drawn from.
     inputs = []
-    for role in ("data", "model", "fit", "result", "table"):
+    for role in ("data", "model", "fit_file", "result", "table"):
         value = getattr(a, role, None)
         for path in (value if isinstance(value, list) else [value]):
             if isinstance(path, str):
-                inputs.append((role.upper(), path))
+                inputs.append(("FIT.json" if role == "fit_file" else role.upper(), path))
     from . import _roadbrdf
     _roadbrdf.check_distinct_files(inputs, [("-o", a.output)])
     if a.kind == "spectral":
         spectral(a.data, a.geometry, title=a.title, output=a.output)
     elif a.kind == "hemisphere":
-        hemisphere(a.model, model_params(a.parameter), a.theta_i, a.wavelength, a.log, title=a.title, output=a.output)
+        model, params = _model_argument(a.model, a)
+        hemisphere(model, params, a.theta_i, a.wavelength, a.log, title=a.title, output=a.output)
     elif a.kind == "plane":
-        plane(a.model, a.data, a.theta_i, model_params(a.parameter), a.wavelength, title=a.title, output=a.output)
+        chosen = [_model_argument(m, a) for m in a.model]
+        params = _assignments(a.parameter, "-p", True)
+        plane([m for m, _ in chosen], a.data, a.theta_i, params, a.wavelength,
+              labels=[os.path.basename(m) for m in a.model], title=a.title, output=a.output)
     elif a.kind == "fit":
-        fit_quality(a.data, a.fit, a.model, a.wavelength, title=a.title, output=a.output)
+        fit_quality(a.data, a.fit_file, a.fit, a.wavelength, title=a.title, output=a.output)
     elif a.kind == "albedo":
         albedo(a.result, title=a.title, output=a.output)
     elif a.kind == "rtable":
         table = a.table
-        if not (table.endswith(".json") or os.path.exists(table)):
-            table = Model(table)
+        if table.endswith(".json") or not os.path.exists(table):
+            table, params = _model_argument(table, a)
+        else:
+            if a.parameter or a.option or a.fit:
+                raise ValueError(f"-p/--option/--fit cannot be combined with an r-table file ('{table}')")
+            params = {}
         band = None
         if a.band is not None:
             lo, sep, hi = a.band.partition(":")
             if not sep:
                 raise ValueError(f"--band expects A:B in nm, got '{a.band}'")
             band = (float(lo), float(hi))
-        rtable(table, model_params(a.parameter), title=a.title, output=a.output, wavelength=a.wavelength,
-               band=band, illuminant=a.illuminant)
+        rtable(table, params, title=a.title, output=a.output, wavelength=a.wavelength, band=band,
+               illuminant=a.illuminant)
     elif a.kind == "study":
         _run_study(a)
     print(a.output)

@@ -1,4 +1,4 @@
-// Python binding of albedo: the same report as `roadbrdf albedo --json`.
+// Python binding of albedo: the same request (albedo/report.h) and report as `roadbrdf albedo --json`.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -16,7 +16,7 @@ namespace roadbrdf::python {
 
 namespace {
 
-std::string report_text(const SpectralModel& model, const std::vector<double>& sun_zenith,
+py::object report(const SpectralModel& model, const std::vector<double>& sun_zenith,
                         std::optional<double> sun_azimuth, bool azimuth_mean, const std::string& diffuse_fraction,
                         const std::string& atmosphere, const std::string& spectrum,
                         const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
@@ -30,14 +30,18 @@ std::string report_text(const SpectralModel& model, const std::vector<double>& s
   request.wavelengths = wavelengths;
   request.illuminant = illuminant;
   request.tolerance = tolerance;
-  py::gil_scoped_release release;
-  return roadbrdf::dump_json(albedo::compute_albedo(model, request));
+  nlohmann::json result;
+  {
+    py::gil_scoped_release release;
+    result = albedo::compute_albedo(model, request);
+  }
+  return json_to_python(result);  // the report `roadbrdf albedo --json` prints, as Python objects
 }
 
 }  // namespace
 
 void bind_albedo(py::module_& m) {
-  m.def("albedo_spectral", &report_text);
+  m.def("albedo_spectral", &report);
   m.def("albedo_model",
         [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters,
            const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
@@ -45,7 +49,7 @@ void bind_albedo(py::module_& m) {
            const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
           check_parameters(model->description(), parameters);
           const SpectralModel sm(std::const_pointer_cast<const Model>(model), parameters);
-          return report_text(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum,
+          return report(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum,
                              wavelengths, illuminant, tolerance);
         });
 }

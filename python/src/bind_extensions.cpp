@@ -15,6 +15,7 @@ void bind_extensions(pybind11::module_& m) {
   bind_fitting(m);
   bind_mixing(m);
   bind_albedo(m);
+  bind_values(m);
 }
 
 }  // namespace roadbrdf::python

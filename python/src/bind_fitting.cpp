@@ -1,85 +1,197 @@
-// Python binding of the fitter: the same engine and the same JSON as `roadbrdf fit`.
+// Python binding of fitting: a FitRequest (fitting/fit_request.h) from the keyword arguments of
+// roadbrdf.fit, and the FitSummary as an object with numpy arrays; the fit file is written by the
+// same writer as `roadbrdf fit`.
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <unistd.h>
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <cmath>
+#include <limits>
+#include <memory>
 
 #include "binding.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
-#include "roadbrdf/models/registry.h"
+#include "roadbrdf/fitting/fit_request.h"
 
 namespace py = pybind11;
 
 namespace roadbrdf::python {
 
 namespace {
-int call_counter = 0;
+
+using Array = py::array_t<double>;
+
+const FitResult& fit_at(const FitSummary& s, std::size_t i) {
+  if (i >= s.fits.size()) throw InputError("fit index " + std::to_string(i) + " out of range");
+  return s.fits[i];
+}
+
+// parameters x wavelengths of one vector member of WavelengthFit.
+Array per_parameter(const FitResult& f, std::vector<double> WavelengthFit::*member) {
+  const std::size_t p = f.parameter_names.size(), m = f.wavelengths.size();
+  Array out({p, m});
+  auto v = out.mutable_unchecked<2>();
+  for (std::size_t w = 0; w < m; ++w) {
+    const std::vector<double>& values = f.wavelengths[w].*member;
+    for (std::size_t k = 0; k < p; ++k) {
+      v(k, w) = k < values.size() ? values[k] : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return out;
+}
+
+py::dict statistics(const FitResult& f) {
+  const std::size_t m = f.wavelengths.size();
+  auto column = [&](auto getter) {
+    Array a(static_cast<py::ssize_t>(m));
+    auto v = a.mutable_unchecked<1>();
+    for (std::size_t w = 0; w < m; ++w) v(w) = static_cast<double>(getter(f.wavelengths[w]));
+    return a;
+  };
+  py::dict d;
+  d["rmse"] = column([](const WavelengthFit& w) { return w.rmse; });
+  d["relative_rmse"] = column([](const WavelengthFit& w) { return w.relative_rmse; });
+  d["max_relative_error"] = column([](const WavelengthFit& w) { return w.max_relative_error; });
+  d["r_squared"] = column([](const WavelengthFit& w) { return w.r_squared; });
+  d["chi2"] = column([](const WavelengthFit& w) { return w.chi2; });
+  d["aic"] = column([](const WavelengthFit& w) { return w.aic; });
+  d["bic"] = column([](const WavelengthFit& w) { return w.bic; });
+  d["cost"] = column([](const WavelengthFit& w) { return w.cost; });
+  d["iterations"] = column([](const WavelengthFit& w) { return w.iterations; });
+  d["points"] = column([](const WavelengthFit& w) { return w.points; });
+  d["free_parameters"] = column([](const WavelengthFit& w) { return w.free_parameters; });
+  std::vector<bool> converged, covariance_ok;
+  std::vector<std::string> status, covariance_message;
+  std::vector<std::vector<std::string>> at_bounds;
+  for (const auto& w : f.wavelengths) {
+    converged.push_back(w.converged);
+    covariance_ok.push_back(w.covariance_ok);
+    status.push_back(w.status);
+    covariance_message.push_back(w.covariance_message);
+    at_bounds.push_back(w.at_bounds);
+  }
+  d["converged"] = converged;
+  d["covariance_ok"] = covariance_ok;
+  d["status"] = status;
+  d["covariance_message"] = covariance_message;
+  d["at_bounds"] = at_bounds;
+  return d;
+}
+
+py::dict totals(const FitResult& f) {
+  py::dict d;
+  d["rmse"] = f.rmse_total;
+  d["relative_rmse"] = f.relative_rmse_total;
+  d["max_relative_error"] = f.max_relative_error_total;
+  d["chi2"] = f.chi2_total;
+  d["aic"] = f.aic_total;
+  d["bic"] = f.bic_total;
+  d["points"] = f.points_total;
+  d["free_parameters"] = f.free_parameters_total;
+  d["converged_count"] = f.converged_count;
+  d["at_bound_count"] = f.at_bound_count;
+  d["covariance_failures"] = f.covariance_failures;
+  d["seconds"] = f.seconds;
+  d["joint"] = f.joint;
+  return d;
+}
+
 }  // namespace
 
 void bind_fitting(py::module_& m) {
-  // Returns the fit file's JSON text (the Python side parses it), and writes the file if asked.
+  py::class_<FitSummary, std::shared_ptr<FitSummary>>(m, "FitSummary")
+      .def_property_readonly("count", [](const FitSummary& s) { return s.fits.size(); })
+      .def_property_readonly("ranking", [](const FitSummary& s) { return s.ranking; })
+      .def_property_readonly("wavelengths", [](const FitSummary& s) { return s.wavelengths; })
+      .def_property_readonly("geometry_count", [](const FitSummary& s) { return s.geometry_count; })
+      .def("model_name", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).model; })
+      .def("options", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).options; })
+      .def("parameter_names", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).parameter_names; })
+      .def("parameter_units", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).parameter_units; })
+      .def("fixed", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).fixed; })
+      .def("shared", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).shared; })
+      .def("parameters", [](const FitSummary& s, std::size_t i) { return per_parameter(fit_at(s, i), &WavelengthFit::parameters); })
+      .def("standard_errors",
+           [](const FitSummary& s, std::size_t i) { return per_parameter(fit_at(s, i), &WavelengthFit::standard_errors); })
+      .def("correlation",
+           [](const FitSummary& s, std::size_t i) {
+             const FitResult& f = fit_at(s, i);
+             const std::size_t p = f.parameter_names.size(), mw = f.wavelengths.size();
+             Array out({mw, p, p});
+             auto v = out.mutable_unchecked<3>();
+             for (std::size_t w = 0; w < mw; ++w) {
+               const std::vector<double>& c = f.wavelengths[w].correlation;
+               for (std::size_t a = 0; a < p; ++a) {
+                 for (std::size_t b = 0; b < p; ++b) {
+                   v(w, a, b) = c.size() == p * p ? c[a * p + b] : std::numeric_limits<double>::quiet_NaN();
+                 }
+               }
+             }
+             return out;
+           })
+      .def("statistics", [](const FitSummary& s, std::size_t i) { return statistics(fit_at(s, i)); })
+      .def("totals", [](const FitSummary& s, std::size_t i) { return totals(fit_at(s, i)); })
+      .def("spectral_model",
+           [](const FitSummary& s, std::size_t i) {
+             const FitResult& f = fit_at(s, i);
+             const std::size_t p = f.parameter_names.size();
+             std::vector<double> wavelengths, table;
+             for (const auto& w : f.wavelengths) {
+               wavelengths.push_back(w.wavelength);
+               table.insert(table.end(), w.parameters.begin(), w.parameters.begin() + static_cast<std::ptrdiff_t>(p));
+             }
+             return SpectralModel(s.models.at(i), wavelengths, table);
+           })
+      .def("file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits)); },
+           "The fit file's content as Python objects (dicts, lists, numbers).")
+      .def("table", &FitSummary::table, "The ranking table `roadbrdf fit` prints.")
+      .def("warnings", &FitSummary::warnings, py::arg("where"))
+      .def("write", [](const FitSummary& s, const std::string& path) { write_fit_file(path, s.fits); }, py::arg("path"),
+           "Write the fit file (JSON, atomically), as `roadbrdf fit -o` does.");
+
   m.def(
       "fit",
       [](const DoubleArray& angles, const DoubleArray& wavelengths, const DoubleArray& brdf, const py::object& sigma,
          const std::map<std::string, std::string>& metadata, const std::string& convention,
-         const std::vector<std::string>& models, const OptionSet& model_options, const std::vector<std::string>& shared,
+         const std::vector<std::string>& models, const OptionSet& options, const std::vector<std::string>& shared,
          const std::map<std::string, double>& fixed, const std::map<std::string, double>& start,
-         const std::string& loss, const std::string& robust, bool use_sigma, bool solid_angle_weights, int multistart,
-         unsigned seed, const std::string& wavelength_selection, int threads, const std::string& output) {
-        SpectralDataset data = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
-        if (!wavelength_selection.empty()) {
-          data = subset_wavelengths(data, select_wavelengths(data.wavelengths, wavelength_selection));
-        }
-        FitOptions options;
-        options.loss = fit_loss_from_string(loss);
-        if (!robust.empty() && robust != "none") robust_loss_from_string(robust, options.robust, options.robust_scale);
-        options.use_sigma = use_sigma;
-        options.solid_angle_weights = solid_angle_weights;
-        options.fixed = fixed;
-        options.start = start;
-        options.shared = shared;
-        options.multistart = multistart;
-        options.seed = seed;
-        options.threads = threads;
-        std::vector<FitResult> results;
-        {
-          py::gil_scoped_release release;
-          for (const std::string& name : models) {
-            // Options apply to every model that declares them (as on the command line).
-            OptionSet declared;
-            const auto probe = make_model(name);
-            for (const auto& [key, value] : model_options) {
-              for (const auto& o : probe->description().options) {
-                if (o.name == key) declared[key] = value;
-              }
-            }
-            const auto model = make_model(name, declared);
-            results.push_back(fit_model(*model, data, options));
-          }
-        }
-        // The text returned is exactly the fit file `roadbrdf fit` writes (written to a temporary
-        // file when no output is asked for).
-        std::string path = output;
-        std::string temporary;
-        if (path.empty()) {
-          temporary = (std::filesystem::temp_directory_path() /
-                       ("roadbrdf-fit-" + std::to_string(::getpid()) + "-" + std::to_string(++call_counter) + ".json"))
-                          .string();
-          path = temporary;
-        }
-        write_fit_file(path, results);
-        std::ifstream in(path);
-        std::stringstream text;
-        text << in.rdbuf();
-        if (!temporary.empty()) std::filesystem::remove(temporary);
-        return text.str();
-      });
+         const std::map<std::string, std::pair<double, double>>& bounds, const std::string& loss,
+         const std::string& robust, bool use_sigma, bool solid_angle_weights, int multistart, unsigned seed,
+         const py::object& wavelength_selection, int threads, int max_iterations, bool covariance, bool warm_start,
+         bool solve_amplitudes, const std::string& joint_solver) {
+        FitRequest request;
+        request.models = models;
+        request.options = options;
+        request.shared = shared;
+        request.fixed = fixed;
+        request.start = start;
+        request.bounds = bounds;
+        request.loss = loss;
+        request.robust = robust;
+        request.use_sigma = use_sigma;
+        request.solid_angle_weights = solid_angle_weights;
+        request.multistart = multistart;
+        request.seed = seed;
+        request.wavelengths = values_argument(wavelength_selection, "wavelengths");
+        request.threads = threads;
+        request.max_iterations = max_iterations;
+        request.covariance = covariance;
+        request.warm_start = warm_start;
+        request.solve_amplitudes = solve_amplitudes;
+        request.joint_solver = joint_solver;
+        request.validate();
+        const SpectralDataset data = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+        py::gil_scoped_release release;
+        return std::make_shared<FitSummary>(run_fit(request, data));
+      },
+      py::arg("angles"), py::arg("wavelengths"), py::arg("brdf"), py::arg("sigma"), py::arg("metadata"),
+      py::arg("convention"), py::arg("models"), py::arg("options"), py::arg("shared"), py::arg("fixed"),
+      py::arg("start"), py::arg("bounds"), py::arg("loss"), py::arg("robust"), py::arg("use_sigma"),
+      py::arg("solid_angle_weights"), py::arg("multistart"), py::arg("seed"), py::arg("wavelength_selection"),
+      py::arg("threads"), py::arg("max_iterations"), py::arg("covariance"), py::arg("warm_start"),
+      py::arg("solve_amplitudes"), py::arg("joint_solver"));
 }
 
 }  // namespace roadbrdf::python

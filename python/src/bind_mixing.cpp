@@ -1,18 +1,15 @@
-// Python binding of mixing: the same library calls as `roadbrdf mix`, returning the MIX.json text.
+// Python binding of mixing: a MixRequest (mixing/mix_request.h) from the keyword arguments of
+// roadbrdf.mix, and the run as an object; MIX.json is written by the same writer as `roadbrdf mix`.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <unistd.h>
 
-#include <filesystem>
-#include <fstream>
+#include <memory>
 #include <optional>
-#include <sstream>
 
 #include "binding.h"
-#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/mixing/mix_request.h"
 #include "roadbrdf/mixing/mixing.h"
 #include "roadbrdf/mixing/residual_file.h"
 
@@ -20,83 +17,51 @@ namespace py = pybind11;
 
 namespace roadbrdf::python {
 
-namespace {
-int mix_counter = 0;
-}  // namespace
-
 void bind_mixing(py::module_& m) {
+  using mixing::MixRun;
+  py::class_<MixRun, std::shared_ptr<MixRun>>(m, "MixRun")
+      .def_property_readonly("notes", [](const MixRun& r) { return r.notes; })
+      .def_property_readonly("count", [](const MixRun& r) { return r.content.results.size(); })
+      .def("method", [](const MixRun& r, std::size_t i) { return mixing::to_string(r.content.results.at(i).method); })
+      .def("spectral_model", [](const MixRun& r, std::size_t i) { return *r.content.results.at(i).model; })
+      .def("content", [](const MixRun& r) { return json_to_python(mixing::mix_file_json(r.content)); },
+           "The MIX.json content as Python objects.")
+      .def("table", &MixRun::table, "The report `roadbrdf mix` prints.")
+      .def("write", [](const MixRun& r, const std::string& path) { mixing::write_mix_file(path, r.content); },
+           py::arg("path"))
+      .def(
+          "write_residuals",
+          [](const MixRun& r, const std::string& path) {
+            if (!r.data) throw FieldError("residuals", "needs data (the held-out residuals of a measured mixture)");
+            mixing::write_residual_file(path, *r.data, r.content.comparisons);
+          },
+          py::arg("path"));
+
   m.def(
       "mix",
       [](const std::string& formulation_path, const std::string& data_path, const std::string& method, int folds,
          unsigned seed, bool per_wavelength, bool sum_to_one, std::optional<double> binder_coverage,
          std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output,
          bool use_sigma, const std::string& residuals) {
-        using namespace mixing;
-        std::vector<FileArgument> files_read = {
-            {"formulation", formulation_path}, {"data", data_path}, {"reference", reference_path}};
-        const std::vector<FileArgument> outputs = {{"output", output}, {"residuals", residuals}};
-        check_distinct_files(files_read, outputs);
-        const Formulation formulation = read_formulation(formulation_path);
-        if (formulation.mastic) files_read.push_back({"mastic.fit of " + formulation_path, formulation.mastic->fit_path});
-        for (const auto& c : formulation.components) {
-          files_read.push_back({"fit of component '" + c.name + "'", c.fit_path});
-        }
-        check_distinct_files(files_read, outputs);
-        const MixInputs inputs = load_mix_inputs(formulation);
-        MixSettings settings;
-        settings.binder_coverage = binder_coverage;
-        settings.mastic_area_fraction = mastic_fraction;
-        settings.per_wavelength = per_wavelength;
-        settings.sum_to_one = sum_to_one;
-        settings.use_sigma = use_sigma;
-        if (!residuals.empty() && data_path.empty()) throw InputError("residuals needs data (held-out residuals)");
-        const bool all = method == "all";
-        const std::vector<Method> methods = all ? all_methods() : std::vector<Method>{method_from_string(method)};
-        std::optional<SpectralDataset> data;
-        if (!data_path.empty()) data = read_dataset(data_path);
-        std::optional<SpectralModel> reference;
-        if (!reference_path.empty()) {
-          if (!data) throw InputError("reference needs data (the albedo is compared at the data's wavelengths)");
-          reference = read_spectral_model_file(reference_path);
-        }
-        MixFileContent content;
-        content.inputs = &inputs;
-        content.data_path = data_path;
-        content.folds = folds;
+        mixing::MixRequest request;
+        request.formulation = formulation_path;
+        request.data = data_path;
+        request.method = method;
+        request.folds = folds;
+        request.seed = seed;
+        request.per_wavelength = per_wavelength;
+        request.sum_to_one = sum_to_one;
+        request.binder_coverage = binder_coverage;
+        request.mastic_fraction = mastic_fraction;
+        request.reference = reference_path;
+        request.use_sigma = use_sigma;
+        request.residuals = !residuals.empty();
+        std::shared_ptr<MixRun> run;
         {
           py::gil_scoped_release release;
-          for (Method meth : methods) {
-            if (!data && method_needs_data(meth) && all) continue;  // as the CLI: skipped without data
-            try {
-              if (data) {
-                Comparison c = compare_method(inputs, meth, settings, *data, folds, seed,
-                                              reference ? &*reference : nullptr);
-                content.results.push_back(c.result);
-                content.comparisons.push_back(std::move(c));
-              } else {
-                content.results.push_back(mix(inputs, meth, settings));
-              }
-            } catch (const InputError&) {
-              if (!all) throw;
-            }
-          }
+          run = std::make_shared<MixRun>(mixing::run_mix(request, {{"output", output}, {"residuals", residuals}}));
         }
-        if (content.results.empty()) throw InputError("no mixing method could be applied to " + formulation_path);
-        std::string path = output;
-        std::string temporary;
-        if (path.empty()) {
-          temporary = (std::filesystem::temp_directory_path() /
-                       ("roadbrdf-mix-" + std::to_string(::getpid()) + "-" + std::to_string(++mix_counter) + ".json"))
-                          .string();
-          path = temporary;
-        }
-        write_mix_file(path, content);
-        if (!residuals.empty()) write_residual_file(residuals, *data, content.comparisons);
-        std::ifstream in(path);
-        std::stringstream text;
-        text << in.rdbuf();
-        if (!temporary.empty()) std::filesystem::remove(temporary);
-        return text.str();
+        return run;
       },
       py::arg("formulation"), py::arg("data") = "", py::arg("method") = "all", py::arg("folds") = 5,
       py::arg("seed") = 1u, py::arg("per_wavelength") = false, py::arg("sum_to_one") = false,

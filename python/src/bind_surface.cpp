@@ -27,6 +27,7 @@
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
+#include "roadbrdf/surface/render_request.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace py = pybind11;
@@ -107,43 +108,23 @@ surface::MaterialSpec material_spec(const std::string& fit, const std::string& f
   return m;
 }
 
-// Render options as `roadbrdf render` accepts them (same ranges as its command-line checks).
+// Render options: validated by the library (surface/render_request.h), as for `roadbrdf render`.
 surface::RenderSettings render_settings(std::optional<long> samples, std::optional<double> target_error,
                                         long max_samples, double error_floor, double acceptance_deg,
                                         const std::string& sampling, std::uint64_t seed, int threads,
-                                        int max_bounces) {
-  if (samples && target_error) throw InputError("samples and target_error exclude each other");
-  surface::RenderSettings s;
-  if (samples) {
-    if (*samples < 2) throw InputError("samples must be >= 2 (a standard error needs 2 paths), got " +
-                                       std::to_string(*samples));
-    s.samples = *samples;
-  }
-  if (target_error) {
-    if (!(*target_error >= 1e-6 && *target_error <= 1.0)) {
-      throw InputError("target_error must be in [1e-6, 1] (a relative standard error)");
-    }
-    s.target_relative_error = *target_error;
-  }
-  if (max_samples < 2) throw InputError("max_samples must be >= 2");
-  if (!(error_floor >= 0.0 && error_floor <= 1.0)) throw InputError("error_floor must be in [0, 1] sr^-1");
-  if (!(acceptance_deg >= 0.0 && acceptance_deg <= 45.0)) throw InputError("acceptance_deg must be in [0, 45] deg");
-  if (sampling == "brdf") {
-    s.sampling = surface::Sampling::brdf;
-  } else if (sampling == "cosine") {
-    s.sampling = surface::Sampling::cosine;
-  } else {
-    throw InputError("sampling must be 'brdf' or 'cosine', got '" + sampling + "'");
-  }
-  if (threads < 0 || threads > 1024) throw InputError("threads must be in [0, 1024] (0 = all cores)");
-  if (max_bounces < 0 || max_bounces > 1000) throw InputError("max_bounces must be in [0, 1000] (0 = unlimited)");
-  s.max_samples = max_samples;
-  s.absolute_error_floor = error_floor;
-  s.acceptance_half_angle_deg = acceptance_deg;
-  s.seed = seed;
-  s.threads = threads;
-  s.max_bounces = max_bounces;
-  return s;
+                                        int max_bounces, int white_sky_nodes = 8) {
+  surface::RenderRequest r;
+  r.samples = samples;
+  r.target_error = target_error;
+  r.max_samples = max_samples;
+  r.error_floor = error_floor;
+  r.acceptance_deg = acceptance_deg;
+  r.sampling = sampling;
+  r.seed = seed;
+  r.threads = threads;
+  r.max_bounces = max_bounces;
+  r.white_sky_nodes = white_sky_nodes;
+  return surface::render_settings(r);
 }
 
 std::vector<double> wavelengths_or_default(const Field& f, const std::vector<double>& wavelengths) {
@@ -308,9 +289,8 @@ void bind_surface(py::module_& m) {
                                     std::optional<long> samples, std::optional<double> target_error, long max_samples,
                                     double error_floor, double acceptance_deg, const std::string& sampling,
                                     std::uint64_t seed, int threads, int max_bounces) {
-    if (white_sky_nodes < 0 || white_sky_nodes > 64) throw InputError("white_sky_nodes must be in [0, 64]");
     const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor, acceptance_deg,
-                                                      sampling, seed, threads, max_bounces);
+                                                      sampling, seed, threads, max_bounces, white_sky_nodes);
     surface::VirtualAlbedo r;
     {
       py::gil_scoped_release release;

@@ -5,9 +5,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cmath>
+#include <cstdint>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include <vector>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/io/dataset.h"
 
 namespace roadbrdf::python {
@@ -23,5 +30,47 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
                                     const DoubleArray& brdf, const pybind11::object& sigma,
                                     const std::map<std::string, std::string>& metadata,
                                     const std::string& convention);
+
+// Values from a Python argument: None (empty), a number, a sequence of numbers or a string in the
+// grammar of core/range.h, checked with `rules`; errors name `field` (the Python argument).
+std::vector<double> values_argument(const pybind11::object& value, const std::string& field,
+                                    const RangeRules& rules = {});
+void bind_values(pybind11::module_& m);  // bind_values.cpp: parse_range, values, did_you_mean
+
+// JSON (e.g. a fit file's content; nlohmann::json or ordered_json) as Python dicts (in the JSON's
+// order), lists, numbers, strings, None (also for non-finite numbers, as the writers write them).
+template <class Json>
+inline pybind11::object json_to_python(const Json& j) {
+  namespace py = pybind11;
+  switch (j.type()) {
+    case nlohmann::detail::value_t::null:
+      return py::none();
+    case nlohmann::detail::value_t::boolean:
+      return py::bool_(j.template get<bool>());
+    case nlohmann::detail::value_t::number_integer:
+      return py::int_(j.template get<std::int64_t>());
+    case nlohmann::detail::value_t::number_unsigned:
+      return py::int_(j.template get<std::uint64_t>());
+    case nlohmann::detail::value_t::number_float: {
+      const double v = j.template get<double>();
+      if (!std::isfinite(v)) return py::none();  // as in the file: JSON has no NaN, the writer writes null
+      return py::float_(v);
+    }
+    case nlohmann::detail::value_t::string:
+      return py::str(j.template get<std::string>());
+    case nlohmann::detail::value_t::array: {
+      py::list out;
+      for (const auto& item : j) out.append(json_to_python(item));
+      return py::object(std::move(out));
+    }
+    case nlohmann::detail::value_t::object: {
+      py::dict out;
+      for (const auto& [key, value] : j.items()) out[py::str(key)] = json_to_python(value);
+      return py::object(std::move(out));
+    }
+    default:
+      throw InputError("internal: JSON value of an unexpected type");
+  }
+}
 
 }  // namespace roadbrdf::python

@@ -258,7 +258,7 @@ TEST_F(CliMix, ResidualFileRmseEqualsTheTable) {
   const Result no_data = run("mix " + (dir_ / "F.json").string() + " --residuals " + residuals.string() + " -o " +
                              out.string());
   EXPECT_EQ(no_data.status, 2) << no_data.output;
-  EXPECT_NE(no_data.output.find("--residuals needs --data"), std::string::npos) << no_data.output;
+  EXPECT_NE(no_data.output.find("--residuals: needs data"), std::string::npos) << no_data.output;
 }
 
 TEST_F(CliMix, NoSigmaSwitchTurnsWeightingOff) {

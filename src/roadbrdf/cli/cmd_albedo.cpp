@@ -1,6 +1,6 @@
 // roadbrdf albedo (FIT.json | MODEL -p ...) [--sun-zenith D|LIST|A:B:STEP] [--diffuse-fraction X|FILE |
 //   --atmosphere spectrl2[:aod=...,water=...,ozone=...,pressure=...]] [--spectrum astm-g173-global|astm-g173-direct|FILE]
-//   [--wavelengths LIST|A:B:STEP] [--illuminant A|D65] [--json] [-o FILE]
+//   [--fit NAME] [--wavelengths LIST|A:B:STEP] [--illuminant A|D65] [--json] [-o FILE]
 // Black-sky, white-sky and blue-sky albedo per wavelength and solar-weighted (report eqs. 2.19-2.22).
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -16,6 +16,7 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
@@ -50,13 +51,13 @@ void run(const AlbedoArgs& a) {
                        {{"-o", a.output}});
   const SpectralModel sm = spectral_model_from_command_line(a.model, a.parameters, a.options, a.fit_model);
   albedo::AlbedoRequest request;
-  request.sun_zenith_deg = parse_list_or_range(a.sun_zenith, "--sun-zenith");
+  request.sun_zenith_deg = parse_range_list(a.sun_zenith, "--sun-zenith");
   request.sun_azimuth_deg = a.sun_azimuth;
   request.azimuth_mean = a.azimuth_mean;
   request.diffuse_fraction = a.diffuse_fraction;
   request.atmosphere = a.atmosphere;
   request.spectrum = a.spectrum;
-  if (!a.wavelengths.empty()) request.wavelengths = parse_list_or_range(a.wavelengths, "--wavelengths");
+  if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
   const nlohmann::json report = albedo::compute_albedo(sm, request);
@@ -75,8 +76,9 @@ void register_albedo_command(CLI::App& app) {
   command->add_option("model", args.model, "Fit file (FIT.json) or model name, e.g. oren-nayar+torrance-sparrow")
       ->required();
   add_model_flags(command, args.parameters, args.options);
-  command->add_option("--fit-model", args.fit_model, "Fit inside FIT.json to use (default: the best-ranked)");
-  command->add_option("--sun-zenith", args.sun_zenith, "Sun zenith [deg]: D, D1,D2,... or A:B:STEP (default 30)");
+  add_fit_flag(command, args.fit_model);
+  command->add_option("--sun-zenith", args.sun_zenith,
+                      "Sun zenith [deg]: D, D1,D2,..., START:STOP:STEP (both ends included) or a mix (default 30)");
   command->add_option("--sun-azimuth", args.sun_azimuth, "Sun azimuth [deg] for anisotropic models (default 0)");
   command->add_flag("--azimuth-mean", args.azimuth_mean, "Anisotropic models: average black-sky over the sun azimuth");
   command->add_option("--diffuse-fraction", args.diffuse_fraction,
@@ -88,7 +90,8 @@ void register_albedo_command(CLI::App& app) {
   command->add_option("--spectrum", args.spectrum,
                       "Broadband weighting: astm-g173-global (default), astm-g173-direct or a CSV wavelength_nm,"
                       "irradiance_W_m2_nm (default with --atmosphere: SPECTRL2 direct + diffuse)");
-  command->add_option("--wavelengths", args.wavelengths, "Wavelengths [nm] of a fit file: LIST or A:B:STEP");
+  command->add_option("--wavelengths", args.wavelengths,
+                      "Wavelengths [nm] of a fit file: LIST or START:STOP:STEP (both ends included), increasing");
   command->add_option("--illuminant", args.illuminant, "Also the luminous (V(lambda)-weighted) albedo: A, D65 or a file");
   command->add_option("--tolerance", args.tolerance, "Absolute quadrature tolerance per value (default 1e-5)");
   command->add_flag("--json", args.as_json, "JSON output");

@@ -86,7 +86,7 @@ void register_eval_command(CLI::App& app) {
                       "Model name (e.g. oren-nayar or lambert+torrance-sparrow, with -p), FIT.json or MIX.json")
       ->required();
   add_model_flags(command, args.parameters, args.options);
-  command->add_option("--fit", args.fit_model, "Which fit of FIT.json / method of MIX.json (default: the best-ranked)");
+  add_fit_flag(command, args.fit_model);
   command->add_option("--wavelength", args.wavelength,
                       "Wavelength [nm] at which a fit file is evaluated (needed unless it has a single band)");
   command->add_option("--theta-i", args.theta_i, "Incidence zenith angle [deg]");

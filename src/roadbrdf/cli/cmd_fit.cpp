@@ -16,6 +16,8 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/models/registry.h"
@@ -32,6 +34,7 @@ struct FitArgs {
   std::vector<std::string> shared;
   std::vector<std::string> fixed;
   std::vector<std::string> start;
+  std::vector<std::string> bounds;
   std::string loss = "plain";
   std::string robust = "none";
   bool solid_angle = false;
@@ -93,140 +96,64 @@ std::vector<std::string> split_commas(const std::vector<std::string>& items) {
   return out;
 }
 
-std::string number_or_dash(double x, const char* format) {
-  return std::isfinite(x) ? fmt::format(fmt::runtime(format), x) : std::string("-");
+// "NAME=LOWER:UPPER" items of --bound.
+std::map<std::string, std::pair<double, double>> parse_bounds(const std::vector<std::string>& items) {
+  std::map<std::string, std::pair<double, double>> out;
+  for (const auto& [name, text] : parse_option_assignments(items, "--bound")) {
+    const auto colon = text.find(':');
+    if (colon == std::string::npos) throw InputError("--bound " + name + ": expected LOWER:UPPER, got '" + text + "'");
+    out[name] = {parse_number(text.substr(0, colon), "--bound " + name),
+                 parse_number(text.substr(colon + 1), "--bound " + name)};
+  }
+  return out;
 }
 
 void run(const FitArgs& a) {
-  if (a.models.empty()) throw InputError("give at least one --model");
   if (a.output.empty()) throw InputError("give the output fit file with -o FIT.json");
   check_distinct_files({{"DATA", a.data}}, {{"-o", a.output}, {"--residuals", a.residuals}});
-  std::FILE* report = report_stream(a.output);
-  SpectralDataset data = read_dataset(a.data, dataset_read_options(a.read));
-  if (!a.wavelengths.empty()) data = subset_wavelengths(data, select_wavelengths(data.wavelengths, a.wavelengths));
+  FitRequest request;
+  request.models = a.models;
+  request.options = parse_option_assignments(a.options, "--option");
+  request.fixed = parse_numeric_assignments(a.fixed, "--fix");
+  request.start = parse_numeric_assignments(a.start, "--start");
+  request.bounds = parse_bounds(a.bounds);
+  request.shared = split_commas(a.shared);
+  if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths");
+  request.loss = a.loss;
+  request.robust = a.robust;
+  request.solid_angle_weights = a.solid_angle;
+  request.use_sigma = !a.no_sigma;
+  request.multistart = a.multistart;
+  request.seed = a.seed;
+  request.threads = a.threads;
+  request.max_iterations = a.max_iterations;
+  request.covariance = !a.no_covariance;
+  request.warm_start = !a.no_warm_start;
+  request.joint_solver = a.joint_solver;
+  request.solve_amplitudes = !a.no_amplitude_solve;
+  request.validate();  // before reading the data: a misspelt name fails at once
 
-  const OptionSet given_options = parse_option_assignments(a.options, "--option");
-  const std::map<std::string, double> fixed = parse_numeric_assignments(a.fixed, "--fix");
-  const std::map<std::string, double> start = parse_numeric_assignments(a.start, "--start");
-  const std::vector<std::string> shared = split_commas(a.shared);
-
-  FitOptions base;
-  base.loss = fit_loss_from_string(a.loss);
-  robust_loss_from_string(a.robust, base.robust, base.robust_scale);
-  base.solid_angle_weights = a.solid_angle;
-  base.use_sigma = !a.no_sigma;
-  base.multistart = a.multistart;
-  base.seed = a.seed;
-  base.threads = a.threads;
-  base.max_iterations = a.max_iterations;
-  base.compute_covariance = !a.no_covariance;
-  base.warm_start = !a.no_warm_start;
-  base.joint_solver = a.joint_solver;
-  base.solve_linear = !a.no_amplitude_solve;
-
-  // Options / fixed / start / shared names apply to every model that declares them; a name no
-  // model declares is an error.
-  std::set<std::string> used_options, used_parameters;
-  std::vector<std::unique_ptr<Model>> models;
-  std::vector<FitResult> fits;
-  for (std::size_t i = 0; i < a.models.size(); ++i) {
-    const std::string& name = a.models[i];
-    const std::unique_ptr<Model> probe = make_model(name);
-    std::set<std::string> declared;
-    for (const auto& o : probe->description().options) declared.insert(o.name);
-    OptionSet mine;
-    for (const auto& [k, v] : given_options) {
-      // Composites also accept a plain option name for their components (registry.h).
-      bool accepted = declared.count(k) > 0;
-      for (const auto& d : declared) accepted = accepted || (d.size() > k.size() && d.compare(d.size() - k.size() - 1, std::string::npos, "." + k) == 0);
-      if (accepted) {
-        mine[k] = v;
-        used_options.insert(k);
-      }
-    }
-    models.push_back(make_model(name, mine));
-    const ModelDescription& desc = models.back()->description();
-    FitOptions o = base;
-    for (const auto& [k, v] : fixed) {
-      if (desc.parameter_index(k)) {
-        o.fixed[k] = v;
-        used_parameters.insert(k);
-      }
-    }
-    for (const auto& [k, v] : start) {
-      if (desc.parameter_index(k)) {
-        o.start[k] = v;
-        used_parameters.insert(k);
-      }
-    }
-    for (const auto& k : shared) {
-      if (k == "auto") {
-        for (const auto& p : desc.parameters) {
-          if (!p.spectral && !o.fixed.count(p.name)) o.shared.push_back(p.name);
-        }
-        used_parameters.insert(k);
-      } else if (desc.parameter_index(k)) {
-        o.shared.push_back(k);
-        used_parameters.insert(k);
-      }
-    }
-    ProgressBar bar(fmt::format("fit {} ({}/{})", desc.name, i + 1, a.models.size()));
-    o.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-    fits.push_back(fit_model(*models.back(), data, o));
-  }
-  for (const auto& [k, v] : given_options) {
-    if (!used_options.count(k)) throw InputError("--option " + k + ": no fitted model has this option");
-  }
-  auto check_used = [&](const std::string& what, const std::string& k) {
-    if (!used_parameters.count(k)) throw InputError(what + " " + k + ": no fitted model has this parameter (see `roadbrdf models`)");
-  };
-  for (const auto& [k, v] : fixed) check_used("--fix", k);
-  for (const auto& [k, v] : start) check_used("--start", k);
-  for (const auto& k : shared) check_used("--shared", k);
-
-  // Ranking table (best BIC first).
-  std::vector<std::size_t> order(fits.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-    return fits[x].bic_total < fits[y].bic_total;
+  const SpectralDataset data = read_dataset(a.data, dataset_read_options(a.read));
+  // One bar per model; the models are fitted one after the other, so a new bar ends the previous one.
+  std::unique_ptr<ProgressBar> bar;
+  const FitSummary summary = run_fit(request, data, [&bar](const std::string& label) {
+    bar = std::make_unique<ProgressBar>(label);
+    return [current = bar.get()](std::size_t done, std::size_t total) { current->update(done, total); };
   });
-  const std::size_t M = data.wavelength_count();
-  fmt::print(report, "# {} geometries x {} wavelengths ({}-{} nm), loss {}{}{}\n", data.geometry_count(), M,
-             data.wavelengths.front(), data.wavelengths.back(), to_string(base.loss),
-             base.robust == RobustLoss::kNone ? "" : ", robust " + to_string(base.robust),
-             data.has_sigma() && base.use_sigma ? ", weights 1/sigma^2" : "");
-  fmt::print(report, "{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank", "model", "k",
-             "RMSE[sr^-1]", "relRMSE%", "maxrel%", "AIC", "BIC", "converged", "atbound", "time[s]");
-  for (std::size_t r = 0; r < order.size(); ++r) {
-    const FitResult& f = fits[order[r]];
-    fmt::print(report, "{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8.2f}\n", r + 1, f.model,
-               f.free_parameters_total, number_or_dash(f.rmse_total, "{:.4g}"),
-               number_or_dash(100.0 * f.relative_rmse_total, "{:.3g}"),
-               number_or_dash(100.0 * f.max_relative_error_total, "{:.3g}"), number_or_dash(f.aic_total, "{:.2f}"),
-               number_or_dash(f.bic_total, "{:.2f}"), fmt::format("{}/{}", f.converged_count, M), f.at_bound_count,
-               f.seconds);
-  }
-  fmt::print(report, "best (lowest total BIC): {}\n", fits[order.front()].model);
-  for (const auto& f : fits) {
-    if (f.converged_count < M) {
-      fmt::print(stderr, "roadbrdf: warning: {}: {} of {} wavelengths did not converge (see 'status' in {})\n",
-                 f.model, M - f.converged_count, M, a.output);
-    }
-    if (f.at_bound_count > 0) {
-      fmt::print(stderr, "roadbrdf: warning: {}: parameters on a bound at {} of {} wavelengths (see 'at_bounds')\n",
-                 f.model, f.at_bound_count, M);
-    }
-    if (base.compute_covariance && f.covariance_failures > 0) {
-      fmt::print(stderr, "roadbrdf: warning: {}: no standard errors at {} of {} wavelengths (see 'covariance_message')\n",
-                 f.model, f.covariance_failures, M);
-    }
-  }
-  write_fit_file(a.output, fits);
+  bar.reset();
+  std::FILE* report = report_stream(a.output);
+  fmt::print(report, "{}", summary.table());
+  for (const auto& w : summary.warnings(a.output)) fmt::print(stderr, "roadbrdf: warning: {}\n", w);
+  write_fit_file(a.output, summary.fits);
   if (!a.residuals.empty()) {
     std::vector<const Model*> ptrs;
-    for (const auto& m : models) ptrs.push_back(m.get());
+    for (const auto& m : summary.models) ptrs.push_back(m.get());
     AtomicFile out(a.residuals);
-    write_residuals(out.stream(), data, ptrs, fits);
+    const SpectralDataset fitted =
+        request.wavelengths.empty()
+            ? data
+            : subset_wavelengths(data, select_wavelengths(data.wavelengths, request.wavelengths));
+    write_residuals(out.stream(), fitted, ptrs, summary.fits);
     out.commit();
   }
 }
@@ -251,6 +178,10 @@ void register_fit_command(CLI::App& app) {
       ->allow_extra_args(false);
   c->add_option("--fix", args.fixed, "Hold a parameter NAME=VALUE at every wavelength (repeatable)")->allow_extra_args(false);
   c->add_option("--start", args.start, "Starting value NAME=VALUE (repeatable); model defaults otherwise")
+      ->allow_extra_args(false);
+  c->add_option("--bound", args.bounds,
+                "Narrower bounds NAME=LOWER:UPPER inside the model's (repeatable); a default start outside them "
+                "moves to their middle")
       ->allow_extra_args(false);
   c->add_option("--loss", args.loss,
                 "plain: f-y | relative: (f-y)/y | log: ln(1+f cos)-ln(1+y cos) (Loew 2012) | cosine: (f-y) cos "

@@ -8,6 +8,7 @@
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/quality.h"
 #include "roadbrdf/io/resample.h"
@@ -30,15 +31,15 @@ struct ResampleArgs {
 void run(const ResampleArgs& a) {
   check_distinct_files({{"DATA", a.data}}, {{"-o", a.output}});
   const SpectralDataset d = read_dataset(a.data, dataset_read_options(a.read));
-  const WavelengthBands bands = bands_from_edges(parse_wavelength_range(a.wavelengths));
+  const WavelengthBands bands = bands_from_edges(parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules()));
   std::vector<std::pair<double, double>> drop;
   for (const auto& item : a.drop) {
     const auto colon = item.find(':');
     if (colon == std::string::npos) throw InputError("--drop expects FROM:TO [nm], got '" + item + "'");
-    const auto lo = parse_wavelength_range(item.substr(0, colon));
-    const auto hi = parse_wavelength_range(item.substr(colon + 1));
-    if (!(hi[0] >= lo[0])) throw InputError("--drop " + item + ": TO must not be below FROM");
-    drop.emplace_back(lo[0], hi[0]);
+    const double lo = parse_number(item.substr(0, colon), "--drop " + item);
+    const double hi = parse_number(item.substr(colon + 1), "--drop " + item);
+    if (!(lo > 0.0) || !(hi >= lo)) throw InputError("--drop " + item + ": need 0 < FROM <= TO [nm]");
+    drop.emplace_back(lo, hi);
   }
   std::string noisy_text;
   if (a.drop_noisy) {

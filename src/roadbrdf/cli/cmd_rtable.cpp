@@ -268,7 +268,7 @@ void register_rtable_command(CLI::App& app) {
       "with Q0, S1, S2, Qd and the road class. Files store R = 1e4 r; --json gives plain r [sr^-1]");
   command->add_option("model", args.model, "Model name (with -p/--option) or FIT.json");
   add_model_flags(command, args.parameters, args.options);
-  command->add_option("--fit", args.fit_model, "Which fit of FIT.json (default: the best-ranked)");
+  add_fit_flag(command, args.fit_model);
   command->add_option("--import", args.import_file,
                       "Read an r-table file instead of computing one (.csv, .rtb, .dat Radiance; 0 = missing cell)");
   command->add_option("--import-format", args.import_format, "Format of --import when the extension does not tell: csv|rtb|radiance");

@@ -46,7 +46,7 @@ void run(const SimulateArgs& a) {
   in.geometries = grid.geometries;
   in.convention = grid.convention;
   if (!a.wavelengths.empty()) {
-    in.wavelengths = parse_wavelength_range(a.wavelengths);
+    in.wavelengths = parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   } else if (model.is_spectral()) {
     in.wavelengths = model.wavelengths();
   } else {
@@ -83,12 +83,13 @@ void register_simulate_command(CLI::App& app) {
       "Virtual gonioreflectometer: sample a model or a fit on an instrument grid, with reproducible noise");
   c->add_option("model", args.model, "Model name (with -p/--option) or fit file FIT.json")->required();
   add_model_flags(c, args.parameters, args.options);
-  c->add_option("--fit-model", args.fit_model, "Fit to use inside FIT.json (default: the best)");
+  add_fit_flag(c, args.fit_model);
   c->add_option("--grid", args.grid,
                 "Geometry grid CSV: theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta [deg]")
       ->required();
   c->add_option("--wavelengths", args.wavelengths,
-                "Wavelengths START:STOP:STEP [nm] (default: the fit's wavelengths)");
+                "Wavelengths [nm]: START:STOP:STEP (both ends included), a list or a mix, increasing "
+                "(default: the fit's wavelengths)");
   c->add_option("--spectral", args.spectral,
                 "Parameter given as a spectrum NAME=FILE (wavelength [nm], value; linear interpolation, no "
                 "extrapolation), e.g. albedo=bitumen-albedo.csv; repeatable")

@@ -21,6 +21,7 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -32,6 +33,7 @@
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
+#include "roadbrdf/surface/render_request.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace roadbrdf::cli {
@@ -51,6 +53,7 @@ struct SurfaceArgs {
   std::optional<double> gaussian_slopes;
   int cells = 0;
   std::vector<std::string> parameter_items, option_items;
+  std::string fit;
   std::string output;
 };
 
@@ -81,10 +84,13 @@ surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
     if (!a.parameter_items.empty() || !a.option_items.empty()) {
       throw InputError("-p/--option apply to a model, not to a fit file");
     }
-    read_fit_file(a.input);  // fail early on a bad file
+    read_fit_file(a.input, a.fit);  // fail early on a bad file or an unknown --fit
     m.name = std::filesystem::path(a.input).stem().string();
     m.fit = a.input;
     m.fit_path = a.input;
+    m.fit_model = a.fit;
+  } else if (!a.fit.empty()) {
+    throw InputError("--fit selects a fit of a fit file; '" + a.input + "' is a model name");
   } else {
     // Validate the model, its options and parameters now.
     const ModelWithParameters mp = model_from_command_line(a.input, a.parameter_items, a.option_items);
@@ -131,8 +137,8 @@ void run_surface(const SurfaceArgs& a) {
       field = surface::make_gaussian_slope_surface(m, *a.gaussian_slopes, n, a.cell, a.seed);
     }
   } else {
-    if (!a.parameter_items.empty() || !a.option_items.empty()) {
-      throw InputError("-p/--option are for --flat and --gaussian-slopes surfaces");
+    if (!a.parameter_items.empty() || !a.option_items.empty() || !a.fit.empty()) {
+      throw InputError("-p/--option/--fit are for --flat and --gaussian-slopes surfaces");
     }
     // Fit files are needed only to render: they may not exist yet (warned below).
     const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(read_text_file(a.input), a.input, false);
@@ -199,7 +205,8 @@ void run_render_albedo(const RenderArgs& a, const surface::HeightField& field);
 
 void run_render(const RenderArgs& a) {
   if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
-  if (a.samples && a.target_error) throw InputError("--samples and --target-error exclude each other");
+  const surface::RenderSettings settings = render_settings(a);  // validated before any file is read
+  (void)settings;
   if (a.grid.empty() == a.albedo.empty()) throw InputError("give either --grid GRID.csv or --albedo ZENITHS");
   std::vector<FileArgument> inputs = {{"SURFACE", a.surface}, {"--grid", a.grid}};
   check_distinct_files(inputs, {{"-o", a.output}});
@@ -209,7 +216,7 @@ void run_render(const RenderArgs& a) {
   if (!a.albedo.empty()) return run_render_albedo(a, field);
   const GeometryTable grid = read_geometry_file(a.grid);
   const std::vector<double> wavelengths =
-      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
+      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   const surface::RenderSettings s = render_settings(a);
   std::vector<surface::Estimate> estimates;
   SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
@@ -249,17 +256,18 @@ void run_render(const RenderArgs& a) {
 }
 
 surface::RenderSettings render_settings(const RenderArgs& a) {
-  surface::RenderSettings s;
-  if (a.samples) s.samples = *a.samples;
-  if (a.target_error) s.target_relative_error = *a.target_error;
-  s.max_samples = a.max_samples;
-  s.absolute_error_floor = a.error_floor;
-  s.sampling = a.sampling == "cosine" ? surface::Sampling::cosine : surface::Sampling::brdf;
-  s.acceptance_half_angle_deg = a.acceptance;
-  s.seed = a.seed;
-  s.threads = a.threads;
-  s.max_bounces = a.max_bounces;
-  return s;
+  surface::RenderRequest r;
+  r.samples = a.samples;
+  r.target_error = a.target_error;
+  r.max_samples = a.max_samples;
+  r.error_floor = a.error_floor;
+  r.acceptance_deg = a.acceptance;
+  r.sampling = a.sampling;
+  r.seed = a.seed;
+  r.threads = a.threads;
+  r.max_bounces = a.max_bounces;
+  r.white_sky_nodes = a.white_sky_nodes;
+  return surface::render_settings(r);
 }
 
 // Black-sky (and white-sky) albedo of the virtual sample, written like `roadbrdf albedo`'s CSV
@@ -267,9 +275,9 @@ surface::RenderSettings render_settings(const RenderArgs& a) {
 // with Monte Carlo standard errors instead of quadrature error estimates.
 void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
   std::FILE* report = report_stream(a.output);
-  const std::vector<double> zeniths = parse_list_or_range(a.albedo, "--albedo");
+  const std::vector<double> zeniths = parse_range_list(a.albedo, "--albedo");
   const std::vector<double> wavelengths =
-      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_wavelength_range(a.wavelengths);
+      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   const surface::VirtualAlbedo r =
       surface::render_albedo(field, zeniths, wavelengths, render_settings(a), a.white_sky_nodes);
   AtomicFile file(a.output);
@@ -330,6 +338,7 @@ void register_surface_command(CLI::App& app) {
   c->add_option("--cells", args.cells, "Cells per side of a validation surface (default 16 flat, 128 rough)")
       ->check(CLI::Range(2, 4096));
   add_model_flags(c, args.parameter_items, args.option_items);
+  add_fit_flag(c, args.fit);
   c->add_option("-o,--output", args.output, "Output SURFACE.json (format: src/roadbrdf/surface/height_field.h)")
       ->required();
   c->callback([] { run_surface(args); });
@@ -345,32 +354,24 @@ void register_surface_command(CLI::App& app) {
                 "Instead of --grid: black-sky albedo at these sun zenith angles [deg] (D, D1,D2,... or A:B:STEP) and "
                 "the white-sky albedo; writes an albedo CSV like `roadbrdf albedo`");
   r->add_option("--white-sky-nodes", rargs.white_sky_nodes,
-                "With --albedo: Gauss-Legendre nodes in cos(theta) for the white-sky albedo (default 8; 0 = none)")
-      ->check(CLI::Range(0, 64));
+                "With --albedo: Gauss-Legendre nodes in cos(theta) for the white-sky albedo (default 8; 0 = none)");
   r->add_option("--wavelengths", rargs.wavelengths,
                 "Wavelengths START:STOP:STEP [nm] (default: those of the materials' fits, or 550)");
-  r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096 when --target-error is not given)")
-      ->check(CLI::Range(2L, 1L << 40));
+  r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096 when --target-error is not given)");
   r->add_option("--target-error", rargs.target_error,
                 "Adaptive sampling: add paths until every wavelength's standard error is <= this fraction of |BRDF| "
-                "(e.g. 0.01), at least 1024 paths")
-      ->check(CLI::Range(1e-6, 1.0));
+                "(e.g. 0.01), at least 1024 paths");
   r->add_option("--max-samples", rargs.max_samples,
                 "Adaptive sampling: at most this many paths per geometry (default 1048576); geometries stopped here "
-                "are reported")
-      ->check(CLI::Range(2L, 1L << 40));
+                "are reported");
   r->add_option("--error-floor", rargs.error_floor,
-                "Adaptive sampling: absolute standard error [sr^-1] accepted for BRDF values near 0 (default 1e-5)")
-      ->check(CLI::Range(0.0, 1.0));
+                "Adaptive sampling: absolute standard error [sr^-1] accepted for BRDF values near 0 (default 1e-5)");
   r->add_option("--sampling", rargs.sampling,
-                "Continuation directions: brdf (tabulated BRDF mixed with cosine, MIS; default) | cosine")
-      ->check(CLI::IsMember({"brdf", "cosine"}));
-  r->add_option("--acceptance", rargs.acceptance, "Detector acceptance half-angle [deg] (1 or 5 typical; default 1)")
-      ->check(CLI::Range(0.0, 45.0));
+                "Continuation directions: brdf (tabulated BRDF mixed with cosine, MIS; default) | cosine");
+  r->add_option("--acceptance", rargs.acceptance, "Detector acceptance half-angle [deg] (1 or 5 typical; default 1)");
   r->add_option("--seed", rargs.seed, "Random seed (default 1); each geometry has its own streams");
-  r->add_option("--threads", rargs.threads, "Threads (default: all cores)")->check(CLI::Range(0, 1024));
-  r->add_option("--max-bounces", rargs.max_bounces, "Limit the number of surface interactions (0 = unlimited)")
-      ->check(CLI::Range(0, 1000));
+  r->add_option("--threads", rargs.threads, "Threads (default: all cores)");
+  r->add_option("--max-bounces", rargs.max_bounces, "Limit the number of surface interactions (0 = unlimited)");
   r->add_option("--format", rargs.format, "Output CSV layout: wide | long (default wide)")
       ->check(CLI::IsMember({"wide", "long"}));
   r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")->required();

@@ -1,10 +1,10 @@
 #include "roadbrdf/cli/common.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iostream>
-#include <sstream>
 #include <system_error>
 
 #include "roadbrdf/core/error.h"
@@ -70,6 +70,7 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
     }
     return mixing::read_spectral_model_file(argument, fit_model);  // a fit file or a MIX.json
   }
+  if (!fit_model.empty()) throw InputError("--fit selects a fit of a fit file; '" + argument + "' is a model name");
   ModelWithParameters m = model_from_command_line(argument, parameter_items, option_items);
   return SpectralModel(std::shared_ptr<const Model>(std::move(m.model)), std::move(m.parameters));
 }
@@ -91,26 +92,33 @@ double parse_number(const std::string& text, const std::string& what) {
   return v;
 }
 
-std::vector<double> parse_list_or_range(const std::string& text, const std::string& what) {
-  std::vector<double> values;
-  if (text.find(':') != std::string::npos) {
-    std::vector<std::string> parts;
-    std::stringstream ss(text);
-    std::string part;
-    while (std::getline(ss, part, ':')) parts.push_back(part);
-    if (parts.size() != 3) throw InputError(what + ": a range is A:B:STEP, got '" + text + "'");
-    const double a = parse_number(parts[0], what), b = parse_number(parts[1], what), step = parse_number(parts[2], what);
-    if (!(step > 0.0) || b < a) throw InputError(what + ": range '" + text + "' needs A <= B and STEP > 0");
-    const long n = static_cast<long>(std::floor((b - a) / step + 1e-9));
-    if (n > 100000) throw InputError(what + ": range '" + text + "' has too many values");
-    for (long k = 0; k <= n; ++k) values.push_back(a + static_cast<double>(k) * step);
-    return values;
+std::string flag_for_field(const std::string& field) {
+  if (field.empty() || field.front() == '-') return field;
+  // Request fields whose flag is not the field name with dashes.
+  static const std::map<std::string, std::string> renamed = {
+      {"models", "--model"},      {"options", "--option"}, {"fixed", "--fix"},
+      {"bounds", "--bound"},      {"methods", "--method"}, {"use_sigma", "--no-sigma"},
+      {"fit", "--fit"},           {"acceptance_deg", "--acceptance"}, {"formulation", "FORMULATION"}};
+  const auto dot = field.find('.');
+  const std::string head = field.substr(0, dot);
+  std::string flag;
+  if (const auto it = renamed.find(head); it != renamed.end()) {
+    flag = it->second;
+  } else {
+    flag = "--" + head;
+    std::replace(flag.begin(), flag.end(), '_', '-');
   }
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) values.push_back(parse_number(item, what));
-  if (values.empty()) throw InputError(what + ": no value given");
-  return values;
+  return dot == std::string::npos ? flag : flag + " " + field.substr(dot + 1);
+}
+
+void add_fit_flag(CLI::App* command, std::string& fit) {
+  command->add_option("--fit", fit,
+                      "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a "
+                      "MIX.json (default: the best-ranked)");
+  static std::string refused;
+  command->add_option("--fit-model", refused, "")
+      ->group("")
+      ->each([](const std::string&) { throw CLI::ValidationError("--fit-model", "renamed: use --fit NAME"); });
 }
 
 void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format) {

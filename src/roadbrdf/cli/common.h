@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "roadbrdf/core/parameters.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/models/model.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -45,8 +46,17 @@ std::FILE* report_stream(const std::string& output);
 
 // A finite number; `what` names the flag in errors. Throws InputError.
 double parse_number(const std::string& text, const std::string& what);
-// "D", "D1,D2,...", or "A:B:STEP" (inclusive of B when it falls on the grid). Throws InputError.
-std::vector<double> parse_list_or_range(const std::string& text, const std::string& what);
+// Lists of numbers ("D", "D1,D2,...", "A:B:STEP" and mixes) are parsed by parse_range_list
+// (core/range.h), the one grammar of every command and of Python.
+
+// The flag of a library request field (FieldError::field): "multistart" -> "--multistart",
+// "fixed.roughness" -> "--fix roughness", "options.distribution" -> "--option distribution".
+// A field that is already a flag ("--sun-zenith") is kept.
+std::string flag_for_field(const std::string& field);
+
+// Adds "--fit NAME": which fit of a fit file (its model name) or which method of a MIX.json, the
+// option name every command uses; the old spelling --fit-model is refused with a message naming --fit.
+void add_fit_flag(CLI::App* command, std::string& fit);
 
 // Adds the usual "-p NAME=VALUE" and "--option NAME=VALUE" flags to a sub-command.
 void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,

@@ -11,6 +11,8 @@
 #include <exception>
 
 #include "roadbrdf/cli/commands.h"
+#include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/parse_errors.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
@@ -41,7 +43,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    status = app.exit(e);
+    if (e.get_exit_code() == 0) {
+      status = app.exit(e);  // --help, --version
+    } else {
+      fmt::print(stderr, "roadbrdf: error: {}\n", roadbrdf::cli::explain_parse_error(app, argc, argv, e));
+      status = 2;
+    }
+  } catch (const roadbrdf::FieldError& e) {
+    // Library requests name their fields; the command line names its flags.
+    fmt::print(stderr, "roadbrdf: error: {}: {}\n", roadbrdf::cli::flag_for_field(e.field()), e.detail());
+    status = 2;
   } catch (const roadbrdf::InputError& e) {
     fmt::print(stderr, "roadbrdf: error: {}\n", e.what());
     status = 2;

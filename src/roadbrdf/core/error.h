@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace roadbrdf {
 
@@ -12,6 +13,21 @@ namespace roadbrdf {
 class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A problem with one named field of a request: "wavelengths", "options.distribution",
+// "fixed.roughness". The message is "FIELD: DETAIL"; the front ends may name the field their own
+// way (the command line maps it to its flag, see cli/common.h), Python shows it as is.
+class FieldError : public InputError {
+ public:
+  FieldError(std::string field, std::string detail)
+      : InputError(field + ": " + detail), field_(std::move(field)), detail_(std::move(detail)) {}
+  const std::string& field() const { return field_; }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string field_;
+  std::string detail_;
 };
 
 // A problem in a file, located by file, line and column (1-based; 0 = unknown).

@@ -41,13 +41,14 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   if (M == 0) throw InputError("cannot fit: the dataset has no wavelengths");
   if (data.brdf.size() != N * M) throw InputError("cannot fit: dataset BRDF table does not match its geometries x wavelengths");
   if (data.has_sigma() && data.sigma.size() != N * M) throw InputError("cannot fit: dataset sigma table has the wrong size");
-  if (options.multistart < 1) throw InputError("--multistart must be at least 1");
-  if (options.threads < 1) throw InputError("--threads must be at least 1");
+  if (options.multistart < 1) throw FieldError("multistart", "must be at least 1");
+  if (options.threads < 1) throw FieldError("threads", "must be at least 1");
   if (options.joint_solver != "dense-schur" && options.joint_solver != "sparse-schur" &&
       options.joint_solver != "iterative-schur") {
-    throw InputError("unknown joint solver '" + options.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)");
+    throw FieldError("joint_solver", "unknown solver '" + options.joint_solver +
+                                         "' (dense-schur, sparse-schur, iterative-schur)");
   }
-  if (options.max_iterations < 1) throw InputError("the iteration limit must be at least 1");
+  if (options.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
   for (std::size_t g = 0; g < N; ++g) {
     for (std::size_t w = 0; w < M; ++w) {
       if (!std::isfinite(data.value(g, w))) {
@@ -73,6 +74,19 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     return *idx;
   };
   L.start = desc.default_parameters();
+  for (const auto& [name, range] : options.bounds) {
+    const std::size_t k = index_of(name, "bounds");
+    ParameterInfo& q = L.info[k];
+    const auto [lo, hi] = range;
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || lo < q.lower || hi > q.upper) {
+      throw FieldError("bounds." + name, "[" + fmt_double(lo) + ", " + fmt_double(hi) +
+                                             "] must be an interval lower < upper inside the model's bounds [" +
+                                             fmt_double(q.lower) + ", " + fmt_double(q.upper) + "] " + q.unit);
+    }
+    q.lower = lo;
+    q.upper = hi;
+    if (L.start[k] < lo || L.start[k] > hi) L.start[k] = 0.5 * (lo + hi);
+  }
   for (const auto& [name, value] : options.start) L.start[index_of(name, "start")] = value;
   for (const auto& [name, value] : options.fixed) {
     const std::size_t k = index_of(name, "fixed parameter");
@@ -111,7 +125,7 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   const std::size_t local_free = free_count - shared_free;
   if (!joint && N < free_count) {
     throw InputError("cannot fit: " + std::to_string(N) + " geometries for " + std::to_string(free_count) +
-                     " free parameters of '" + desc.name + "' (fix some with --fix, or measure more geometries)");
+                     " free parameters of '" + desc.name + "' (fix some, or measure more geometries)");
   }
   if (joint && (N < local_free || N * M < local_free * M + shared_free)) {
     throw InputError("cannot fit: " + std::to_string(N) + " geometries per wavelength for " + std::to_string(local_free) +

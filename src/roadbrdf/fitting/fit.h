@@ -40,6 +40,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "roadbrdf/io/dataset.h"
@@ -67,6 +68,9 @@ struct FitOptions {
   std::map<std::string, double> fixed;
   // Starting values (name -> value); the model's defaults for the rest. Must lie inside the bounds.
   std::map<std::string, double> start;
+  // Narrower bounds (name -> [lower, upper]) inside the model's own; a default start outside them
+  // is moved to the middle of the interval (a given start must lie inside).
+  std::map<std::string, std::pair<double, double>> bounds;
   // Parameter names shared across wavelengths: non-empty selects the joint spectral mode.
   std::vector<std::string> shared;
   // Number of starting points (>= 1): the first is the given start (or, per wavelength, the warm
@@ -155,9 +159,10 @@ std::vector<double> solid_angle_weights(const std::vector<Geometry>& geometries)
 // Model values at the fitted parameters: N x M (geometry-major), like SpectralDataset::brdf.
 std::vector<double> fitted_values(const Model& model, const SpectralDataset& data, const FitResult& fit);
 
-// Parse "400:1000:10" (nm, inclusive) or a comma list "450,550,650" and pick those wavelengths of
-// the dataset (each must exist in it, to 1e-6 nm), in increasing order. Throws InputError.
-std::vector<std::size_t> select_wavelengths(const std::vector<double>& available, const std::string& spec);
+// The indices of the `wanted` wavelengths [nm] in the dataset's (each must exist in it, to 1e-6 nm),
+// in increasing order. Text such as "400:1000:10" is parsed by parse_range_list (core/range.h).
+// Throws FieldError("wavelengths", ...).
+std::vector<std::size_t> select_wavelengths(const std::vector<double>& available, const std::vector<double>& wanted);
 // The dataset restricted to some wavelength indices.
 SpectralDataset subset_wavelengths(const SpectralDataset& data, const std::vector<std::size_t>& indices);
 

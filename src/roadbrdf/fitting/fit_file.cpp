@@ -67,6 +67,11 @@ nlohmann::json fit_to_json(const FitResult& fit) {
   j["solid_angle_weights"] = fit.settings.solid_angle_weights;
   j["multistart"] = fit.settings.multistart;
   j["seed"] = fit.settings.seed;
+  if (!fit.settings.bounds.empty()) {
+    json bounds = json::object();
+    for (const auto& [name, range] : fit.settings.bounds) bounds[name] = {range.first, range.second};
+    j["bounds"] = bounds;
+  }
   j["rmse"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.rmse); });
   j["relative_rmse"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.relative_rmse); });
   j["max_relative_error"] = per_wavelength(fit, [](const WavelengthFit& w) { return number(w.max_relative_error); });
@@ -114,7 +119,7 @@ std::size_t best_fit_index(const std::vector<FitResult>& fits) {
   return best;
 }
 
-void write_fit_file(const std::string& path, const std::vector<FitResult>& fits) {
+nlohmann::json fit_file_json(const std::vector<FitResult>& fits) {
   using nlohmann::json;
   json j;
   j["format"] = "roadbrdf-fit";
@@ -139,6 +144,11 @@ void write_fit_file(const std::string& path, const std::vector<FitResult>& fits)
   };
   j["fits"] = json::array();
   for (const auto& f : fits) j["fits"].push_back(fit_to_json(f));
+  return j;
+}
+
+void write_fit_file(const std::string& path, const std::vector<FitResult>& fits) {
+  const nlohmann::json j = fit_file_json(fits);
   AtomicFile out(path);
   out.stream() << dump_json(j, 1) << '\n';
   out.commit();

@@ -10,6 +10,7 @@
 //     "parameters" {name: [per wavelength]}, "stderr" {name: [per wavelength, null = undefined]},
 //     "parameter_units" {name: unit}, "fixed" [names], "shared" [names], "mode": "per-wavelength" | "joint",
 //     "loss", "robust", "robust_scale", "sigma_weights", "solid_angle_weights", "multistart", "seed",
+//     "bounds" {name: [lower, upper]} (only when narrower bounds were asked for),
 //     "correlation" [per wavelength: p x p nested lists, null = undefined],
 //     "rmse", "relative_rmse", "max_relative_error", "r_squared", "chi2", "aic", "bic", "cost",
 //     "iterations", "converged", "status", "covariance_ok", "covariance_message", "at_bounds",
@@ -41,6 +42,9 @@ nlohmann::json fit_to_json(const FitResult& fit);
 
 // Index of the fit with the lowest total BIC (ties: the first). Throws InputError if empty.
 std::size_t best_fit_index(const std::vector<FitResult>& fits);
+
+// The fit file's content (what write_fit_file writes).
+nlohmann::json fit_file_json(const std::vector<FitResult>& fits);
 
 // Write the fit file atomically.
 void write_fit_file(const std::string& path, const std::vector<FitResult>& fits);

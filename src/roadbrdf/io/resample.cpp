@@ -10,40 +10,6 @@
 
 namespace roadbrdf {
 
-std::vector<double> parse_wavelength_range(const std::string& spec) {
-  std::vector<double> parts;
-  std::size_t start = 0;
-  while (true) {
-    const auto colon = spec.find(':', start);
-    const std::string text = spec.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
-    double v = 0.0;
-    if (!parse_finite_double(text, v)) {
-      throw InputError(fmt::format("wavelength range '{}': '{}' is not a number (expected START:STOP:STEP in nm)", spec, text));
-    }
-    parts.push_back(v);
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
-  if (parts.size() == 1) {
-    if (parts[0] <= 0) throw InputError(fmt::format("wavelength '{}' must be positive [nm]", spec));
-    return parts;
-  }
-  if (parts.size() != 3) throw InputError(fmt::format("wavelength range '{}': expected START:STOP:STEP [nm]", spec));
-  const double a = parts[0], b = parts[1], step = parts[2];
-  if (a <= 0 || step <= 0 || b <= a) {
-    throw InputError(fmt::format("wavelength range '{}': need 0 < START < STOP and STEP > 0 [nm]", spec));
-  }
-  const double count = (b - a) / step;
-  const long n = std::lround(count);
-  if (std::fabs(count - static_cast<double>(n)) > 1e-6) {
-    throw InputError(fmt::format("wavelength range '{}': (STOP - START) is not a multiple of STEP", spec));
-  }
-  if (n > 10000000) throw InputError(fmt::format("wavelength range '{}' has too many values", spec));
-  std::vector<double> out;
-  for (long k = 0; k <= n; ++k) out.push_back(k == n ? b : a + static_cast<double>(k) * step);
-  return out;
-}
-
 std::vector<double> WavelengthBands::centers() const {
   std::vector<double> c;
   for (std::size_t k = 0; k < lower.size(); ++k) c.push_back(0.5 * (lower[k] + upper[k]));

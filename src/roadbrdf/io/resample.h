@@ -9,10 +9,6 @@
 
 namespace roadbrdf {
 
-// "START:STOP:STEP" [nm] -> START, START+STEP, ..., STOP (STOP must be reached within 1e-6 of a
-// step). A single number "550" gives one value. Throws InputError.
-std::vector<double> parse_wavelength_range(const std::string& spec);
-
 // Output bands: band k covers [lower[k], upper[k]] and is reported at its centre.
 struct WavelengthBands {
   std::vector<double> lower, upper;

@@ -16,10 +16,10 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
                           const SpectralDataset& data, int folds, unsigned seed, const SpectralModel* reference) {
   const std::size_t N = data.geometry_count();
   const std::size_t M = data.wavelength_count();
-  if (folds < 2) throw InputError("--folds must be at least 2");
+  if (folds < 2) throw FieldError("folds", "must be at least 2");
   if (N < static_cast<std::size_t>(folds)) {
-    throw InputError("the measured mixture has " + std::to_string(N) + " geometries, fewer than --folds " +
-                     std::to_string(folds));
+    throw FieldError("folds", std::to_string(folds) + " is more than the measured mixture's " + std::to_string(N) +
+                                  " geometries");
   }
   Comparison c;
   c.method = method;

@@ -28,7 +28,7 @@ ordered weights_object(const std::vector<std::string>& names, const std::vector<
 
 }  // namespace
 
-void write_mix_file(const std::string& path, const MixFileContent& content) {
+nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
   const MixInputs& inputs = *content.inputs;
   const Formulation& f = inputs.formulation;
   ordered j;
@@ -138,6 +138,11 @@ void write_mix_file(const std::string& path, const MixFileContent& content) {
     methods.push_back(m);
   }
   j["methods"] = methods;
+  return j;
+}
+
+void write_mix_file(const std::string& path, const MixFileContent& content) {
+  const nlohmann::ordered_json j = mix_file_json(content);
   AtomicFile out(path);
   out.stream() << dump_json(j, 1) << '\n';
   out.commit();

@@ -29,6 +29,7 @@
 // mixture's parameter names (weight.<end-member>, ssa.<end-member>, shadowing, <end-member>.<parameter>).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct MixFileContent {
   std::string data_path;
   int folds = 0;
 };
+
+// The MIX.json content (what write_mix_file writes).
+nlohmann::ordered_json mix_file_json(const MixFileContent& content);
 
 // Write atomically. Throws InputError / FileError.
 void write_mix_file(const std::string& path, const MixFileContent& content);

@@ -1,0 +1,273 @@
+"""Fitting models to a measured spectral BRDF: :func:`fit` and its result objects.
+
+The request is validated and run by the library (``src/roadbrdf/fitting/fit_request.h``), exactly
+as ``roadbrdf fit`` runs it: the same option distribution over composites, the same checks and the
+same error messages (naming the Python argument, e.g. ``options.distribution``, where the command
+line names its flag, ``--option distribution``).
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Iterable, Mapping, Sequence, Union
+
+import numpy as np
+
+from . import _roadbrdf
+from .core import InputError
+from .io import Dataset, read_dataset
+from .model import SpectralModel
+
+__all__ = ["fit", "FitResult", "ModelFit", "read_fit", "spectral_model_from_fit"]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def read_fit(path: str, model: str | None = None) -> SpectralModel:
+    """Read a fit file written by ``roadbrdf fit`` (or a MIX.json written by ``roadbrdf mix``) as a
+    spectral model: the best-ranked fit, or the fit of ``model`` (its name as in the file, e.g.
+    ``"oren-nayar+torrance-sparrow"``; for a MIX.json, the method, e.g. ``"shadowed"``)."""
+    return SpectralModel(_roadbrdf.read_spectral_model_file(str(path), model or ""))
+
+
+class ModelFit:
+    """The fit of one model: parameters and their uncertainties per wavelength, and statistics.
+
+    Attributes
+    ----------
+    model : str
+        Model name (as ``roadbrdf models`` spells it).
+    options : dict
+        Resolved model options.
+    wavelengths : ndarray (M,)
+        Fitted wavelengths [nm].
+    parameter_names, parameter_units : list of str
+    parameters : ndarray (P, M)
+        Parameter values, one row per parameter (order of ``parameter_names``).
+    standard_errors : ndarray (P, M)
+        Standard errors (NaN for fixed parameters and where the covariance is undefined).
+    correlation : ndarray (M, P, P)
+    covariance : ndarray (M, P, P)
+        correlation x standard errors (NaN where undefined).
+    fixed, shared : list of str
+    statistics : dict of arrays (M,)
+        ``rmse`` [sr^-1], ``relative_rmse``, ``max_relative_error``, ``r_squared``, ``chi2``, ``aic``,
+        ``bic``, ``cost``, ``iterations``, ``points``, ``free_parameters``, ``converged``, ``status``,
+        ``covariance_ok``, ``covariance_message``, ``at_bounds``.
+    totals : dict
+        Over all wavelengths: ``rmse``, ``relative_rmse``, ``max_relative_error``, ``chi2``, ``aic``,
+        ``bic``, ``points``, ``free_parameters``, ``converged_count``, ``at_bound_count``,
+        ``covariance_failures``, ``seconds``, ``joint``.
+    """
+
+    def __init__(self, summary, index: int):
+        self._summary = summary
+        self._index = index
+        s = summary
+        self.model: str = s.model_name(index)
+        self.options: dict = dict(s.options(index))
+        self.wavelengths: np.ndarray = np.asarray(s.wavelengths, dtype=float)
+        self.parameter_names: list = list(s.parameter_names(index))
+        self.parameter_units: list = list(s.parameter_units(index))
+        self.parameters: np.ndarray = np.asarray(s.parameters(index))
+        self.standard_errors: np.ndarray = np.asarray(s.standard_errors(index))
+        self.correlation: np.ndarray = np.asarray(s.correlation(index))
+        se = self.standard_errors.T  # (M, P)
+        self.covariance: np.ndarray = self.correlation * se[:, :, None] * se[:, None, :]
+        self.fixed: list = list(s.fixed(index))
+        self.shared: list = list(s.shared(index))
+        self.statistics: dict = {k: (np.asarray(v) if k not in ("status", "covariance_message", "at_bounds") else list(v))
+                                 for k, v in s.statistics(index).items()}
+        self.totals: dict = dict(s.totals(index))
+
+    def parameter(self, name: str) -> np.ndarray:
+        """Values of one parameter per wavelength."""
+        if name not in self.parameter_names:
+            raise InputError(f"model '{self.model}' has no parameter '{name}'"
+                             f"{_roadbrdf.did_you_mean(name, self.parameter_names)}")
+        return self.parameters[self.parameter_names.index(name)]
+
+    def spectral_model(self) -> SpectralModel:
+        """The fitted model as a :class:`SpectralModel` (parameters interpolated in wavelength)."""
+        return SpectralModel(self._summary.spectral_model(self._index))
+
+    def to_dataframe(self):
+        """A pandas DataFrame with one row per wavelength: ``wavelength_nm``, then each parameter and
+        its ``stderr_<name>``, then ``rmse``, ``aic``, ``bic``, ``converged``."""
+        import pandas as pd
+        columns: dict = {"wavelength_nm": self.wavelengths}
+        for k, name in enumerate(self.parameter_names):
+            columns[name] = self.parameters[k]
+            columns["stderr_" + name] = self.standard_errors[k]
+        for key in ("rmse", "aic", "bic", "converged"):
+            columns[key] = self.statistics[key]
+        return pd.DataFrame(columns)
+
+    def __repr__(self) -> str:
+        t = self.totals
+        return (f"roadbrdf.ModelFit({self.model!r}: {len(self.parameter_names)} parameters x {self.wavelengths.size} "
+                f"wavelengths, RMSE {t['rmse']:.4g} sr^-1, BIC {t['bic']:.2f}, "
+                f"converged {t['converged_count']}/{self.wavelengths.size})")
+
+
+class FitResult:
+    """The result of :func:`fit`: one :class:`ModelFit` per model, ranked by total BIC.
+
+    ``result.best`` is the best-ranked fit, ``result.fits`` all of them in the order asked for,
+    ``result["model name"]`` one of them; ``summary`` is the ranking table ``roadbrdf fit`` prints,
+    ``warnings`` its warnings. :meth:`write` writes the fit file with the command line's writer;
+    :meth:`to_dict` gives its content (also reachable as ``result["fits"]``, ``result["best"]``).
+    """
+
+    def __init__(self, summary):
+        self._summary = summary
+        self.fits: list = [ModelFit(summary, i) for i in range(summary.count)]
+        self.ranking: list = list(summary.ranking)
+
+    @property
+    def best(self) -> ModelFit:
+        return self.fits[self.ranking[0]]
+
+    @property
+    def wavelengths(self) -> np.ndarray:
+        return np.asarray(self._summary.wavelengths, dtype=float)
+
+    @property
+    def summary(self) -> str:
+        return self._summary.table()
+
+    def warnings(self, where: str = "the fit result") -> list:
+        return list(self._summary.warnings(where))
+
+    def model_fit(self, model: str) -> ModelFit:
+        for f in self.fits:
+            if f.model == model:
+                return f
+        names = [f.model for f in self.fits]
+        raise InputError(f"no fit of model '{model}' in this result{_roadbrdf.did_you_mean(model, names)}")
+
+    def spectral_model(self, model: str | None = None) -> SpectralModel:
+        """The best fit (or that of ``model``) as a :class:`SpectralModel`."""
+        return (self.best if model is None else self.model_fit(model)).spectral_model()
+
+    def to_dict(self) -> dict:
+        """The fit file's content (``best``, ``fits`` with per-model ``parameters``, ``stderr``, ...)."""
+        return self._summary.file_content()
+
+    def __getitem__(self, key: str) -> Any:
+        if key in ("best", "fits", "format", "version", "units", "best_criterion"):
+            return self.to_dict()[key]
+        return self.model_fit(key)
+
+    def write(self, path: PathLike) -> None:
+        """Write the fit file (JSON, atomically), byte for byte as ``roadbrdf fit -o`` writes it."""
+        self._summary.write(os.fspath(path))
+
+    def to_dataframe(self):
+        """A long pandas DataFrame: ``model``, ``wavelength_nm``, ``parameter``, ``value``, ``stderr``."""
+        import pandas as pd
+        rows = []
+        for f in self.fits:
+            for k, name in enumerate(f.parameter_names):
+                for w, wl in enumerate(f.wavelengths):
+                    rows.append((f.model, float(wl), name, float(f.parameters[k, w]), float(f.standard_errors[k, w])))
+        return pd.DataFrame(rows, columns=["model", "wavelength_nm", "parameter", "value", "stderr"])
+
+    def __repr__(self) -> str:
+        return "roadbrdf.FitResult(\n" + self.summary.rstrip("\n") + "\n)"
+
+
+def _numbers(values: Mapping[str, Any] | None, what: str) -> dict:
+    out = {}
+    for k, v in (values or {}).items():
+        try:
+            out[str(k)] = float(v)
+        except (TypeError, ValueError):
+            raise InputError(f"{what}.{k}: '{v}' is not a number") from None
+    return out
+
+
+def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[str, Any] | None = None,
+        shared: str | Iterable[str] = (), fixed: Mapping[str, float] | None = None,
+        start: Mapping[str, float] | None = None, bounds: Mapping[str, Sequence[float]] | None = None,
+        loss: str = "plain", robust: str = "none", use_sigma: bool = True, solid_angle_weights: bool = False,
+        multistart: int = 1, seed: int = 1, wavelengths: str | Sequence[float] | None = None, threads: int = 1,
+        max_iterations: int = 200, covariance: bool = True, warm_start: bool = True, solve_amplitudes: bool = True,
+        joint_solver: str = "dense-schur", output: PathLike | None = None,
+        fix: Mapping[str, float] | None = None) -> FitResult:
+    """Fit one or more models to a dataset, exactly as ``roadbrdf fit`` does.
+
+    Parameters
+    ----------
+    data : Dataset or path
+        The measured spectral BRDF.
+    models : str or list of str
+        Model names, e.g. ``["oren-nayar", "oren-nayar+torrance-sparrow"]``.
+    options : dict
+        Model options for every model that declares them; a plain name also reaches the components of
+        a composite (``{"distribution": "beckmann"}``), ``"component.option"`` one component. A name
+        no model declares is an error.
+    shared : list of str, comma-separated str, or "auto"
+        Joint spectral mode: parameters shared by all wavelengths; ``"auto"`` = the non-spectral ones.
+    fixed, start : dict
+        Parameters held at a value / starting values, ``{name: value}`` (``fix`` is an alias of ``fixed``).
+    bounds : dict
+        Narrower bounds ``{name: (lower, upper)}`` inside the model's.
+    loss : "plain" | "relative" | "log" | "cosine"
+    robust : "none" | "huber:SCALE" | "cauchy:SCALE"
+    use_sigma : bool
+        Weights 1/sigma^2 when the data have uncertainties.
+    multistart : int
+        Starting points (Latin hypercube over the nonlinear parameters, seeded by ``seed``).
+    wavelengths : list of float or str
+        Subset [nm]: numbers, or text in the command line's range grammar (``"400:1000:10"``).
+    output : path, optional
+        Also write the fit file (JSON), as ``roadbrdf fit -o``.
+
+    Returns
+    -------
+    FitResult
+    """
+    d = data if isinstance(data, Dataset) else read_dataset(data)
+    if isinstance(models, str):
+        models = [models]
+    if isinstance(shared, str):
+        shared = [s.strip() for s in shared.split(",") if s.strip()]
+    if fix is not None:
+        if fixed is not None:
+            raise InputError("fixed: give either fixed or its alias fix, not both")
+        fixed = fix
+    bound_pairs = {}
+    for k, v in (bounds or {}).items():
+        pair = np.asarray(v, dtype=float).reshape(-1)
+        if pair.size != 2:
+            raise InputError(f"bounds.{k}: expected (lower, upper), got {v!r}")
+        bound_pairs[str(k)] = (float(pair[0]), float(pair[1]))
+    summary = _roadbrdf.fit(
+        np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths), np.ascontiguousarray(d.brdf),
+        None if d.sigma is None else np.ascontiguousarray(d.sigma), {str(k): str(v) for k, v in d.metadata.items()},
+        d.convention, [str(m) for m in models], {str(k): str(v) for k, v in (options or {}).items()},
+        [str(s) for s in shared], _numbers(fixed, "fixed"), _numbers(start, "start"), bound_pairs, str(loss),
+        str(robust), bool(use_sigma), bool(solid_angle_weights), int(multistart), int(seed), wavelengths,
+        int(threads), int(max_iterations), bool(covariance), bool(warm_start), bool(solve_amplitudes),
+        str(joint_solver))
+    result = FitResult(summary)
+    if output is not None:
+        result.write(output)
+    return result
+
+
+def spectral_model_from_fit(fit_result: FitResult | dict, model: str | None = None) -> SpectralModel:
+    """The spectral model of a fit result (the best fit, or that of ``model``): a :class:`FitResult`
+    from :func:`fit`, or a fit file's content as a dict."""
+    if isinstance(fit_result, FitResult):
+        return fit_result.spectral_model(model)
+    import json
+    import tempfile
+    fd, path = tempfile.mkstemp(suffix=".json")
+    try:
+        with os.fdopen(fd, "w") as fh:
+            json.dump(fit_result, fh)
+        return read_fit(path, model)
+    finally:
+        os.remove(path)

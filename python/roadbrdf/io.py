@@ -1,0 +1,109 @@
+"""Measured datasets: reading and writing CSV, CUReT and ALTA files (``src/roadbrdf/io``)."""
+
+from __future__ import annotations
+
+import os
+from typing import Union
+
+import numpy as np
+
+from . import _roadbrdf
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+__all__ = ["Dataset", "read_dataset", "write_dataset", "read_curet", "read_alta"]
+
+
+class Dataset:
+    """A spectral BRDF dataset: N geometries x M wavelengths.
+
+    Attributes
+    ----------
+    angles : ndarray (N, 4)
+        theta_i, phi_i, theta_r, phi_r [deg] of each geometry.
+    wavelengths : ndarray (M,)
+        [nm], strictly increasing.
+    brdf : ndarray (N, M)
+        [sr^-1].
+    sigma : ndarray (N, M) or None
+        standard uncertainty [sr^-1].
+    metadata : dict
+        "sample", "instrument", "units" and free keys (the "# key: value" lines of a CSV file).
+    convention : "zenith" or "road"
+        angle columns used when the dataset is written.
+    """
+
+    def __init__(self, angles, wavelengths, brdf, sigma=None, metadata=None, convention="zenith"):
+        self.angles = np.asarray(angles, dtype=float).reshape(-1, 4)
+        self.wavelengths = np.asarray(wavelengths, dtype=float).reshape(-1)
+        self.brdf = np.asarray(brdf, dtype=float).reshape(self.angles.shape[0], self.wavelengths.size)
+        self.sigma = None if sigma is None else np.asarray(sigma, dtype=float).reshape(self.brdf.shape)
+        self.metadata = dict(metadata or {})
+        self.convention = convention
+
+    @classmethod
+    def _from_dict(cls, d):
+        return cls(d["angles"], d["wavelengths"], d["brdf"], d["sigma"], d["metadata"], d["convention"])
+
+    @property
+    def theta_i(self) -> np.ndarray:
+        return self.angles[:, 0]
+
+    @property
+    def phi_i(self) -> np.ndarray:
+        return self.angles[:, 1]
+
+    @property
+    def theta_r(self) -> np.ndarray:
+        return self.angles[:, 2]
+
+    @property
+    def phi_r(self) -> np.ndarray:
+        return self.angles[:, 3]
+
+    def __len__(self):
+        return self.angles.shape[0]
+
+    def __repr__(self):
+        name = self.metadata.get("sample", "")
+        return (f"roadbrdf.Dataset({name!r}: {len(self)} geometries x {self.wavelengths.size} wavelengths "
+                f"{self.wavelengths[0]:g}-{self.wavelengths[-1]:g} nm)") if self.wavelengths.size else "roadbrdf.Dataset()"
+
+    def write(self, path: PathLike, format: str = "wide") -> None:
+        """Write as wide (default) or long CSV, atomically (see :func:`write_dataset`)."""
+        write_dataset(self, path, format)
+
+
+def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing: bool = False,
+                 delimiter: str = "auto", decimal: str = "auto") -> Dataset:
+    """Read a wide or long CSV dataset (the format is detected from the header).
+
+    Duplicate geometries are an error unless ``average_duplicates``; missing values (empty, nan,
+    NA) are an error unless ``allow_missing`` (then kept as NaN). Negative values are kept and
+    reported with a :class:`UserWarning`. Malformed files raise InputError naming file:line:column.
+    ``delimiter`` ("auto", ",", ";", "tab") and ``decimal`` ("auto", ".", ",") are the command line's
+    ``--delimiter`` / ``--decimal``: by default the dialect is detected (docs/data.md).
+    """
+    return Dataset._from_dict(_roadbrdf.read_dataset(str(path), average_duplicates, allow_missing, str(delimiter),
+                                                     str(decimal)))
+
+
+def write_dataset(dataset: Dataset, path: PathLike, format: str = "wide") -> None:
+    """Write a dataset as ``"wide"`` or ``"long"`` CSV, atomically (temporary file, then rename)."""
+    _roadbrdf.write_dataset(np.ascontiguousarray(dataset.angles), np.ascontiguousarray(dataset.wavelengths),
+                            np.ascontiguousarray(dataset.brdf),
+                            None if dataset.sigma is None else np.ascontiguousarray(dataset.sigma),
+                            {str(k): str(v) for k, v in dataset.metadata.items()}, dataset.convention,
+                            str(path), format)
+
+
+def read_curet(abrdf_path: PathLike, table_path: PathLike, sample: int) -> Dataset:
+    """One sample of the CUReT BRDF database (``abrdf.dat`` + ``table.txt``), grey, stored at a
+    nominal wavelength recorded in the metadata."""
+    return Dataset._from_dict(_roadbrdf.read_curet(str(abrdf_path), str(table_path), int(sample)))
+
+
+def read_alta(path: PathLike, wavelength: float, assumed_output: str = "", exclude_grazing: bool = False) -> Dataset:
+    """An ALTA text-format BRDF file (BRDF x cos theta_v output is divided by cos theta_v).
+    ``wavelength`` [nm] is required (ALTA files carry none)."""
+    return Dataset._from_dict(_roadbrdf.read_alta(str(path), float(wavelength), assumed_output, exclude_grazing))

@@ -1,0 +1,147 @@
+"""Mixing: the BRDF of a road formulation from its components' fits (``src/roadbrdf/mixing``).
+
+The request is validated and run by the library (``src/roadbrdf/mixing/mix_request.h``), exactly as
+``roadbrdf mix`` runs it. With ``method="all"``, a method that cannot be applied is skipped with a
+note: each note is issued as a :class:`UserWarning` and kept in :attr:`MixResult.notes` (the command
+line prints the same notes as warnings).
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from typing import Any, Union
+
+from . import _roadbrdf
+from .core import InputError
+from .model import SpectralModel
+
+__all__ = ["mix", "MixResult", "MethodResult"]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+class MethodResult:
+    """One mixing method's result: ``method``, ``description``, ``end_members``, ``weights``
+    {end-member: weight}, ``formulation_weights``, ``settings``, ``notes``, ``comparison`` (held-out
+    errors against the measured mixture: ``rmse`` [sr^-1], ``relative_rmse``, ``chi2_reduced``,
+    ``albedo``, ...; None without data); :meth:`spectral_model` evaluates the mixture."""
+
+    def __init__(self, run, index: int, content: dict):
+        self._run = run
+        self._index = index
+        self.method: str = content["method"]
+        self.description: str = content["description"]
+        self.end_members: list = list(content["end_members"])
+        self.weights: dict = dict(content["weights"])
+        self.formulation_weights = content.get("formulation_weights")
+        self.settings: dict = dict(content.get("settings") or {})
+        self.notes: list = list(content.get("notes") or [])
+        self.comparison = content.get("comparison")
+
+    def spectral_model(self) -> SpectralModel:
+        return SpectralModel(self._run.spectral_model(self._index))
+
+    def __repr__(self) -> str:
+        w = " ".join(f"{k}={v:.3f}" for k, v in self.weights.items())
+        err = f", held-out RMSE {self.comparison['rmse']:.4g} sr^-1" if self.comparison else ""
+        return f"roadbrdf.MethodResult({self.method!r}: {w}{err})"
+
+
+class MixResult:
+    """The result of :func:`mix`: one :class:`MethodResult` per method applied (``methods``),
+    ``best`` (lowest held-out RMSE, with data), ``notes`` (methods skipped and why), ``summary`` (the
+    report ``roadbrdf mix`` prints); :meth:`write` writes MIX.json with the command line's writer,
+    :meth:`to_dict` gives its content (also as ``result["methods"]``, ``result["best"]``, ...)."""
+
+    def __init__(self, run):
+        self._run = run
+        content = run.content()
+        self.methods: list = [MethodResult(run, i, m) for i, m in enumerate(content["methods"])]
+        self.notes: list = list(run.notes)
+        self._best = content.get("best")
+
+    @property
+    def best(self) -> MethodResult | None:
+        return None if self._best is None else self.method(self._best)
+
+    @property
+    def summary(self) -> str:
+        return self._run.table()
+
+    def method(self, name: str) -> MethodResult:
+        for m in self.methods:
+            if m.method == name:
+                return m
+        names = [m.method for m in self.methods]
+        raise InputError(f"method '{name}' is not in this result (methods: {', '.join(names)})"
+                         f"{_roadbrdf.did_you_mean(name, names)}")
+
+    def spectral_model(self, method: str | None = None) -> SpectralModel:
+        """The mixture of ``method`` (default: the best, else the first) as a :class:`SpectralModel`."""
+        chosen = self.method(method) if method else (self.best or self.methods[0])
+        return chosen.spectral_model()
+
+    def to_dict(self) -> dict:
+        return self._run.content()
+
+    def __getitem__(self, key: str) -> Any:
+        content = self.to_dict()
+        if key in content:
+            return content[key]
+        return self.method(key)
+
+    def write(self, path: PathLike) -> None:
+        """Write MIX.json (atomically), as ``roadbrdf mix -o`` does."""
+        self._run.write(os.fspath(path))
+
+    def write_residuals(self, path: PathLike) -> None:
+        """Write the held-out residuals (CSV), as ``roadbrdf mix --residuals`` does (needs data)."""
+        self._run.write_residuals(os.fspath(path))
+
+    def to_dataframe(self):
+        """A pandas DataFrame, one row per method: ``method``, the weights ``weight.<end-member>`` and,
+        with data, ``rmse``, ``relative_rmse``, ``chi2_reduced``, ``albedo``, ``albedo_difference``."""
+        import pandas as pd
+        rows = []
+        for m in self.methods:
+            row = {"method": m.method}
+            row.update({f"weight.{k}": v for k, v in m.weights.items()})
+            for key in ("rmse", "relative_rmse", "chi2_reduced", "albedo", "albedo_difference"):
+                if m.comparison is not None:
+                    row[key] = m.comparison.get(key)
+            rows.append(row)
+        return pd.DataFrame(rows)
+
+    def __repr__(self) -> str:
+        return "roadbrdf.MixResult(\n" + self.summary.rstrip("\n") + "\n)"
+
+
+def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all", folds: int = 5, seed: int = 1,
+        per_wavelength: bool = False, sum_to_one: bool = False, binder_coverage: float | None = None,
+        mastic_fraction: float | None = None, reference: PathLike | None = None, output: PathLike | None = None,
+        use_sigma: bool = True, residuals: PathLike | None = None) -> MixResult:
+    """Predict the BRDF of a road formulation from its components' fits, as ``roadbrdf mix`` does.
+
+    ``formulation``: a formulation JSON file (see docs/mixing.md); ``data``: the measured mixture
+    (CSV path) to compare the methods on held-out geometries (``folds``-fold); ``method``: areal,
+    fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
+    the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
+    sigma (False = ``--no-sigma``); ``output``: also write MIX.json; ``residuals``: CSV path for the
+    held-out residuals (needs ``data``). Methods skipped with ``method="all"`` are reported as
+    :class:`UserWarning` (and in ``notes``).
+    """
+    run = _roadbrdf.mix(os.fspath(formulation), "" if data is None else os.fspath(data), str(method), int(folds),
+                        int(seed), bool(per_wavelength), bool(sum_to_one),
+                        None if binder_coverage is None else float(binder_coverage),
+                        None if mastic_fraction is None else float(mastic_fraction),
+                        "" if reference is None else os.fspath(reference), "" if output is None else os.fspath(output),
+                        bool(use_sigma), "" if residuals is None else os.fspath(residuals))
+    for note in run.notes:
+        warnings.warn(note, UserWarning, stacklevel=2)
+    result = MixResult(run)
+    if output is not None:
+        result.write(output)
+    if residuals is not None:
+        result.write_residuals(residuals)
+    return result

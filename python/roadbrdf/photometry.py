@@ -1,0 +1,62 @@
+"""Road photometry: r-tables and their classes (``src/roadbrdf/photometry``)."""
+
+from __future__ import annotations
+
+import os
+from typing import Tuple, Union
+
+import numpy as np
+
+from . import _roadbrdf
+from .core import InputError
+from .fitting import read_fit
+from .model import Model, SpectralModel
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+__all__ = ["RTable", "rtable", "read_rtable"]
+
+
+class RTable(dict):
+    """A road r-table: a dict with ``r`` (29 x 20 array of reduced luminance coefficients in sr^-1,
+    NaN where the table is not defined; rows tan(gamma), columns beta), ``tan_gamma``,
+    ``beta_deg``, ``alpha_deg``, ``name``, and the summary figures ``Q0``, ``S1``, ``S2``, ``Qd`` [sr^-1
+    except S1, S2], ``class`` (R system) and ``classes`` (R, N, C). Files store 1e4 r."""
+
+    def write(self, path: PathLike, format: str = "csv") -> None:
+        """Write as ``"csv"``, ``"rtb"`` (DIALux) or ``"radiance"``, atomically."""
+        _roadbrdf.write_rtable(np.ascontiguousarray(self["r"]), self["name"], self["alpha_deg"], str(path), format)
+
+
+def rtable(model: Model | SpectralModel | PathLike, params: dict | None = None, alpha: float = 1.0,
+           illuminant: str = "A", wavelength: float | None = None,
+           band: Tuple[float, float] | None = None) -> RTable:
+    """Standard r-table (29 tan(gamma) x 20 beta) of a model or a spectral model at observation angle
+    ``alpha`` [deg] (CIE: 1).
+
+    ``model`` is a :class:`Model` (with ``params``), a :class:`SpectralModel` (e.g. :func:`read_fit`),
+    or a fit file path. A spectral model is reduced to one BRDF per geometry photometrically
+    (V(lambda) x ``illuminant`` "A", "D65" or a lamp CSV file), or at one ``wavelength`` [nm], or
+    averaged over ``band`` = (lo, hi) [nm]. A single-band fit is used at its band; ``note`` (else None)
+    says so.
+    """
+    if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
+        model = read_fit(model)
+    if isinstance(model, SpectralModel):
+        if params:
+            raise InputError("params cannot be combined with a spectral model")
+        return RTable(_roadbrdf.rtable_from_spectral(model._spectral, float(alpha), illuminant, wavelength,
+                                                     None if band is None else (float(band[0]), float(band[1]))))
+    given = dict(params or {})
+    names = model.parameter_names
+    unknown = [k for k in given if k not in names]
+    if unknown:
+        raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
+    values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
+    return RTable(_roadbrdf.rtable_from_model(model._model, values, float(alpha)))
+
+
+def read_rtable(path: PathLike, format: str | None = None, alpha: float = 1.0, scale: float = 1e4) -> RTable:
+    """Read an r-table file (csv, rtb or radiance; format from the extension unless given).
+    Zero cells are read as missing (NaN), never as zero reflectance."""
+    return RTable(_roadbrdf.read_rtable(str(path), format, float(alpha), float(scale)))

@@ -1,0 +1,267 @@
+#include "roadbrdf/fitting/fit_request.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/models/registry.h"
+
+namespace roadbrdf {
+
+namespace {
+
+// Does `model` declare option `key` (directly, or for a component when `key` is a plain name)?
+bool declares_option(const ModelDescription& d, const std::string& key) {
+  for (const auto& o : d.options) {
+    if (o.name == key) return true;
+    if (o.name.size() > key.size() + 1 && o.name.compare(o.name.size() - key.size() - 1, std::string::npos, "." + key) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string> plain_and_full_option_names(const std::vector<std::shared_ptr<const Model>>& models) {
+  std::vector<std::string> names;
+  for (const auto& m : models) {
+    for (const auto& o : m->description().options) {
+      names.push_back(o.name);
+      const auto dot = o.name.find('.');
+      if (dot != std::string::npos) names.push_back(o.name.substr(dot + 1));
+    }
+  }
+  return names;
+}
+
+std::vector<std::string> parameter_names(const std::vector<std::shared_ptr<const Model>>& models) {
+  std::vector<std::string> names;
+  for (const auto& m : models) {
+    for (const auto& p : m->description().parameters) names.push_back(p.name);
+  }
+  return names;
+}
+
+FitOptions settings_of(const FitRequest& r) {
+  FitOptions o;
+  try {
+    o.loss = fit_loss_from_string(r.loss);
+  } catch (const InputError& e) {
+    throw FieldError("loss", e.what());
+  }
+  try {
+    robust_loss_from_string(r.robust.empty() ? std::string("none") : r.robust, o.robust, o.robust_scale);
+  } catch (const InputError& e) {
+    throw FieldError("robust", e.what());
+  }
+  if (r.multistart < 1) throw FieldError("multistart", "must be at least 1");
+  if (r.threads < 1) throw FieldError("threads", "must be at least 1");
+  if (r.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
+  if (r.joint_solver != "dense-schur" && r.joint_solver != "sparse-schur" && r.joint_solver != "iterative-schur") {
+    throw FieldError("joint_solver", "unknown solver '" + r.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)" +
+                                         did_you_mean(r.joint_solver, {"dense-schur", "sparse-schur", "iterative-schur"}));
+  }
+  o.use_sigma = r.use_sigma;
+  o.solid_angle_weights = r.solid_angle_weights;
+  o.multistart = r.multistart;
+  o.seed = r.seed;
+  o.threads = r.threads;
+  o.max_iterations = r.max_iterations;
+  o.compute_covariance = r.covariance;
+  o.warm_start = r.warm_start;
+  o.solve_linear = r.solve_amplitudes;
+  o.joint_solver = r.joint_solver;
+  return o;
+}
+
+void check_finite(const std::map<std::string, double>& values, const std::string& field) {
+  for (const auto& [name, v] : values) {
+    if (!std::isfinite(v)) throw FieldError(field + "." + name, fmt::format("{} is not a finite number", v));
+  }
+}
+
+}  // namespace
+
+std::vector<PlannedFit> plan_fits(const FitRequest& r) {
+  if (r.models.empty()) throw FieldError("models", "give at least one model");
+  const FitOptions base = settings_of(r);
+  check_finite(r.fixed, "fixed");
+  check_finite(r.start, "start");
+  for (const auto& [name, range] : r.bounds) {
+    if (!std::isfinite(range.first) || !std::isfinite(range.second) || !(range.first < range.second)) {
+      throw FieldError("bounds." + name, fmt::format("[{}, {}] is not an interval lower < upper", range.first, range.second));
+    }
+  }
+  std::set<std::string> names_seen;
+  for (const auto& name : r.models) {
+    if (!names_seen.insert(name).second) throw FieldError("models", "'" + name + "' is given twice");
+  }
+
+  // The models without options, to see who declares what.
+  std::vector<std::shared_ptr<const Model>> probes;
+  for (const auto& name : r.models) {
+    try {
+      probes.push_back(make_model(name));
+    } catch (const InputError& e) {
+      throw FieldError("models", e.what());
+    }
+  }
+  std::set<std::string> used_options, used_parameters;
+  std::vector<PlannedFit> plan;
+  for (std::size_t i = 0; i < r.models.size(); ++i) {
+    OptionSet mine;
+    for (const auto& [k, v] : r.options) {
+      if (declares_option(probes[i]->description(), k)) {
+        mine[k] = v;
+        used_options.insert(k);
+      }
+    }
+    PlannedFit p;
+    try {
+      p.model = make_model(r.models[i], mine);
+    } catch (const InputError& e) {
+      // Say which option: try them one at a time.
+      for (const auto& [k, v] : mine) {
+        try {
+          make_model(r.models[i], {{k, v}});
+        } catch (const InputError& one) {
+          throw FieldError("options." + k, one.what());
+        }
+      }
+      throw FieldError("options", e.what());
+    }
+    const ModelDescription& desc = p.model->description();
+    p.options = base;
+    for (const auto& [k, v] : r.fixed) {
+      if (desc.parameter_index(k)) {
+        p.options.fixed[k] = v;
+        used_parameters.insert("fixed." + k);
+      }
+    }
+    for (const auto& [k, v] : r.start) {
+      if (desc.parameter_index(k)) {
+        p.options.start[k] = v;
+        used_parameters.insert("start." + k);
+      }
+    }
+    for (const auto& [k, v] : r.bounds) {
+      if (desc.parameter_index(k)) {
+        p.options.bounds[k] = v;
+        used_parameters.insert("bounds." + k);
+      }
+    }
+    for (const auto& k : r.shared) {
+      if (k == "auto") {
+        for (const auto& q : desc.parameters) {
+          if (!q.spectral && !p.options.fixed.count(q.name)) p.options.shared.push_back(q.name);
+        }
+        used_parameters.insert("shared.auto");
+      } else if (desc.parameter_index(k)) {
+        if (std::find(p.options.shared.begin(), p.options.shared.end(), k) == p.options.shared.end()) {
+          p.options.shared.push_back(k);
+        }
+        used_parameters.insert("shared." + k);
+      }
+    }
+    plan.push_back(std::move(p));
+  }
+  for (const auto& [k, v] : r.options) {
+    if (!used_options.count(k)) {
+      throw FieldError("options." + k,
+                       "no model to fit has this option" + did_you_mean(k, plain_and_full_option_names(probes)));
+    }
+  }
+  const std::vector<std::string> known = parameter_names(probes);
+  auto check_used = [&](const std::string& field, const std::string& k) {
+    if (!used_parameters.count(field + "." + k)) {
+      throw FieldError(field + "." + k, "no model to fit has this parameter" + did_you_mean(k, known) +
+                                            " (see `roadbrdf models`)");
+    }
+  };
+  for (const auto& [k, v] : r.fixed) check_used("fixed", k);
+  for (const auto& [k, v] : r.start) check_used("start", k);
+  for (const auto& [k, v] : r.bounds) check_used("bounds", k);
+  for (const auto& k : r.shared) {
+    if (k != "auto") check_used("shared", k);
+  }
+  return plan;
+}
+
+void FitRequest::validate() const { (void)plan_fits(*this); }
+
+std::string FitSummary::table() const {
+  std::string out;
+  const std::size_t M = wavelengths.size();
+  out += fmt::format("# {} geometries x {} wavelengths ({}-{} nm), loss {}{}{}\n", geometry_count, M,
+                     M ? wavelengths.front() : 0.0, M ? wavelengths.back() : 0.0, loss,
+                     robust.empty() || robust == "none" ? "" : ", robust " + robust,
+                     sigma_weights ? ", weights 1/sigma^2" : "");
+  out += fmt::format("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank", "model", "k",
+                     "RMSE[sr^-1]", "relRMSE%", "maxrel%", "AIC", "BIC", "converged", "atbound", "time[s]");
+  auto number_or_dash = [](double x, const char* format) {
+    return std::isfinite(x) ? fmt::format(fmt::runtime(format), x) : std::string("-");
+  };
+  for (std::size_t r = 0; r < ranking.size(); ++r) {
+    const FitResult& f = fits[ranking[r]];
+    out += fmt::format("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8.2f}\n", r + 1, f.model,
+                       f.free_parameters_total, number_or_dash(f.rmse_total, "{:.4g}"),
+                       number_or_dash(100.0 * f.relative_rmse_total, "{:.3g}"),
+                       number_or_dash(100.0 * f.max_relative_error_total, "{:.3g}"),
+                       number_or_dash(f.aic_total, "{:.2f}"), number_or_dash(f.bic_total, "{:.2f}"),
+                       fmt::format("{}/{}", f.converged_count, M), f.at_bound_count, f.seconds);
+  }
+  if (!ranking.empty()) out += fmt::format("best (lowest total BIC): {}\n", best().model);
+  return out;
+}
+
+std::vector<std::string> FitSummary::warnings(const std::string& where) const {
+  std::vector<std::string> out;
+  const std::size_t M = wavelengths.size();
+  for (const auto& f : fits) {
+    if (f.converged_count < M) {
+      out.push_back(fmt::format("{}: {} of {} wavelengths did not converge (see 'status' in {})", f.model,
+                                M - f.converged_count, M, where));
+    }
+    if (f.at_bound_count > 0) {
+      out.push_back(fmt::format("{}: parameters on a bound at {} of {} wavelengths (see 'at_bounds')", f.model,
+                                f.at_bound_count, M));
+    }
+    if (f.settings.compute_covariance && f.covariance_failures > 0) {
+      out.push_back(fmt::format("{}: no standard errors at {} of {} wavelengths (see 'covariance_message')", f.model,
+                                f.covariance_failures, M));
+    }
+  }
+  return out;
+}
+
+FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, const FitProgress& progress) {
+  std::vector<PlannedFit> plan = plan_fits(request);
+  const SpectralDataset* data = &dataset;
+  SpectralDataset subset;
+  if (!request.wavelengths.empty()) {
+    subset = subset_wavelengths(dataset, select_wavelengths(dataset.wavelengths, request.wavelengths));
+    data = &subset;
+  }
+  FitSummary s;
+  s.geometry_count = data->geometry_count();
+  s.wavelengths = data->wavelengths;
+  s.loss = to_string(plan.front().options.loss);
+  s.robust = to_string(plan.front().options.robust);
+  s.sigma_weights = data->has_sigma() && request.use_sigma;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    FitOptions o = plan[i].options;
+    if (progress) o.progress = progress(fmt::format("fit {} ({}/{})", plan[i].model->description().name, i + 1, plan.size()));
+    s.fits.push_back(fit_model(*plan[i].model, *data, o));
+    s.models.push_back(plan[i].model);
+  }
+  s.ranking.resize(s.fits.size());
+  for (std::size_t i = 0; i < s.ranking.size(); ++i) s.ranking[i] = i;
+  std::stable_sort(s.ranking.begin(), s.ranking.end(),
+                   [&](std::size_t x, std::size_t y) { return s.fits[x].bic_total < s.fits[y].bic_total; });
+  return s;
+}
+
+}  // namespace roadbrdf

@@ -1,0 +1,88 @@
+// A fit as the front ends ask for it (`roadbrdf fit`, roadbrdf.fit in Python): the request with its
+// one validation, the distribution of names over the models, and the result with its summary.
+// The command line and the Python module only translate their arguments into a FitRequest.
+//
+// Names given once for all models (options, fixed, start, bounds, shared) apply to every model
+// that declares them; a composite accepts a plain option name for each component that has it
+// ("distribution" sets torrance-sparrow.distribution in lambert+torrance-sparrow) as well as
+// "component.option". A name no model of the request declares is an error naming the field
+// (`options.distributon: no model to fit has this option (did you mean 'distribution'?)`), as is a
+// value a model does not accept. `shared` may hold "auto": every non-spectral parameter that is
+// not fixed is shared by all wavelengths (joint mode).
+//
+// Errors are FieldError with the field names of FitRequest ("multistart", "fixed.roughness",
+// "options.distribution", ...); the command line maps them to its flags (cli/common.h).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/io/dataset.h"
+#include "roadbrdf/models/model.h"
+
+namespace roadbrdf {
+
+struct FitRequest {
+  std::vector<std::string> models;                               // model names, e.g. "oren-nayar"
+  OptionSet options;                                             // NAME or component.NAME -> value
+  std::map<std::string, double> fixed;                           // held at a value at every wavelength
+  std::map<std::string, double> start;                           // starting values
+  std::map<std::string, std::pair<double, double>> bounds;       // narrower [lower, upper]
+  std::vector<std::string> shared;                               // names, or "auto"
+  std::vector<double> wavelengths;                               // subset of the dataset's [nm]; empty: all
+  std::string loss = "plain";                                    // plain | relative | log | cosine
+  std::string robust = "none";                                   // none | huber:SCALE | cauchy:SCALE
+  bool use_sigma = true;
+  bool solid_angle_weights = false;
+  int multistart = 1;
+  unsigned seed = 1;
+  int threads = 1;
+  int max_iterations = 200;
+  bool covariance = true;
+  bool warm_start = true;
+  bool solve_amplitudes = true;
+  std::string joint_solver = "dense-schur";
+
+  // Checks everything that does not need the dataset: model names and options, parameter names
+  // and values, settings. Throws FieldError.
+  void validate() const;
+};
+
+// One model of a request with the options that apply to it.
+struct PlannedFit {
+  std::shared_ptr<const Model> model;
+  FitOptions options;
+};
+// The request validated and distributed over its models (no fitting). Throws FieldError.
+std::vector<PlannedFit> plan_fits(const FitRequest& request);
+
+struct FitSummary {
+  std::vector<std::shared_ptr<const Model>> models;  // as fitted, in the request's order
+  std::vector<FitResult> fits;                       // aligned with models
+  std::vector<std::size_t> ranking;                  // indices into fits, lowest total BIC first
+  std::size_t geometry_count = 0;
+  std::vector<double> wavelengths;                   // fitted [nm]
+  std::string loss, robust;                          // as requested
+  bool sigma_weights = false;                        // 1/sigma^2 weights were used
+
+  const FitResult& best() const { return fits.at(ranking.at(0)); }
+  // The ranking table `roadbrdf fit` prints (models, k, RMSE, AIC, BIC, convergence...).
+  std::string table() const;
+  // Non-converged wavelengths, parameters on bounds, missing standard errors: one line each,
+  // `where` naming the result (e.g. the output file).
+  std::vector<std::string> warnings(const std::string& where) const;
+};
+
+// Called with a label ("fit MODEL (i/n)") for each model; returns the progress callback of that fit
+// (or an empty function).
+using FitProgress = std::function<std::function<void(std::size_t, std::size_t)>(const std::string& label)>;
+
+// Validate, select the wavelengths, and fit every model. Throws FieldError / InputError.
+FitSummary run_fit(const FitRequest& request, const SpectralDataset& data, const FitProgress& progress = {});
+
+}  // namespace roadbrdf

@@ -1,0 +1,154 @@
+#include "roadbrdf/mixing/mix_request.h"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/io/dataset_io.h"
+
+namespace roadbrdf::mixing {
+
+namespace {
+
+std::string weights_text(const MixResult& r) {
+  std::ostringstream s;
+  for (std::size_t k = 0; k < r.end_members.size(); ++k) {
+    if (k) s << ' ';
+    s << r.end_members[k] << '=' << fmt::format("{:.3f}", r.weights[k]);
+  }
+  for (const auto& [key, value] : r.settings) {
+    if (key == "shadowing") s << " s=" << fmt::format("{:.3g}", value);
+  }
+  if (std::isfinite(r.weight_distance)) s << fmt::format(" (dist {:.3f}, sum {:.3f})", r.weight_distance, r.weight_sum);
+  return s.str();
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (Method m : all_methods()) names.push_back(to_string(m));
+  names.push_back("all");
+  return names;
+}
+
+}  // namespace
+
+void MixRequest::validate() const {
+  if (formulation.empty()) throw FieldError("formulation", "give the formulation file");
+  if (method != "all") {
+    try {
+      method_from_string(method);
+    } catch (const InputError& e) {
+      throw FieldError("method", e.what() + did_you_mean(method, method_names()));
+    }
+  }
+  if (folds < 2) throw FieldError("folds", "must be at least 2");
+  for (const auto& [name, value] : {std::pair{"binder_coverage", binder_coverage}, std::pair{"mastic_fraction", mastic_fraction}}) {
+    if (value && !(*value >= 0.0 && *value <= 1.0)) throw FieldError(name, fmt::format("{} is outside [0, 1]", *value));
+  }
+  if (residuals && data.empty()) throw FieldError("residuals", "needs data (the held-out residuals of a measured mixture)");
+  if (!reference.empty() && data.empty()) {
+    throw FieldError("reference", "needs data (the albedo is compared at the data's wavelengths)");
+  }
+  if (method != "all" && data.empty() && method_needs_data(method_from_string(method))) {
+    throw FieldError("method", "'" + method + "' is fitted to a measured mixture: give data");
+  }
+}
+
+MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outputs,
+               const std::function<std::string(const std::string&)>& role) {
+  request.validate();
+  auto named = [&](const std::string& field) { return role ? role(field) : field; };
+  std::vector<FileArgument> read = {{named("formulation"), request.formulation}, {named("data"), request.data},
+                                    {named("reference"), request.reference}};
+  check_distinct_files(read, outputs);
+  MixRun run;
+  run.request = request;
+  const Formulation formulation = read_formulation(request.formulation);
+  if (formulation.mastic) read.push_back({"mastic.fit of " + request.formulation, formulation.mastic->fit_path});
+  for (const auto& c : formulation.components) read.push_back({"fit of component '" + c.name + "'", c.fit_path});
+  check_distinct_files(read, outputs);
+  run.inputs = std::make_unique<MixInputs>(load_mix_inputs(formulation));
+  MixSettings settings;
+  settings.binder_coverage = request.binder_coverage;
+  settings.mastic_area_fraction = request.mastic_fraction;
+  settings.per_wavelength = request.per_wavelength;
+  settings.sum_to_one = request.sum_to_one;
+  settings.use_sigma = request.use_sigma;
+  const bool all = request.method == "all";
+  const std::vector<Method> methods = all ? all_methods() : std::vector<Method>{method_from_string(request.method)};
+  if (!request.data.empty()) run.data = read_dataset(request.data, request.data_read);
+  std::optional<SpectralModel> reference;
+  if (!request.reference.empty()) reference = read_spectral_model_file(request.reference);
+
+  run.content.inputs = run.inputs.get();
+  run.content.data_path = request.data;
+  run.content.folds = request.folds;
+  for (Method m : methods) {
+    if (!run.data && method_needs_data(m)) {
+      run.notes.push_back(fmt::format("method '{}' skipped: it is fitted to a measured mixture (give data)", to_string(m)));
+      continue;
+    }
+    try {
+      if (run.data) {
+        Comparison c = compare_method(*run.inputs, m, settings, *run.data, request.folds, request.seed,
+                                      reference ? &*reference : nullptr);
+        run.content.results.push_back(c.result);
+        run.content.comparisons.push_back(std::move(c));
+      } else {
+        run.content.results.push_back(mix(*run.inputs, m, settings));
+      }
+    } catch (const FieldError&) {
+      throw;  // a bad request, not a method that does not apply
+    } catch (const InputError& e) {
+      if (!all) throw;
+      run.notes.push_back(fmt::format("method '{}' skipped: {}", to_string(m), e.what()));
+    }
+  }
+  if (run.content.results.empty()) throw InputError("no mixing method could be applied to " + request.formulation);
+  return run;
+}
+
+std::string MixRun::table() const {
+  std::string out;
+  const MixInputs& in = *inputs;
+  out += fmt::format("formulation {} ({} components, {} end-members)\n", in.formulation.name,
+                     in.formulation.components.size(), in.end_members.size());
+  if (data) {
+    out += fmt::format("measured mixture {}: {} geometries x {} wavelengths; errors on held-out geometries ({}-fold)\n",
+                       request.data, data->geometry_count(), data->wavelength_count(), request.folds);
+    if (data->has_sigma()) {
+      out += fmt::format("fitted methods {} (sigma from the data); chi2/n: held-out reduced chi^2\n",
+                         request.use_sigma ? "weighted by 1/sigma^2" : "unweighted (--no-sigma)");
+    }
+    out += fmt::format("{:<9} {:>12} {:>9} {:>8} {:>12} {:>8} {:>9}  {}\n", "method", "RMSE[sr-1]", "relRMSE", "chi2/n",
+                       "RMSE(fit)", "albedo", "d_albedo", "weights");
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < content.comparisons.size(); ++i) {
+      const Comparison& c = content.comparisons[i];
+      if (c.rmse < content.comparisons[best].rmse) best = i;
+      out += fmt::format("{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse,
+                         c.relative_rmse,
+                         std::isfinite(c.chi2_reduced) ? fmt::format("{:.4g}", c.chi2_reduced) : std::string("n/a"),
+                         c.rmse_in_sample, c.albedo,
+                         std::isfinite(c.albedo_difference) ? fmt::format("{:+.4f}", c.albedo_difference)
+                                                            : std::string("n/a"),
+                         weights_text(c.result));
+    }
+    out += fmt::format("best method for {}: {} (held-out RMSE {:.5g} sr^-1)\n", in.formulation.name,
+                       to_string(content.comparisons[best].method), content.comparisons[best].rmse);
+  } else {
+    out += fmt::format("{:<9} {:>8}  {}\n", "method", "albedo", "weights");
+    for (const auto& r : content.results) {
+      const std::vector<double> albedo = mixture_white_sky_albedo(in, r, r.model->wavelengths());
+      double mean = 0.0;
+      for (double x : albedo) mean += x / static_cast<double>(albedo.size());
+      out += fmt::format("{:<9} {:>8.4f}  {}\n", to_string(r.method), mean, weights_text(r));
+    }
+  }
+  return out;
+}
+
+}  // namespace roadbrdf::mixing

@@ -1,0 +1,65 @@
+// A mix as the front ends ask for it (`roadbrdf mix`, roadbrdf.mix in Python): the request with its
+// one validation, the run over the methods, and the result with its report.
+//
+// With method "all", a method that cannot be applied is skipped with a note (methods fitted to a
+// measured mixture without --data / data, or a method that fails on this formulation); the notes
+// are part of the result, and both front ends show them (the command line as warnings on standard
+// error, Python as UserWarning). Nothing is dropped silently. A single method that fails is an
+// error.
+//
+// Errors are FieldError with the field names of MixRequest ("folds", "method", "data", ...); the
+// command line maps them to its flags (cli/common.h).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/io/dataset.h"
+#include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/models/spectral_model.h"
+
+namespace roadbrdf::mixing {
+
+struct MixRequest {
+  std::string formulation;                 // formulation JSON file
+  std::string data;                        // measured mixture (CSV); "" = none
+  DatasetReadOptions data_read;            // dialect and duplicate rules for `data`
+  std::string method = "all";              // a method name (mixing.h) or "all"
+  int folds = 5;                           // cross-validation folds over the data's geometries
+  unsigned seed = 1;                       // geometry shuffle of the folds
+  bool per_wavelength = false;
+  bool sum_to_one = false;
+  bool use_sigma = true;
+  std::optional<double> binder_coverage;   // overrides the formulation (areal), in [0, 1]
+  std::optional<double> mastic_fraction;   // overrides the formulation (mastic), in [0, 1]
+  std::string reference;                   // fit file or MIX.json of the measured mixture; needs data
+  bool residuals = false;                  // held-out residuals will be written: needs data
+
+  // Checks everything that needs no file. Throws FieldError.
+  void validate() const;
+};
+
+struct MixRun {
+  MixRequest request;
+  std::unique_ptr<MixInputs> inputs;       // the formulation and its end-members
+  std::optional<SpectralDataset> data;
+  MixFileContent content;                  // results (and comparisons with data), as written to MIX.json
+  std::vector<std::string> notes;          // methods skipped, and why
+
+  // The report `roadbrdf mix` prints: per method the held-out errors and albedo, or the albedo.
+  std::string table() const;
+};
+
+// Validate, read the inputs (after check_distinct_files against `outputs`, the front end's output
+// files with its own role names; `role` names the input fields "formulation", "data", "reference"
+// the front end's way, default as is), and run the methods. Throws FieldError / InputError / FileError.
+MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outputs,
+               const std::function<std::string(const std::string&)>& role = {});
+
+}  // namespace roadbrdf::mixing
