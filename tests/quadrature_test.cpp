@@ -44,7 +44,9 @@ TEST(GaussLegendre, NodesIncreaseInsideTheInterval) {
   for (int i = 0; i < 16; ++i) {
     EXPECT_GT(rule.nodes[i], 0.0);
     EXPECT_LT(rule.nodes[i], 1.0);
-    if (i) EXPECT_GT(rule.nodes[i], rule.nodes[i - 1]);
+    if (i > 0) {
+      EXPECT_GT(rule.nodes[i], rule.nodes[i - 1]);
+    }
   }
   EXPECT_THROW(gauss_legendre(0), InputError);
   EXPECT_THROW(gauss_legendre(4, 1.0, 0.0), InputError);
