@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
 
-.PHONY: deps deps-app configure build build-app demo test test-sanitize fuzz bench install clean
+.PHONY: deps deps-app configure build build-app demo test configure-sanitize test-sanitize test-sanitize-ci fuzz bench install clean
 
 # Package sets of packages.txt: the demo needs [build] and [python], the tests every set.
 deps:
@@ -41,13 +41,27 @@ test: build
 # a separate, unsanitized copy.
 SANITIZE_BUILD ?= build-sanitize
 SANITIZE_CXX ?= clang++-14
-test-sanitize: deps
+SANITIZE_ENV = UBSAN_OPTIONS=print_stacktrace=1
+configure-sanitize: deps
 	@mkdir -p $(SANITIZE_BUILD)
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=$(SANITIZE_CXX) \
 	  -DPYTHON_EXECUTABLE=$(PYTHON) -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_BUILD_TESTS=ON \
 	  -DROADBRDF_BUILD_BENCHMARKS=OFF > $(SANITIZE_BUILD)/configure.log || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
+
+test-sanitize: configure-sanitize
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
-	cd $(SANITIZE_BUILD) && UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '^install\.'
+	cd $(SANITIZE_BUILD) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS) -E '^install\.'
+
+# The sanitized subset CI runs after `make test` (the whole sanitized suite does not fit in CI's time
+# budget, see docs/ARCHITECTURE.md "Checks"): every parser's fuzz corpus, the core and dataset-I/O
+# tests, the CLI's adversarial and data-loss tests and the Python adversarial tests.
+SANITIZE_CI_TARGETS = roadbrdf _roadbrdf range_test json_input_test atomic_file_test input_file_test \
+  dataset_io_test cli_adversarial_test cli_data_loss_test \
+  $(patsubst tests/fuzz/%_fuzz.cpp,%_fuzz_replay,$(wildcard tests/fuzz/*_fuzz.cpp))
+SANITIZE_CI_TESTS = ^(fuzz_corpus[.]|python_tests[.]adversarial$$|(Range|Number|NearestName|JsonInput|AtomicFile|DistinctFiles|InputFile|CsvReader|DatasetIo|CliAdversarial|CliDataLoss)[.])
+test-sanitize-ci: configure-sanitize
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target $(SANITIZE_CI_TARGETS)
+	cd $(SANITIZE_BUILD) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS) -R '$(SANITIZE_CI_TESTS)'
 
 # libFuzzer programs of tests/fuzz in build-fuzz (clang 14, ASan + UBSan), each run for FUZZ_SECONDS
 # on a copy of its corpus; crashes are written to build-fuzz/crashes/<name>/ (add them to the corpus

@@ -14,7 +14,7 @@ from typing import Any, Iterable, Mapping, Sequence, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError
+from .core import InputError, as_float_array
 from .io import Dataset, read_dataset
 from .model import SpectralModel
 
@@ -239,7 +239,7 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         fixed = fix
     bound_pairs = {}
     for k, v in (bounds or {}).items():
-        pair = np.asarray(v, dtype=float).reshape(-1)
+        pair = as_float_array(v, f"bounds.{k}").reshape(-1)
         if pair.size != 2:
             raise InputError(f"bounds.{k}: expected (lower, upper), got {v!r}")
         bound_pairs[str(k)] = (float(pair[0]), float(pair[1]))

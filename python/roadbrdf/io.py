@@ -8,6 +8,7 @@ from typing import Union
 import numpy as np
 
 from . import _roadbrdf
+from .core import as_float_array
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -31,19 +32,23 @@ class Dataset:
         "sample", "instrument", "units" and free keys (the "# key: value" lines of a CSV file).
     convention : "zenith" or "road"
         angle columns used when the dataset is written.
+    comments : list of str
+        the free comment lines of the source file (any "# ..." line that is not "key: value"), kept
+        in order and written back.
     """
 
-    def __init__(self, angles, wavelengths, brdf, sigma=None, metadata=None, convention="zenith"):
-        self.angles = np.asarray(angles, dtype=float).reshape(-1, 4)
-        self.wavelengths = np.asarray(wavelengths, dtype=float).reshape(-1)
-        self.brdf = np.asarray(brdf, dtype=float).reshape(self.angles.shape[0], self.wavelengths.size)
-        self.sigma = None if sigma is None else np.asarray(sigma, dtype=float).reshape(self.brdf.shape)
+    def __init__(self, angles, wavelengths, brdf, sigma=None, metadata=None, convention="zenith", comments=None):
+        self.angles = as_float_array(angles, "angles").reshape(-1, 4)
+        self.wavelengths = as_float_array(wavelengths, "wavelengths").reshape(-1)
+        self.brdf = as_float_array(brdf, "brdf").reshape(self.angles.shape[0], self.wavelengths.size)
+        self.sigma = None if sigma is None else as_float_array(sigma, "sigma").reshape(self.brdf.shape)
         self.metadata = dict(metadata or {})
         self.convention = convention
+        self.comments = [str(c) for c in (comments or [])]
 
     @classmethod
     def _from_dict(cls, d):
-        return cls(d["angles"], d["wavelengths"], d["brdf"], d["sigma"], d["metadata"], d["convention"])
+        return cls(d["angles"], d["wavelengths"], d["brdf"], d["sigma"], d["metadata"], d["convention"], d["comments"])
 
     @property
     def theta_i(self) -> np.ndarray:
@@ -94,7 +99,7 @@ def write_dataset(dataset: Dataset, path: PathLike, format: str = "wide") -> Non
                             np.ascontiguousarray(dataset.brdf),
                             None if dataset.sigma is None else np.ascontiguousarray(dataset.sigma),
                             {str(k): str(v) for k, v in dataset.metadata.items()}, dataset.convention,
-                            str(path), format)
+                            list(dataset.comments), str(path), format)
 
 
 def read_curet(abrdf_path: PathLike, table_path: PathLike, sample: int) -> Dataset:

@@ -8,7 +8,7 @@ import numpy as np
 from . import _roadbrdf
 from typing import List
 
-from .core import ArrayLike, InputError
+from .core import ArrayLike, InputError, as_float_array
 
 __all__ = ["Model", "SpectralModel", "models", "model_names"]
 
@@ -23,12 +23,18 @@ def model_names() -> List[str]:
 
 def models() -> List[dict]:
     """Metadata of every model: a list of dicts with ``name``, ``summary``, ``citation``,
-    ``reciprocal``, ``energy_conserving``, ``non_negative``, ``has_delta``, ``parameters``
+    ``reciprocal``, ``energy_conserving``, ``non_negative``, ``has_delta``, ``isotropic``,
+    ``isotropic_when_equal`` (pairs of parameter names), ``parameters``
     (each a dict with ``name``, ``unit``, ``description``, ``default``, ``lower``, ``upper``,
     ``spectral``, ``linear``) and ``options`` (``name``, ``values``, ``default``, ``description``).
     This is the same metadata as ``roadbrdf models --json``."""
     return [_roadbrdf.make_model(name, {}).description for name in _roadbrdf.model_names()]
 
+
+
+def _angle_arrays(theta_i, phi_i, theta_r, phi_r):
+    return [as_float_array(a, name) for a, name in
+            ((theta_i, "theta_i"), (phi_i, "phi_i"), (theta_r, "theta_r"), (phi_r, "phi_r"))]
 
 
 def _as_float_or_array(values, shape):
@@ -96,14 +102,14 @@ class Model:
                 f"model '{self.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
         values = []
         for p in self.parameters:
-            v = np.asarray(given.get(p["name"], p["default"]), dtype=float)
+            v = as_float_array(given.get(p["name"], p["default"]), p["name"])
             bad = ~np.isfinite(v) | (v < p["lower"]) | (v > p["upper"])
             if np.any(bad):
                 first = float(np.atleast_1d(v)[np.argmax(np.atleast_1d(bad))])
                 raise InputError(f"parameter '{p['name']}' of model '{self.name}' = {first:g} is outside its "
                                  f"bounds [{p['lower']:g}, {p['upper']:g}]")
             values.append(v)
-        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (theta_i, phi_i, theta_r, phi_r)), *values)
+        arrays = np.broadcast_arrays(*_angle_arrays(theta_i, phi_i, theta_r, phi_r), *values)
         shape = arrays[0].shape
         flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
         pmatrix = np.ascontiguousarray(np.stack(flat[4:], axis=-1)) if values else np.zeros((flat[0].size, 0))
@@ -153,8 +159,8 @@ class SpectralModel:
     def evaluate(self, theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike, phi_r: ArrayLike,
                  wavelength: ArrayLike) -> float | np.ndarray:
         """BRDF [sr^-1] at angles [deg] and wavelengths [nm], broadcast together."""
-        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (theta_i, phi_i, theta_r, phi_r,
-                                                                            wavelength)))
+        arrays = np.broadcast_arrays(*_angle_arrays(theta_i, phi_i, theta_r, phi_r),
+                                     as_float_array(wavelength, "wavelength"))
         shape = arrays[0].shape
         flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
         return _as_float_or_array(self._spectral.evaluate_flat(*flat), shape)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError
+from .core import InputError, as_float_array
 from .io import Dataset
 from .model import Model
 
@@ -253,7 +253,8 @@ def render(surface, theta_i, phi_i, theta_r, phi_r, wavelengths=None, samples=No
     ``dataset.converged`` (adaptive runs: the target was reached). The GIL is released while rendering.
     """
     s = _as_surface(surface)
-    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (theta_i, phi_i, theta_r, phi_r)))
+    arrays = np.broadcast_arrays(*(as_float_array(a, name) for a, name in
+                                   ((theta_i, "theta_i"), (phi_i, "phi_i"), (theta_r, "theta_r"), (phi_r, "phi_r"))))
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
     r = _roadbrdf.render_surface(s._field, *flat, _wavelength_list(wavelengths),
                                  *_render_options(samples, target_error, max_samples, error_floor, acceptance_deg,

@@ -25,7 +25,7 @@ namespace roadbrdf::python {
 
 namespace {
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Array = DoubleArray;
 
 Array matrix(const std::vector<double>& values, std::size_t rows, std::size_t columns) {
   Array out({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(columns)});
@@ -51,6 +51,7 @@ py::dict dataset_to_dict(const SpectralDataset& d) {
   out["sigma"] = d.has_sigma() ? py::object(matrix(d.sigma, n, d.wavelength_count())) : py::object(py::none());
   out["metadata"] = d.metadata;
   out["convention"] = d.convention == AngleConvention::kRoad ? "road" : "zenith";
+  out["comments"] = d.comments;
   return out;
 }
 
@@ -159,21 +160,6 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
     if (static_cast<std::size_t>(s.size()) != n * m) throw InputError("sigma must have the shape of brdf");
     d.sigma.assign(s.data(), s.data() + n * m);
   }
-  // Finite angles and wavelengths, no infinite values (NaN is a missing value).
-  for (std::size_t k = 0; k < 4 * n; ++k) {
-    if (!std::isfinite(a[k])) throw InputError("angles: row " + std::to_string(k / 4) + " is not finite");
-  }
-  for (std::size_t j = 0; j < m; ++j) {
-    if (!(std::isfinite(d.wavelengths[j]) && d.wavelengths[j] > 0.0)) {
-      throw InputError("wavelengths[" + std::to_string(j) + "] must be finite and > 0 nm");
-    }
-  }
-  for (std::size_t k = 0; k < n * m; ++k) {
-    if (std::isinf(d.brdf[k])) throw InputError("brdf holds an infinite value (row " + std::to_string(k / m) + ")");
-    if (!d.sigma.empty() && std::isinf(d.sigma[k])) {
-      throw InputError("sigma holds an infinite value (row " + std::to_string(k / m) + ")");
-    }
-  }
   d.metadata = metadata;
   if (convention == "road") {
     d.convention = AngleConvention::kRoad;
@@ -185,24 +171,6 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
   validate_dataset(d);
   return d;
 }
-
-namespace {
-
-// A written dataset must read back: metadata keys as the reader knows them ("# key: value" with
-// letters, digits, '_', '-', '.'), values on one line.
-void check_metadata_writable(const std::map<std::string, std::string>& metadata) {
-  for (const auto& [key, value] : metadata) {
-    const bool key_ok = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-    });
-    if (!key_ok) throw InputError("metadata key '" + key + "': use letters, digits, '_', '-' and '.' only");
-    if (value.find_first_of("\r\n") != std::string::npos) {
-      throw InputError("metadata '" + key + "': the value must be one line");
-    }
-  }
-}
-
-}  // namespace
 
 void bind_io(py::module_& m) {
   m.def(
@@ -223,10 +191,11 @@ void bind_io(py::module_& m) {
       py::arg("delimiter") = "auto", py::arg("decimal") = "auto");
   m.def("write_dataset", [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
                             const std::map<std::string, std::string>& metadata, const std::string& convention,
-                            const std::string& path, const std::string& format) {
-    check_metadata_writable(metadata);
-    write_dataset(dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention), path,
-                  dataset_format_from_string(format));
+                            const std::vector<std::string>& comments, const std::string& path,
+                            const std::string& format) {
+    SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+    d.comments = comments;
+    write_dataset(d, path, dataset_format_from_string(format));
   });
   m.def(
       "read_curet",

@@ -20,7 +20,7 @@ namespace roadbrdf::python {
 namespace {
 
 using namespace roadbrdf::photometry;
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Array = DoubleArray;
 
 py::dict rtable_to_dict(const RTable& t, std::optional<double> declared_q0 = std::nullopt) {
   py::dict d;

@@ -24,6 +24,39 @@ void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces,
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 
+}  // namespace roadbrdf::python
+
+// Every array argument of the bindings is a DoubleArray: whatever numpy turns into float64 (lists,
+// integers, non-contiguous or other-endian arrays) is converted into a contiguous copy; anything
+// else (text, objects, complex numbers, whose imaginary part numpy would silently drop) is a
+// roadbrdf.InputError, as a bad value given to a command is, rather than pybind11's TypeError.
+// This specialises pybind11's caster for exactly this array type (declared here, before any use,
+// in the one header every binding file includes).
+namespace pybind11::detail {
+template <>
+struct pyobject_caster<roadbrdf::python::DoubleArray> {
+  using type = roadbrdf::python::DoubleArray;
+
+  bool load(handle src, bool convert) {
+    if (!convert && !type::check_(src)) return false;
+    const bool complex_values = PyComplex_Check(src.ptr()) ||
+                                (isinstance<array>(src) && reinterpret_borrow<array>(src).dtype().kind() == 'c');
+    if (complex_values) throw roadbrdf::InputError("expected real numbers, got complex numbers");
+    value = type::ensure(src);
+    if (!value) {
+      PyErr_Clear();
+      throw roadbrdf::InputError("expected numbers (an array of real values), got " +
+                                 std::string(pybind11::str(pybind11::type::handle_of(src).attr("__name__"))));
+    }
+    return true;
+  }
+  static handle cast(const handle& src, return_value_policy /*policy*/, handle /*parent*/) { return src.inc_ref(); }
+  PYBIND11_TYPE_CASTER(type, handle_type_name<type>::name);
+};
+}  // namespace pybind11::detail
+
+namespace roadbrdf::python {
+
 // A dataset from the arrays of roadbrdf.Dataset (angles N x 4 in degrees, wavelengths, brdf N x M,
 // sigma or None, metadata, convention "zenith"|"road"); validated. Throws InputError.
 SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray& wavelengths,

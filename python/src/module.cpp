@@ -31,7 +31,7 @@ py::object description_dict(const ModelDescription& md) {
   return py::module_::import("json").attr("loads")(roadbrdf::dump_json(description_to_json(md)));
 }
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Array = roadbrdf::python::DoubleArray;
 
 // Evaluate at flattened, already-broadcast inputs: angles in degrees (n values each) and a
 // parameter matrix n x P. One C++ loop, no Python per element.

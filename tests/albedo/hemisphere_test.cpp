@@ -264,8 +264,11 @@ TEST(Albedo, AnisotropyDetection) {
   EXPECT_TRUE(is_isotropic(*as, p.data(), 1));
   p = params_of(*as, {{"nu", 10.0}, {"nv", 100.0}});
   EXPECT_FALSE(is_isotropic(*as, p.data(), 1));
+  // Anisotropic Lafortune lobes are isotropic where C_x = C_y (as at the defaults), not elsewhere.
   auto composite = make_model("lambert+lafortune", {{"isotropic", "no"}});
-  const std::vector<double> q = composite->description().default_parameters();
+  std::vector<double> q = composite->description().default_parameters();
+  EXPECT_TRUE(is_isotropic(*composite, q.data(), 1));
+  q[*composite->description().parameter_index("lafortune.cy1")] = -0.5;
   EXPECT_FALSE(is_isotropic(*composite, q.data(), 1));
   // An isotropic A-S integrated with the anisotropic machinery (azimuth mean) gives the same value.
   auto iso = make_model("ashikhmin-shirley");

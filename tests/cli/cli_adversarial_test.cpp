@@ -5,6 +5,7 @@
 // that is neither an internal error nor a crash, no input modified and no temporary file left.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -300,6 +301,26 @@ TEST(CliAdversarial, SilentlyAcceptedInputsAreRefused) {
       {"alpha-junk", "r.csv", with_alpha("1abc"), "rtable --import {} -o {out}", {":3:", "alpha_deg = '1abc'"}},
       {"alpha-negative", "r.csv", with_alpha("-7"), "rtable --import {} -o {out}", {":3:", "alpha_deg = '-7'"}},
   });
+}
+
+// "+0" is a number like "+0.1"; a --spectrum that cannot matter is still read (a typo is an error), and a
+// free comment line survives convert.
+TEST(CliAdversarial, PlusZeroSpectrumAndCommentsAreNotIgnored) {
+  CaseFolder f("adversarial-plus-zero");
+  auto r = run_cli("albedo lambert -p albedo=0.3 --sun-zenith +0 -o " + f.path("a.csv"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  r = run_cli("albedo lambert -p albedo=0.3 --spectrum " + f.path("missing.csv") + " -o " + f.path("b.csv"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("missing.csv"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(f.path("b.csv")));
+  const std::string in = f.path("in.csv");
+  std::ofstream(in) << "# operator J.D., lamp warmed up 20 min\ntheta_i,phi_i,theta_r,phi_r,500\n+0,0,10,0,0.1\n";
+  r = run_cli("convert " + in + " -o " + f.path("out.csv"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream out(f.path("out.csv"));
+  std::stringstream text;
+  text << out.rdbuf();
+  EXPECT_NE(text.str().find("\n# operator J.D., lamp warmed up 20 min\n"), std::string::npos) << text.str();
 }
 
 TEST(CliAdversarial, EvalRefusesItsOwnOutputAsGeometry) {

@@ -1,4 +1,5 @@
-// The one grammar of number lists (core/range.h) and the nearest-name helper (core/nearest_name.h).
+// The one grammar of number lists (core/range.h), the one reading of a number (core/number.h) and the
+// nearest-name helper (core/nearest_name.h).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -6,6 +7,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/core/number.h"
 #include "roadbrdf/core/range.h"
 
 namespace roadbrdf {
@@ -94,6 +96,24 @@ TEST(NearestName, SuggestsOnlyCloseNames) {
   EXPECT_EQ(nearest_name("--sun", flags), "");  // ambiguous prefix
   EXPECT_EQ(did_you_mean("--jsn", flags), " (did you mean '--json'?)");
   EXPECT_EQ(did_you_mean("--colour", flags), "");
+}
+
+// A leading '+' is part of how people write numbers: "+0" is read like "+0.1" (once; "+-1" is not).
+TEST(Number, WholeTextFiniteWithOptionalPlus) {
+  double v = -1.0;
+  EXPECT_TRUE(parse_finite_double("+0", v));
+  EXPECT_EQ(v, 0.0);
+  EXPECT_TRUE(parse_finite_double("+0.1", v));
+  EXPECT_EQ(v, 0.1);
+  EXPECT_TRUE(parse_finite_double("-2.5e-3", v));
+  EXPECT_EQ(v, -2.5e-3);
+  for (const char* bad : {"", "+", "++1", "+-1", "1.5x", " 1", "1e400", "inf", "nan", "4OO"}) {
+    EXPECT_FALSE(parse_finite_double(bad, v)) << bad;
+  }
+  // Numbers that are written as numbers but are not finite still tell a data row from a header.
+  for (const char* number : {"1e400", "-1e400", "inf", "+0", "3"}) EXPECT_TRUE(is_number_text(number)) << number;
+  for (const char* text : {"wavelength", "4OO", "", "+", "1,5"}) EXPECT_FALSE(is_number_text(text)) << text;
+  EXPECT_EQ(parse_range_list("+0:+60:+30", "x"), (std::vector<double>{0, 30, 60}));
 }
 
 }  // namespace

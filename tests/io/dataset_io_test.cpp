@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "roadbrdf/core/error.h"
@@ -92,6 +93,7 @@ void expect_same(const SpectralDataset& a, const SpectralDataset& b) {
     EXPECT_LT(length(dr), 1e-10);
   }
   for (const auto& [k, v] : a.metadata) EXPECT_EQ(b.metadata.at(k), v) << k;
+  EXPECT_EQ(a.comments, b.comments);
 }
 
 TEST(DatasetIo, RoundTripWideAndLongBothConventions) {
@@ -261,6 +263,69 @@ TEST(DatasetIo, WriteIsAtomicAndRejectsInconsistentData) {
   std::filesystem::remove(path);
   EXPECT_THROW(write_dataset(d, path), InputError);
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+// Free comment lines are data about the measurement (operator notes, instrument settings): kept in
+// order through a read and a write, never dropped; "key: value" lines are metadata instead.
+TEST(DatasetIo, FreeCommentsAreKeptInOrder) {
+  const std::string path = temp_file("comments.csv", "# measured 2026-03-04 by J.D.\n# sample: concrete\n"
+                                                     "#lamp warmed up 20 min, 12:30 start\n" + kHeader +
+                                                     "0,0,30,180,0.1,0.2\n");
+  Quiet q;
+  const SpectralDataset d = read_dataset(path, q.options());
+  EXPECT_EQ(d.comments, (std::vector<std::string>{"measured 2026-03-04 by J.D.", "lamp warmed up 20 min, 12:30 start"}));
+  EXPECT_EQ(d.metadata.at("sample"), "concrete");
+  for (DatasetFormat format : {DatasetFormat::kWide, DatasetFormat::kLong}) {
+    const std::string out = roadbrdf::test::scratch_path("io_comments_out.csv");
+    write_dataset(d, out, format);
+    const SpectralDataset back = read_dataset(out, q.options());
+    expect_same(d, back);  // the writer's own banner line is not read back as a comment
+  }
+}
+
+// Every writer validates what it writes: nothing its own reader would refuse or read differently.
+TEST(DatasetIo, WriterRefusesWhatWouldNotReadBack) {
+  const std::string path = roadbrdf::test::scratch_path("io_refused.csv");
+  auto refused = [&](SpectralDataset d, const std::string& fragment) {
+    std::filesystem::remove(path);
+    try {
+      write_dataset(d, path);
+      ADD_FAILURE() << "no error, expected '" << fragment << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+  };
+  const SpectralDataset good = random_dataset(AngleConvention::kZenithAzimuth, true);
+  SpectralDataset d = good;
+  d.wavelengths = {std::nan("")};
+  d.brdf.resize(d.geometries.size());
+  d.sigma.clear();
+  refused(d, "wavelengths[0] = nan nm: must be finite and > 0");
+  d = good;
+  d.wavelengths.back() = std::numeric_limits<double>::infinity();
+  refused(d, "must be finite and > 0");
+  d = good;
+  d.brdf[7] = -std::numeric_limits<double>::infinity();
+  refused(d, "BRDF is infinite at geometry (row) 1");
+  d = good;
+  d.sigma[3] = -1e-3;
+  refused(d, "sigma is -0.001");
+  d = good;
+  d.geometries[2].theta_r = std::nan("");
+  refused(d, "geometry (row) 2");
+  d = good;
+  d.metadata["two words"] = "x";
+  refused(d, "metadata key 'two words'");
+  d = good;
+  d.metadata["note"] = "line one\nline two";
+  refused(d, "metadata 'note': the value must be one line");
+  d = good;
+  d.comments = {"ok", "line one\rline two"};
+  refused(d, "must be one line");
+  d = good;
+  d.comments = {"operator: J.D."};
+  refused(d, "would read back as metadata");
 }
 
 }  // namespace

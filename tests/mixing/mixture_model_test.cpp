@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "mixing_test_util.h"
+#include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mixture_model.h"
 
@@ -66,6 +67,28 @@ TEST(MixtureModel, GradientMatchesCentralDifferences) {
         EXPECT_NEAR(gradient[q], numeric, 1e-6 * std::max(1.0, std::fabs(numeric)))
             << to_string(kind) << " " << m->description().parameters[q].name;
       }
+    }
+  }
+}
+
+// A one-member mixture with weight 1 is its member: the albedo integrator must treat an anisotropic
+// Ashikhmin-Shirley lobe inside a mixture as anisotropic (it used to integrate it as isotropic, 3 % off).
+TEST(MixtureModel, SingleAnisotropicMemberKeepsItsAlbedo) {
+  std::shared_ptr<const Model> as = make_model("ashikhmin-shirley");
+  const std::shared_ptr<const Model> reference = as;
+  const MixtureModel m(MixtureKind::kLinear, std::vector<std::shared_ptr<const Model>>{std::move(as)},
+                       std::vector<std::string>{"a"}, std::vector<bool>{false});
+  EXPECT_FALSE(m.description().isotropic);
+  const std::vector<double> own = {0.3, 0.05, 10.0, 200.0};  // rd, rs, nu, nv
+  std::vector<double> mixed = {1.0};                          // weight of "a", then its parameters
+  mixed.insert(mixed.end(), own.begin(), own.end());
+  ASSERT_EQ(mixed.size(), m.parameter_count());
+  EXPECT_FALSE(roadbrdf::albedo::is_isotropic(m, mixed.data(), 1));
+  for (double theta_s : {0.0, 0.5, 1.0}) {
+    for (double phi_s : {0.0, 0.7}) {
+      const double a = roadbrdf::albedo::black_sky(*reference, own.data(), 1, theta_s, phi_s).value[0];
+      const double b = roadbrdf::albedo::black_sky(m, mixed.data(), 1, theta_s, phi_s).value[0];
+      EXPECT_NEAR(b, a, 2e-5) << theta_s << ' ' << phi_s;
     }
   }
 }

@@ -6,7 +6,8 @@
 //     independent brute-force quadrature written here, not by the albedo module,
 //   - finite values at edge geometries (normal incidence, grazing 89.9 and 90 deg, exact mirror
 //     and exact retro directions),
-//   - automatic-differentiation gradients equal central finite differences.
+//   - automatic-differentiation gradients equal central finite differences,
+//   - azimuthal isotropy exactly where declared (isotropic, isotropic_when_equal).
 // New models are covered automatically once registered.
 #include <gtest/gtest.h>
 
@@ -257,6 +258,66 @@ TEST_P(ModelProperties, ReciprocalWhereDeclared) {
   } else {
     EXPECT_GT(worst, 1e-6) << d.name << " is declared non-reciprocal but behaved reciprocally";
   }
+}
+
+// Turning both directions about the normal by the same angle changes nothing for an isotropic model
+// (largest relative change over random geometries and turns at parameter set p).
+double largest_change_under_rotation(const Model& model, const std::vector<double>& p, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const double ti = std::acos(u(rng)), tr = std::acos(u(rng));
+    const double pi = 2 * kPi * u(rng), pr = 2 * kPi * u(rng), turn = 2 * kPi * u(rng);
+    const double a = model.evaluate(p.data(), geometry_from_radians(ti, pi, tr, pr));
+    const double b = model.evaluate(p.data(), geometry_from_radians(ti, pi + turn, tr, pr + turn));
+    const double scale = std::fmax(std::fabs(a), std::fabs(b));
+    if (scale > 1e-300 && std::isfinite(scale)) worst = std::fmax(worst, std::fabs(a - b) / scale);
+  }
+  return worst;
+}
+
+TEST_P(ModelProperties, IsotropicExactlyWhereDeclared) {
+  const ModelDescription& d = model_->description();
+  std::mt19937_64 rng(4242);
+  double worst = 0.0, worst_where_equal = 0.0;
+  for (int s = 0; s < 50; ++s) {
+    std::vector<double> p = random_parameters(d, rng);
+    worst = std::fmax(worst, largest_change_under_rotation(*model_, p, rng));
+    for (const auto& [first, second] : d.isotropic_when_equal) {
+      p[*d.parameter_index(second)] = p[*d.parameter_index(first)];
+    }
+    if (!d.isotropic_when_equal.empty()) {
+      EXPECT_TRUE(is_isotropic_at(d, p.data()));
+      worst_where_equal = std::fmax(worst_where_equal, largest_change_under_rotation(*model_, p, rng));
+    }
+  }
+  if (d.isotropic) {
+    EXPECT_LT(worst, 1e-9) << d.name << " claims azimuthal isotropy";
+  } else {
+    EXPECT_GT(worst, 1e-6) << d.name << " is declared anisotropic but behaved isotropically";
+    EXPECT_LT(worst_where_equal, 1e-9) << d.name << " claims isotropy where its pairs are equal";
+  }
+}
+
+TEST(ModelIsotropy, CompositesCombineTheirComponents) {
+  const auto m = make_model("lambert+ashikhmin-shirley");
+  const ModelDescription& d = m->description();
+  EXPECT_FALSE(d.isotropic);
+  ASSERT_EQ(d.isotropic_when_equal.size(), 1u);
+  EXPECT_EQ(d.isotropic_when_equal[0].first, "ashikhmin-shirley.nu");
+  EXPECT_EQ(d.isotropic_when_equal[0].second, "ashikhmin-shirley.nv");
+  std::vector<double> p = d.default_parameters();
+  EXPECT_TRUE(is_isotropic_at(d, p.data()));  // defaults: nu = nv = 20
+  p[*d.parameter_index("ashikhmin-shirley.nv")] = 50.0;
+  EXPECT_FALSE(is_isotropic_at(d, p.data()));
+  // The pairs of every anisotropic component: isotropic only where all of them are equal.
+  const auto both = make_model("ashikhmin-shirley+lafortune", {{"isotropic", "no"}});
+  const ModelDescription& b = both->description();
+  EXPECT_FALSE(b.isotropic);
+  ASSERT_EQ(b.isotropic_when_equal.size(), 2u);
+  EXPECT_EQ(b.isotropic_when_equal[1].first, "lafortune.cx1");
+  EXPECT_EQ(b.isotropic_when_equal[1].second, "lafortune.cy1");
+  EXPECT_TRUE(make_model("lambert+oren-nayar")->description().isotropic);
 }
 
 TEST_P(ModelProperties, FiniteAtEdgeGeometries) {

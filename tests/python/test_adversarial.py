@@ -82,3 +82,51 @@ def test_rtable_write_refuses_what_its_readers_would_refuse(tmp_path, cells, fra
             table.write(target, format)
         assert fragment in str(error.value)
         assert not target.exists()
+
+
+@pytest.mark.parametrize("bad, fragment", [
+    (np.array(["a", "b", "c"]), "expected numbers"),
+    (np.array([object(), object(), object()]), "expected numbers"),
+    (np.array([1 + 1j, 0, 0]), "complex"),
+    ("abc", "expected numbers"),
+])
+def test_low_level_arrays_of_non_numbers_raise_input_error(bad, fragment):
+    model = _roadbrdf.make_model("lambert")
+    a = np.zeros(3)
+    with pytest.raises(roadbrdf.InputError, match=fragment):
+        model.evaluate_flat(bad, a, a, a, np.full(3, 0.3))
+
+
+def test_low_level_arrays_are_converted_when_numpy_can():
+    # Integers, lists and non-contiguous views are numbers: converted, same values as float64 arrays.
+    model = _roadbrdf.make_model("lambert")
+    strided = np.zeros(6)[::2]
+    out = model.evaluate_flat([0, 0, 0], np.zeros(3, dtype=np.int64), strided, strided, np.full(6, 0.3)[::2])
+    np.testing.assert_allclose(out, 0.3 / np.pi, rtol=1e-15)
+
+
+@pytest.mark.parametrize("call", [
+    lambda: roadbrdf.Model("lambert").evaluate("x", 0, 30, 180, albedo=0.3),
+    lambda: roadbrdf.Model("lambert").evaluate(0, 0, 30, 180, albedo=1 + 0.5j),
+    lambda: roadbrdf.road_to_zenith_azimuth(0, ["a"], 0, 0),
+    lambda: roadbrdf.Dataset([[0, 0, 30, "north"]], [500.0], [[0.1]]),
+])
+def test_high_level_non_numbers_raise_input_error_naming_the_argument(call):
+    with pytest.raises(roadbrdf.InputError, match="theta_i|albedo|alpha|angles"):
+        call()
+
+
+def test_dataset_free_comments_are_kept_and_written_back(tmp_path):
+    source = tmp_path / "in.csv"
+    source.write_text("# operator J.D.\n# sample: concrete\ntheta_i,phi_i,theta_r,phi_r,500\n0,0,30,180,0.1\n")
+    d = roadbrdf.read_dataset(source)
+    assert d.comments == ["operator J.D."]
+    assert d.metadata["sample"] == "concrete"
+    d.comments.append("re-written by the test")
+    d.write(tmp_path / "out.csv")
+    back = roadbrdf.read_dataset(tmp_path / "out.csv")
+    assert back.comments == ["operator J.D.", "re-written by the test"]
+    d.comments = ["operator: J.D."]
+    with pytest.raises(roadbrdf.InputError, match="would read back as metadata"):
+        d.write(tmp_path / "refused.csv")
+    assert not (tmp_path / "refused.csv").exists()

@@ -9,7 +9,6 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/models/composite.h"
 
 namespace roadbrdf::albedo {
 
@@ -47,35 +46,7 @@ const KronrodRule& kronrod15() {
   return rule;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Isotropy
-
 namespace {
-
-bool isotropic_strided(const Model& model, const double* params, std::size_t stride, std::size_t n_sets) {
-  if (const auto* composite = dynamic_cast<const CompositeModel*>(&model)) {
-    for (std::size_t k = 0; k < composite->component_count(); ++k) {
-      if (!isotropic_strided(composite->component(k), params + composite->weight_index(k) + 1, stride, n_sets)) {
-        return false;
-      }
-    }
-    return true;
-  }
-  const ModelDescription& d = model.description();
-  if (d.name == "lafortune") {
-    const auto it = d.option_values.find("isotropic");
-    return it == d.option_values.end() || it->second != "no";
-  }
-  if (d.name == "ashikhmin-shirley") {
-    const auto nu = d.parameter_index("nu");
-    const auto nv = d.parameter_index("nv");
-    if (!nu || !nv) return false;
-    for (std::size_t s = 0; s < n_sets; ++s) {
-      if (params[s * stride + *nu] != params[s * stride + *nv]) return false;
-    }
-  }
-  return true;
-}
 
 // Evaluates batches of geometries for all parameter sets and accumulates weighted sums per target row.
 class Accumulator {
@@ -548,7 +519,11 @@ SpectralIntegral integrate_cosine_weighted(std::size_t n_sets, const QuadratureS
 }  // namespace
 
 bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) {
-  return isotropic_strided(model, params, model.parameter_count(), n_sets);
+  // The model's own claim (ModelDescription::isotropic), at every parameter set.
+  for (std::size_t s = 0; s < n_sets; ++s) {
+    if (!is_isotropic_at(model.description(), params + s * model.parameter_count())) return false;
+  }
+  return true;
 }
 
 // Sun zenith from which black_sky() cross-checks the (mu, dphi) rule with the mirror-polar rule.

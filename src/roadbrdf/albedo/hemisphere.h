@@ -63,8 +63,8 @@ struct SpectralIntegral {
   double max_error() const;
 };
 
-// True unless the model (or a component of a composite) is ashikhmin-shirley with nu != nv in some
-// parameter set, or lafortune with option isotropic=no. `params`: n_sets x parameter_count(), row-major.
+// Whether the model declares itself azimuthally isotropic at every parameter set (its metadata:
+// ModelDescription::isotropic, isotropic_when_equal). `params`: n_sets x parameter_count(), row-major.
 bool is_isotropic(const Model& model, const double* params, std::size_t n_sets);
 
 // Black-sky albedo at sun zenith theta_s and azimuth phi_s [rad] (phi_s matters only for anisotropic

@@ -11,6 +11,7 @@
 #include "roadbrdf/albedo/solar.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/number.h"
 #include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::albedo {
@@ -131,8 +132,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     if (!a.diffuse_fraction.empty()) {
       double v = 0.0;
       const auto& t = a.diffuse_fraction;
-      const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-      if (ec == std::errc() && ptr == t.data() + t.size()) {
+      if (parse_finite_double(t, v)) {
         if (!(v >= 0.0 && v <= 1.0)) throw InputError("--diffuse-fraction must be in [0, 1]");
         constant = v;
       } else {
@@ -188,6 +188,12 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   std::vector<double> bb_bs, bb_bs_err, bb_blue, bb_blue_err;
   double bb_ws = ws.value[0], bb_ws_err = ws.error[0], outside = 0.0;
   std::string weighting;
+  if (!a.spectrum.empty() && (!spectral || wavelengths.size() < 2)) {
+    // Nothing to weigh, but a spectrum that was asked for is still read and checked, never ignored.
+    (void)solar_spectrum_from_name(a.spectrum);
+    notes.push_back(fmt::format("spectrum {}: a {} has nothing to weigh, the weighting has no effect", a.spectrum,
+                                spectral ? "single-band fit" : "non-spectral model"));
+  }
   if (!spectral) {
     weighting = "none (non-spectral model)";
     for (std::size_t z = 0; z < zeniths.size(); ++z) {

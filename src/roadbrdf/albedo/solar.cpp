@@ -14,11 +14,6 @@ namespace roadbrdf::albedo {
 
 namespace {
 
-bool is_number(std::string_view text) {
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
-}
 
 // Reads a numeric table. Header rows (every cell text, none a number) may come before the data; the
 // last one gives the column names. A row with any number in it is data, so a typo such as "4OO,1"
@@ -42,7 +37,7 @@ Table read_table(const std::string& path, std::size_t min_columns, bool non_nega
       cells[0].text = cells[0].text.substr(kByteOrderMark.size());
     }
     first_row = false;
-    const bool any_number = std::any_of(cells.begin(), cells.end(), [](const CsvCell& c) { return is_number(c.text); });
+    const bool any_number = std::any_of(cells.begin(), cells.end(), [](const CsvCell& c) { return is_number_text(c.text); });
     if (!data_started && !cells.empty() && !any_number) {
       table.names.clear();
       for (const auto& c : cells) table.names.emplace_back(c.text);
@@ -223,8 +218,7 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
     if (eq == std::string::npos) throw InputError("--atmosphere spectrl2: expected NAME=VALUE, got '" + item + "'");
     const std::string name = item.substr(0, eq), text = item.substr(eq + 1);
     double v = 0.0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+    if (!parse_finite_double(text, v)) {
       throw InputError("--atmosphere spectrl2: " + name + " = '" + text + "' is not a number");
     }
     if (name == "aod") in.aod500 = v;

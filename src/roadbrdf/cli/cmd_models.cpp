@@ -24,9 +24,10 @@ void print_markdown() {
     const ModelDescription d = make_model(name)->description();
     fmt::print("\n## `{}`\n\n{}.\n\n", d.name, d.summary);
     fmt::print("- Source: {}\n", d.citation);
-    fmt::print("- Reciprocal: {}; energy conserving: {}; non-negative: {}; ideal specular (delta) part: {}\n",
+    fmt::print("- Reciprocal: {}; energy conserving: {}; non-negative: {}; ideal specular (delta) part: {}; "
+               "azimuthally isotropic: {}\n",
                d.reciprocal ? "yes" : "no", d.energy_conserving ? "yes" : "no", d.non_negative ? "yes" : "no",
-               d.has_delta ? "yes" : "no");
+               d.has_delta ? "yes" : "no", isotropy_summary(d));
     fmt::print("\n| parameter | unit | default | lower | upper | spectral | description |\n");
     fmt::print("|---|---|---|---|---|---|---|\n");
     for (const auto& p : d.parameters) {
@@ -57,8 +58,8 @@ void run(bool as_json) {
   for (const auto& name : model_names()) {
     const ModelDescription d = make_model(name)->description();
     fmt::print("{}  {}\n", d.name, d.summary);
-    fmt::print("    reciprocal: {}   energy conserving: {}{}\n", d.reciprocal ? "yes" : "no",
-               d.energy_conserving ? "yes" : "no", d.has_delta ? "   ideal specular part: yes" : "");
+    fmt::print("    reciprocal: {}   energy conserving: {}   isotropic: {}{}\n", d.reciprocal ? "yes" : "no",
+               d.energy_conserving ? "yes" : "no", isotropy_summary(d), d.has_delta ? "   ideal specular part: yes" : "");
     fmt::print("    {}\n", d.citation);
     for (const auto& p : d.parameters) {
       fmt::print("    {:<14} [{}] {:g} in [{:g}, {:g}]{}  {}\n", p.name, p.unit, p.default_value, p.lower, p.upper,

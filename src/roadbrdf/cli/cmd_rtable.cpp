@@ -49,15 +49,6 @@ struct RTableArgs {
 
 void warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
 
-double parse_number(const std::string& text, const std::string& what) {
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
-    throw InputError(what + ": '" + text + "' is not a finite number");
-  }
-  return v;
-}
-
 Q0Region region_from_name(const std::string& name) {
   if (name == "standard") return Q0Region::standard;
   if (name == "table") return Q0Region::table;

@@ -9,6 +9,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/number.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
@@ -32,8 +33,7 @@ std::map<std::string, double> parse_numeric_assignments(const std::vector<std::s
   for (const auto& item : items) {
     auto [name, text] = split_assignment(item, what);
     double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value)) {
+    if (!parse_finite_double(text, value)) {
       throw InputError(what + " " + name + ": '" + text + "' is not a finite number");
     }
     if (result.count(name)) throw InputError(what + " " + name + " is given twice");
@@ -85,8 +85,7 @@ void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_item
 
 double parse_number(const std::string& text, const std::string& what) {
   double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+  if (!parse_finite_double(text, v)) {
     throw InputError(what + ": '" + text + "' is not a finite number");
   }
   return v;

@@ -5,16 +5,12 @@
 #include <vector>
 
 #include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/core/number.h"
 
 namespace roadbrdf::cli {
 
 namespace {
 
-bool is_number(std::string_view s) {
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  return ec == std::errc() && ptr == s.data() + s.size();
-}
 
 std::vector<std::string> command_names(CLI::App& app) {
   std::vector<std::string> names;
@@ -50,7 +46,7 @@ std::string explain_parse_error(CLI::App& app, int argc, char** argv, const CLI:
     const std::string_view token = argv[i];
     if (token == "--") break;
     if (current->get_prefix_command()) break;  // `plot`: its own parser reports
-    if (token.size() > 1 && token.front() == '-' && !is_number(token)) {
+    if (token.size() > 1 && token.front() == '-' && !is_number_text(token)) {
       // "--name=value" and "-pVALUE" name the flags "--name" and "-p".
       std::string name(token.substr(0, token.find('=')));
       if (name.rfind("--", 0) != 0) name = name.substr(0, 2);

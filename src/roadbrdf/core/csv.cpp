@@ -54,18 +54,6 @@ std::vector<CsvCell> split_whitespace(std::string_view line) {
   return cells;
 }
 
-bool parse_finite_double(std::string_view text, double& value) {
-  if (text.empty()) return false;
-  const char* first = text.data();
-  const char* last = first + text.size();
-  if (*first == '+') {
-    ++first;
-    if (first == last || *first == '-' || *first == '+') return false;  // "+", "+-1", "++1"
-  }
-  const auto [ptr, ec] = std::from_chars(first, last, value);
-  return ec == std::errc() && ptr == last && std::isfinite(value);
-}
-
 CsvReader::CsvReader(std::string path)
     : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
 

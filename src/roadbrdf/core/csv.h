@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/number.h"
 
 namespace roadbrdf {
 
@@ -75,7 +76,5 @@ std::vector<CsvCell> split_cells(std::string_view line, char separator = ',',
                                  std::size_t* count = nullptr);
 // Split a line on runs of spaces/tabs (for whitespace-separated tables); columns are 1-based.
 std::vector<CsvCell> split_whitespace(std::string_view line);
-// Parse a whole cell as a finite double (leading '+' allowed); false otherwise.
-bool parse_finite_double(std::string_view text, double& value);
 
 }  // namespace roadbrdf

@@ -72,6 +72,32 @@ int integer_option(const std::string& model, const OptionSet& options, const std
   return value;
 }
 
+bool is_isotropic_at(const ModelDescription& d, const double* params) {
+  if (d.isotropic) return true;
+  if (d.isotropic_when_equal.empty()) return false;
+  for (const auto& [first, second] : d.isotropic_when_equal) {
+    const auto a = d.parameter_index(first);
+    const auto b = d.parameter_index(second);
+    if (!a || !b || params[*a] != params[*b]) return false;
+  }
+  return true;
+}
+
+void combine_isotropy(ModelDescription& combined, const ModelDescription& component, const std::string& prefix) {
+  if (component.isotropic) return;
+  // `combined` was never isotropic before this component: a component that is never isotropic
+  // leaves it so (its empty pair list stays empty through the flag below).
+  const bool combined_never = !combined.isotropic && combined.isotropic_when_equal.empty();
+  combined.isotropic = false;
+  if (combined_never || component.isotropic_when_equal.empty()) {
+    combined.isotropic_when_equal.clear();
+    return;
+  }
+  for (const auto& [first, second] : component.isotropic_when_equal) {
+    combined.isotropic_when_equal.emplace_back(prefix + "." + first, prefix + "." + second);
+  }
+}
+
 void check_parameters(const ModelDescription& description, const std::vector<double>& values) {
   if (values.size() != description.parameters.size()) {
     throw InputError("model '" + description.name + "' takes " + std::to_string(description.parameters.size()) +

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace roadbrdf {
@@ -44,6 +45,13 @@ struct ModelDescription {
   bool energy_conserving = true;
   bool non_negative = true;  // f >= 0 for every geometry and every parameter set inside the bounds
   bool has_delta = false;   // has an ideal specular part, handled separately from the smooth BRDF
+  // Azimuthal isotropy: the BRDF depends on the azimuths only through phi_r - phi_i (turning the
+  // sample about its normal changes nothing), for every parameter set. A model anisotropic in general
+  // may be isotropic where pairs of its parameters are equal (Ashikhmin-Shirley n_u = n_v, anisotropic
+  // Lafortune C_x = C_y of every lobe): those pairs are listed in `isotropic_when_equal`. Composites
+  // and mixtures combine both from their components (combine_isotropy).
+  bool isotropic = true;
+  std::vector<std::pair<std::string, std::string>> isotropic_when_equal;
 
   // Index of a parameter by name, or nullopt.
   std::optional<std::size_t> parameter_index(const std::string& parameter_name) const;
@@ -57,6 +65,15 @@ OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo
 
 // Read a numeric option (for options declared with empty `values`). Throws InputError.
 int integer_option(const std::string& model, const OptionSet& options, const std::string& name, int lo, int hi);
+
+// Whether the BRDF is azimuthally isotropic at this parameter set (parameter_count() values), from
+// `isotropic` and `isotropic_when_equal` alone.
+bool is_isotropic_at(const ModelDescription& description, const double* params);
+
+// The isotropy of a sum or mixture of components into `combined`: isotropic if every component is;
+// otherwise isotropic where every anisotropic component is, i.e. where all their pairs (prefixed
+// "PREFIX.") are equal; never if one component is never isotropic.
+void combine_isotropy(ModelDescription& combined, const ModelDescription& component, const std::string& prefix);
 
 // Check a parameter vector against the declared bounds; throws InputError naming the first
 // offending parameter.

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/number.h"
 
 namespace roadbrdf {
 
@@ -26,8 +27,7 @@ std::string_view trim(std::string_view s) {
 double number(std::string_view text, std::string_view field, std::string_view item) {
   const std::string_view t = trim(text);
   double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  if (t.empty() || ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v)) {
+  if (!parse_finite_double(t, v)) {
     if (t.size() == item.size()) fail(field, fmt::format("'{}' is not a finite number", t));
     fail(field, fmt::format("'{}' in '{}' is not a finite number", t, item));
   }

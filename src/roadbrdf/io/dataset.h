@@ -19,6 +19,7 @@ struct SpectralDataset {
   std::vector<double> sigma;         // empty, or N x M standard uncertainties [sr^-1]
   AngleConvention convention = AngleConvention::kZenithAzimuth;  // of the source file
   std::map<std::string, std::string> metadata;  // "sample", "instrument", "units", free keys
+  std::vector<std::string> comments;            // free comment lines of the source file, in order
 
   std::size_t geometry_count() const { return geometries.size(); }
   std::size_t wavelength_count() const { return wavelengths.size(); }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -33,6 +34,22 @@ std::string fmt_angle(double v) {
 }
 
 }  // namespace
+
+bool is_metadata_key(std::string_view key) {
+  if (key.empty()) return false;
+  return std::all_of(key.begin(), key.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+}
+
+bool is_metadata_comment(std::string_view comment) {
+  const auto colon = comment.find(':');
+  if (colon == std::string_view::npos) return false;
+  std::string_view key = comment.substr(0, colon);
+  while (!key.empty() && (key.front() == ' ' || key.front() == '\t')) key.remove_prefix(1);
+  while (!key.empty() && (key.back() == ' ' || key.back() == '\t')) key.remove_suffix(1);
+  return is_metadata_key(key);
+}
 
 void angle_values_of_geometry(const Geometry& g, AngleConvention convention, double out[4]) {
   if (convention == AngleConvention::kRoad) {
@@ -70,6 +87,27 @@ void validate_dataset(const SpectralDataset& d) {
   if (!d.sigma.empty() && d.sigma.size() != n * m) {
     throw InputError(fmt::format("dataset holds {} uncertainties for {} geometries x {} wavelengths", d.sigma.size(), n, m));
   }
+  for (std::size_t j = 0; j < m; ++j) {
+    if (!(std::isfinite(d.wavelengths[j]) && d.wavelengths[j] > 0.0)) {
+      throw InputError(fmt::format("dataset wavelengths[{}] = {} nm: must be finite and > 0", j, d.wavelengths[j]));
+    }
+  }
+  for (std::size_t g = 0; g < n; ++g) {
+    const Geometry& x = d.geometries[g];
+    if (!(std::isfinite(x.theta_i) && std::isfinite(x.phi_i) && std::isfinite(x.theta_r) && std::isfinite(x.phi_r))) {
+      throw InputError(fmt::format("dataset geometry (row) {}: the angles are not finite", g));
+    }
+  }
+  // NaN is a measurement that was not made; an infinite value is no measurement at all.
+  for (std::size_t k = 0; k < n * m; ++k) {
+    if (std::isinf(d.brdf[k])) {
+      throw InputError(fmt::format("dataset BRDF is infinite at geometry (row) {}, {} nm", k / m, d.wavelengths[k % m]));
+    }
+    if (d.has_sigma() && (std::isinf(d.sigma[k]) || d.sigma[k] < 0.0)) {
+      throw InputError(fmt::format("dataset sigma is {} at geometry (row) {}, {} nm: must be finite and >= 0",
+                                   d.sigma[k], k / m, d.wavelengths[k % m]));
+    }
+  }
   for (std::size_t j = 1; j < m; ++j) {
     if (!(d.wavelengths[j] > d.wavelengths[j - 1])) {
       throw InputError(fmt::format("dataset wavelengths are not strictly increasing ({} nm then {} nm)",
@@ -78,17 +116,35 @@ void validate_dataset(const SpectralDataset& d) {
   }
 }
 
-void write_dataset(const SpectralDataset& d, std::ostream& out, DatasetFormat format) {
+void validate_dataset_for_writing(const SpectralDataset& d) {
   validate_dataset(d);
+  for (const auto& [key, value] : d.metadata) {
+    if (!is_metadata_key(key)) {
+      throw InputError(fmt::format("metadata key '{}': use letters, digits, '_', '-' and '.' only (it would not "
+                                   "read back)", key));
+    }
+    if (value.find_first_of("\r\n") != std::string::npos) {
+      throw InputError(fmt::format("metadata '{}': the value must be one line", key));
+    }
+  }
+  for (const std::string& comment : d.comments) {
+    if (comment.find_first_of("\r\n") != std::string::npos) {
+      throw InputError(fmt::format("dataset comment '{}' must be one line", comment));
+    }
+    if (is_metadata_comment(comment)) {
+      throw InputError(fmt::format("dataset comment '{}' would read back as metadata: put it in the metadata", comment));
+    }
+  }
+}
+
+void write_dataset(const SpectralDataset& d, std::ostream& out, DatasetFormat format) {
+  validate_dataset_for_writing(d);
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
-  out << "# roadbrdf spectral BRDF dataset (" << (format == DatasetFormat::kWide ? "wide" : "long")
+  out << "# " << kDatasetBanner << " (" << (format == DatasetFormat::kWide ? "wide" : "long")
       << " CSV); angles in degrees, wavelengths in nm, BRDF and sigma in sr^-1\n";
   if (!d.metadata.count("units")) out << "# units: sr^-1\n";
-  for (const auto& [key, value] : d.metadata) {
-    std::string v = value;
-    std::replace(v.begin(), v.end(), '\n', ' ');
-    out << "# " << key << ": " << v << '\n';
-  }
+  for (const std::string& comment : d.comments) out << "# " << comment << '\n';
+  for (const auto& [key, value] : d.metadata) out << "# " << key << ": " << value << '\n';
   const bool road = d.convention == AngleConvention::kRoad;
   const char* angle_header = road ? "gamma,alpha,beta,delta" : "theta_i,phi_i,theta_r,phi_r";
   std::string line;

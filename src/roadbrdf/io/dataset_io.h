@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "roadbrdf/io/dataset.h"
@@ -81,7 +82,21 @@ DatasetFormat dataset_format_from_string(const std::string& name);
 // The four angles (degrees) of a geometry in a convention, in the column order of that convention.
 void angle_values_of_geometry(const Geometry& g, AngleConvention convention, double out[4]);
 
-// Check the dataset's internal consistency (sizes, increasing wavelengths); throws InputError.
+// Check the dataset's internal consistency: sizes, finite angles, finite positive strictly
+// increasing wavelengths, no infinite BRDF value (NaN = not measured), sigma finite and >= 0 (or
+// NaN). Throws InputError.
 void validate_dataset(const SpectralDataset& dataset);
+// validate_dataset and what a file must hold to read back the same: metadata keys and values as in
+// is_metadata_key, on one line; comments on one line and not of the form "key: value".
+void validate_dataset_for_writing(const SpectralDataset& dataset);
+
+// Comment lines of a dataset file: "# key: value", with a key of letters, digits, '_', '-' and '.',
+// is metadata (SpectralDataset::metadata); any other comment is a free comment
+// (SpectralDataset::comments), kept in order by the writers.
+bool is_metadata_key(std::string_view key);
+bool is_metadata_comment(std::string_view comment_text);
+// The first comment line the writers put in a dataset file (followed by the format); not kept as a
+// free comment when read back.
+inline constexpr std::string_view kDatasetBanner = "roadbrdf spectral BRDF dataset";
 
 }  // namespace roadbrdf

@@ -33,14 +33,6 @@ std::string trim_copy(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-bool is_metadata_key(const std::string& key) {
-  if (key.empty()) return false;
-  for (char c : key) {
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
-  }
-  return true;
-}
-
 void default_warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
 
 // Why a cell is no number, for an error message: out of range, not finite, or not a number at all.
@@ -79,10 +71,14 @@ void read_metadata(Reading& r, SpectralDataset& d) {
   const auto& lines = r.reader.comment_lines();
   for (std::size_t k = 0; k < comments.size(); ++k) {
     const std::string& c = comments[k];
+    if (!is_metadata_comment(c)) {
+      // A free comment is kept (in order) for the writers, except the banner they write themselves.
+      const std::string text = trim_copy(c);
+      if (text.rfind(kDatasetBanner, 0) != 0) d.comments.push_back(text);
+      continue;
+    }
     const auto colon = c.find(':');
-    if (colon == std::string::npos) continue;  // a free comment
     const std::string key = trim_copy(c.substr(0, colon));
-    if (!is_metadata_key(key)) continue;  // a free comment containing ':'
     const std::string value = trim_copy(c.substr(colon + 1));
     if (d.metadata.count(key)) {
       throw FileError(r.reader.path(), k < lines.size() ? lines[k] : 0, 0,

@@ -68,6 +68,7 @@ ModelDescription MixtureModel::make_description(MixtureKind kind,
     reciprocal = reciprocal && c.reciprocal;
     non_negative = non_negative && c.non_negative;
     d.has_delta = d.has_delta || c.has_delta;
+    combine_isotropy(d, c, names[k]);
   }
   d.reciprocal = reciprocal;
   d.non_negative = non_negative;

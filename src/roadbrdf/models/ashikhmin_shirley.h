@@ -66,6 +66,8 @@ struct AshikhminShirley {
         {"nv", "1", "Phong-like exponent n_v of the specular lobe along the surface y axis (tangent v); "
                     "n_v = n_u is isotropic", 20.0, 0.0, kMaxExponent, false, false},
     };
+    d.isotropic = false;  // the lobe's exponent depends on the half vector's azimuth ...
+    d.isotropic_when_equal = {{"nu", "nv"}};  // ... unless n_u = n_v (paper eq. 4)
     d.reciprocal = true;  // symmetric in k1, k2 (max() and h.k1 = h.k2)
     d.energy_conserving = true;  // paper's claim; holds numerically (see the header comment)
     d.non_negative = true;

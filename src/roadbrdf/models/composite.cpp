@@ -23,6 +23,7 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
     d.non_negative = d.non_negative && c.non_negative;
     d.has_delta = d.has_delta || c.has_delta;
     const std::string& prefix = prefixes[k];
+    combine_isotropy(d, c, prefix);
     d.parameters.push_back({prefix + ".weight", "1", "weight of the " + c.name + " component", 1.0, 0.0, 1.0e6,
                             true, true});
     for (ParameterInfo p : c.parameters) {

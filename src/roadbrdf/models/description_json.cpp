@@ -11,6 +11,9 @@ nlohmann::json description_to_json(const ModelDescription& d) {
   j["energy_conserving"] = d.energy_conserving;
   j["non_negative"] = d.non_negative;
   j["has_delta"] = d.has_delta;
+  j["isotropic"] = d.isotropic;
+  j["isotropic_when_equal"] = nlohmann::json::array();
+  for (const auto& [first, second] : d.isotropic_when_equal) j["isotropic_when_equal"].push_back({first, second});
   j["parameters"] = nlohmann::json::array();
   for (const auto& p : d.parameters) {
     j["parameters"].push_back({{"name", p.name},
@@ -29,6 +32,16 @@ nlohmann::json description_to_json(const ModelDescription& d) {
   }
   j["option_values"] = d.option_values;
   return j;
+}
+
+std::string isotropy_summary(const ModelDescription& d) {
+  if (d.isotropic) return "yes";
+  if (d.isotropic_when_equal.empty()) return "no";
+  std::string pairs;
+  for (const auto& [first, second] : d.isotropic_when_equal) {
+    pairs += (pairs.empty() ? "" : ", ") + ("`" + first + "` = `" + second + "`");
+  }
+  return "where " + pairs;
 }
 
 }  // namespace roadbrdf

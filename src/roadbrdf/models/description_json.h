@@ -3,14 +3,18 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "roadbrdf/core/parameters.h"
 
 namespace roadbrdf {
 
 // Keys: name, summary, citation, reciprocal, energy_conserving, non_negative, has_delta,
-// parameters [{name, unit, description, default, lower, upper, spectral, linear}],
+// isotropic, isotropic_when_equal [[name, name], ...], parameters [{name, unit, description, default, lower, upper, spectral, linear}],
 // options [{name, description, values, default}], option_values {name: value}.
 nlohmann::json description_to_json(const ModelDescription& description);
+
+// "yes", "no" or "where `nu` = `nv`" (for the help texts and docs/models.md).
+std::string isotropy_summary(const ModelDescription& description);
 
 }  // namespace roadbrdf

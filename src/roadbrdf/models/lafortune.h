@@ -79,6 +79,7 @@ struct Lafortune {
                                   (isotropic ? " (also C_y); < 0 forward, > 0 retro" : " (surface x axis); < 0 forward"),
                               def.cx, -kMaxCoefficient, kMaxCoefficient, false, false});
       if (!isotropic) {
+        d.isotropic_when_equal.emplace_back("cx" + s, "cy" + s);  // C_x = C_y: a lobe symmetric about the normal
         d.parameters.push_back({"cy" + s, "1", "coefficient C_y of lobe " + s + " (surface y axis); < 0 forward",
                                 def.cx, -kMaxCoefficient, kMaxCoefficient, false, false});
       }
@@ -87,6 +88,7 @@ struct Lafortune {
       d.parameters.push_back({"n" + s, "1", "exponent n of lobe " + s + " (larger = narrower)", def.n, 0.0,
                               kMaxExponent, false, false});
     }
+    d.isotropic = isotropic;
     d.reciprocal = true;
     d.energy_conserving = false;  // rho_k and C are unconstrained: the albedo can exceed 1
     d.non_negative = true;

@@ -77,8 +77,7 @@ class TokenStream {
     if (done()) throw FileError(path_, last_line(), 0, "unexpected end of file: expected " + what);
     const Token& t = tokens_[next_++];
     double v = 0.0;
-    const auto [ptr, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
-    if (ec != std::errc() || ptr != t.text.data() + t.text.size() || !std::isfinite(v)) {
+    if (!parse_finite_double(t.text, v)) {
       throw FileError(path_, t.line, t.column, "'" + t.text + "' is not a " + what);
     }
     last_ = t;
@@ -138,10 +137,7 @@ RTable read_csv(const std::string& path, double scale) {
   while (reader.next_row(cells)) {
     if (row == 0 && !header_seen) {
       // Header row: first cell not a number.
-      double dummy = 0.0;
-      const auto& t = cells[0].text;
-      const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), dummy);
-      if (t.empty() || ec != std::errc() || ptr != t.data() + t.size()) {
+      if (!is_number_text(cells[0].text)) {
         header_seen = true;
         with_tan_column = true;
         if (cells.size() != kColumns + 1) {

@@ -178,10 +178,7 @@ TabulatedSpectrum read_spectrum_file(const std::string& path) {
   while (reader.next_row(cells)) {
     if (first) {
       first = false;
-      double dummy = 0.0;
-      const auto& t = cells[0].text;
-      const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), dummy);
-      if (t.empty() || ec != std::errc() || ptr != t.data() + t.size()) continue;  // header row
+      if (!is_number_text(cells[0].text)) continue;  // header row
     }
     if (cells.size() != 2) {
       reader.fail(cells.size() > 2 ? cells[2].column : 0,

@@ -126,7 +126,7 @@ bool overlap_periodic(const Item& c, const Item& o, double L) {
 // Grains registered in every bin of a periodic 2-D grid that their x-y bounding box covers.
 class Bins {
  public:
-  Bins(double L, double bin) : L_(L) {
+  Bins(double L, double bin) {
     nb_ = std::clamp(static_cast<int>(std::floor(L / bin)), 1, 256);
     size_ = L / nb_;
     cells_.resize(static_cast<std::size_t>(nb_) * nb_);
@@ -161,7 +161,6 @@ class Bins {
     }
   }
   int mod(int i) const { return ((i % nb_) + nb_) % nb_; }
-  double L_;
   int nb_ = 1;
   double size_ = 1.0;
   std::vector<std::vector<int>> cells_;

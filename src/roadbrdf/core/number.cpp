@@ -1,0 +1,40 @@
+#include "roadbrdf/core/number.h"
+
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace roadbrdf {
+
+namespace {
+
+// from_chars over the whole text after an optional single '+'; `whole` tells whether it used the whole text.
+std::errc read_double(std::string_view text, double& value, bool& whole) {
+  whole = false;
+  if (text.empty()) return std::errc::invalid_argument;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (*first == '+') {
+    ++first;
+    if (first == last || *first == '-' || *first == '+') return std::errc::invalid_argument;  // "+", "+-1", "++1"
+  }
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  whole = ptr == last;
+  return ec;
+}
+
+}  // namespace
+
+bool parse_finite_double(std::string_view text, double& value) {
+  bool whole = false;
+  return read_double(text, value, whole) == std::errc() && whole && std::isfinite(value);
+}
+
+bool is_number_text(std::string_view text) {
+  double value = 0.0;
+  bool whole = false;
+  const std::errc ec = read_double(text, value, whole);
+  return whole && (ec == std::errc() || ec == std::errc::result_out_of_range);
+}
+
+}  // namespace roadbrdf
