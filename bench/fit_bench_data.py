@@ -1,5 +1,6 @@
 """Synthetic datasets for bench/fit_bench.sh: 400 geometries x 2151 wavelengths (350..2500 nm), smooth
-spectra, 1 % relative + 1e-4 sr^-1 noise, seeded, written as a wide CSV (io/dataset_io.h).
+spectra, 1 % relative + 1e-4 sr^-1 noise, seeded, written as a wide CSV (io/dataset_io.h) with 7
+significant digits (an instrument file's precision; the noise is at the 3rd digit).
   oren-nayar+torrance-sparrow (default): albedo(lambda), sigma 0.35 rad, ks(lambda), roughness 0.25, ior 1.5
   oren-nayar: albedo(lambda), sigma 0.35 rad
   hapke: w(lambda), B0 0.6, h 0.08, xi -0.25 (H function of Hapke 2002)
@@ -52,7 +53,7 @@ def main():
         fh.write("# units: sr^-1\n")
         fh.write("theta_i,phi_i,theta_r,phi_r," + ",".join("%.6g" % v for v in wl) + "\n")
         for i in range(len(ang)):
-            fh.write(",".join("%g" % a for a in ang[i]) + "," + ",".join(repr(float(v)) for v in table[i]) + "\n")
+            fh.write(",".join("%g" % a for a in ang[i]) + "," + ",".join("%.7g" % v for v in table[i]) + "\n")
 
 
 if __name__ == "__main__":

@@ -64,21 +64,20 @@ void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size
   for (Eigen::Index g = 0; g < n; ++g) {
     for (Eigen::Index a = 0; a < nf; ++a) Jf(g, a) = J[static_cast<std::size_t>(g) * d.p + free[static_cast<std::size_t>(a)]];
   }
-  // Rank check: eigenvalues of J^T J, with the reciprocal-condition criterion used before.
-  const Eigen::MatrixXd H = Jf.transpose() * Jf;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
-  const double emax = es.eigenvalues().cwiseAbs().maxCoeff();
-  if (!H.allFinite() || !(emax > 0.0) || !(es.eigenvalues().minCoeff() > 1e-13 * emax)) {
-    return no_covariance(L, out, "rank-deficient Jacobian (parameters not separately identifiable at this solution)");
-  }
   // (J^T J)^-1 = R^-1 R^-T from a Householder QR of J (N x free): the accuracy of an SVD of J (the
   // condition number of J, not its square as inverting J^T J would give), for a few thousand flops
   // instead of a ceres::Covariance problem per wavelength (which computed the same matrix by a
   // dense SVD and was ~40 % of a Hapke fit's CPU).
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Jf);
   const Eigen::MatrixXd R = qr.matrixQR().topRows(nf).triangularView<Eigen::Upper>();
-  const Eigen::MatrixXd R_inv =
-      R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(nf, nf));
+  // Rank check: eigenvalues of J^T J = R^T R, with the reciprocal-condition criterion used before.
+  const Eigen::MatrixXd H = R.transpose() * R;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H, Eigen::EigenvaluesOnly);
+  const double emax = es.eigenvalues().cwiseAbs().maxCoeff();
+  if (!H.allFinite() || !(emax > 0.0) || !(es.eigenvalues().minCoeff() > 1e-13 * emax)) {
+    return no_covariance(L, out, "rank-deficient Jacobian (parameters not separately identifiable at this solution)");
+  }
+  const Eigen::MatrixXd R_inv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(nf, nf));
   const Eigen::MatrixXd c_free = R_inv * R_inv.transpose();
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(d.p), static_cast<Eigen::Index>(d.p));
   for (Eigen::Index a = 0; a < nf; ++a) {

@@ -279,8 +279,19 @@ inline void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std:
   const std::size_t distinct = s.cosines.size();
   std::vector<double> hv(jacobian != nullptr ? 2 * distinct : distinct);
   for (std::size_t c = 0; c < distinct; ++c) {
-    hv[c] = h_function(s.cosines[c], w);
-    if (jacobian != nullptr) hv[distinct + c] = h_function(s.cosines[c], Jet1(w, 0)).v[0];
+    const double x = s.cosines[c];
+    if (jacobian == nullptr) {
+      hv[c] = h_function(x, w);
+    } else if (h_function_ == HFunction::kExact && hapke::h_table_covers(x, w)) {
+      // One table evaluation gives H (the same value as without the derivative) and dH/dgamma.
+      double dh_dgamma = 0.0;
+      const double gamma = std::sqrt(1.0 - w);
+      hv[c] = hapke::h_table_evaluate(x, gamma, &dh_dgamma);
+      hv[distinct + c] = gamma > 0.0 ? -0.5 * dh_dgamma / gamma : 0.0;
+    } else {
+      hv[c] = h_function(x, w);
+      hv[distinct + c] = h_function(x, Jet1(w, 0)).v[0];
+    }
   }
   const bool legendre_phase = phase_ == Phase::kLegendre;
   const std::size_t P = legendre_phase ? 5 : 4;
