@@ -57,6 +57,8 @@ class JointCost final : public ceres::CostFunction {
   const std::vector<int>& block_of_;
   const std::vector<int>& index_;
   mutable std::vector<double> f_, j_, full_, r_jac_;
+  mutable std::vector<double> cached_full_;  // parameters of the values in f_ and gradients in j_
+  mutable bool cached_ = false;
 };
 
 // Levenberg-Marquardt settings of both modes (see the comments in the definition).
