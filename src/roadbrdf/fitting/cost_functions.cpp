@@ -5,16 +5,6 @@
 
 namespace roadbrdf::fitting {
 
-WavelengthCost::WavelengthCost(const FitData& d, std::size_t w) : d_(d), w_(w), f_(d.n), j_(d.n * d.p) {
-  set_num_residuals(static_cast<int>(d.n));
-  mutable_parameter_block_sizes()->push_back(static_cast<int>(d.p));
-}
-
-bool WavelengthCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  double* jac = (jacobians != nullptr && jacobians[0] != nullptr) ? jacobians[0] : nullptr;
-  return d_.residuals(w_, parameters[0], residuals, jac, f_.data(), j_.data());
-}
-
 FreeWavelengthCost::FreeWavelengthCost(const FitData& d, std::size_t w, std::vector<double> full,
                                        std::vector<std::size_t> free)
     : d_(d), w_(w), full_(std::move(full)), free_(std::move(free)), f_(d.n), j_(d.n * d.p) {

@@ -12,19 +12,6 @@
 
 namespace roadbrdf::fitting {
 
-// Per-wavelength cost: one block holding all parameters (used for the covariance, where fixed
-// coordinates are held by a SubsetManifold).
-class WavelengthCost final : public ceres::CostFunction {
- public:
-  WavelengthCost(const FitData& d, std::size_t w);
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-
- private:
-  const FitData& d_;
-  std::size_t w_;
-  mutable std::vector<double> f_, j_;
-};
-
 // Per-wavelength cost over the free parameters only: one block holding the free parameters
 // (indices `free` of the full vector), the fixed ones taken from `full`. Ceres then works with an
 // N x (free count) Jacobian instead of N x p projected through a SubsetManifold.
