@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "roadbrdf/core/geometry.h"
@@ -66,7 +67,9 @@ TEST_P(HapkeGradient, AgreesWithAutomaticDifferentiationAndFiniteDifferences) {
     EXPECT_NEAR(fj.a, f, 1e-15 * std::fabs(f)) << n;
     for (std::size_t k = 0; k < P; ++k) {
       const double ad = fj.v[static_cast<int>(k)];
-      EXPECT_NEAR(jacobian[n * P + k], ad, 1e-12 * std::fabs(ad) + 1e-15 * std::fabs(f)) << n << " " << k;
+      // Absolute part: at g = 0 (tan(g/2) = 0) df/dh is exactly 0 analytically, while the Jet
+      // derivative of b0 h/(h + t) rounds to a few ulp of b0/h times f.
+      EXPECT_NEAR(jacobian[n * P + k], ad, 1e-12 * std::fabs(ad) + 1e-13 * std::fabs(f)) << n << " " << k;
       // Central differences of the value path (step inside the bounds for every case below).
       const double step = 1e-6;
       std::vector<double> up = c.p, down = c.p;
@@ -88,7 +91,10 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"hg", "exact", {0.62, 0.6, 0.08, -0.25}}, Case{"hg", "hapke2002", {0.3, 0.2, 0.5, 0.4}},
                       Case{"hg", "hapke1981", {0.95, 0.9, 0.02, -0.6}},
                       Case{"legendre", "exact", {0.8, 0.4, 0.1, 0.3, 0.2}},
-                      Case{"legendre", "hapke2002", {0.45, 0.1, 1.2, -0.5, 0.6}}));
+                      Case{"legendre", "hapke2002", {0.45, 0.1, 1.2, -0.5, 0.6}}),
+    [](const ::testing::TestParamInfo<Case>& info) {
+      return std::string(info.param.phase) + "_" + info.param.h_function;
+    });
 
 TEST(HapkeSharedTerms, DistinctCosines) {
   // Incidence 0, 10, 35, 60, 85, 90 deg and view 0, 10, 35, 70, 89.5, 90 deg: 8 distinct cosines for
