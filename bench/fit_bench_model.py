@@ -71,3 +71,41 @@ def torrance_sparrow(g, ks, alpha, ior):
 def composite(g, p):
     on_w, rho, sigma, ts_w, ks, alpha, ior = p
     return on_w * oren_nayar(g, rho, sigma) + ts_w * torrance_sparrow(g, ks, alpha, ior)
+
+
+def oren_nayar_only(g, p):
+    """Oren-Nayar alone (parameters albedo, sigma [rad])."""
+    return oren_nayar(g, p[0], p[1])
+
+
+def h_hapke2002(x, w):
+    """Hapke, Icarus 157:523-534 (2002), eq. 13: 1/H = 1 - w x [r0 + (1 - 2 r0 x)/2 ln((1 + x)/x)],
+    r0 = (1 - gamma)/(1 + gamma), gamma = sqrt(1 - w); H(0) = 1."""
+    gamma = np.sqrt(1.0 - w)
+    r0 = (1.0 - gamma) / (1.0 + gamma)
+    xs = np.maximum(x, 1e-300)
+    inv = 1.0 - w * x * (r0 + 0.5 * (1.0 - 2.0 * r0 * x) * np.log((1.0 + xs) / xs))
+    return np.where(x > 0.0, 1.0 / inv, 1.0)
+
+
+class HapkeGeometry:
+    """Geometry-only terms of the Hapke BRDF: mu0, mu, cos g and tan(g/2) (g = phase angle between the
+    incident and reflected directions, both pointing away from the surface)."""
+    def __init__(self, g):
+        self.mu0 = np.maximum(g.ci, 0.0)
+        self.mu = np.maximum(g.cr, 0.0)
+        self.cos_g = np.clip((g.wi * g.wr).sum(axis=0), -1.0, 1.0)
+        s = np.sqrt(((g.wi + g.wr) ** 2).sum(axis=0))
+        d = np.sqrt(((g.wi - g.wr) ** 2).sum(axis=0))
+        self.tan_half = d / s
+
+
+def hapke(hg, p):
+    """Hapke IMSA BRDF f = r/mu0 = w/(4 pi) /(mu0 + mu) {[1 + B(g)] p(g) + H(mu0) H(mu) - 1} (Hapke, JGR 86,
+    1981), SHOE B(g) = B0/(1 + tan(g/2)/h) (Hapke, Icarus 67, 1986), Henyey-Greenstein
+    p(g) = (1 - xi^2)/(1 + 2 xi cos g + xi^2)^1.5, H from Hapke (2002). Parameters w, b0, h, xi."""
+    w, b0, h, xi = p
+    b = b0 * h / (h + hg.tan_half)
+    phase = (1.0 - xi * xi) / (1.0 + 2.0 * xi * hg.cos_g + xi * xi) ** 1.5
+    hh = h_hapke2002(hg.mu0, w) * h_hapke2002(hg.mu, w)
+    return w / (4.0 * np.pi) / (hg.mu0 + hg.mu) * ((1.0 + b) * phase + hh - 1.0)

@@ -1,16 +1,24 @@
-"""Per-wavelength fit of bench data with scipy.optimize.least_squares (the usual Python loop), same
-model, free parameters, bounds and starting point as `roadbrdf fit` in bench/fit_bench.sh.
-Usage: fit_bench_scipy.py DATA.csv OUT.json [STRIDE]   (STRIDE > 1 fits every STRIDE-th wavelength)"""
+"""Per-wavelength fit of bench data with scipy.optimize.least_squares (the usual Python loop: a fixed
+start at every wavelength, 2-point finite-difference Jacobian, default 'trf' method), with the
+models of bench/fit_bench_model.py and the free parameters and bounds of `roadbrdf fit` in
+bench/fit_bench.sh.
+Usage: fit_bench_scipy.py DATA.csv OUT.json [STRIDE] [MODEL]   (STRIDE > 1 fits every STRIDE-th wavelength)"""
 import json
 import sys
 import time
 import numpy as np
 from scipy.optimize import least_squares
-from fit_bench_model import Geometry, composite
+from fit_bench_model import Geometry, HapkeGeometry, composite, hapke, oren_nayar_only
 
-START = {"albedo": 0.5, "sigma": 0.3, "ks": 0.5, "roughness": 0.3}
-LOWER = [0.0, 0.0, 0.0, 0.002]
-UPPER = [1.0, 0.65, 1.0, 2.0]
+# Free parameters: start, lower, upper (the bounds of `roadbrdf models`).
+SETUPS = {
+    # albedo, sigma, ks, roughness (weights 1, ior 1.5 fixed)
+    "oren-nayar+torrance-sparrow": ([0.5, 0.3, 0.5, 0.3], [0.0, 0.0, 0.0, 0.002], [1.0, 0.65, 1.0, 2.0]),
+    # albedo, sigma
+    "oren-nayar": ([0.5, 0.3], [0.0, 0.0], [1.0, 0.65]),
+    # w, b0, h, xi
+    "hapke": ([0.5, 0.3, 0.05, 0.0], [0.0, 0.0, 1e-3, -0.95], [1.0, 1.0, 2.0, 0.95]),
+}
 
 
 def read(path):
@@ -25,17 +33,26 @@ def read(path):
 def main():
     ang, wl, y = read(sys.argv[1])
     stride = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    model = sys.argv[4] if len(sys.argv) > 4 else "oren-nayar+torrance-sparrow"
     g = Geometry(*ang.T)
+    if model == "oren-nayar+torrance-sparrow":
+        f = lambda q: composite(g, (1.0, q[0], q[1], 1.0, q[2], q[3], 1.5))
+    elif model == "oren-nayar":
+        f = lambda q: oren_nayar_only(g, q)
+    else:
+        hg = HapkeGeometry(g)
+        f = lambda q: hapke(hg, q)
+    start, lower, upper = SETUPS[model]
 
     def residual(q, yw):
-        return composite(g, (1.0, q[0], q[1], 1.0, q[2], q[3], 1.5)) - yw
+        return f(q) - yw
 
-    x0 = np.array([START["albedo"], START["sigma"], START["ks"], START["roughness"]])
+    x0 = np.array(start)
     out = {"wavelengths": [], "cost": [], "parameters": [], "nfev": []}
     t0 = time.perf_counter()
     c0 = time.process_time()
     for w in range(0, len(wl), stride):
-        r = least_squares(residual, x0, bounds=(LOWER, UPPER), args=(y[:, w],))
+        r = least_squares(residual, x0, bounds=(lower, upper), args=(y[:, w],))
         out["wavelengths"].append(float(wl[w]))
         out["cost"].append(float(r.cost))
         out["parameters"].append([float(v) for v in r.x])

@@ -5,16 +5,6 @@
 
 namespace roadbrdf::fitting {
 
-WavelengthCost::WavelengthCost(const FitData& d, std::size_t w) : d_(d), w_(w), f_(d.n), j_(d.n * d.p) {
-  set_num_residuals(static_cast<int>(d.n));
-  mutable_parameter_block_sizes()->push_back(static_cast<int>(d.p));
-}
-
-bool WavelengthCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  double* jac = (jacobians != nullptr && jacobians[0] != nullptr) ? jacobians[0] : nullptr;
-  return d_.residuals(w_, parameters[0], residuals, jac, f_.data(), j_.data());
-}
-
 FreeWavelengthCost::FreeWavelengthCost(const FitData& d, std::size_t w, std::vector<double> full,
                                        std::vector<std::size_t> free)
     : d_(d), w_(w), full_(std::move(full)), free_(std::move(free)), f_(d.n), j_(d.n * d.p) {
@@ -82,7 +72,18 @@ JointCost::JointCost(const FitData& d, std::size_t w, const std::vector<int>& bl
 bool JointCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
   for (std::size_t k = 0; k < d_.p; ++k) full_[k] = parameters[block_of_[k]][index_[k]];
   const bool want = jacobians != nullptr && (jacobians[0] != nullptr || jacobians[1] != nullptr);
-  if (!d_.residuals(w_, full_.data(), residuals, want ? r_jac_.data() : nullptr, f_.data(), j_.data())) return false;
+  // As in FreeWavelengthCost: Ceres evaluates a candidate point without the Jacobian and asks for it
+  // at the same point once it accepts the step, so values and gradients are computed together at
+  // each new point and kept.
+  if (!cached_ || cached_full_ != full_) {
+    d_.model->evaluate_prepared_with_gradient(*d_.prepared_geometries, full_.data(), f_.data(), j_.data());
+    cached_full_ = full_;
+    cached_ = true;
+  }
+  if (!d_.residuals_of_values(w_, f_.data(), want ? j_.data() : nullptr, residuals, want ? r_jac_.data() : nullptr,
+                              true)) {
+    return false;
+  }
   if (!want) return true;
   const int sizes[2] = {parameter_block_sizes()[0], parameter_block_sizes()[1]};
   for (std::size_t g = 0; g < d_.n; ++g) {

@@ -12,19 +12,6 @@
 
 namespace roadbrdf::fitting {
 
-// Per-wavelength cost: one block holding all parameters (used for the covariance, where fixed
-// coordinates are held by a SubsetManifold).
-class WavelengthCost final : public ceres::CostFunction {
- public:
-  WavelengthCost(const FitData& d, std::size_t w);
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-
- private:
-  const FitData& d_;
-  std::size_t w_;
-  mutable std::vector<double> f_, j_;
-};
-
 // Per-wavelength cost over the free parameters only: one block holding the free parameters
 // (indices `free` of the full vector), the fixed ones taken from `full`. Ceres then works with an
 // N x (free count) Jacobian instead of N x p projected through a SubsetManifold.
@@ -57,6 +44,8 @@ class JointCost final : public ceres::CostFunction {
   const std::vector<int>& block_of_;
   const std::vector<int>& index_;
   mutable std::vector<double> f_, j_, full_, r_jac_;
+  mutable std::vector<double> cached_full_;  // parameters of the values in f_ and gradients in j_
+  mutable bool cached_ = false;
 };
 
 // Levenberg-Marquardt settings of both modes (see the comments in the definition).

@@ -1,5 +1,5 @@
 // Covariance of the fitted parameters (see fit.h): standard errors and correlations from
-// (J^T J)^-1 s^2, s^2 = chi2/(n - k). Per wavelength by ceres::Covariance after a rank check; in the
+// (J^T J)^-1 s^2, s^2 = chi2/(n - k). Per wavelength from a QR of the Jacobian after a rank check; in the
 // joint mode by the block (Schur) formula over all wavelengths. Internal to fitting/.
 #pragma once
 

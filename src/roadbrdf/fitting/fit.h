@@ -32,7 +32,7 @@
 // AIC = n ln(chi2/n) + 2k and BIC = n ln(chi2/n) + k ln n (Gaussian likelihood with unknown variance,
 // k = number of free parameters). Standard errors: sqrt of the diagonal of the covariance
 // (J^T J)^-1 s^2, s^2 = chi2/(n - k) (as scipy's curve_fit with absolute_sigma=False), computed by
-// ceres::Covariance (per wavelength) or by the block Schur formula (joint mode); when J^T J is rank
+// a Householder QR of the Jacobian (per wavelength) or by the block Schur formula (joint mode); when J^T J is rank
 // deficient the standard errors are NaN and `covariance_ok` is false with a reason.
 #pragma once
 

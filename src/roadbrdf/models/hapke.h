@@ -53,10 +53,15 @@
 //     neighbouring geometries; no measurement or Gauss quadrature node sits exactly there.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <ceres/jet.h>
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
@@ -181,23 +186,146 @@ struct Hapke {
     return hapke::h_tabulated(x, w);  // the exact H, interpolated from a table of h_exact
   }
 
+  // Geometry-only terms, computed once per geometry (model.h, "prepared geometry").
+  struct Prepared {
+    double mu0 = 0.0;         // cos(theta_i), >= 0
+    double mu = 0.0;          // cos(theta_r), >= 0
+    double cos_g = 1.0;       // cosine of the phase angle
+    double tan_half_g = 0.0;  // tan(g/2); +infinity at g = pi
+    double scale = 0.0;       // 1 / (4 pi (mu0 + mu)), the sum floored at kMinCosineSum
+  };
+
+  Prepared prepare(const Geometry& g) const {
+    Prepared q;
+    q.mu0 = std::fmax(0.0, g.cos_theta_i());
+    q.mu = std::fmax(0.0, g.cos_theta_r());
+    q.cos_g = std::fmax(-1.0, std::fmin(1.0, dot(g.wi, g.wr)));
+    q.tan_half_g = tan_half_phase_angle(g);
+    const double inv_sum = 1.0 / std::fmax(q.mu0 + q.mu, kMinCosineSum);
+    q.scale = 0.25 * kInvPi * inv_sum;
+    return q;
+  }
+
   template <typename T>
   T operator()(const T* p, const Geometry& g) const {
-    const double mu0 = std::fmax(0.0, g.cos_theta_i());
-    const double mu = std::fmax(0.0, g.cos_theta_r());
-    const double cos_g = std::fmax(-1.0, std::fmin(1.0, dot(g.wi, g.wr)));
-    const T& w = p[kW];
-    const T b = opposition(p[kB0], p[kH], tan_half_phase_angle(g));
-    const T phase =
-        phase_ == Phase::kLegendre ? legendre(p[kLegendreB], p[kLegendreC], cos_g) : henyey_greenstein(p[kXi], cos_g);
-    const T multiple = h_function(mu0, w) * h_function(mu, w) - 1.0;
-    const double inv_sum = 1.0 / std::fmax(mu0 + mu, kMinCosineSum);
-    return w * (0.25 * kInvPi * inv_sum) * ((1.0 + b) * phase + multiple);
+    return (*this)(p, prepare(g));
   }
+
+  template <typename T>
+  T operator()(const T* p, const Prepared& g) const {
+    const T& w = p[kW];
+    const T b = opposition(p[kB0], p[kH], g.tan_half_g);
+    const T phase = phase_ == Phase::kLegendre ? legendre(p[kLegendreB], p[kLegendreC], g.cos_g)
+                                               : henyey_greenstein(p[kXi], g.cos_g);
+    const T multiple = h_function(g.mu0, w) * h_function(g.mu, w) - 1.0;
+    return w * g.scale * ((1.0 + b) * phase + multiple);
+  }
+
+  // Terms shared by the geometries of one set (model.h, "shared terms"). H depends on the geometry
+  // only through mu0 and mu, and an instrument grid has few distinct zenith angles (bench grid: 8
+  // incidence and 5 view angles for 400 geometries), so H(x, w) and dH/dw are computed once per
+  // distinct cosine and parameter set instead of twice per geometry.
+  struct SharedTerms {
+    std::vector<double> cosines;                 // distinct values of mu0 and mu, increasing
+    std::vector<std::uint32_t> index_i, index_r;  // per geometry: position of its mu0 and mu in `cosines`
+  };
+
+  SharedTerms share(const Prepared* g, std::size_t n) const {
+    SharedTerms s;
+    s.cosines.reserve(2 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      s.cosines.push_back(g[k].mu0);
+      s.cosines.push_back(g[k].mu);
+    }
+    std::sort(s.cosines.begin(), s.cosines.end());
+    s.cosines.erase(std::unique(s.cosines.begin(), s.cosines.end()), s.cosines.end());
+    auto position = [&s](double x) {
+      return static_cast<std::uint32_t>(std::lower_bound(s.cosines.begin(), s.cosines.end(), x) - s.cosines.begin());
+    };
+    s.index_i.resize(n);
+    s.index_r.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      s.index_i[k] = position(g[k].mu0);
+      s.index_r[k] = position(g[k].mu);
+    }
+    return s;
+  }
+
+  // Values (bit for bit those of operator()) and, if `jacobian` is not null, the analytic gradient
+  // jacobian[n * parameter count + k] (see the definition below).
+  void evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p, double* values,
+                       double* jacobian) const;
 
  private:
   Phase phase_;
   HFunction h_function_;
 };
+
+// Value and analytic gradient of f = w s {[1 + B] p + H(mu0) H(mu) - 1}, s = 1/(4 pi (mu0 + mu)),
+// B = b0 h/(h + t), t = tan(g/2):
+//   df/dw  = s {...} + w s [H'(mu0) H(mu) + H(mu0) H'(mu)]        (H' = dH/dw, per distinct cosine)
+//   df/db0 = w s p h/(h + t),   df/dh = w s p b0 t/(h + t)^2       (0 at g = pi, where B = 0)
+//   HG:       df/dxi = w s (1 + B) dp/dxi, dp/dxi = -[2 xi + 3 (1 - xi^2)(cos g + xi)/D] / D^1.5,
+//             D = 1 + 2 xi cos g + xi^2
+//   Legendre: df/db = w s (1 + B) cos g,   df/dc = w s (1 + B) (3 cos^2 g - 1)/2.
+// The value is computed by the same expressions as operator() (same rounding, bit for bit); dH/dw is
+// that of the ceres::Jet path of h_function, so the gradient equals the automatic derivative to
+// rounding. Every gradient path of the model (single, batch, prepared) comes here, so they agree
+// with each other bit for bit.
+inline void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p,
+                                   double* values, double* jacobian) const {
+  using Jet1 = ceres::Jet<double, 1>;
+  const double w = p[kW], b0 = p[kB0], h = p[kH];
+  const std::size_t distinct = s.cosines.size();
+  std::vector<double> hv(jacobian != nullptr ? 2 * distinct : distinct);
+  for (std::size_t c = 0; c < distinct; ++c) {
+    const double x = s.cosines[c];
+    if (jacobian == nullptr) {
+      hv[c] = h_function(x, w);
+    } else if (h_function_ == HFunction::kExact && hapke::h_table_covers(x, w)) {
+      // One table evaluation gives H (the same value as without the derivative) and dH/dgamma.
+      double dh_dgamma = 0.0;
+      const double gamma = std::sqrt(1.0 - w);
+      hv[c] = hapke::h_table_evaluate(x, gamma, &dh_dgamma);
+      hv[distinct + c] = gamma > 0.0 ? -0.5 * dh_dgamma / gamma : 0.0;
+    } else {
+      hv[c] = h_function(x, w);
+      hv[distinct + c] = h_function(x, Jet1(w, 0)).v[0];
+    }
+  }
+  const bool legendre_phase = phase_ == Phase::kLegendre;
+  const std::size_t P = legendre_phase ? 5 : 4;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Prepared& q = g[k];
+    const double b = opposition(b0, h, q.tan_half_g);
+    const double phase = legendre_phase ? legendre(p[kLegendreB], p[kLegendreC], q.cos_g)
+                                        : henyey_greenstein(p[kXi], q.cos_g);
+    const double h0 = hv[s.index_i[k]], h1 = hv[s.index_r[k]];
+    const double bracket = (1.0 + b) * phase + (h0 * h1 - 1.0);
+    values[k] = w * q.scale * bracket;
+    if (jacobian == nullptr) continue;
+    double* d = jacobian + k * P;
+    const double ws = w * q.scale;
+    const double dh0 = hv[distinct + s.index_i[k]], dh1 = hv[distinct + s.index_r[k]];
+    d[kW] = q.scale * bracket + ws * (dh0 * h1 + h0 * dh1);
+    if (q.tan_half_g < std::numeric_limits<double>::infinity()) {
+      const double denominator = h + q.tan_half_g;
+      d[kB0] = ws * phase * h / denominator;
+      d[kH] = ws * phase * b0 * q.tan_half_g / (denominator * denominator);
+    } else {
+      d[kB0] = 0.0;
+      d[kH] = 0.0;
+    }
+    const double forward = ws * (1.0 + b);
+    if (legendre_phase) {
+      d[kLegendreB] = forward * q.cos_g;
+      d[kLegendreC] = forward * (1.5 * q.cos_g * q.cos_g - 0.5);
+    } else {
+      const double xi = p[kXi];
+      const double base = 1.0 + 2.0 * xi * q.cos_g + xi * xi;
+      d[kXi] = -forward * (2.0 * xi + 3.0 * (1.0 - xi * xi) * (q.cos_g + xi) / base) / (base * std::sqrt(base));
+    }
+  }
+}
 
 }  // namespace roadbrdf

@@ -44,6 +44,11 @@ const double* h_table_block(int octave, int gamma_panel);
 // derivative with respect to gamma. The value does not depend on whether the derivative is asked for.
 double h_table_evaluate(double x, double gamma, double* dh_dgamma);
 
+// Whether h_tabulated(x, w) reads the table (0 < x <= 1 inside it, 0 <= w <= 1).
+inline bool h_table_covers(double x, double w) {
+  return x > 0.0 && x <= 1.0 && x >= std::ldexp(1.0, -kHTableOctaves) && w >= 0.0 && w <= 1.0;
+}
+
 // H(x, w) from the table (see above); outside it (x < 2^-kHTableOctaves, x > 1, w outside [0, 1]) the
 // direct quadrature h_exact.
 template <typename T>

@@ -22,6 +22,15 @@
 //   template <typename T> Coefficients<T> coefficients(const T* p) const;
 //   template <typename T> T operator()(const Coefficients<T>& k, const Prepared& g) const;
 // with operator()(p, g) returning exactly operator()(coefficients(p), g).
+// A model with Prepared may also share parameter-dependent work between the geometries of a set
+// (e.g. a function of one zenith angle evaluated once per distinct angle) and give its gradient
+// analytically (see HasSharedTerms below):
+//   struct SharedTerms { ... };
+//   SharedTerms share(const Prepared* g, std::size_t n) const;
+//   void evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p,
+//                        double* values, double* jacobian /* null: values only */) const;
+// Its values must be exactly operator()(p, g[k]); every gradient path of the adapter (single, batch,
+// prepared) then uses it instead of ceres::Jet, so the gradient paths agree with each other bit for bit.
 //
 // operator() is templated on the scalar so that the fitter differentiates it with ceres::Jet.
 // Geometry is plain double: angles are data, parameters are unknowns.
@@ -129,6 +138,25 @@ concept HasCoefficients =
       { m(m.coefficients(p), pg) } -> std::convertible_to<double>;
     };
 
+// A model struct with terms shared by a set of prepared geometries and an analytic gradient (see the
+// top of this file).
+template <class M>
+concept HasSharedTerms = HasPreparedGeometry<M> && requires(const M& m, const typename M::Prepared* g, std::size_t n,
+                                                            const typename M::SharedTerms& s, const double* p,
+                                                            double* out) {
+  { m.share(g, n) } -> std::same_as<typename M::SharedTerms>;
+  m.evaluate_shared(s, g, n, p, out, out);
+};
+
+template <class M>
+struct SharedTermsOf {
+  struct type {};
+};
+template <HasSharedTerms M>
+struct SharedTermsOf<M> {
+  using type = typename M::SharedTerms;
+};
+
 // What ModelAdapter keeps per geometry: M::Prepared, or the Geometry itself for models without it.
 template <class M>
 struct PreparedGeometryOf {
@@ -148,6 +176,12 @@ class ModelAdapter final : public Model {
   double evaluate(const double* params, const Geometry& g) const override { return model_(params, g); }
 
   double evaluate_with_gradient(const double* params, const Geometry& g, double* gradient) const override {
+    if constexpr (HasSharedTerms<M>) {
+      const auto q = model_.prepare(g);
+      double f = 0.0;
+      model_.evaluate_shared(model_.share(&q, 1), &q, 1, params, &f, gradient);
+      return f;
+    }
     const std::size_t n = parameter_count();
     Jet p[M::kMaxParameters];
     for (std::size_t k = 0; k < n; ++k) p[k] = Jet(params[k], static_cast<int>(k));
@@ -169,6 +203,14 @@ class ModelAdapter final : public Model {
 
   void evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries, const double* params,
                                     double* values, double* jacobian) const override {
+    if constexpr (HasSharedTerms<M>) {
+      std::vector<GeometryData> data;
+      data.reserve(n_geometries);
+      for (std::size_t n = 0; n < n_geometries; ++n) data.push_back(model_.prepare(geometries[n]));
+      model_.evaluate_shared(model_.share(data.data(), n_geometries), data.data(), n_geometries, params, values,
+                             jacobian);
+      return;
+    }
     const std::size_t n_params = parameter_count();
     Jet p[M::kMaxParameters];
     for (std::size_t k = 0; k < n_params; ++k) p[k] = Jet(params[k], static_cast<int>(k));
@@ -186,7 +228,9 @@ class ModelAdapter final : public Model {
   void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const override {
     const auto* own = dynamic_cast<const Prepared*>(&prepared);
     if (own == nullptr || own->adapter != this) return Model::evaluate_prepared(prepared, params, values);
-    if constexpr (HasCoefficients<M>) {
+    if constexpr (HasSharedTerms<M>) {
+      model_.evaluate_shared(own->shared, own->data.data(), own->size(), params, values, nullptr);
+    } else if constexpr (HasCoefficients<M>) {
       const auto k = model_.coefficients(params);
       for (std::size_t n = 0; n < own->size(); ++n) values[n] = model_(k, own->at(n));
     } else {
@@ -199,6 +243,10 @@ class ModelAdapter final : public Model {
     const auto* own = dynamic_cast<const Prepared*>(&prepared);
     if (own == nullptr || own->adapter != this) {
       return Model::evaluate_prepared_with_gradient(prepared, params, values, jacobian);
+    }
+    if constexpr (HasSharedTerms<M>) {
+      model_.evaluate_shared(own->shared, own->data.data(), own->size(), params, values, jacobian);
+      return;
     }
     const std::size_t n_params = parameter_count();
     Jet p[M::kMaxParameters];
@@ -246,6 +294,7 @@ class ModelAdapter final : public Model {
         data.reserve(count);
         for (std::size_t n = 0; n < count; ++n) data.push_back(owner.model_.prepare(geometries[n]));
       }
+      if constexpr (HasSharedTerms<M>) shared = owner.model_.share(data.data(), count);
     }
     const GeometryData& at(std::size_t n) const {
       if constexpr (HasPreparedGeometry<M>) {
@@ -256,6 +305,7 @@ class ModelAdapter final : public Model {
     }
     const ModelAdapter* adapter;  // the adapter that built it
     std::vector<GeometryData> data;
+    typename SharedTermsOf<M>::type shared;  // empty unless HasSharedTerms<M>
   };
 
   ModelAdapter(const OptionSet& resolved, int) : Model(describe_resolved(resolved)), model_(resolved) {}
