@@ -136,6 +136,11 @@ class FitResult:
     def summary(self) -> str:
         return self._summary.table()
 
+    @property
+    def missing_values(self) -> int:
+        """Missing (NaN) values of the data, masked out of the fit at their wavelength."""
+        return int(self._summary.missing_values)
+
     def warnings(self, where: str = "the fit result") -> list:
         return list(self._summary.warnings(where))
 

@@ -103,7 +103,7 @@ struct WavelengthFit {
   std::vector<double> correlation;      // p x p row-major (NaN where undefined)
   bool covariance_ok = false;
   std::string covariance_message;       // why it failed (rank deficiency...)
-  std::size_t points = 0;               // geometries used
+  std::size_t points = 0;               // geometries used (measured at this wavelength)
   std::size_t free_parameters = 0;      // counted in AIC/BIC (joint mode: this wavelength's + shared)
   double cost = 0.0;                    // Ceres' final cost, 1/2 sum rho(r^2)
   double chi2 = 0.0;                    // sum r^2 of the loss residuals (no robust function)
@@ -136,7 +136,8 @@ struct FitResult {
   double chi2_total = 0.0;
   double aic_total = 0.0;  // n ln(chi2/n) summed per wavelength + 2 k_total (k_total counts shared once)
   double bic_total = 0.0;
-  std::size_t points_total = 0;
+  std::size_t points_total = 0;       // measured values fitted (missing values excluded)
+  std::size_t missing_values = 0;     // NaN values of the dataset, masked out of the fit at their wavelength
   std::size_t free_parameters_total = 0;
   std::size_t converged_count = 0;
   std::size_t at_bound_count = 0;     // wavelengths with at least one parameter on a bound
@@ -149,7 +150,9 @@ struct FitResult {
   std::string joint_status;
 };
 
-// Fit `model` to every wavelength of `data`. Throws InputError for unusable input (NaN data, unknown
+// Fit `model` to every wavelength of `data`. A NaN value is a measurement not made: it is masked out
+// of the fit at its wavelength (the same solution as without that geometry at that wavelength) and
+// counted in FitResult::missing_values. Throws InputError for unusable input (infinite data, unknown
 // or out-of-bounds parameter names, fewer points than free parameters, relative loss with zero data...).
 FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOptions& options);
 

@@ -96,6 +96,7 @@ nlohmann::json fit_to_json(const FitResult& fit) {
   j["aic_total"] = number(fit.aic_total);
   j["bic_total"] = number(fit.bic_total);
   j["points_total"] = fit.points_total;
+  j["missing_values"] = fit.missing_values;
   j["free_parameters_total"] = fit.free_parameters_total;
   j["wavelength_count"] = fit.wavelengths.size();
   j["converged_count"] = fit.converged_count;

@@ -328,15 +328,24 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
   d.wavelengths = wls;
   d.brdf.assign(n * m, 0.0);
   if (with_sigma) d.sigma.assign(n * m, 0.0);
-  std::vector<std::uint32_t> count(n * m, 0);
+  // Rows per cell, and how many of them were measured: a duplicate average is over the measured
+  // values; a cell no row measured stays missing (NaN).
+  std::vector<std::uint32_t> rows(n * m, 0), count(n * m, 0);
   for (std::size_t k = 0; k < records.size(); ++k) {
     const auto& rec = records[k];
     const std::size_t idx = rec.geometry * m + wl_index[k];
-    if (count[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
+    if (rows[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
+    if (std::isnan(rec.brdf)) continue;
+    ++count[idx];
     d.brdf[idx] += rec.brdf;
     if (with_sigma) d.sigma[idx] += rec.sigma * rec.sigma;
   }
   for (std::size_t idx = 0; idx < n * m; ++idx) {
+    if (count[idx] == 0) {
+      d.brdf[idx] = kNaN;
+      if (with_sigma) d.sigma[idx] = kNaN;
+      continue;
+    }
     d.brdf[idx] /= count[idx];
     if (with_sigma) d.sigma[idx] = std::sqrt(d.sigma[idx]) / count[idx];
   }
