@@ -56,8 +56,10 @@ class ModelFit:
         ``covariance_ok``, ``covariance_message``, ``at_bounds``.
     totals : dict
         Over all wavelengths: ``rmse``, ``relative_rmse``, ``max_relative_error``, ``chi2``, ``aic``,
-        ``bic``, ``points``, ``free_parameters``, ``converged_count``, ``at_bound_count``,
-        ``covariance_failures``, ``seconds``, ``joint``.
+        ``bic``, ``points`` (measured values), ``missing_values``, ``free_parameters``,
+        ``converged_count``, ``at_bound_count``, ``covariance_failures``, ``stayed_at_start_count``,
+        ``seconds``, ``joint``, and ``coverage``: the measured directions (``theta_i_deg`` and
+        ``theta_r_deg`` [min, max], ``azimuth_planes_deg``, ``geometries``), as in the fit file.
     """
 
     def __init__(self, summary, index: int):

@@ -94,6 +94,14 @@ py::dict totals(const FitResult& f) {
   d["converged_count"] = f.converged_count;
   d["at_bound_count"] = f.at_bound_count;
   d["covariance_failures"] = f.covariance_failures;
+  d["stayed_at_start_count"] = f.stayed_at_start_count;
+  // The angular coverage of the data (the fit file's "coverage").
+  py::dict c;
+  c["theta_i_deg"] = std::vector<double>{f.coverage.theta_i_min_deg, f.coverage.theta_i_max_deg};
+  c["theta_r_deg"] = std::vector<double>{f.coverage.theta_r_min_deg, f.coverage.theta_r_max_deg};
+  c["azimuth_planes_deg"] = f.coverage.azimuth_planes_deg;
+  c["geometries"] = f.coverage.geometries;
+  d["coverage"] = c;
   d["seconds"] = f.seconds;
   d["joint"] = f.joint;
   return d;

@@ -82,10 +82,14 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     const std::size_t k = index_of(name, "bounds");
     ParameterInfo& q = L.info[k];
     const auto [lo, hi] = range;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || lo < q.lower || hi > q.upper) {
+    // Narrower or wider than the default fitting range, inside what the physics allows.
+    const auto [physical_lo, physical_hi] = desc.physical_range(k);
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || lo < physical_lo || hi > physical_hi) {
       throw FieldError("bounds." + name, "[" + fmt_double(lo) + ", " + fmt_double(hi) +
-                                             "] must be an interval lower < upper inside the model's bounds [" +
-                                             fmt_double(q.lower) + ", " + fmt_double(q.upper) + "] " + q.unit);
+                                             "] must be an interval lower < upper inside the parameter's physical "
+                                             "range [" + fmt_double(physical_lo) + ", " + fmt_double(physical_hi) +
+                                             "] " + q.unit + " (model metadata; the default fitting range is [" +
+                                             fmt_double(q.lower) + ", " + fmt_double(q.upper) + "])");
     }
     q.lower = lo;
     q.upper = hi;
@@ -237,6 +241,18 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   result.settings = options;
   result.settings.progress = nullptr;
   result.missing_values = result_missing;
+  {
+    std::vector<Geometry> measured;
+    for (std::size_t g = 0; g < N; ++g) {
+      for (std::size_t w = 0; w < M; ++w) {
+        if (!std::isnan(data.value(g, w))) {
+          measured.push_back(data.geometries[g]);
+          break;
+        }
+      }
+    }
+    result.coverage = angular_coverage(measured);
+  }
   result.joint = joint;
 
   if (joint) {
@@ -261,6 +277,14 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     if (out.converged) ++result.converged_count;
     if (!out.at_bounds.empty()) ++result.at_bound_count;
     if (!out.covariance_ok) ++result.covariance_failures;
+    if (!L.free_nonlinear.empty()) {
+      out.stayed_at_start = true;
+      for (std::size_t k : L.free_nonlinear) {
+        const double s0 = L.start[k];
+        if (std::fabs(out.parameters[k] - s0) > 1e-9 * std::max(1.0, std::fabs(s0))) out.stayed_at_start = false;
+      }
+      if (out.stayed_at_start && out.converged) ++result.stayed_at_start_count;
+    }
   }
   result.free_parameters_total = joint ? shared_free + M * local_free : M * free_count;
   const double nt = static_cast<double>(result.points_total);

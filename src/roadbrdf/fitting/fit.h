@@ -43,6 +43,7 @@
 #include <utility>
 #include <vector>
 
+#include "roadbrdf/core/coverage.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/models/model.h"
 
@@ -68,8 +69,9 @@ struct FitOptions {
   std::map<std::string, double> fixed;
   // Starting values (name -> value); the model's defaults for the rest. Must lie inside the bounds.
   std::map<std::string, double> start;
-  // Narrower bounds (name -> [lower, upper]) inside the model's own; a default start outside them
-  // is moved to the middle of the interval (a given start must lie inside).
+  // Bounds (name -> [lower, upper]) replacing a parameter's default fitting range, narrower or wider,
+  // inside its physical range (ModelDescription::physical_range: model metadata); a default start
+  // outside them is moved to the middle of the interval (a given start must lie inside).
   std::map<std::string, std::pair<double, double>> bounds;
   // Parameter names shared across wavelengths: non-empty selects the joint spectral mode.
   std::vector<std::string> shared;
@@ -118,6 +120,9 @@ struct WavelengthFit {
   std::string status;                   // Ceres termination message
   std::vector<std::string> at_bounds;   // free parameters ending on a bound: "name=lower" / "name=upper"
   int start_index = 0;                  // which multi-start point won (0: the given/warm start)
+  // Every free nonlinear parameter ended at its given starting value (to 1e-9): a "converged" fit
+  // that never moved, i.e. data that do not constrain those parameters (warned about).
+  bool stayed_at_start = false;
 };
 
 struct FitResult {
@@ -142,6 +147,8 @@ struct FitResult {
   std::size_t converged_count = 0;
   std::size_t at_bound_count = 0;     // wavelengths with at least one parameter on a bound
   std::size_t covariance_failures = 0;
+  std::size_t stayed_at_start_count = 0;  // converged wavelengths with stayed_at_start
+  AngularCoverage coverage;               // of the geometries measured at one wavelength at least
   double seconds = 0.0;      // wall time of fit_model
   double cpu_seconds = 0.0;  // process CPU time during fit_model (all threads; noisy machines: compare this)
   bool joint = false;

@@ -234,6 +234,18 @@ std::vector<std::string> FitSummary::warnings(const std::string& where) const {
       out.push_back(fmt::format("{}: parameters on a bound at {} of {} wavelengths (see 'at_bounds')", f.model,
                                 f.at_bound_count, M));
     }
+    if (f.stayed_at_start_count > 0) {
+      std::string names;
+      for (std::size_t k = 0; k < f.parameter_names.size(); ++k) {
+        const bool fixed = std::find(f.fixed.begin(), f.fixed.end(), f.parameter_names[k]) != f.fixed.end();
+        if (!fixed) names += (names.empty() ? "" : ", ") + f.parameter_names[k];
+      }
+      out.push_back(fmt::format("{}: at {} of {} wavelengths the fit reports convergence but its nonlinear parameters "
+                                "never left their starting values: the data may not constrain them (look at the "
+                                "geometries with `roadbrdf check`, fix them with --fix, or try --start/--multistart; "
+                                "free parameters: {})",
+                                f.model, f.stayed_at_start_count, M, names));
+    }
     if (f.settings.compute_covariance && f.covariance_failures > 0) {
       out.push_back(fmt::format("{}: no standard errors at {} of {} wavelengths (see 'covariance_message')", f.model,
                                 f.covariance_failures, M));

@@ -18,7 +18,9 @@
 //
 // Both are streamed line by line. Every problem is reported as FileError (file:line:column and
 // the offending text); nothing is dropped silently. Negative BRDF values are kept, counted and
-// reported as a warning (measurement noise is real).
+// reported as a warning (measurement noise is real). Implausible files are read as they are, with a
+// warning: BRDF values above 1e3 sr^-1, wavelengths that all look like micrometres (below 30),
+// angles that all look like radians (within +-1.6).
 #pragma once
 
 #include <cstddef>
@@ -63,6 +65,9 @@ struct DatasetReadStats {
   std::size_t negative_values = 0;
   std::size_t missing_values = 0;
   std::size_t averaged_duplicate_rows = 0;
+  std::size_t implausible_values = 0;  // BRDF values above 1e3 sr^-1
+  bool micrometre_wavelengths = false;  // every wavelength below 30 "nm": probably micrometres
+  bool radian_angles = false;           // every angle within +-1.6 "deg": probably radians
 };
 
 // Number of missing (NaN) BRDF values of a dataset.

@@ -113,6 +113,12 @@ double parse_brdf(Reading& r, std::string_view text, long column) {
     if (v < 0.0 && r.stats.negative_values++ == 0) {
       r.first_negative = fmt::format("{}:{}:{}", r.reader.path(), r.reader.line_number(), column);
     }
+    if (v > kImplausibleBrdf) {
+      if (r.stats.implausible_values++ == 0) {
+        r.first_large = fmt::format("{}:{}:{}", r.reader.path(), r.reader.line_number(), column);
+      }
+      r.largest = std::max(r.largest, v);
+    }
     return v;
   }
   if (r.options.allow_missing && is_missing_text(text)) {
@@ -187,6 +193,30 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
   }
   if (r.stats.averaged_duplicate_rows > 0) {
     warn(fmt::format("{}: {} duplicate geometry rows were averaged", r.reader.path(), r.stats.averaged_duplicate_rows));
+  }
+  if (r.stats.implausible_values > 0) {
+    warn(fmt::format("{}: {} of {} BRDF values are above {:g} sr^-1 (largest {:g}, first at {}): only a mirror or "
+                     "retroreflector peak is that bright; check that the file holds a BRDF in sr^-1 (not a radiance, "
+                     "counts or a reflectance in percent)",
+                     r.reader.path(), r.stats.implausible_values, total, kImplausibleBrdf, r.largest, r.first_large));
+  }
+  if (!d.wavelengths.empty() && d.wavelengths.back() < kMicrometreLikeWavelength) {
+    r.stats.micrometre_wavelengths = true;
+    warn(fmt::format("{}: every wavelength is below {:g} nm ({:g}-{:g}): they look like micrometres; datasets hold "
+                     "nm (multiply the header wavelengths by 1000)",
+                     r.reader.path(), kMicrometreLikeWavelength, d.wavelengths.front(), d.wavelengths.back()));
+  }
+  double largest_angle = 0.0;
+  for (const Geometry& g : d.geometries) {
+    double a[4];
+    angle_values_of_geometry(g, d.convention, a);
+    for (double v : a) largest_angle = std::max(largest_angle, std::fabs(v));
+  }
+  if (!d.geometries.empty() && largest_angle > 0.0 && largest_angle <= kRadianLikeAngle) {
+    r.stats.radian_angles = true;
+    warn(fmt::format("{}: every angle is within +-{:g} deg (largest {:g}): they look like radians; datasets hold "
+                     "degrees (multiply the angles by 180/pi)",
+                     r.reader.path(), kRadianLikeAngle, largest_angle));
   }
 }
 
