@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from . import _roadbrdf
@@ -29,7 +31,9 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
 
     Returns a dict: ``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky`` [zenith][wavelength],
     ``white_sky`` [wavelength], ``blue_sky``, ``diffuse_fraction``, their ``*_error`` estimates,
-    ``broadband`` (solar-weighted values), ``luminous``, ``units`` and ``notes``.
+    ``broadband`` (solar-weighted values), ``luminous``, ``coverage`` (a fit's measured directions and
+    the fractions of the black- and white-sky integrals outside them, ``None`` when unknown), ``units``
+    and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
     """
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
     common = (zeniths, None if sun_azimuth is None else float(sun_azimuth), bool(azimuth_mean),
@@ -41,11 +45,19 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")
-        return _roadbrdf.albedo_spectral(model._spectral, *common)
+        return _warn_notes(_roadbrdf.albedo_spectral(model._spectral, *common))
     given = dict(params or {})
     names = model.parameter_names
     unknown = [k for k in given if k not in names]
     if unknown:
         raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
     values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
-    return _roadbrdf.albedo_model(model._model, values, *common)
+    return _warn_notes(_roadbrdf.albedo_model(model._model, values, *common))
+
+
+def _warn_notes(report: dict) -> dict:
+    """The command line's warnings: notes on mostly extrapolated or non-physical results."""
+    for note in report.get("notes", []):
+        if note.startswith(("WARNING: mostly", "WARNING: non-physical")):
+            warnings.warn(note[len("WARNING: "):], UserWarning, stacklevel=3)
+    return report

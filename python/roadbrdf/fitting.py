@@ -56,8 +56,10 @@ class ModelFit:
         ``covariance_ok``, ``covariance_message``, ``at_bounds``.
     totals : dict
         Over all wavelengths: ``rmse``, ``relative_rmse``, ``max_relative_error``, ``chi2``, ``aic``,
-        ``bic``, ``points``, ``free_parameters``, ``converged_count``, ``at_bound_count``,
-        ``covariance_failures``, ``seconds``, ``joint``.
+        ``bic``, ``points`` (measured values), ``missing_values``, ``free_parameters``,
+        ``converged_count``, ``at_bound_count``, ``covariance_failures``, ``stayed_at_start_count``,
+        ``seconds``, ``joint``, and ``coverage``: the measured directions (``theta_i_deg`` and
+        ``theta_r_deg`` [min, max], ``azimuth_planes_deg``, ``geometries``), as in the fit file.
     """
 
     def __init__(self, summary, index: int):
@@ -135,6 +137,11 @@ class FitResult:
     @property
     def summary(self) -> str:
         return self._summary.table()
+
+    @property
+    def missing_values(self) -> int:
+        """Missing (NaN) values of the data, masked out of the fit at their wavelength."""
+        return int(self._summary.missing_values)
 
     def warnings(self, where: str = "the fit result") -> list:
         return list(self._summary.warnings(where))

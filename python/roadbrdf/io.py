@@ -79,12 +79,14 @@ class Dataset:
         write_dataset(self, path, format)
 
 
-def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing: bool = False,
+def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing: bool = True,
                  delimiter: str = "auto", decimal: str = "auto") -> Dataset:
     """Read a wide or long CSV dataset (the format is detected from the header).
 
-    Duplicate geometries are an error unless ``average_duplicates``; missing values (empty, nan,
-    NA) are an error unless ``allow_missing`` (then kept as NaN). Negative values are kept and
+    Duplicate geometries are an error unless ``average_duplicates`` (which averages the measured
+    values of each cell). Missing values (empty, nan, NA) are measurements not made: kept as NaN,
+    counted in a :class:`UserWarning` (``allow_missing=False`` makes them an error); the fit, mixing,
+    resampling and calibration mask them out, never fill them in. Negative values are kept and
     reported with a :class:`UserWarning`. Malformed files raise InputError naming file:line:column.
     ``delimiter`` ("auto", ",", ";", "tab") and ``decimal`` ("auto", ".", ",") are the command line's
     ``--delimiter`` / ``--decimal``: by default the dialect is detected (docs/data.md).

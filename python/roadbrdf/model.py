@@ -103,11 +103,12 @@ class Model:
         values = []
         for p in self.parameters:
             v = as_float_array(given.get(p["name"], p["default"]), p["name"])
-            bad = ~np.isfinite(v) | (v < p["lower"]) | (v > p["upper"])
+            lower, upper = p.get("physical_bounds", (p["lower"], p["upper"]))  # as check_parameters
+            bad = ~np.isfinite(v) | (v < lower) | (v > upper)
             if np.any(bad):
                 first = float(np.atleast_1d(v)[np.argmax(np.atleast_1d(bad))])
                 raise InputError(f"parameter '{p['name']}' of model '{self.name}' = {first:g} is outside its "
-                                 f"bounds [{p['lower']:g}, {p['upper']:g}]")
+                                 f"bounds [{lower:g}, {upper:g}]")
             values.append(v)
         arrays = np.broadcast_arrays(*_angle_arrays(theta_i, phi_i, theta_r, phi_r), *values)
         shape = arrays[0].shape

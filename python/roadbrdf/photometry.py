@@ -21,7 +21,9 @@ class RTable(dict):
     """A road r-table: a dict with ``r`` (29 x 20 array of reduced luminance coefficients in sr^-1,
     NaN where the table is not defined; rows tan(gamma), columns beta), ``tan_gamma``,
     ``beta_deg``, ``alpha_deg``, ``name``, and the summary figures ``Q0``, ``S1``, ``S2``, ``Qd`` [sr^-1
-    except S1, S2], ``class`` (R system) and ``classes`` (R, N, C). Files store 1e4 r."""
+    except S1, S2], ``class`` (R system) and ``classes`` (R, N, C). Files store 1e4 r. Tables computed
+    from a fit also have ``coverage``: the fit's measured directions and the cells outside them, and the
+    negative cells (``roadbrdf rtable --json``'s "coverage"; its warnings are :class:`UserWarning`)."""
 
     def write(self, path: PathLike, format: str = "csv") -> None:
         """Write as ``"csv"``, ``"rtb"`` (DIALux) or ``"radiance"``, atomically."""

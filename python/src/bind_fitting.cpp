@@ -89,10 +89,19 @@ py::dict totals(const FitResult& f) {
   d["aic"] = f.aic_total;
   d["bic"] = f.bic_total;
   d["points"] = f.points_total;
+  d["missing_values"] = f.missing_values;
   d["free_parameters"] = f.free_parameters_total;
   d["converged_count"] = f.converged_count;
   d["at_bound_count"] = f.at_bound_count;
   d["covariance_failures"] = f.covariance_failures;
+  d["stayed_at_start_count"] = f.stayed_at_start_count;
+  // The angular coverage of the data (the fit file's "coverage").
+  py::dict c;
+  c["theta_i_deg"] = std::vector<double>{f.coverage.theta_i_min_deg, f.coverage.theta_i_max_deg};
+  c["theta_r_deg"] = std::vector<double>{f.coverage.theta_r_min_deg, f.coverage.theta_r_max_deg};
+  c["azimuth_planes_deg"] = f.coverage.azimuth_planes_deg;
+  c["geometries"] = f.coverage.geometries;
+  d["coverage"] = c;
   d["seconds"] = f.seconds;
   d["joint"] = f.joint;
   return d;
@@ -106,6 +115,7 @@ void bind_fitting(py::module_& m) {
       .def_property_readonly("ranking", [](const FitSummary& s) { return s.ranking; })
       .def_property_readonly("wavelengths", [](const FitSummary& s) { return s.wavelengths; })
       .def_property_readonly("geometry_count", [](const FitSummary& s) { return s.geometry_count; })
+      .def_property_readonly("missing_values", [](const FitSummary& s) { return s.missing_values; })
       .def("model_name", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).model; })
       .def("options", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).options; })
       .def("parameter_names", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).parameter_names; })

@@ -187,7 +187,7 @@ void bind_io(py::module_& m) {
         options.warn = python_warning();
         return dataset_to_dict(read_dataset(path, options));
       },
-      py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = false,
+      py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = true,
       py::arg("delimiter") = "auto", py::arg("decimal") = "auto");
   m.def("write_dataset", [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
                             const std::map<std::string, std::string>& metadata, const std::string& convention,

@@ -11,6 +11,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/spectra/cie.h"
 #include "roadbrdf/photometry/rtable.h"
+#include "roadbrdf/photometry/rtable_coverage.h"
 #include "roadbrdf/photometry/rtable_io.h"
 
 namespace py = pybind11;
@@ -103,8 +104,17 @@ void bind_photometry(py::module_& m) {
          std::optional<std::pair<double, double>> band) {
         std::string note;
         const SpectralWeighting w = effective_weighting(model, weighting_from(illuminant, wavelength, band), &note);
-        py::dict d = rtable_to_dict(compute_rtable(model, w, alpha));
+        const RTable table = compute_rtable(model, w, alpha);
+        py::dict d = rtable_to_dict(table);
         d["note"] = note.empty() ? py::object(py::none()) : py::object(py::str(note));
+        // The command line's "coverage" (photometry/rtable_coverage.h); its WARNING notes as UserWarning.
+        const RTableCoverage coverage = rtable_coverage(table, model.coverage());
+        d["coverage"] = json_to_python(coverage.to_json());
+        for (const std::string& n : coverage.notes()) {
+          if (n.rfind("WARNING: ", 0) == 0) {
+            py::module_::import("warnings").attr("warn")(n.substr(9), py::module_::import("builtins").attr("UserWarning"), 2);
+          }
+        }
         return d;
       },
       py::arg("model"), py::arg("alpha") = 1.0, py::arg("illuminant") = "A", py::arg("wavelength") = py::none(),

@@ -78,10 +78,16 @@ TEST(FitDegenerate, FewerGeometriesThanParameters) {
             std::string::npos);
 }
 
-TEST(FitDegenerate, NaNInData) {
+TEST(FitDegenerate, NaNIsMaskedInfinityIsAnError) {
   auto model = make_model("lambert");
   SpectralDataset d = constant_data(10, 0.1);
+  // NaN: a measurement not made, masked out at its wavelength (fit_missing_values_test.cpp).
   d.value(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  const FitResult f = fit_model(*model, d, FitOptions{});
+  EXPECT_EQ(f.missing_values, 1u);
+  EXPECT_EQ(f.wavelengths[1].points, 9u);
+  EXPECT_EQ(f.wavelengths[0].points, 10u);
+  d.value(3, 1) = std::numeric_limits<double>::infinity();
   const std::string e = error_of([&] { fit_model(*model, d, FitOptions{}); });
   EXPECT_NE(e.find("geometry 4, wavelength 510 nm"), std::string::npos) << e;
 }

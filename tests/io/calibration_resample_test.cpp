@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -138,6 +139,35 @@ TEST(Resample, BandAveragesMatchHandComputedIntegrals) {
   const SpectralDataset dropped = resample_dataset(d, bands_from_edges(parse_range_list("400:420:5", "edges", wavelength_rules())), {{411, 413}});
   EXPECT_EQ(dropped.wavelengths, (std::vector<double>{402.5, 407.5, 417.5}));
   EXPECT_EQ(dropped.metadata.at("dropped_bands"), "410-415");
+}
+
+TEST(MissingValues, CalibrationKeepsAMissingRadianceMissing) {
+  const std::vector<double> wl = {500, 600, 700};
+  CalibrationInput in;
+  in.sample = radiances(wl, 1000.0, 2);
+  in.reference = radiances(wl, 2000.0, 1);
+  in.sample.value(1, 2) = std::numeric_limits<double>::quiet_NaN();   // sample not measured
+  in.reference.value(0, 0) = std::numeric_limits<double>::quiet_NaN();  // reference not measured at 500 nm
+  in.panel_reflectance = read_spectrum(kSpectralon);
+  const SpectralDataset out = calibrate(in);
+  const auto table = spectralon_table();
+  EXPECT_TRUE(std::isnan(out.value(0, 0)));
+  EXPECT_TRUE(std::isnan(out.value(1, 0)));
+  EXPECT_TRUE(std::isnan(out.value(1, 2)));
+  // The measured cells: (1000 (g+1) / 2000) rho / pi.
+  EXPECT_NEAR(out.value(0, 1), 0.5 * table.at(600).first / std::numbers::pi, 1e-12);
+  EXPECT_NEAR(out.value(1, 1), 1.0 * table.at(600).first / std::numbers::pi, 1e-12);
+  EXPECT_NEAR(out.value(0, 2), 0.5 * table.at(700).first / std::numbers::pi, 1e-12);
+}
+
+TEST(MissingValues, ResampledBandTouchingAMissingSampleIsMissing) {
+  SpectralDataset d;
+  d.wavelengths = {400, 405, 410, 415, 420};
+  d.geometries = {geometry_from_degrees(0, 0, 30, 180)};
+  d.brdf = {1, std::numeric_limits<double>::quiet_NaN(), 2, 2, 6};
+  const SpectralDataset r = resample_dataset(d, bands_from_edges(parse_range_list("400:420:10", "edges", wavelength_rules())));
+  EXPECT_TRUE(std::isnan(r.value(0, 0)));  // [400, 410] needs 405 nm: not invented
+  EXPECT_NEAR(r.value(0, 1), 3.0, 1e-14);  // [410, 420] does not (see the hand integrals above)
 }
 
 }  // namespace

@@ -154,17 +154,22 @@ TEST(DatasetIo, NonNumericCell) { expect_error(kHeader + "0,0,30,180,0.1,abc\n",
 
 TEST(DatasetIo, NonNumericAngle) { expect_error(kHeader + "0,x0,30,180,0.1,0.2\n", 2, 3, "'x0' is not a angle"); }
 
-TEST(DatasetIo, NanAndInf) {
-  expect_error(kHeader + "0,0,30,180,nan,0.2\n", 2, 12, "'nan' is not a finite BRDF value");
+TEST(DatasetIo, InfIsAnErrorAndNanAMissingValue) {
   expect_error(kHeader + "0,0,30,180,0.1,inf\n", 2, 16, "'inf' is not a finite BRDF value");
-  expect_error(kHeader + "0,0,30,180,0.1,\n", 2, 16, "empty cell");
+  // Missing values are kept by default (MissingValuesKept); strict reading refuses them.
+  Quiet q;
+  DatasetReadOptions strict = q.options();
+  strict.allow_missing = false;
+  for (const char* row : {"0,0,30,180,nan,0.2\n", "0,0,30,180,0.1,\n"}) {
+    const std::string path = temp_file("strict.csv", kHeader + row);
+    EXPECT_THROW(read_dataset(path, strict), FileError) << row;
+  }
 }
 
-TEST(DatasetIo, MissingValuesKeptWhenAllowed) {
+TEST(DatasetIo, MissingValuesKept) {
   const std::string path = temp_file("missing.csv", kHeader + "0,0,30,180,nan,0.2\n10,0,30,180,,NA\n");
   Quiet q;
-  DatasetReadOptions o = q.options();
-  o.allow_missing = true;
+  DatasetReadOptions o = q.options();  // the default keeps them
   DatasetReadStats stats;
   const SpectralDataset d = read_dataset(path, o, stats);
   EXPECT_EQ(stats.missing_values, 3u);
@@ -236,6 +241,44 @@ TEST(DatasetIo, DuplicateSigmaAveragedAsMean) {
   const SpectralDataset d = read_dataset(path, o);
   EXPECT_DOUBLE_EQ(d.value(0, 0), 1.5);
   EXPECT_DOUBLE_EQ(d.sigma[0], 0.25);  // sqrt(0.09 + 0.16) / 2
+}
+
+TEST(DatasetIo, DuplicatesAverageTheMeasuredValuesOnly) {
+  // Wide and long: a cell missing in one duplicate is the other's value; missing in all, missing.
+  const std::string wide = "theta_i,phi_i,theta_r,phi_r,500,600,sigma_500,sigma_600\n"
+                           "10,0,30,180,1.0,nan,0.3,nan\n10,0,30,180,3.0,nan,0.4,nan\n10,0,30,180,nan,nan,nan,nan\n";
+  const std::string lng = "theta_i,phi_i,theta_r,phi_r,wavelength,brdf,sigma\n"
+                          "10,0,30,180,500,1.0,0.3\n10,0,30,180,500,3.0,0.4\n10,0,30,180,500,nan,nan\n"
+                          "10,0,30,180,600,nan,nan\n10,0,30,180,600,,\n";
+  for (const auto& content : {wide, lng}) {
+    const std::string path = temp_file("dupmissing.csv", content);
+    Quiet q;
+    DatasetReadOptions o = q.options();
+    o.average_duplicates = true;
+    const SpectralDataset d = read_dataset(path, o);
+    ASSERT_EQ(d.geometry_count(), 1u);
+    EXPECT_DOUBLE_EQ(d.value(0, 0), 2.0) << content;
+    EXPECT_DOUBLE_EQ(d.sigma[0], 0.25) << content;  // sqrt(0.09 + 0.16) / 2: the two measured rows
+    EXPECT_TRUE(std::isnan(d.value(0, 1))) << content;
+    EXPECT_TRUE(std::isnan(d.sigma[1])) << content;
+    EXPECT_EQ(missing_value_count(d), 1u);
+  }
+}
+
+TEST(DatasetIo, MissingValuesRoundTripAsNan) {
+  const std::string path = temp_file("missing_rt.csv", kHeader + "0,0,30,180,NA,0.2\n10,0,30,180,0.3,\n");
+  Quiet q;
+  const SpectralDataset d = read_dataset(path, q.options());
+  for (auto format : {DatasetFormat::kWide, DatasetFormat::kLong}) {
+    const std::string out = test::scratch_path(format == DatasetFormat::kWide ? "rt_wide.csv" : "rt_long.csv");
+    write_dataset(d, out, format);
+    const SpectralDataset back = read_dataset(out, q.options());
+    ASSERT_EQ(back.brdf.size(), 4u);
+    EXPECT_TRUE(std::isnan(back.value(0, 0)));
+    EXPECT_EQ(back.value(0, 1), 0.2);
+    EXPECT_EQ(back.value(1, 0), 0.3);
+    EXPECT_TRUE(std::isnan(back.value(1, 1)));
+  }
 }
 
 TEST(DatasetIo, LongFormatErrors) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <limits>
 #include <random>
 
 #include "mixing_test_util.h"
@@ -86,9 +87,10 @@ Eigen::Vector3d closed_form(const MixInputs& in, const SpectralDataset& d, std::
   for (std::size_t n = 0; n < d.geometry_count(); ++n) {
     for (std::size_t m = m0; m < m1; ++m, ++row) {
       for (std::size_t k = 0; k < 3; ++k) A(row, k) = value_at(*in.end_members[k].model, d.geometries[n], d.wavelengths[m]);
-      y(row) = d.value(n, m);
+      const bool missing = std::isnan(d.value(n, m));  // a measurement not made: no row
+      y(row) = missing ? 0.0 : d.value(n, m);
       const double s = d.sigma[n * d.wavelength_count() + m];
-      w(row) = weighted ? 1.0 / (s * s) : 1.0;
+      w(row) = missing ? 0.0 : weighted ? 1.0 / (s * s) : 1.0;
     }
   }
   const Eigen::MatrixXd AtW = A.transpose() * w.asDiagonal();
@@ -118,6 +120,45 @@ TEST(SigmaWeighting, WeightedNnlsEqualsClosedFormWhenNoBoundIsActive) {
       for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(row[k], e[k], 1e-9 * e[k]) << "m=" << m << " k=" << k;
     }
   }
+}
+
+TEST(MissingValues, FittedWeightsLeaveTheMissingCellOut) {
+  const MixInputs in = linear_inputs();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> factor(0.002, 0.06);
+  SpectralDataset d = noisy_dataset(in, 11, [&](std::size_t, double y) { return factor(rng) * y; });
+  const Eigen::Vector3d complete = closed_form(in, d, 0, d.wavelength_count(), true);
+  d.value(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  d.sigma[3 * d.wavelength_count() + 1] = std::numeric_limits<double>::quiet_NaN();
+  for (bool weighted : {true, false}) {
+    MixSettings s;
+    s.use_sigma = weighted;
+    const Eigen::Vector3d expected = closed_form(in, d, 0, d.wavelength_count(), weighted);
+    ASSERT_GT(expected.minCoeff(), 0.0);
+    const MixResult r = mix(in, Method::kFitted, s, &d);
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(r.weights[k], expected[k], 1e-10 * expected[k]) << k;
+    if (weighted) {
+      EXPECT_GT((expected - complete).cwiseAbs().maxCoeff(), 1e-8);  // the cell mattered
+    }
+    s.per_wavelength = true;
+    const MixResult p = mix(in, Method::kFitted, s, &d);
+    const Eigen::Vector3d e = closed_form(in, d, 1, 2, weighted);
+    const std::vector<double> row = p.model->parameters_at(d.wavelengths[1]);
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(row[k], e[k], 1e-9 * e[k]) << k;
+  }
+  // The comparison leaves it out of the errors: finite RMSE and chi^2 over the measured values.
+  const Comparison c = compare_method(in, Method::kFitted, {}, d, 5);
+  EXPECT_TRUE(std::isfinite(c.rmse));
+  EXPECT_TRUE(std::isfinite(c.chi2_reduced));
+  double chi2 = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < d.brdf.size(); ++i) {
+    if (std::isnan(d.brdf[i])) continue;
+    chi2 += std::pow((c.predicted[i] - d.brdf[i]) / d.sigma[i], 2);
+    ++n;
+  }
+  EXPECT_EQ(n, d.brdf.size() - 1);
+  EXPECT_NEAR(c.chi2_reduced, chi2 / static_cast<double>(n), 1e-12);
 }
 
 TEST(SigmaWeighting, NonPositiveSigmaIsAnErrorWhenWeighting) {

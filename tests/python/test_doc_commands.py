@@ -1,4 +1,5 @@
-"""Every shell block of the README and of the example data's READMEs runs as written.
+"""Every shell block of the README, of the example data's READMEs and of docs/data.md (the real-data
+walkthrough) runs as written.
 
 The blocks run with bash (-e -o pipefail) in a scratch folder laid out like the source tree: a copy of
 data/ (commands may write into data/examples/fits), examples/ and docs/ linked, and build/roadbrdf,
@@ -14,7 +15,7 @@ import subprocess
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-DOCUMENTS = ["README.md", "data/examples/README.md", "data/examples/formulations/README.md"]
+DOCUMENTS = ["README.md", "data/examples/README.md", "data/examples/formulations/README.md", "docs/data.md"]
 
 
 def shell_blocks(document):
@@ -43,7 +44,7 @@ def tree(tmp_path_factory):
     cli = pathlib.Path(os.environ.get("ROADBRDF_CLI", ROOT / "build" / "roadbrdf")).resolve()
     scratch = tmp_path_factory.mktemp("doc-commands")
     shutil.copytree(ROOT / "data", scratch / "data", symlinks=True)
-    for name in ("examples", "docs", "scripts"):
+    for name in ("examples", "docs", "scripts", "tests"):
         (scratch / name).symlink_to(ROOT / name)
     (scratch / "build").mkdir()
     (scratch / "build" / "roadbrdf").symlink_to(cli)

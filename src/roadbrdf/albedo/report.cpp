@@ -5,8 +5,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
+#include "roadbrdf/albedo/coverage.h"
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/albedo/solar.h"
 #include "roadbrdf/core/error.h"
@@ -276,6 +278,17 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     }
   }
 
+  // Non-physical values, and how much of the result the model extrapolates beyond the fit's data
+  // (albedo/coverage.h; at the middle parameter set).
+  flag_non_physical(zeniths, wavelengths, bs, ws.value, notes);
+  nlohmann::json coverage = nullptr;
+  if (sm.coverage()) {
+    const std::size_t mid = n_sets / 2;
+    coverage = albedo_coverage(model, params.data() + mid * n_params,
+                               spectral ? wavelengths[mid] : std::numeric_limits<double>::quiet_NaN(), zeniths,
+                               *sm.coverage(), notes);
+  }
+
   nlohmann::json j;
   j["model"] = model.name();
   j["spectral"] = spectral;
@@ -287,7 +300,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                 {"blue_sky", "1, (1 - D) black_sky + D white_sky, [sun zenith][wavelength]"},
                 {"diffuse_fraction", "1, D = diffuse / global horizontal irradiance, [sun zenith][wavelength]"},
                 {"errors", "absolute error estimates of the same quantities"},
-                {"broadband", "solar-weighted values; null when they cannot be formed (one wavelength; see notes)"}};
+                {"broadband", "solar-weighted values; null when they cannot be formed (one wavelength; see notes)"},
+                {"coverage", "the fit's measured directions (deg) and the fractions (1) of the black-sky [sun zenith] "
+                             "and white-sky integrals outside them; null when unknown"}};
   j["sun_zenith_deg"] = zeniths;
   j["wavelengths"] = wavelengths;
   j["tolerance"] = a.tolerance;
@@ -312,6 +327,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                     {"solar_fraction_outside_range", outside}};
   }
   j["luminous"] = luminous;
+  j["coverage"] = coverage;  // null: no coverage known (a model, a mixture, an older fit file)
   j["notes"] = notes;
   return j;
 }

@@ -61,6 +61,13 @@ void run(const AlbedoArgs& a) {
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
   const nlohmann::json report = albedo::compute_albedo(sm, request);
+  // Mostly extrapolated or non-physical results are also warnings (the notes are in the output too).
+  for (const auto& note : report.at("notes")) {
+    const std::string n = note.get<std::string>();
+    if (n.rfind("WARNING: mostly", 0) == 0 || n.rfind("WARNING: non-physical", 0) == 0) {
+      fmt::print(stderr, "roadbrdf: warning: {}\n", n.substr(9));
+    }
+  }
   const std::string text = a.as_json ? roadbrdf::dump_json(report, 2) + "\n" : albedo::albedo_table(report);
   AtomicFile out(a.output.empty() ? std::string("-") : a.output);
   out.stream() << text;

@@ -2,9 +2,8 @@
 // Fits each model to every wavelength of a measured spectral BRDF (fitting/fit.h), prints a
 // ranking table and writes the fit file (fitting/fit_file.h), which every command accepts as a model.
 #include <fmt/core.h>
-#include <unistd.h>
 
-#include <chrono>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -14,6 +13,7 @@
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/fitting/fit_request.h"
@@ -50,34 +50,7 @@ struct FitArgs {
   bool no_amplitude_solve = false;
   std::string residuals;
   std::string output;
-};
-
-// Progress bar on standard error, only on a terminal and only once a fit has run for a second.
-class ProgressBar {
- public:
-  ProgressBar(std::string label) : label_(std::move(label)), start_(std::chrono::steady_clock::now()),
-                                   enabled_(isatty(fileno(stderr)) != 0) {}
-  ~ProgressBar() {
-    if (shown_) std::fprintf(stderr, "\n");
-  }
-  void update(std::size_t done, std::size_t total) {
-    if (!enabled_ || total == 0) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (elapsed < 1.0) return;
-    shown_ = true;
-    const int width = 40;
-    const int filled = static_cast<int>(static_cast<double>(width) * static_cast<double>(done) / static_cast<double>(total));
-    std::string bar(static_cast<std::size_t>(std::clamp(filled, 0, width)), '#');
-    bar.resize(width, '.');
-    std::fprintf(stderr, "\r%s [%s] %zu/%zu %.1f s", label_.c_str(), bar.c_str(), done, total, elapsed);
-    std::fflush(stderr);
-  }
-
- private:
-  std::string label_;
-  std::chrono::steady_clock::time_point start_;
-  bool enabled_;
-  bool shown_ = false;
+  bool quiet = false;
 };
 
 std::vector<std::string> split_commas(const std::vector<std::string>& items) {
@@ -135,9 +108,12 @@ void run(const FitArgs& a) {
 
   const SpectralDataset data = read_dataset(a.data, dataset_read_options(a.read));
   // One bar per model; the models are fitted one after the other, so a new bar ends the previous one.
+  // core/progress.h: on standard error when it is a terminal, unless --quiet.
   std::unique_ptr<ProgressBar> bar;
-  const FitSummary summary = run_fit(request, data, [&bar](const std::string& label) {
-    bar = std::make_unique<ProgressBar>(label);
+  const bool show = ProgressBar::terminal_enabled(a.quiet);
+  const FitSummary summary = run_fit(request, data, [&bar, show](const std::string& label) {
+    bar.reset();  // ends the previous model's line
+    bar = std::make_unique<ProgressBar>(label, stderr, show);
     return [current = bar.get()](std::size_t done, std::size_t total) { current->update(done, total); };
   });
   bar.reset();
@@ -179,9 +155,10 @@ void register_fit_command(CLI::App& app) {
   c->add_option("--fix", args.fixed, "Hold a parameter NAME=VALUE at every wavelength (repeatable)")->allow_extra_args(false);
   c->add_option("--start", args.start, "Starting value NAME=VALUE (repeatable); model defaults otherwise")
       ->allow_extra_args(false);
-  c->add_option("--bound", args.bounds,
-                "Narrower bounds NAME=LOWER:UPPER inside the model's (repeatable); a default start outside them "
-                "moves to their middle")
+  c->add_option("--bound,--bounds", args.bounds,
+                "Bounds NAME=LOWER:UPPER replacing a parameter's default fitting range, narrower or wider inside its "
+                "physical range (`roadbrdf models --json`: physical_bounds) (repeatable); a default start outside "
+                "them moves to their middle")
       ->allow_extra_args(false);
   c->add_option("--loss", args.loss,
                 "plain: f-y | relative: (f-y)/y | log: ln(1+f cos)-ln(1+y cos) (Loew 2012) | cosine: (f-y) cos "
@@ -211,6 +188,7 @@ void register_fit_command(CLI::App& app) {
               "Do not solve the linear amplitudes (parameters flagged linear) before each start");
   c->add_option("--residuals", args.residuals, "Write measured, fitted and residual values per geometry and wavelength (CSV)");
   c->add_option("-o,--output", args.output, "Fit file to write (JSON)")->required();
+  c->add_flag("--quiet", args.quiet, "No progress bar (it is only drawn on a terminal anyway)");
   c->callback([] { run(args); });
 }
 

@@ -18,6 +18,7 @@
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/photometry/rtable.h"
+#include "roadbrdf/photometry/rtable_coverage.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/spectra/cie.h"
 
@@ -85,6 +86,7 @@ void run(const RTableArgs& a) {
   std::optional<double> declared_q0;
   nlohmann::json source;
   nlohmann::json weighting_json = nullptr;
+  std::optional<AngularCoverage> fit_coverage;  // computed tables: the fit's measured directions
   if (from_import) {
     if (!a.parameters.empty() || !a.options.empty() || !a.fit_model.empty() || !a.illuminant.empty() ||
         a.wavelength || !a.band.empty()) {
@@ -144,12 +146,21 @@ void run(const RTableArgs& a) {
       }
     }
     table = compute_rtable(model, w, a.alpha);
+    fit_coverage = model.coverage();
     if (is_fit_file_argument(a.model)) table.name = a.model + " (" + model.model().name() + ")";
     source = {{"model", model.model().name()}};
     if (is_fit_file_argument(a.model)) source["fit_file"] = a.model;
   }
 
   const RTableSummary summary = summarize(table, region);
+  const RTableCoverage coverage = rtable_coverage(table, fit_coverage);
+  for (const std::string& note : coverage.notes()) {
+    if (note.rfind("WARNING: ", 0) == 0) {
+      warn(note.substr(9));
+    } else {
+      fmt::print(stderr, "roadbrdf: note: {}\n", note);
+    }
+  }
   const RoadClass chosen = classify(summary.s1, system);
   if (summary.q0 > 0.5) {
     warn(fmt::format("Q0 = {:.4g} sr^-1 is implausibly large for a road surface: is the table normalised "
@@ -204,6 +215,7 @@ void run(const RTableArgs& a) {
       rows.push_back(row);
     }
     j["r"] = rows;
+    j["coverage"] = coverage.to_json();
     if (comparison) {
       j["comparison"] = {{"other", a.compare_file},
                          {"max_relative_difference", comparison->max_relative},

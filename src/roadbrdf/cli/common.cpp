@@ -1,6 +1,7 @@
 #include "roadbrdf/cli/common.h"
 
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -122,6 +123,10 @@ void add_fit_flag(CLI::App* command, std::string& fit) {
 
 void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format) {
   write_dataset(data, path.empty() ? std::string("-") : path, dataset_format_from_string(format));
+  if (const std::size_t missing = missing_value_count(data); missing > 0) {
+    fmt::print(stderr, "roadbrdf: warning: {}: {} of {} BRDF values are missing (written as nan: not measured, never "
+               "filled in)\n", path.empty() ? std::string("-") : path, missing, data.brdf.size());
+  }
 }
 
 std::FILE* report_stream(const std::string& output) { return is_standard_stream(output) ? stderr : stdout; }

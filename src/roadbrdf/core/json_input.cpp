@@ -188,6 +188,7 @@ std::vector<double> read_parameter_table(const JsonNode& parameters, const Model
   std::vector<double> table(rows * n);
   for (std::size_t q = 0; q < n; ++q) {
     const ParameterInfo& info = description.parameters[q];
+    const auto [lower, upper] = description.physical_range(q);
     const JsonNode values = parameters.at(info.name);
     if (values.size() != rows) {
       values.fail("has " + std::to_string(values.size()) + " values for " + std::to_string(rows) + " wavelength" +
@@ -196,11 +197,11 @@ std::vector<double> read_parameter_table(const JsonNode& parameters, const Model
     for (std::size_t w = 0; w < rows; ++w) {
       const JsonNode v = values[w];
       const double x = v.number();
-      if (x < info.lower || x > info.upper) {
+      if (x < lower || x > upper) {
         std::ostringstream msg;
         msg << "parameter '" << info.name << "' of model '" << description.name << "' = " << x;
         if (w < wavelengths.size()) msg << " at " << wavelengths[w] << " nm";
-        msg << " is outside its bounds [" << info.lower << ", " << info.upper << "]";
+        msg << " is outside its bounds [" << lower << ", " << upper << "]";
         v.fail(msg.str());
       }
       table[w * n + q] = x;

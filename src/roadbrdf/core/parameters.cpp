@@ -22,6 +22,12 @@ std::vector<double> ModelDescription::default_parameters() const {
   return values;
 }
 
+std::pair<double, double> ModelDescription::physical_range(std::size_t k) const {
+  const ParameterInfo& p = parameters.at(k);
+  const auto it = physical_bounds.find(p.name);
+  return it != physical_bounds.end() ? it->second : std::pair<double, double>{p.lower, p.upper};
+}
+
 OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo>& declared,
                           const OptionSet& given) {
   OptionSet resolved;
@@ -105,10 +111,11 @@ void check_parameters(const ModelDescription& description, const std::vector<dou
   }
   for (std::size_t k = 0; k < values.size(); ++k) {
     const auto& p = description.parameters[k];
-    if (!std::isfinite(values[k]) || values[k] < p.lower || values[k] > p.upper) {
+    const auto [lo, hi] = description.physical_range(k);
+    if (!std::isfinite(values[k]) || values[k] < lo || values[k] > hi) {
       std::ostringstream msg;
       msg << "parameter '" << p.name << "' of model '" << description.name << "' = " << values[k]
-          << " is outside its bounds [" << p.lower << ", " << p.upper << "]";
+          << " is outside its bounds [" << lo << ", " << hi << "]";
       throw InputError(msg.str());
     }
   }

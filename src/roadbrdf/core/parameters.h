@@ -52,10 +52,16 @@ struct ModelDescription {
   // and mixtures combine both from their components (combine_isotropy).
   bool isotropic = true;
   std::vector<std::pair<std::string, std::string>> isotropic_when_equal;
+  // Where the physics allows a wider range than a parameter's declared [lower, upper] (the default
+  // fitting range): name -> [lower, upper], declared once in the model's describe(). `fit --bounds`
+  // may ask for any range inside it; values given with -p or read from files may lie anywhere in it.
+  std::map<std::string, std::pair<double, double>> physical_bounds;
 
   // Index of a parameter by name, or nullopt.
   std::optional<std::size_t> parameter_index(const std::string& parameter_name) const;
   std::vector<double> default_parameters() const;
+  // The physical range of parameter k: physical_bounds, or its declared [lower, upper].
+  std::pair<double, double> physical_range(std::size_t k) const;
 };
 
 // Resolve user options against declared options: fills defaults, rejects unknown names and values.

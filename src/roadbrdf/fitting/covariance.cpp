@@ -111,7 +111,7 @@ void joint_covariance(const FitData& d, const ParameterLayout& L, std::vector<Wa
   for (std::size_t w = 0; w < M; ++w) {
     WavelengthFit& out = fits[w];
     d.residuals(w, out.parameters.data(), r.data(), J.data(), f.data(), Js.data());
-    n_total += d.n;
+    n_total += out.points;  // measured values (missing ones have zero Jacobian rows)
     chi2_total += out.chi2;
     Eigen::MatrixXd Jl(static_cast<Eigen::Index>(d.n), nl), Jsh(static_cast<Eigen::Index>(d.n), ns);
     for (std::size_t g = 0; g < d.n; ++g) {

@@ -49,13 +49,17 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
                                          "' (dense-schur, sparse-schur, iterative-schur)");
   }
   if (options.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
+  // NaN is a missing value (masked out at its wavelength); an infinite value is an error.
+  std::vector<std::size_t> measured_count(M, 0);
   for (std::size_t g = 0; g < N; ++g) {
     for (std::size_t w = 0; w < M; ++w) {
-      if (!std::isfinite(data.value(g, w))) {
+      const double y = data.value(g, w);
+      if (std::isnan(y)) continue;
+      if (!std::isfinite(y)) {
         throw InputError("cannot fit: BRDF value at geometry " + std::to_string(g + 1) + ", wavelength " +
-                         fmt_double(data.wavelengths[w]) + " nm is " + fmt_double(data.value(g, w)) +
-                         " (missing values are not fitted; remove that geometry or wavelength)");
+                         fmt_double(data.wavelengths[w]) + " nm is " + fmt_double(y) + " (not a finite number)");
       }
+      ++measured_count[w];
     }
   }
 
@@ -78,10 +82,14 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     const std::size_t k = index_of(name, "bounds");
     ParameterInfo& q = L.info[k];
     const auto [lo, hi] = range;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || lo < q.lower || hi > q.upper) {
+    // Narrower or wider than the default fitting range, inside what the physics allows.
+    const auto [physical_lo, physical_hi] = desc.physical_range(k);
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || lo < physical_lo || hi > physical_hi) {
       throw FieldError("bounds." + name, "[" + fmt_double(lo) + ", " + fmt_double(hi) +
-                                             "] must be an interval lower < upper inside the model's bounds [" +
-                                             fmt_double(q.lower) + ", " + fmt_double(q.upper) + "] " + q.unit);
+                                             "] must be an interval lower < upper inside the parameter's physical "
+                                             "range [" + fmt_double(physical_lo) + ", " + fmt_double(physical_hi) +
+                                             "] " + q.unit + " (model metadata; the default fitting range is [" +
+                                             fmt_double(q.lower) + ", " + fmt_double(q.upper) + "])");
     }
     q.lower = lo;
     q.upper = hi;
@@ -127,6 +135,15 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     throw InputError("cannot fit: " + std::to_string(N) + " geometries for " + std::to_string(free_count) +
                      " free parameters of '" + desc.name + "' (fix some, or measure more geometries)");
   }
+  for (std::size_t w = 0; w < M; ++w) {
+    if (measured_count[w] < (joint ? local_free : free_count) || measured_count[w] == 0) {
+      throw InputError("cannot fit: at " + fmt_double(data.wavelengths[w]) + " nm only " +
+                       std::to_string(measured_count[w]) + " of " + std::to_string(N) +
+                       " geometries were measured (the others are missing values), for " +
+                       std::to_string(joint ? local_free : free_count) + " free parameters of '" + desc.name +
+                       "' (leave that wavelength out with --wavelengths, or fix some parameters)");
+    }
+  }
   if (joint && (N < local_free || N * M < local_free * M + shared_free)) {
     throw InputError("cannot fit: " + std::to_string(N) + " geometries per wavelength for " + std::to_string(local_free) +
                      " free per-wavelength parameters (+" + std::to_string(shared_free) + " shared)");
@@ -150,14 +167,25 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   d.y.resize(N * M);
   d.mult.resize(N * M);
   d.lin_weight.resize(N * M);
+  d.measured.assign(N * M, 1);
+  d.measured_count = measured_count;
   d.cos_i.resize(N);
   for (std::size_t g = 0; g < N; ++g) d.cos_i[g] = data.geometries[g].cos_theta_i();
   const std::vector<double> sa = options.solid_angle_weights ? solid_angle_weights(data.geometries)
                                                              : std::vector<double>(N, 1.0);
   const bool use_sigma = options.use_sigma && data.has_sigma();
+  std::size_t result_missing = 0;
   for (std::size_t w = 0; w < M; ++w) {
     for (std::size_t g = 0; g < N; ++g) {
       const double y = data.value(g, w);
+      if (std::isnan(y)) {
+        d.y[w * N + g] = 0.0;
+        d.mult[w * N + g] = 0.0;
+        d.lin_weight[w * N + g] = 0.0;
+        d.measured[w * N + g] = 0;
+        ++result_missing;
+        continue;
+      }
       double m = std::sqrt(sa[g]);
       if (use_sigma) {
         const double s = data.sigma[g * M + w];
@@ -212,6 +240,19 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   }
   result.settings = options;
   result.settings.progress = nullptr;
+  result.missing_values = result_missing;
+  {
+    std::vector<Geometry> measured;
+    for (std::size_t g = 0; g < N; ++g) {
+      for (std::size_t w = 0; w < M; ++w) {
+        if (!std::isnan(data.value(g, w))) {
+          measured.push_back(data.geometries[g]);
+          break;
+        }
+      }
+    }
+    result.coverage = angular_coverage(measured);
+  }
   result.joint = joint;
 
   if (joint) {
@@ -226,16 +267,25 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   for (std::size_t w = 0; w < M; ++w) {
     WavelengthFit& out = result.wavelengths[w];
     out.wavelength = data.wavelengths[w];
-    ss += out.rmse * out.rmse * static_cast<double>(N);
-    for (std::size_t g = 0; g < N; ++g) sum_abs += std::fabs(d.y[w * N + g]);
+    const double nw = static_cast<double>(out.points);  // measured geometries at w
+    ss += out.rmse * out.rmse * nw;
+    for (std::size_t g = 0; g < N; ++g) sum_abs += std::fabs(d.y[w * N + g]);  // 0 where missing
     result.max_relative_error_total = std::max(result.max_relative_error_total, out.max_relative_error);
     result.chi2_total += out.chi2;
-    ll += static_cast<double>(N) * std::log(std::max(out.chi2 / static_cast<double>(N), std::numeric_limits<double>::min()));
+    result.points_total += out.points;
+    ll += nw * std::log(std::max(out.chi2 / nw, std::numeric_limits<double>::min()));
     if (out.converged) ++result.converged_count;
     if (!out.at_bounds.empty()) ++result.at_bound_count;
     if (!out.covariance_ok) ++result.covariance_failures;
+    if (!L.free_nonlinear.empty()) {
+      out.stayed_at_start = true;
+      for (std::size_t k : L.free_nonlinear) {
+        const double s0 = L.start[k];
+        if (std::fabs(out.parameters[k] - s0) > 1e-9 * std::max(1.0, std::fabs(s0))) out.stayed_at_start = false;
+      }
+      if (out.stayed_at_start && out.converged) ++result.stayed_at_start_count;
+    }
   }
-  result.points_total = N * M;
   result.free_parameters_total = joint ? shared_free + M * local_free : M * free_count;
   const double nt = static_cast<double>(result.points_total);
   result.rmse_total = std::sqrt(ss / nt);

@@ -43,6 +43,7 @@
 #include <utility>
 #include <vector>
 
+#include "roadbrdf/core/coverage.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/models/model.h"
 
@@ -68,8 +69,9 @@ struct FitOptions {
   std::map<std::string, double> fixed;
   // Starting values (name -> value); the model's defaults for the rest. Must lie inside the bounds.
   std::map<std::string, double> start;
-  // Narrower bounds (name -> [lower, upper]) inside the model's own; a default start outside them
-  // is moved to the middle of the interval (a given start must lie inside).
+  // Bounds (name -> [lower, upper]) replacing a parameter's default fitting range, narrower or wider,
+  // inside its physical range (ModelDescription::physical_range: model metadata); a default start
+  // outside them is moved to the middle of the interval (a given start must lie inside).
   std::map<std::string, std::pair<double, double>> bounds;
   // Parameter names shared across wavelengths: non-empty selects the joint spectral mode.
   std::vector<std::string> shared;
@@ -103,7 +105,7 @@ struct WavelengthFit {
   std::vector<double> correlation;      // p x p row-major (NaN where undefined)
   bool covariance_ok = false;
   std::string covariance_message;       // why it failed (rank deficiency...)
-  std::size_t points = 0;               // geometries used
+  std::size_t points = 0;               // geometries used (measured at this wavelength)
   std::size_t free_parameters = 0;      // counted in AIC/BIC (joint mode: this wavelength's + shared)
   double cost = 0.0;                    // Ceres' final cost, 1/2 sum rho(r^2)
   double chi2 = 0.0;                    // sum r^2 of the loss residuals (no robust function)
@@ -118,6 +120,9 @@ struct WavelengthFit {
   std::string status;                   // Ceres termination message
   std::vector<std::string> at_bounds;   // free parameters ending on a bound: "name=lower" / "name=upper"
   int start_index = 0;                  // which multi-start point won (0: the given/warm start)
+  // Every free nonlinear parameter ended at its given starting value (to 1e-9): a "converged" fit
+  // that never moved, i.e. data that do not constrain those parameters (warned about).
+  bool stayed_at_start = false;
 };
 
 struct FitResult {
@@ -136,11 +141,14 @@ struct FitResult {
   double chi2_total = 0.0;
   double aic_total = 0.0;  // n ln(chi2/n) summed per wavelength + 2 k_total (k_total counts shared once)
   double bic_total = 0.0;
-  std::size_t points_total = 0;
+  std::size_t points_total = 0;       // measured values fitted (missing values excluded)
+  std::size_t missing_values = 0;     // NaN values of the dataset, masked out of the fit at their wavelength
   std::size_t free_parameters_total = 0;
   std::size_t converged_count = 0;
   std::size_t at_bound_count = 0;     // wavelengths with at least one parameter on a bound
   std::size_t covariance_failures = 0;
+  std::size_t stayed_at_start_count = 0;  // converged wavelengths with stayed_at_start
+  AngularCoverage coverage;               // of the geometries measured at one wavelength at least
   double seconds = 0.0;      // wall time of fit_model
   double cpu_seconds = 0.0;  // process CPU time during fit_model (all threads; noisy machines: compare this)
   bool joint = false;
@@ -149,7 +157,9 @@ struct FitResult {
   std::string joint_status;
 };
 
-// Fit `model` to every wavelength of `data`. Throws InputError for unusable input (NaN data, unknown
+// Fit `model` to every wavelength of `data`. A NaN value is a measurement not made: it is masked out
+// of the fit at its wavelength (the same solution as without that geometry at that wavelength) and
+// counted in FitResult::missing_values. Throws InputError for unusable input (infinite data, unknown
 // or out-of-bounds parameter names, fewer points than free parameters, relative loss with zero data...).
 FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOptions& options);
 

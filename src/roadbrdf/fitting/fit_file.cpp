@@ -28,6 +28,31 @@ nlohmann::json per_wavelength(const FitResult& fit, F get) {
   return a;
 }
 
+// The "coverage" object of a fit (fit_to_json): ranges [min, max] within [0, 90] deg, planes within
+// [0, 180] deg, a positive geometry count.
+AngularCoverage read_coverage(const JsonNode& node) {
+  AngularCoverage c;
+  auto range = [&](const char* key, double& lo, double& hi) {
+    const JsonNode r = node.at(key);
+    const auto v = r.numbers();
+    if (v.size() != 2 || !(v[0] >= 0.0 && v[0] <= v[1] && v[1] <= 90.0)) r.fail("expected [min, max] in [0, 90] deg");
+    lo = v[0];
+    hi = v[1];
+  };
+  range("theta_i_deg", c.theta_i_min_deg, c.theta_i_max_deg);
+  range("theta_r_deg", c.theta_r_min_deg, c.theta_r_max_deg);
+  const JsonNode planes = node.at("azimuth_planes_deg");
+  c.azimuth_planes_deg = planes.numbers();
+  for (std::size_t k = 0; k < c.azimuth_planes_deg.size(); ++k) {
+    const double b = c.azimuth_planes_deg[k];
+    if (!(b >= 0.0 && b <= 180.0) || (k > 0 && !(b > c.azimuth_planes_deg[k - 1]))) {
+      planes[k].fail("azimuth planes must be increasing, in [0, 180] deg");
+    }
+  }
+  c.geometries = static_cast<std::size_t>(node.at("geometries").integer(1, 1LL << 40));
+  return c;
+}
+
 }  // namespace
 
 nlohmann::json fit_to_json(const FitResult& fit) {
@@ -96,15 +121,21 @@ nlohmann::json fit_to_json(const FitResult& fit) {
   j["aic_total"] = number(fit.aic_total);
   j["bic_total"] = number(fit.bic_total);
   j["points_total"] = fit.points_total;
+  j["missing_values"] = fit.missing_values;
   j["free_parameters_total"] = fit.free_parameters_total;
   j["wavelength_count"] = fit.wavelengths.size();
   j["converged_count"] = fit.converged_count;
   j["at_bound_count"] = fit.at_bound_count;
   j["covariance_failures"] = fit.covariance_failures;
+  j["stayed_at_start_count"] = fit.stayed_at_start_count;
   if (fit.joint) {
     j["joint_iterations"] = fit.joint_iterations;
     j["joint_status"] = fit.joint_status;
   }
+  j["coverage"] = {{"theta_i_deg", {fit.coverage.theta_i_min_deg, fit.coverage.theta_i_max_deg}},
+                   {"theta_r_deg", {fit.coverage.theta_r_min_deg, fit.coverage.theta_r_max_deg}},
+                   {"azimuth_planes_deg", fit.coverage.azimuth_planes_deg},
+                   {"geometries", fit.coverage.geometries}};
   j["seconds"] = fit.seconds;
   j["cpu_seconds"] = fit.cpu_seconds;
   return j;
@@ -207,7 +238,9 @@ SpectralModel read_fit_file(const std::string& path, const std::string& model_na
     }
     const auto table =
         read_parameter_table(fit.at("parameters"), model->description(), wavelengths.size(), wavelengths);
-    return SpectralModel(model, wavelengths, table);
+    SpectralModel spectral(model, wavelengths, table);
+    if (const auto c = fit.find("coverage")) spectral.set_coverage(read_coverage(*c));
+    return spectral;
   }
   fits.fail("no fit of model '" + wanted + "' in this file");
 }

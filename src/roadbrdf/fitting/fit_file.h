@@ -16,8 +16,13 @@
 //     "iterations", "converged", "status", "covariance_ok", "covariance_message", "at_bounds",
 //     "points", "free_parameters", "start_index"   (all per wavelength),
 //     "rmse_total", "relative_rmse_total", "max_relative_error_total", "chi2_total", "aic_total",
-//     "bic_total", "points_total", "free_parameters_total", "converged_count", "wavelength_count",
-//     "at_bound_count", "covariance_failures", "seconds" } ]
+//     "bic_total", "points_total" (measured values fitted), "missing_values" (NaN values masked out),
+//     "free_parameters_total", "converged_count", "wavelength_count",
+//     "at_bound_count", "covariance_failures", "stayed_at_start_count" (converged wavelengths whose
+//     nonlinear parameters never left their start),
+//     "coverage" {"theta_i_deg": [min, max], "theta_r_deg": [min, max], "azimuth_planes_deg": [...],
+//                 "geometries": N} (core/coverage.h: the measured directions; optional when read),
+//     "seconds" } ]
 // }
 #pragma once
 

@@ -8,6 +8,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -199,6 +200,10 @@ std::string FitSummary::table() const {
                      M ? wavelengths.front() : 0.0, M ? wavelengths.back() : 0.0, loss,
                      robust.empty() || robust == "none" ? "" : ", robust " + robust,
                      sigma_weights ? ", weights 1/sigma^2" : "");
+  if (missing_values > 0) {
+    out += fmt::format("# {} of {} values missing (masked out of the fit at their wavelength)\n", missing_values,
+                       geometry_count * M);
+  }
   out += fmt::format("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank", "model", "k",
                      "RMSE[sr^-1]", "relRMSE%", "maxrel%", "AIC", "BIC", "converged", "atbound", "time[s]");
   auto number_or_dash = [](double x, const char* format) {
@@ -229,6 +234,18 @@ std::vector<std::string> FitSummary::warnings(const std::string& where) const {
       out.push_back(fmt::format("{}: parameters on a bound at {} of {} wavelengths (see 'at_bounds')", f.model,
                                 f.at_bound_count, M));
     }
+    if (f.stayed_at_start_count > 0) {
+      std::string names;
+      for (std::size_t k = 0; k < f.parameter_names.size(); ++k) {
+        const bool fixed = std::find(f.fixed.begin(), f.fixed.end(), f.parameter_names[k]) != f.fixed.end();
+        if (!fixed) names += (names.empty() ? "" : ", ") + f.parameter_names[k];
+      }
+      out.push_back(fmt::format("{}: at {} of {} wavelengths the fit reports convergence but its nonlinear parameters "
+                                "never left their starting values: the data may not constrain them (look at the "
+                                "geometries with `roadbrdf check`, fix them with --fix, or try --start/--multistart; "
+                                "free parameters: {})",
+                                f.model, f.stayed_at_start_count, M, names));
+    }
     if (f.settings.compute_covariance && f.covariance_failures > 0) {
       out.push_back(fmt::format("{}: no standard errors at {} of {} wavelengths (see 'covariance_message')", f.model,
                                 f.covariance_failures, M));
@@ -251,6 +268,7 @@ FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, co
   s.loss = to_string(plan.front().options.loss);
   s.robust = to_string(plan.front().options.robust);
   s.sigma_weights = data->has_sigma() && request.use_sigma;
+  s.missing_values = missing_value_count(*data);
   for (std::size_t i = 0; i < plan.size(); ++i) {
     FitOptions o = plan[i].options;
     if (progress) o.progress = progress(fmt::format("fit {} ({}/{})", plan[i].model->description().name, i + 1, plan.size()));

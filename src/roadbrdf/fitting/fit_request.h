@@ -69,6 +69,7 @@ struct FitSummary {
   std::vector<double> wavelengths;                   // fitted [nm]
   std::string loss, robust;                          // as requested
   bool sigma_weights = false;                        // 1/sigma^2 weights were used
+  std::size_t missing_values = 0;                    // missing (NaN) values, masked out at their wavelength
 
   const FitResult& best() const { return fits.at(ranking.at(0)); }
   // The ranking table `roadbrdf fit` prints (models, k, RMSE, AIC, BIC, convergence...).

@@ -19,11 +19,14 @@ void fill_statistics(const FitData& d, std::size_t w, WavelengthFit& out) {
   d.model->evaluate_prepared(*d.prepared_geometries, out.parameters.data(), f.data());
   d.residuals_of_values(w, f.data(), nullptr, r.data(), nullptr, false);
   const double* yw = d.y.data() + w * n;
+  // Over the measured values only (missing ones are masked out of the fit).
+  const std::size_t points = d.measured_count[w];
   double ss = 0.0, sum_abs = 0.0, mean = 0.0, max_rel = 0.0, chi2 = 0.0;
-  for (std::size_t g = 0; g < n; ++g) mean += yw[g];
-  mean /= static_cast<double>(n);
+  for (std::size_t g = 0; g < n; ++g) mean += yw[g];  // y = 0 where missing
+  mean /= static_cast<double>(points);
   double ss_tot = 0.0;
   for (std::size_t g = 0; g < n; ++g) {
+    if (!d.is_measured(w, g)) continue;
     const double e = f[g] - yw[g];
     ss += e * e;
     sum_abs += std::fabs(yw[g]);
@@ -31,8 +34,8 @@ void fill_statistics(const FitData& d, std::size_t w, WavelengthFit& out) {
     if (yw[g] != 0.0) max_rel = std::max(max_rel, std::fabs(e) / std::fabs(yw[g]));
     chi2 += r[g] * r[g];
   }
-  const double nn = static_cast<double>(n);
-  out.points = n;
+  const double nn = static_cast<double>(points);
+  out.points = points;
   out.rmse = std::sqrt(ss / nn);
   out.relative_rmse = sum_abs > 0.0 ? out.rmse / (sum_abs / nn) : kNaN;
   out.max_relative_error = max_rel;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
@@ -176,6 +177,12 @@ SpectralDataset calibrate(const CalibrationInput& in) {
         if (in.dark->has_sigma()) sd = in.dark->sigma[dark_rows[g] * m + j];
       }
       const double N = ls - ld, D = lr - ld;
+      if (std::isnan(N) || std::isnan(D)) {
+        // A sample, reference or dark value that was not measured: the result is missing too.
+        out.brdf[g * m + j] = std::numeric_limits<double>::quiet_NaN();
+        if (any_sigma) out.sigma[g * m + j] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
       if (!(D > 0.0)) {
         throw InputError(fmt::format("reference radiance {} is not above the dark signal {} at geometry {} and {} nm: "
                                      "cannot calibrate",

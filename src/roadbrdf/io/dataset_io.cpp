@@ -197,6 +197,10 @@ void write_dataset(const SpectralDataset& d, const std::string& path, DatasetFor
   file.commit();
 }
 
+std::size_t missing_value_count(const SpectralDataset& d) {
+  return static_cast<std::size_t>(std::count_if(d.brdf.begin(), d.brdf.end(), [](double v) { return std::isnan(v); }));
+}
+
 DatasetFormat dataset_format_from_string(const std::string& name) {
   if (name == "wide") return DatasetFormat::kWide;
   if (name == "long") return DatasetFormat::kLong;

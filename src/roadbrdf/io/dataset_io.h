@@ -18,7 +18,9 @@
 //
 // Both are streamed line by line. Every problem is reported as FileError (file:line:column and
 // the offending text); nothing is dropped silently. Negative BRDF values are kept, counted and
-// reported as a warning (measurement noise is real).
+// reported as a warning (measurement noise is real). Implausible files are read as they are, with a
+// warning: BRDF values above 1e3 sr^-1, wavelengths that all look like micrometres (below 30),
+// angles that all look like radians (within +-1.6).
 #pragma once
 
 #include <cstddef>
@@ -44,9 +46,11 @@ struct DatasetReadOptions {
   // = sqrt(sum sigma^2)/n when sigmas are given; the count is recorded in metadata
   // "averaged_duplicate_rows").
   bool average_duplicates = false;
-  // Empty cells and "nan"/"NA" in BRDF columns: error (default), or kept as NaN (missing value,
-  // counted in the warning). Angles and wavelengths can never be missing.
-  bool allow_missing = false;
+  // Empty cells and "nan"/"NA" in BRDF and sigma columns are measurements that were not made:
+  // kept as NaN (default; counted in DatasetReadStats and the warning, never replaced by a value),
+  // or an error when false. Angles and wavelengths can never be missing. Averaged duplicates
+  // average the values that were measured (a cell missing in every duplicate stays missing).
+  bool allow_missing = true;
   // Accept any "# units:" metadata (e.g. radiances read by `calibrate`); otherwise only sr^-1.
   bool any_units = false;
   // Where warnings go (negative values, missing values, averaged duplicates). Default: standard
@@ -62,7 +66,13 @@ struct DatasetReadStats {
   std::size_t negative_values = 0;
   std::size_t missing_values = 0;
   std::size_t averaged_duplicate_rows = 0;
+  std::size_t implausible_values = 0;  // BRDF values above 1e3 sr^-1
+  bool micrometre_wavelengths = false;  // every wavelength below 30 "nm": probably micrometres
+  bool radian_angles = false;           // every angle within +-1.6 "deg": probably radians
 };
+
+// Number of missing (NaN) BRDF values of a dataset.
+std::size_t missing_value_count(const SpectralDataset& dataset);
 
 // Read a wide or long CSV dataset: the format is detected from the header (a "wavelength" column
 // means long). Throws FileError.

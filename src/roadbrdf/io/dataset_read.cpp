@@ -240,18 +240,28 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
                                                   row_lines[it->second], duplicates_hint()));
       }
       const std::size_t n = it->second;
-      if (multiplicity.empty()) multiplicity.assign(d.geometries.size(), 1);
-      ++multiplicity[n];
+      if (multiplicity.empty()) {
+        // Per cell: how many of the duplicates measured it (missing cells are not averaged in).
+        multiplicity.resize(d.brdf.size());
+        for (std::size_t k = 0; k < d.brdf.size(); ++k) multiplicity[k] = std::isnan(d.brdf[k]) ? 0 : 1;
+      }
       ++r.stats.averaged_duplicate_rows;
-      for (std::size_t j = 0; j < m; ++j) d.brdf[n * m + j] += row[j];
-      if (with_sigma) {
-        for (std::size_t j = 0; j < m; ++j) d.sigma[n * m + j] += srow[j] * srow[j];
+      for (std::size_t j = 0; j < m; ++j) {
+        if (std::isnan(row[j])) continue;
+        double& v = d.brdf[n * m + j];
+        v = multiplicity[n * m + j]++ == 0 ? row[j] : v + row[j];
+        if (with_sigma) {
+          double& s = d.sigma[n * m + j];
+          s = multiplicity[n * m + j] == 1 ? srow[j] * srow[j] : s + srow[j] * srow[j];
+        }
       }
       continue;
     }
     d.geometries.push_back(g);
     row_lines.push_back(reader.line_number());
-    if (!multiplicity.empty()) multiplicity.push_back(1);
+    if (!multiplicity.empty()) {
+      for (std::size_t j = 0; j < m; ++j) multiplicity.push_back(std::isnan(row[j]) ? 0 : 1);
+    }
     d.brdf.insert(d.brdf.end(), row.begin(), row.end());
     if (with_sigma) {
       if (r.options.average_duplicates) {
@@ -264,8 +274,9 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
   if (d.geometries.empty()) throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
   if (r.options.average_duplicates) {
     for (std::size_t n = 0; n < d.geometries.size(); ++n) {
-      const double c = multiplicity.empty() ? 1.0 : multiplicity[n];
       for (std::size_t j = 0; j < m; ++j) {
+        // A cell no duplicate measured stays missing (NaN); 0/0 is never formed.
+        const double c = multiplicity.empty() ? 1.0 : std::max<double>(1.0, multiplicity[n * m + j]);
         d.brdf[n * m + j] /= c;
         if (with_sigma) d.sigma[n * m + j] = std::sqrt(d.sigma[n * m + j]) / c;
       }
@@ -294,7 +305,7 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
       throw FileError(reader.path(), reader.line_number(), 0, e.what());
     }
   }
-  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}};
+  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0};
   std::size_t column_count = 0;
   bool is_long = false;
   const std::vector<HeaderCell> names = header_names(r, header, column_count, is_long);

@@ -109,6 +109,12 @@ double parse_brdf(Reading& r, std::string_view text, long column) {
     if (v < 0.0 && r.stats.negative_values++ == 0) {
       r.first_negative = fmt::format("{}:{}:{}", r.reader.path(), r.reader.line_number(), column);
     }
+    if (v > kImplausibleBrdf) {
+      if (r.stats.implausible_values++ == 0) {
+        r.first_large = fmt::format("{}:{}:{}", r.reader.path(), r.reader.line_number(), column);
+      }
+      r.largest = std::max(r.largest, v);
+    }
     return v;
   }
   if (r.options.allow_missing && is_missing_text(text)) {
@@ -183,6 +189,30 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
   }
   if (r.stats.averaged_duplicate_rows > 0) {
     warn(fmt::format("{}: {} duplicate geometry rows were averaged", r.reader.path(), r.stats.averaged_duplicate_rows));
+  }
+  if (r.stats.implausible_values > 0) {
+    warn(fmt::format("{}: {} of {} BRDF values are above {:g} sr^-1 (largest {:g}, first at {}): only a mirror or "
+                     "retroreflector peak is that bright; check that the file holds a BRDF in sr^-1 (not a radiance, "
+                     "counts or a reflectance in percent)",
+                     r.reader.path(), r.stats.implausible_values, total, kImplausibleBrdf, r.largest, r.first_large));
+  }
+  if (!d.wavelengths.empty() && d.wavelengths.back() < kMicrometreLikeWavelength) {
+    r.stats.micrometre_wavelengths = true;
+    warn(fmt::format("{}: every wavelength is below {:g} nm ({:g}-{:g}): they look like micrometres; datasets hold "
+                     "nm (multiply the header wavelengths by 1000)",
+                     r.reader.path(), kMicrometreLikeWavelength, d.wavelengths.front(), d.wavelengths.back()));
+  }
+  double largest_angle = 0.0;
+  for (const Geometry& g : d.geometries) {
+    double a[4];
+    angle_values_of_geometry(g, d.convention, a);
+    for (double v : a) largest_angle = std::max(largest_angle, std::fabs(v));
+  }
+  if (!d.geometries.empty() && largest_angle > 0.0 && largest_angle <= kRadianLikeAngle) {
+    r.stats.radian_angles = true;
+    warn(fmt::format("{}: every angle is within +-{:g} deg (largest {:g}): they look like radians; datasets hold "
+                     "degrees (multiply the angles by 180/pi)",
+                     r.reader.path(), kRadianLikeAngle, largest_angle));
   }
 }
 
@@ -324,15 +354,24 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
   d.wavelengths = wls;
   d.brdf.assign(n * m, 0.0);
   if (with_sigma) d.sigma.assign(n * m, 0.0);
-  std::vector<std::uint32_t> count(n * m, 0);
+  // Rows per cell, and how many of them were measured: a duplicate average is over the measured
+  // values; a cell no row measured stays missing (NaN).
+  std::vector<std::uint32_t> rows(n * m, 0), count(n * m, 0);
   for (std::size_t k = 0; k < records.size(); ++k) {
     const auto& rec = records[k];
     const std::size_t idx = rec.geometry * m + wl_index[k];
-    if (count[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
+    if (rows[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
+    if (std::isnan(rec.brdf)) continue;
+    ++count[idx];
     d.brdf[idx] += rec.brdf;
     if (with_sigma) d.sigma[idx] += rec.sigma * rec.sigma;
   }
   for (std::size_t idx = 0; idx < n * m; ++idx) {
+    if (count[idx] == 0) {
+      d.brdf[idx] = kNaN;
+      if (with_sigma) d.sigma[idx] = kNaN;
+      continue;
+    }
     d.brdf[idx] /= count[idx];
     if (with_sigma) d.sigma[idx] = std::sqrt(d.sigma[idx]) / count[idx];
   }

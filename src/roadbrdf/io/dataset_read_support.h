@@ -15,6 +15,14 @@
 
 namespace roadbrdf::dataset_read {
 
+// BRDF values above this [sr^-1] are warned about (a mirror or retroreflector peak, or the wrong
+// units: radiance, counts, percent).
+constexpr double kImplausibleBrdf = 1e3;
+// A dataset whose wavelengths are all below this [nm] probably gives micrometres.
+constexpr double kMicrometreLikeWavelength = 30.0;
+// A dataset whose angles all lie within +-this [deg] probably gives radians.
+constexpr double kRadianLikeAngle = 1.6;
+
 struct Reading {
   const DatasetReadOptions& options;
   DatasetReadStats& stats;
@@ -23,6 +31,8 @@ struct Reading {
   NumberParser numbers;
   std::string first_negative;  // location of the first negative value
   std::string first_missing;
+  std::string first_large;     // location of the first value above kImplausibleBrdf
+  double largest = 0.0;
 };
 
 // Key identifying a geometry: zenith angles and azimuths (azimuth mod 360, undefined azimuth at

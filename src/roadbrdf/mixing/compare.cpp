@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mixing.h"
 
 namespace roadbrdf::mixing {
@@ -26,11 +27,15 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   c.folds = folds;
   c.result = mix(inputs, method, settings, &data);
   // Errors of predictions (N_rows x M, rows = geometry indices) against the data.
+  // Missing values (NaN) are measurements not made: left out of every error and count.
+  const double measured = static_cast<double>(N * M - missing_value_count(data));
+  if (!(measured > 0.0)) throw InputError("the measured mixture has no measured value (every value is missing)");
   auto errors = [&](const std::vector<double>& predicted, const std::vector<std::size_t>& rows, double& sse,
                     double& sum_abs) {
     for (std::size_t r = 0; r < rows.size(); ++r) {
       for (std::size_t m = 0; m < M; ++m) {
         const double y = data.value(rows[r], m);
+        if (std::isnan(y)) continue;
         const double d = predicted[r * M + m] - y;
         sse += d * d;
         sum_abs += std::fabs(y);
@@ -43,8 +48,8 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   {
     double sse = 0.0, sum_abs = 0.0;
     errors(in_sample, all, sse, sum_abs);
-    c.rmse_in_sample = std::sqrt(sse / (N * M));
-    c.relative_rmse_in_sample = c.rmse_in_sample / (sum_abs / (N * M));
+    c.rmse_in_sample = std::sqrt(sse / measured);
+    c.relative_rmse_in_sample = c.rmse_in_sample / (sum_abs / measured);
   }
   c.fold_of_geometry.assign(N, 0);
   if (!method_needs_data(method)) {
@@ -70,14 +75,15 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   {
     double sse = 0.0, sum_abs = 0.0;
     errors(c.predicted, all, sse, sum_abs);
-    c.rmse = std::sqrt(sse / (N * M));
-    c.relative_rmse = c.rmse / (sum_abs / (N * M));
+    c.rmse = std::sqrt(sse / measured);
+    c.relative_rmse = c.rmse / (sum_abs / measured);
   }
   if (data.has_sigma()) {
     if (data.sigma.size() != N * M) throw InputError("the measured mixture's sigma table has the wrong size");
     double chi2 = 0.0;
     bool valid = true;
     for (std::size_t i = 0; i < N * M && valid; ++i) {
+      if (std::isnan(data.brdf[i])) continue;
       const double sigma = data.sigma[i];
       if (!(sigma > 0.0) || !std::isfinite(sigma)) {
         // Keep the comparison, say why chi^2 is missing.
@@ -91,7 +97,7 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
       const double z = (c.predicted[i] - data.brdf[i]) / sigma;
       chi2 += z * z;
     }
-    if (valid) c.chi2_reduced = chi2 / (N * M);
+    if (valid) c.chi2_reduced = chi2 / measured;
   }
   // Albedo summary on at most kAlbedoWavelengths wavelengths evenly spaced in index (the quadrature
   // costs ~14k model evaluations per wavelength).

@@ -33,7 +33,7 @@ void mix_fitted(const MethodCall& call, MixResult& r, std::vector<std::size_t>& 
         std::copy(table[q].begin(), table[q].end(), row);
       }));
   r.settings["per_wavelength"] = settings.per_wavelength ? 1.0 : 0.0;
-  r.settings["sigma_weighted"] = sys.inverse_sigma.empty() ? 0.0 : 1.0;
+  r.settings["sigma_weighted"] = sys.sigma_weighted ? 1.0 : 0.0;
   r.settings["sum_to_one"] = settings.sum_to_one ? 1.0 : 0.0;
   weight_distance(r);
 }

@@ -156,7 +156,7 @@ void mix_shadowed(const MethodCall& call, MixResult& r, std::vector<std::size_t>
   }
   r.weights = a;
   r.settings["shadowing"] = s;
-  r.settings["sigma_weighted"] = sys.inverse_sigma.empty() ? 0.0 : 1.0;
+  r.settings["sigma_weighted"] = sys.sigma_weighted ? 1.0 : 0.0;
   r.settings["sum_to_one"] = settings.sum_to_one ? 1.0 : 0.0;
   r.mixture = make_mixture(MixtureKind::kShadowed, inputs, members, coarse);
   r.model = std::make_shared<const SpectralModel>(

@@ -231,19 +231,36 @@ LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_
     }
   }
   s.y.resize(s.rows.size() * s.M);
+  bool any_missing = false;
   for (std::size_t r = 0; r < s.rows.size(); ++r) {
     for (std::size_t m = 0; m < s.M; ++m) {
       const double y = data.value(s.rows[r], m);
-      if (!std::isfinite(y)) throw InputError("the measured mixture has missing values: mixing needs complete data");
+      if (std::isnan(y)) {
+        any_missing = true;  // a measurement not made: multiplier 0 below
+        s.y[r * s.M + m] = 0.0;
+        continue;
+      }
+      if (!std::isfinite(y)) {
+        std::ostringstream msg;
+        msg << "the measured mixture's value at geometry " << s.rows[r] + 1 << ", wavelength " << data.wavelengths[m]
+            << " nm is " << y << " (not a finite number)";
+        throw InputError(msg.str());
+      }
       s.y[r * s.M + m] = y;
+      ++s.measured;
     }
   }
-  if (use_sigma && data.has_sigma()) {
+  s.sigma_weighted = use_sigma && data.has_sigma();
+  if (s.sigma_weighted) {
     if (data.sigma.size() != data.brdf.size()) throw InputError("the measured mixture's sigma table has the wrong size");
     s.inverse_sigma.resize(s.rows.size() * s.M);
     for (std::size_t r = 0; r < s.rows.size(); ++r) {
       for (std::size_t m = 0; m < s.M; ++m) {
         const double sigma = data.sigma[s.rows[r] * s.M + m];
+        if (std::isnan(data.value(s.rows[r], m))) {
+          s.inverse_sigma[r * s.M + m] = 0.0;
+          continue;
+        }
         if (!(sigma > 0.0) || !std::isfinite(sigma)) {
           std::ostringstream msg;
           msg << "the measured mixture's uncertainty at geometry " << s.rows[r] + 1 << ", wavelength "
@@ -254,6 +271,14 @@ LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_
         s.inverse_sigma[r * s.M + m] = 1.0 / sigma;
       }
     }
+  } else if (any_missing) {
+    // Unweighted, but the missing values get a zero multiplier (masked out of the fit).
+    s.inverse_sigma.assign(s.rows.size() * s.M, 1.0);
+    for (std::size_t r = 0; r < s.rows.size(); ++r) {
+      for (std::size_t m = 0; m < s.M; ++m) {
+        if (std::isnan(data.value(s.rows[r], m))) s.inverse_sigma[r * s.M + m] = 0.0;
+      }
+    }
   }
   return s;
 }
@@ -262,7 +287,15 @@ LinearSystem fitted_system(const MethodCall& call, const std::vector<std::size_t
   grid = output_grid(call.inputs, members, call.settings, call.data);
   LinearSystem sys = linear_system(call.inputs, members, *call.data, call.training, grid, call.settings.use_sigma);
   const std::size_t K = members.size();
-  if (sys.rows.size() * (call.settings.per_wavelength ? 1 : sys.M) < K) {
+  std::size_t fewest = sys.measured;  // measured values per solve
+  if (call.settings.per_wavelength) {
+    for (std::size_t m = 0; m < sys.M; ++m) {
+      std::size_t count = 0;
+      for (std::size_t r = 0; r < sys.rows.size(); ++r) count += sys.multiplier(r, m) != 0.0 ? 1 : 0;
+      fewest = std::min(fewest, count);
+    }
+  }
+  if (fewest < K) {
     throw InputError("too few measured values to fit " + std::to_string(K) + " weights");
   }
   return sys;

@@ -51,8 +51,11 @@ struct LinearSystem {
   std::size_t M = 0, K = 0;
   std::vector<double> F;          // [row][k][m]
   std::vector<double> y;          // [row][m]
-  // [row][m]: 1/sigma of each measured value (residual multiplier), or empty (unweighted).
+  // [row][m]: residual multiplier: 1/sigma of each measured value (sigma_weighted), else 1; 0 for a
+  // missing value (NaN in the data, y = 0 here: masked out). Empty: unweighted and nothing missing.
   std::vector<double> inverse_sigma;
+  bool sigma_weighted = false;
+  std::size_t measured = 0;  // measured values (rows x M minus the missing ones)
   double multiplier(std::size_t row, std::size_t m) const {
     return inverse_sigma.empty() ? 1.0 : inverse_sigma[row * M + m];
   }

@@ -119,6 +119,10 @@ std::string MixRun::table() const {
   if (data) {
     out += fmt::format("measured mixture {}: {} geometries x {} wavelengths; errors on held-out geometries ({}-fold)\n",
                        request.data, data->geometry_count(), data->wavelength_count(), request.folds);
+    if (const std::size_t missing = missing_value_count(*data); missing > 0) {
+      out += fmt::format("{} of {} measured-mixture values missing (left out of the fits and errors)\n", missing,
+                         data->brdf.size());
+    }
     if (data->has_sigma()) {
       out += fmt::format("fitted methods {} (sigma from the data); chi2/n: held-out reduced chi^2\n",
                          request.use_sigma ? "weighted by 1/sigma^2" : "unweighted (--no-sigma)");

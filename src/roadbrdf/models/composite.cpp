@@ -30,6 +30,7 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
       p.name = prefix + "." + p.name;
       d.parameters.push_back(p);
     }
+    for (const auto& [name, range] : c.physical_bounds) d.physical_bounds[prefix + "." + name] = range;
     for (OptionInfo o : c.options) {
       o.name = prefix + "." + o.name;
       d.options.push_back(o);

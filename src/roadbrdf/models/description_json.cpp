@@ -15,13 +15,16 @@ nlohmann::json description_to_json(const ModelDescription& d) {
   j["isotropic_when_equal"] = nlohmann::json::array();
   for (const auto& [first, second] : d.isotropic_when_equal) j["isotropic_when_equal"].push_back({first, second});
   j["parameters"] = nlohmann::json::array();
-  for (const auto& p : d.parameters) {
+  for (std::size_t k = 0; k < d.parameters.size(); ++k) {
+    const ParameterInfo& p = d.parameters[k];
+    const auto [physical_lower, physical_upper] = d.physical_range(k);
     j["parameters"].push_back({{"name", p.name},
                                {"unit", p.unit},
                                {"description", p.description},
                                {"default", p.default_value},
                                {"lower", p.lower},
                                {"upper", p.upper},
+                               {"physical_bounds", {physical_lower, physical_upper}},
                                {"spectral", p.spectral},
                                {"linear", p.linear}});
   }

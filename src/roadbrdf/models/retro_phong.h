@@ -53,6 +53,10 @@ struct RetroPhong {
          true},
         {"k4", "1", "specular weight growth rate: k_s = k3 exp(k4 (1 - cos theta_i))", 5.47, -20.0, 20.0, false, false},
     };
+    // n = 1000 is the default fitting range; retroreflective tapes and beads have far narrower
+    // lobes (the CEA 3M tape fits stop at 1000): any n >= 0 is a Phong lobe, `fit --bounds n=LO:HI`
+    // may go up to 1e6 (a lobe of half-width ~0.1 deg).
+    d.physical_bounds = {{"n", {0.0, 1.0e6}}};
     d.reciprocal = false;         // weights depend on theta_i only
     d.energy_conserving = false;  // k_d + k_s + k_r < 1 is not enforced
     d.non_negative = true;

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "roadbrdf/core/coverage.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf {
@@ -27,7 +30,13 @@ class SpectralModel {
   // Throws InputError outside the tabulated range (no extrapolation).
   std::vector<double> parameters_at(double wavelength_nm) const;
 
+  // The angular coverage of the data a fit was fitted to (from the fit file), if known: albedo
+  // and r-tables report how much of their result lies outside it.
+  const std::optional<AngularCoverage>& coverage() const { return coverage_; }
+  void set_coverage(std::optional<AngularCoverage> coverage) { coverage_ = std::move(coverage); }
+
  private:
+  std::optional<AngularCoverage> coverage_;
   std::shared_ptr<const Model> model_;
   std::vector<double> wavelengths_;
   std::vector<double> parameters_;

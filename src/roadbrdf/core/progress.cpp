@@ -1,0 +1,82 @@
+#include "roadbrdf/core/progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace roadbrdf {
+
+namespace {
+
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string seconds_text(double s) {
+  char buffer[32];
+  if (s < 60.0) {
+    std::snprintf(buffer, sizeof buffer, "%.1f s", s);
+  } else if (s < 3600.0) {
+    std::snprintf(buffer, sizeof buffer, "%d min %02d s", static_cast<int>(s / 60.0), static_cast<int>(std::fmod(s, 60.0)));
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%d h %02d min", static_cast<int>(s / 3600.0),
+                  static_cast<int>(std::fmod(s, 3600.0) / 60.0));
+  }
+  return buffer;
+}
+
+}  // namespace
+
+ProgressBar::ProgressBar(std::string label, std::FILE* out, bool enabled, Clock clock, double delay, double min_interval)
+    : label_(std::move(label)),
+      out_(out),
+      enabled_(enabled && out != nullptr),
+      clock_(clock ? std::move(clock) : Clock(steady_seconds)),
+      delay_(delay),
+      min_interval_(min_interval) {
+  start_ = clock_();
+}
+
+ProgressBar::~ProgressBar() { finish(); }
+
+bool ProgressBar::terminal_enabled(bool quiet) { return !quiet && isatty(fileno(stderr)) != 0; }
+
+std::string ProgressBar::line(const std::string& label, std::size_t done, std::size_t total, double elapsed) {
+  constexpr std::size_t kWidth = 24;
+  done = std::min(done, total);
+  const double share = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+  const auto filled = static_cast<std::size_t>(share * static_cast<double>(kWidth));
+  std::string bar(filled, '#');
+  bar.resize(kWidth, '.');
+  std::string text = label + " [" + bar + "] " + std::to_string(done) + "/" + std::to_string(total) + " " +
+                     std::to_string(static_cast<int>(std::floor(100.0 * share))) + "%  " + seconds_text(elapsed);
+  if (done > 0 && done < total) {
+    const double left = elapsed * static_cast<double>(total - done) / static_cast<double>(done);
+    text += ", ~" + seconds_text(left) + " left";
+  }
+  return text;
+}
+
+void ProgressBar::update(std::size_t done, std::size_t total) {
+  if (!enabled_ || finished_) return;
+  const double now = clock_();
+  const double elapsed = now - start_;
+  if (elapsed < delay_) return;
+  if (shown_ && done < total && now - last_draw_ < min_interval_) return;
+  last_draw_ = now;
+  shown_ = true;
+  std::fprintf(out_, "\r%s\x1b[K", line(label_, done, total, elapsed).c_str());  // erase the rest of the line
+  std::fflush(out_);
+}
+
+void ProgressBar::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (shown_) {
+    std::fputc('\n', out_);
+    std::fflush(out_);
+  }
+}
+
+}  // namespace roadbrdf

@@ -1,0 +1,71 @@
+// The progress bar (core/progress.h): drawn only when enabled, after its delay, at most every
+// min_interval, always at 100 %; the time left is elapsed * remaining / done. A fake clock, no timing.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "roadbrdf/core/progress.h"
+
+namespace roadbrdf {
+namespace {
+
+std::string contents(std::FILE* f) {
+  std::fflush(f);
+  std::rewind(f);
+  std::string s;
+  for (int c; (c = std::fgetc(f)) != EOF;) s += static_cast<char>(c);
+  return s;
+}
+
+TEST(Progress, LineShowsShareAndTimeLeft) {
+  EXPECT_EQ(ProgressBar::line("fit", 10, 40, 3.0), "fit [######..................] 10/40 25%  3.0 s, ~9.0 s left");
+  EXPECT_EQ(ProgressBar::line("fit", 0, 4, 0.5), "fit [........................] 0/4 0%  0.5 s");
+  EXPECT_EQ(ProgressBar::line("fit", 4, 4, 125.0), "fit [########################] 4/4 100%  2 min 05 s");
+  EXPECT_EQ(ProgressBar::line("x", 1, 2, 4000.0), "x [############............] 1/2 50%  1 h 06 min, ~1 h 06 min left");
+}
+
+TEST(Progress, DrawsAfterTheDelayThrottledAndEndsTheLine) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  double now = 100.0;
+  {
+    ProgressBar bar("work", f, true, [&now] { return now; }, 1.0, 0.5);
+    bar.update(1, 10);  // before the delay: nothing
+    EXPECT_FALSE(bar.shown());
+    now = 101.0;
+    bar.update(2, 10);  // drawn
+    now = 101.2;
+    bar.update(3, 10);  // throttled
+    now = 101.6;
+    bar.update(4, 10);  // drawn
+    bar.update(10, 10);  // 100 %: always drawn
+    EXPECT_TRUE(bar.shown());
+  }
+  const std::string out = contents(f);
+  std::fclose(f);
+  EXPECT_EQ(out, "\rwork [####....................] 2/10 20%  1.0 s, ~4.0 s left\x1b[K"
+                 "\rwork [#########...............] 4/10 40%  1.6 s, ~2.4 s left\x1b[K"
+                 "\rwork [########################] 10/10 100%  1.6 s\x1b[K\n");
+}
+
+TEST(Progress, DisabledOrShortWorkWritesNothing) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  double now = 0.0;
+  {
+    ProgressBar off("work", f, false, [&now] { return now; });
+    now = 10.0;
+    off.update(5, 10);
+    ProgressBar quick("work", f, true, [&now] { return now; });
+    now = 10.5;
+    quick.update(10, 10);  // done within the delay: never shown, no newline either
+    EXPECT_FALSE(quick.shown());
+  }
+  EXPECT_EQ(contents(f), "");
+  std::fclose(f);
+  EXPECT_FALSE(ProgressBar::terminal_enabled(true));  // --quiet: never, whatever the stream
+}
+
+}  // namespace
+}  // namespace roadbrdf
