@@ -19,8 +19,9 @@ __all__ = ["albedo"]
 def albedo(model: Model | SpectralModel | str, params: dict | None = None,
            sun_zenith: float | str | Sequence[float] = 30.0, sun_azimuth: float | None = None,
            azimuth_mean: bool = False,
-           diffuse_fraction=None, atmosphere=None, spectrum=None, wavelengths=None, illuminant=None,
-           tolerance=1e-5) -> dict:
+           diffuse_fraction: float | str | None = None, atmosphere: str | None = None,
+           spectrum: str | None = None, wavelengths: float | str | Sequence[float] | None = None,
+           illuminant: str | None = None, tolerance: float = 1e-5) -> dict:
     """Black-sky, white-sky and blue-sky albedo, as ``roadbrdf albedo --json`` computes them.
 
     ``model``: a :class:`Model` (with ``params``), a :class:`SpectralModel`, or a fit / MIX.json file.

@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import os
+from typing import Optional, Sequence, Tuple, Union
+
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError, as_float_array
+from .core import ArrayLike, InputError, as_float_array
 from .io import Dataset
 from .model import Model
+
+PathLike = Union[str, "os.PathLike[str]"]
+#: Wavelengths [nm]: None (default), a number, a sequence or a range text such as "400:700:10".
+Wavelengths = Union[None, float, Sequence[float], str]
 
 __all__ = ["Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface", "render", "render_albedo"]
 
@@ -70,12 +77,12 @@ class Surface:
         return self._field.cell_size_mm
 
     @property
-    def shape(self):
+    def shape(self) -> Tuple[int, int]:
         """(ny, nx) nodes (= cells: periodic)."""
         return (self._field.ny, self._field.nx)
 
     @property
-    def size_mm(self):
+    def size_mm(self) -> Tuple[float, float]:
         """Period (x, y) [mm]."""
         return (self._field.nx * self.cell_mm, self._field.ny * self.cell_mm)
 
@@ -131,28 +138,30 @@ class Surface:
         """Projected area fraction of each material (aligned with ``materials``)."""
         return np.asarray(self.statistics["exposed_area_fraction"])
 
-    def write(self, path, preview=None):
+    def write(self, path: PathLike, preview: Optional[PathLike] = None) -> None:
         """Write the SURFACE file (JSON, atomically), with the statistics; fit paths are written relative
         to its folder. ``preview``: also a PNG of the height map coloured by material."""
         self._field.write(str(path))
         if preview is not None:
             self._field.write_preview(str(preview))
 
-    def render(self, theta_i, phi_i, theta_r, phi_r, **options):
+    def render(self, theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike, phi_r: ArrayLike,
+               **options) -> Dataset:
         """Same as :func:`render` (``render(self, ...)``)."""
         return render(self, theta_i, phi_i, theta_r, phi_r, **options)
 
-    def render_albedo(self, sun_zenith, **options):
+    def render_albedo(self, sun_zenith: Union[float, Sequence[float], str], **options) -> dict:
         """Same as :func:`render_albedo` (``render_albedo(self, ...)``)."""
         return render_albedo(self, sun_zenith, **options)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         ny, nx = self.shape
         return f"roadbrdf.Surface({self.name!r}: {nx} x {ny} cells of {self.cell_mm:g} mm, materials {self.materials})"
 
 
-def surface(formulation_path, size_mm=60.0, cell_mm=0.1, seed=1, matrix_level=None, target_mpd=None,
-            output=None, mastic_fraction=None) -> Surface:
+def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 0.1, seed: int = 1,
+            matrix_level: Optional[float] = None, target_mpd: Optional[float] = None,
+            output: Optional[PathLike] = None, mastic_fraction: Optional[float] = None) -> Surface:
     """A virtual sample of a formulation, as ``roadbrdf surface FORMULATION`` builds it: coarse aggregate
     classes as packed ellipsoidal grains in a mastic (docs/surface.md "Virtual sample").
 
@@ -176,7 +185,7 @@ def surface(formulation_path, size_mm=60.0, cell_mm=0.1, seed=1, matrix_level=No
     return s
 
 
-def read_surface(path) -> Surface:
+def read_surface(path: PathLike) -> Surface:
     """Read a SURFACE file (written by ``roadbrdf surface`` or :meth:`Surface.write`); fit files of its
     materials are resolved relative to the file's folder."""
     return Surface(_roadbrdf.read_surface(str(path)))
@@ -198,7 +207,8 @@ def _material_arguments(model_or_fit, params, fit_model):
     return "", "", text, {str(k): float(v) for k, v in (params or {}).items()}, {}
 
 
-def flat_surface(model_or_fit, params: dict | None = None, cells=16, cell_mm=0.1, fit_model=None) -> Surface:
+def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None = None, cells: int = 16,
+                 cell_mm: float = 0.1, fit_model: Optional[str] = None) -> Surface:
     """A flat sample z = 0 of one material (validation; ``roadbrdf surface MATERIAL --flat``).
 
     ``model_or_fit``: a :class:`Model` (with ``params``), a model name, or a fit file (``*.json``, its
@@ -208,8 +218,9 @@ def flat_surface(model_or_fit, params: dict | None = None, cells=16, cell_mm=0.1
                                           float(cell_mm)))
 
 
-def gaussian_slope_surface(model_or_fit, sigma_rad, params: dict | None = None, cells=128, cell_mm=0.1, seed=1,
-                           fit_model=None) -> Surface:
+def gaussian_slope_surface(model_or_fit: Union[Model, str, PathLike], sigma_rad: float, params: dict | None = None,
+                           cells: int = 128, cell_mm: float = 0.1, seed: int = 1,
+                           fit_model: Optional[str] = None) -> Surface:
     """An isotropic random rough surface of one material with facet slope angle standard deviation
     ``sigma_rad`` [rad] (the Oren-Nayar roughness; ``roadbrdf surface MATERIAL --gaussian-slopes``)."""
     return Surface(_roadbrdf.gaussian_slope_surface(*_material_arguments(model_or_fit, params, fit_model),
@@ -235,9 +246,11 @@ def _wavelength_list(wavelengths):
     return _roadbrdf.values(wavelengths, "wavelengths", True)
 
 
-def render(surface, theta_i, phi_i, theta_r, phi_r, wavelengths=None, samples=None, target_error=None,
-           max_samples=1 << 20, acceptance_deg=1.0, sampling="brdf", seed=1, threads=0, max_bounces=0,
-           error_floor=1e-5) -> Dataset:
+def render(surface: Union[Surface, PathLike], theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike,
+           phi_r: ArrayLike, wavelengths: Wavelengths = None, samples: Optional[int] = None,
+           target_error: Optional[float] = None, max_samples: int = 1 << 20, acceptance_deg: float = 1.0,
+           sampling: str = "brdf", seed: int = 1, threads: int = 0, max_bounces: int = 0,
+           error_floor: float = 1e-5) -> Dataset:
     """The virtual gonioreflectometer: path-trace a :class:`Surface` (or a SURFACE file path) at the
     given geometries, as ``roadbrdf render SURFACE --grid`` does (docs/surface.md "Estimator").
 
@@ -267,9 +280,11 @@ def render(surface, theta_i, phi_i, theta_r, phi_r, wavelengths=None, samples=No
     return d
 
 
-def render_albedo(surface, sun_zenith, wavelengths=None, white_sky_nodes=8, samples=None, target_error=None,
-                  max_samples=1 << 20, acceptance_deg=1.0, sampling="brdf", seed=1, threads=0, max_bounces=0,
-                  error_floor=1e-5) -> dict:
+def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Sequence[float], str],
+                  wavelengths: Wavelengths = None, white_sky_nodes: int = 8, samples: Optional[int] = None,
+                  target_error: Optional[float] = None, max_samples: int = 1 << 20, acceptance_deg: float = 1.0,
+                  sampling: str = "brdf", seed: int = 1, threads: int = 0, max_bounces: int = 0,
+                  error_floor: float = 1e-5) -> dict:
     """Albedo of a virtual sample, as ``roadbrdf render SURFACE --albedo`` computes it: black-sky
     (directional-hemispherical reflectance) at the sun zenith angles [deg, 0 <= theta < 90] and white-sky by a
     ``white_sky_nodes``-point Gauss-Legendre rule in cos(theta) (0 = none). Same sampling options as
