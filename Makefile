@@ -14,10 +14,12 @@ deps-app:
 	@bash scripts/install-deps.sh build python
 
 # Configuring an existing build folder again takes seconds; the demo's does not need the test packages.
+# The benchmarks are not tests: `make test` leaves them out, `make bench` builds them (BENCHMARKS=ON).
+BENCHMARKS ?= OFF
 configure: deps
 	@mkdir -p $(BUILD)
-	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DROADBRDF_BUILD_TESTS=ON -DROADBRDF_BUILD_BENCHMARKS=ON > $(BUILD)/configure.log \
-	  || { cat $(BUILD)/configure.log; exit 1; }
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DROADBRDF_BUILD_TESTS=ON -DROADBRDF_BUILD_BENCHMARKS=$(BENCHMARKS) \
+	  > $(BUILD)/configure.log || { cat $(BUILD)/configure.log; exit 1; }
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
@@ -36,7 +38,9 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The whole suite (C++ and Python) built with clang 14, AddressSanitizer and UBSan, no recovery: any
-# sanitizer report fails its test. Python loads the ASan runtime through LD_PRELOAD (set by
+# sanitizer report fails its test. Debug with -Werror (clang's warnings at the project's level are
+# errors here) and line tables only (sanitizer reports keep file:line; full debug info doubles the
+# link time). Python loads the ASan runtime through LD_PRELOAD (set by
 # tests/CMakeLists.txt for python_tests). The install checks are left out: they build and install
 # a separate, unsanitized copy.
 SANITIZE_BUILD ?= build-sanitize
@@ -45,6 +49,7 @@ SANITIZE_ENV = UBSAN_OPTIONS=print_stacktrace=1
 configure-sanitize: deps
 	@mkdir -p $(SANITIZE_BUILD)
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=$(SANITIZE_CXX) \
+	  -DCMAKE_CXX_FLAGS=-Werror -DCMAKE_CXX_FLAGS_DEBUG=-gline-tables-only \
 	  -DPYTHON_EXECUTABLE=$(PYTHON) -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_BUILD_TESTS=ON \
 	  -DROADBRDF_BUILD_BENCHMARKS=OFF > $(SANITIZE_BUILD)/configure.log || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
 
@@ -76,7 +81,8 @@ fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
-bench: build
+bench:
+	$(MAKE) build BENCHMARKS=ON
 	bash bench/run.sh $(BUILD)
 
 # Install into PREFIX (default /usr/local); see README "Install".
