@@ -25,8 +25,15 @@ if(PYTHON_EXECUTABLE)
   set(Python3_EXECUTABLE ${PYTHON_EXECUTABLE})
 endif()
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
+# A sanitized program hands `plot` and `study` to python3 (cli/python_module.h), which loads the
+# sanitized extension: the ASan runtime must then be preloaded, as for the Python tests.
+set(manpage_environment "")
+if(ROADBRDF_ASAN_RUNTIME)
+  set(manpage_environment ${CMAKE_COMMAND} -E env LD_PRELOAD=${ROADBRDF_ASAN_RUNTIME} ASAN_OPTIONS=detect_leaks=0)
+endif()
 add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/roadbrdf.1
-                   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/scripts/make_manpage.py $<TARGET_FILE:roadbrdf>
+                   COMMAND ${manpage_environment} ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/scripts/make_manpage.py
+                           $<TARGET_FILE:roadbrdf>
                            ${PROJECT_VERSION} ${CMAKE_BINARY_DIR}/roadbrdf.1
                    DEPENDS roadbrdf ${CMAKE_SOURCE_DIR}/scripts/make_manpage.py)
 add_custom_target(roadbrdf_manpage ALL DEPENDS ${CMAKE_BINARY_DIR}/roadbrdf.1)
