@@ -31,31 +31,37 @@ class RTable(dict):
 
 
 def rtable(model: Model | SpectralModel | PathLike, params: dict | None = None, alpha: float = 1.0,
-           illuminant: str = "A", wavelength: float | None = None,
-           band: Tuple[float, float] | None = None) -> RTable:
+           illuminant: str = "", wavelength: float | None = None,
+           band: Tuple[float, float] | None = None, q0_region: str = "standard", class_system: str = "R") -> RTable:
     """Standard r-table (29 tan(gamma) x 20 beta) of a model or a spectral model at observation angle
-    ``alpha`` [deg] (CIE: 1).
+    ``alpha`` [deg] (CIE: 1), as ``roadbrdf rtable`` computes it (one library request, the same rules).
 
     ``model`` is a :class:`Model` (with ``params``), a :class:`SpectralModel` (e.g. :func:`read_fit`),
     or a fit file path. A spectral model is reduced to one BRDF per geometry photometrically
-    (V(lambda) x ``illuminant`` "A", "D65" or a lamp CSV file), or at one ``wavelength`` [nm], or
-    averaged over ``band`` = (lo, hi) [nm]. A single-band fit is used at its band; ``note`` (else None)
-    says so.
+    (V(lambda) x ``illuminant`` "A" (default), "D65" or a lamp CSV file), or at one ``wavelength``
+    [nm], or averaged over ``band`` = (lo, hi) [nm]. A single-band fit is used at its band. ``Q0`` is
+    averaged over ``q0_region`` ("standard" CIE cells or the whole "table"); ``class`` is in
+    ``class_system`` (R, N or C). ``notes`` (the first also as ``note``, else None) and ``warnings`` hold
+    the command line's one-line messages; the warnings are also raised as :class:`UserWarning`.
     """
     if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
         model = read_fit(model)
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")
-        return RTable(_roadbrdf.rtable_from_spectral(model._spectral, float(alpha), illuminant, wavelength,
-                                                     None if band is None else (float(band[0]), float(band[1]))))
-    given = dict(params or {})
-    names = model.parameter_names
-    unknown = [k for k in given if k not in names]
-    if unknown:
-        raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
-    values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
-    return RTable(_roadbrdf.rtable_from_model(model._model, values, float(alpha)))
+        spectral = model._spectral
+    else:
+        given = dict(params or {})
+        names = model.parameter_names
+        unknown = [k for k in given if k not in names]
+        if unknown:
+            raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
+        values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
+        spectral = _roadbrdf.constant_spectral_model(model._model, values)
+    return RTable(_roadbrdf.rtable_report(spectral, float(alpha), illuminant,
+                                          None if wavelength is None else float(wavelength),
+                                          None if band is None else (float(band[0]), float(band[1])),
+                                          q0_region, class_system))
 
 
 def read_rtable(path: PathLike, format: str | None = None, alpha: float = 1.0, scale: float = 1e4) -> RTable:

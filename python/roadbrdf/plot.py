@@ -340,7 +340,7 @@ _CLASS_R = [("R1", 0.0, 0.42, 0.25, 0.10), ("R2", 0.42, 0.85, 0.58, 0.07), ("R3"
             ("R4", 1.35, 2.5, 1.55, 0.08)]
 
 
-def rtable(table, params=None, title=None, output=None, wavelength=None, band=None, illuminant="A"):
+def rtable(table, params=None, title=None, output=None, wavelength=None, band=None, illuminant=""):
     """r-table heat map (10^4 r over beta and tan gamma, missing cells blank) and the sample's
     (S1, Q0) among the CIE R classes with the standard tables' points.
 
@@ -535,7 +535,7 @@ def main(argv=None):
     model_flags(p)
     p.add_argument("--wavelength", type=float, help="fit file: the r-table at one wavelength [nm]")
     p.add_argument("--band", help="fit file: unweighted mean over a band A:B [nm]")
-    p.add_argument("--illuminant", default="A", help="fit file: photometric weighting V(lambda) x A|D65|FILE")
+    p.add_argument("--illuminant", default="", help="fit file: photometric weighting V(lambda) x A (default)|D65|FILE")
     output(p)
     from .plot_study import add_parser as _add_study_parser, run as _run_study  # design studies (plot_study.py)
     _add_study_parser(sub, output)

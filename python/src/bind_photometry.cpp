@@ -13,6 +13,7 @@
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_coverage.h"
 #include "roadbrdf/photometry/rtable_io.h"
+#include "roadbrdf/photometry/rtable_request.h"
 
 namespace py = pybind11;
 
@@ -71,54 +72,50 @@ RTable rtable_from_array(const Array& r, const std::string& name, double alpha_d
   return t;
 }
 
-SpectralWeighting weighting_from(const std::string& illuminant, std::optional<double> wavelength,
-                                 std::optional<std::pair<double, double>> band) {
-  SpectralWeighting w;
-  if (wavelength && band) throw InputError("give either wavelength or band, not both");
-  if (wavelength) {
-    w.kind = SpectralWeighting::Kind::wavelength;
-    w.wavelength_nm = *wavelength;
-  } else if (band) {
-    w.kind = SpectralWeighting::Kind::band;
-    w.band_lo_nm = band->first;
-    w.band_hi_nm = band->second;
-  } else {
-    w.illuminant = illuminant_from_name(illuminant);
+RTableRequest request_from(double alpha, const std::string& illuminant, std::optional<double> wavelength,
+                           std::optional<std::pair<double, double>> band, const std::string& q0_region,
+                           const std::string& class_system) {
+  RTableRequest request;
+  request.alpha = alpha;
+  request.illuminant = illuminant;
+  request.wavelength = wavelength;
+  request.band = band;
+  request.q0_region = q0_region;
+  request.class_system = class_system;
+  return request;
+}
+
+// The library's report (photometry/rtable_request.h) as the Python dict: the table's figures, the
+// report's notes (the first as "note") and its warnings as UserWarning, as the command line prints them.
+py::dict report_to_dict(const RTableReport& report) {
+  py::dict d = rtable_to_dict(report.table, report.declared_q0);
+  d["q0_region"] = report.q0_region;
+  d["Q0"] = report.summary.q0;
+  d["class"] = report.chosen.name;
+  d["class_system"] = report.class_system;
+  d["coverage"] = json_to_python(report.coverage.to_json());
+  d["weighting"] = json_to_python(report.weighting);
+  d["notes"] = report.notes;
+  d["warnings"] = report.warnings;
+  d["note"] = report.notes.empty() ? py::object(py::none()) : py::object(py::str(report.notes.front()));
+  for (const std::string& warning : report.warnings) {
+    py::module_::import("warnings").attr("warn")(warning, py::module_::import("builtins").attr("UserWarning"), 3);
   }
-  return w;
+  return d;
 }
 
 }  // namespace
 
 void bind_photometry(py::module_& m) {
   m.def(
-      "rtable_from_model",
-      [](const Model& model, const std::vector<double>& parameters, double alpha) {
-        check_parameters(model.description(), parameters);
-        return rtable_to_dict(compute_rtable(model, parameters, alpha));
-      },
-      py::arg("model"), py::arg("parameters"), py::arg("alpha") = 1.0);
-  m.def(
-      "rtable_from_spectral",
+      "rtable_report",
       [](const SpectralModel& model, double alpha, const std::string& illuminant, std::optional<double> wavelength,
-         std::optional<std::pair<double, double>> band) {
-        std::string note;
-        const SpectralWeighting w = effective_weighting(model, weighting_from(illuminant, wavelength, band), &note);
-        const RTable table = compute_rtable(model, w, alpha);
-        py::dict d = rtable_to_dict(table);
-        d["note"] = note.empty() ? py::object(py::none()) : py::object(py::str(note));
-        // The command line's "coverage" (photometry/rtable_coverage.h); its WARNING notes as UserWarning.
-        const RTableCoverage coverage = rtable_coverage(table, model.coverage());
-        d["coverage"] = json_to_python(coverage.to_json());
-        for (const std::string& n : coverage.notes()) {
-          if (n.rfind("WARNING: ", 0) == 0) {
-            py::module_::import("warnings").attr("warn")(n.substr(9), py::module_::import("builtins").attr("UserWarning"), 2);
-          }
-        }
-        return d;
+         std::optional<std::pair<double, double>> band, const std::string& q0_region, const std::string& class_system) {
+        return report_to_dict(
+            rtable_report(model, request_from(alpha, illuminant, wavelength, band, q0_region, class_system)));
       },
-      py::arg("model"), py::arg("alpha") = 1.0, py::arg("illuminant") = "A", py::arg("wavelength") = py::none(),
-      py::arg("band") = py::none());
+      py::arg("model"), py::arg("alpha") = 1.0, py::arg("illuminant") = "", py::arg("wavelength") = py::none(),
+      py::arg("band") = py::none(), py::arg("q0_region") = "standard", py::arg("class_system") = "R");
   m.def(
       "read_rtable",
       [](const std::string& path, std::optional<std::string> format, double alpha, double scale) {

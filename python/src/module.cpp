@@ -148,6 +148,15 @@ PYBIND11_MODULE(_roadbrdf, m) {
       .def("parameters_at", &SpectralModel::parameters_at)
       .def("evaluate_flat", &evaluate_spectral_flat);
   m.def("read_fit_file", &read_fit_file, py::arg("path"), py::arg("model") = "");
+  // A plain model with one parameter set, as the wavelength-independent spectral model the
+  // command line makes of `MODEL -p ...`.
+  m.def(
+      "constant_spectral_model",
+      [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters) {
+        check_parameters(model->description(), parameters);
+        return SpectralModel(model, parameters);
+      },
+      py::arg("model"), py::arg("parameters"));
 
   m.def("road_to_zenith_azimuth", [](double gamma, double alpha, double beta, double delta) {
     const Geometry g = geometry_from_road_angles({gamma, alpha, beta, delta});

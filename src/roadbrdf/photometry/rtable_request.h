@@ -1,0 +1,71 @@
+// An r-table as the front ends ask for it (`roadbrdf rtable`, roadbrdf.rtable in Python): the
+// request with its one validation, and the report with the table, its summary figures, the class,
+// the coverage of the fit behind it, and the notes and warnings that go with them. The command line
+// and the Python module only translate their arguments into an RTableRequest and print or return
+// the report; neither decides a rule of its own.
+//
+// Errors are FieldError with the field names below ("wavelength", "band", "alpha", ...), which are
+// also the Python keywords; the command line maps them to its flags (cli/common.h).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "roadbrdf/models/spectral_model.h"
+#include "roadbrdf/photometry/rtable.h"
+#include "roadbrdf/photometry/rtable_coverage.h"
+#include "roadbrdf/photometry/rtable_io.h"
+
+namespace roadbrdf::photometry {
+
+struct RTableRequest {
+  // How a spectral model is reduced to one BRDF per geometry (SpectralWeighting): photometrically
+  // with V(lambda) x illuminant ("" = CIE A, "A", "D65" or a lamp CSV), or at one wavelength, or as
+  // the unweighted mean over a band [lo, hi]. At most one of the three may be given. A
+  // wavelength-independent model ignores them (with a note); a single-band model is used at its band.
+  std::string illuminant;
+  std::optional<double> wavelength;                 // [nm]
+  std::optional<std::pair<double, double>> band;    // [lo, hi] [nm]
+  double alpha = 1.0;                  // observation angle above the road plane, (0, 90) [deg]
+  std::string q0_region = "standard";  // standard | table (Q0Region)
+  std::string class_system = "R";      // R | N | C: the class reported as "class"
+
+  // Throws FieldError.
+  void validate() const;
+  // An imported table has no spectrum to reduce: throws FieldError if a weighting field is set.
+  void validate_for_import() const;
+  Q0Region region() const;
+  ClassSystem system() const;
+};
+
+struct RTableReport {
+  RTable table;
+  RTableSummary summary;
+  RoadClass chosen;                   // in the request's class system
+  std::string q0_region, class_system;
+  RTableCoverage coverage;            // the fit's coverage (none for an imported table)
+  std::optional<double> declared_q0;  // an imported RTB file's own q0 line
+  nlohmann::json weighting;           // what reduced the spectrum (null for an imported table)
+  std::vector<std::string> notes;     // one line each ("the fit has a single band...")
+  std::vector<std::string> warnings;  // one line each (mostly extrapolated, implausible Q0...)
+  std::optional<RTableComparison> comparison;
+  std::string compared_with;          // the reference's name, when compared
+
+  // Compare with a reference table (`b` of compare()): fills `comparison`.
+  void compare_with(const RTable& reference, const std::string& name);
+  // The document `roadbrdf rtable --json` prints (plain r in sr^-1, null = missing; units listed).
+  nlohmann::json to_json() const;
+  // The summary lines `roadbrdf rtable` prints (Q0, S1, S2, Qd, r(0,0), class, cells...).
+  std::string summary_text() const;
+};
+
+// The r-table of a spectral model (a fit file, a mixture, or a plain model as a constant spectral
+// model) at the request's weighting. Throws FieldError / InputError.
+RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request);
+// The report of an r-table read from a file (read_rtable). Throws FieldError / InputError.
+RTableReport rtable_report(RTableFile imported, const RTableRequest& request);
+
+}  // namespace roadbrdf::photometry

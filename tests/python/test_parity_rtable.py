@@ -1,0 +1,42 @@
+"""roadbrdf rtable and roadbrdf.rtable: one library request (photometry/rtable_request.h), the same
+errors (the CLI naming its flag, Python the keyword), the same numbers and the same warnings."""
+import json
+import math
+
+import pytest
+
+import roadbrdf
+
+ERRORS = [
+    (["--alpha", "0"], dict(alpha=0.0), "--alpha", "alpha"),
+    (["--wavelength", "550", "--band", "500:600"], dict(wavelength=550.0, band=(500.0, 600.0)), "--band", "band"),
+    (["--band", "600:500"], dict(band=(600.0, 500.0)), "--band", "band"),
+    (["--wavelength", "550", "--illuminant", "D65"], dict(wavelength=550.0, illuminant="D65"), "--illuminant",
+     "illuminant"),
+    (["--q0-region", "all"], dict(q0_region="all"), "--q0-region", "q0_region"),
+    (["--class-system", "Q"], dict(class_system="Q"), "--class-system", "class_system"),
+]
+
+
+@pytest.mark.parametrize("flags,kwargs,cli_field,py_field", ERRORS, ids=[e[3] for e in ERRORS])
+def test_rtable_errors_are_the_same(cli, flags, kwargs, cli_field, py_field):
+    r = cli("rtable", "lambert", "-p", "albedo=0.3", *flags, check=False)
+    prefix = f"roadbrdf: error: {cli_field}: "
+    assert r.returncode == 2 and r.stderr.startswith(prefix), r.stderr
+    with pytest.raises(roadbrdf.InputError) as e:
+        roadbrdf.rtable(roadbrdf.Model("lambert"), {"albedo": 0.3}, **kwargs)
+    assert str(e.value).startswith(py_field + ": ")
+    assert r.stderr.strip()[len(prefix):] == str(e.value)[len(py_field) + 2:]
+
+
+def test_rtable_numbers_and_warnings_are_the_same(cli):
+    # Lambertian: Q0 = rho/pi, S1 = cos^3(atan 2) = 5^-1.5 (class N1 in the N system).
+    r = cli("rtable", "lambert", "-p", "albedo=0.3", "--wavelength", "550", "--class-system", "N", "--json")
+    j = json.loads(r.stdout)
+    with pytest.warns(UserWarning, match="do not depend on wavelength"):
+        t = roadbrdf.rtable(roadbrdf.Model("lambert"), {"albedo": 0.3}, wavelength=550.0, class_system="N")
+    assert j["Q0"] == t["Q0"] == pytest.approx(0.3 / math.pi, rel=1e-12)
+    assert j["S1"] == t["S1"] == pytest.approx(5 ** -1.5, rel=1e-12)
+    assert j["class"] == t["class"] == "N1"
+    assert j["warnings"] == t["warnings"]
+    assert "roadbrdf: warning: " + t["warnings"][0] in r.stderr
