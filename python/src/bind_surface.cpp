@@ -25,6 +25,7 @@
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
+#include "roadbrdf/surface/surface_request.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
@@ -171,12 +172,14 @@ void bind_surface(py::module_& m) {
   m.def("surface_from_formulation", [](const std::string& path, double size_mm, double cell_mm, std::uint64_t seed,
                                        std::optional<double> matrix_level, std::optional<double> target_mpd,
                                        std::optional<double> mastic_fraction) {
-    if ((matrix_level ? 1 : 0) + (target_mpd ? 1 : 0) + (mastic_fraction ? 1 : 0) > 1) {
-      throw InputError("matrix_level, target_mpd and mastic_fraction exclude each other");
-    }
-    if (matrix_level && !(*matrix_level >= 0.0 && *matrix_level <= 1.0)) {
-      throw InputError("matrix_level must be in [0, 1] (a fraction of the slab thickness)");
-    }
+    surface::SurfaceRequest request;
+    request.size_mm = size_mm;
+    request.cell_mm = cell_mm;
+    request.seed = seed;
+    request.matrix_level = matrix_level;
+    request.target_mpd = target_mpd;
+    request.mastic_fraction = mastic_fraction;
+    const surface::GeneratorSettings s = request.generator_settings();
     std::ifstream in(path);
     if (!in) throw FileError(path, 0, 0, "cannot open the formulation file");
     std::stringstream text;
@@ -184,13 +187,6 @@ void bind_surface(py::module_& m) {
     // As the command line: fit files are needed only to render, they may not exist yet.
     const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(text.str(), path, false);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
-    surface::GeneratorSettings s;
-    s.size_mm = size_mm;
-    s.cell_size_mm = cell_mm;
-    s.seed = seed;
-    if (matrix_level) s.matrix_level = *matrix_level;
-    s.target_mpd_mm = target_mpd;
-    s.mastic_fraction = mastic_fraction;
     surface::GeneratedSample sample;
     {
       py::gil_scoped_release release;
@@ -214,7 +210,12 @@ void bind_surface(py::module_& m) {
   m.def("flat_surface", [](const std::string& fit, const std::string& fit_model, const std::string& model,
                            const std::map<std::string, double>& parameters,
                            const std::map<std::string, std::string>& options, int cells, double cell_mm) {
-    Field f = surface::make_flat(material_spec(fit, fit_model, model, parameters, options), cells, cell_mm);
+    surface::SurfaceRequest request;
+    request.kind = surface::SurfaceRequest::Kind::flat;
+    request.cells = cells;
+    request.cell_mm = cell_mm;
+    const int n = request.cell_count();
+    Field f = surface::make_flat(material_spec(fit, fit_model, model, parameters, options), n, cell_mm);
     surface::validate(f);
     return keep(std::move(f));
   });
@@ -223,8 +224,14 @@ void bind_surface(py::module_& m) {
                                      const std::map<std::string, double>& parameters,
                                      const std::map<std::string, std::string>& options, double sigma_rad, int cells,
                                      double cell_mm, std::uint64_t seed) {
+    surface::SurfaceRequest request;
+    request.kind = surface::SurfaceRequest::Kind::gaussian_slopes;
+    request.cells = cells;
+    request.cell_mm = cell_mm;
+    request.seed = seed;
+    request.sigma_rad = sigma_rad;
+    request.validate();
     const surface::MaterialSpec spec = material_spec(fit, fit_model, model, parameters, options);
-    if (!(cell_mm > 0.0)) throw InputError("cell_mm must be > 0");
     Field f;
     {
       py::gil_scoped_release release;

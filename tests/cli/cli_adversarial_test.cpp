@@ -221,7 +221,7 @@ TEST(CliAdversarial, UntrustedNumbersAreRangeAndIntegralityChecked) {
        "unused.txt",
        "",
        "surface lambert -p albedo=0.3 --flat --size nanmm -o {out}",
-       {"--size is for samples of a formulation"},
+       {"--size: is for samples of a formulation"},
        false},
   });
 }

@@ -51,3 +51,25 @@ def test_render_with_settings_is_identical(cli, flat, tmp_path):
                          max_bounces=2, wavelengths="500,600")
     np.testing.assert_array_equal(py.brdf, d.brdf)
     np.testing.assert_array_equal(py.sigma, d.sigma)
+
+
+SURFACE_ERRORS = [
+    (["--gaussian-slopes", "2"], "gaussian_slope_surface", dict(sigma_rad=2.0), "--gaussian-slopes", "sigma_rad"),
+    (["--flat", "--cells", "1"], "flat_surface", dict(cells=1), "--cells", "cells"),
+    (["--flat", "--cell", "20"], "flat_surface", dict(cell_mm=20.0), "--cell", "cell_mm"),
+]
+
+
+@pytest.mark.parametrize("flags,function,kwargs,cli_field,py_field", SURFACE_ERRORS, ids=[e[4] for e in SURFACE_ERRORS])
+def test_surface_errors_are_the_same(cli, tmp_path, flags, function, kwargs, cli_field, py_field):
+    """Surface settings are validated once (surface/surface_request.h): same message, flag vs keyword."""
+    out = tmp_path / "s.json"
+    r = cli("surface", "lambert", "-p", "albedo=0.3", *flags, "-o", out, check=False)
+    prefix = f"roadbrdf: error: {cli_field}: "
+    assert r.returncode == 2 and r.stderr.startswith(prefix), r.stderr
+    args = ("lambert",) if function == "flat_surface" else ("lambert", kwargs.pop("sigma_rad"))
+    with pytest.raises(roadbrdf.InputError) as e:
+        getattr(roadbrdf, function)(*args, {"albedo": 0.3}, **kwargs)
+    assert str(e.value).startswith(py_field + ": ")
+    assert r.stderr.strip()[len(prefix):] == str(e.value)[len(py_field) + 2:]
+    assert not out.exists()

@@ -282,7 +282,7 @@ def test_errors(tmp_path):
         roadbrdf.render_albedo(flat, 90)
     with pytest.raises(ValueError, match="albedo"):
         roadbrdf.flat_surface("lambert", {"albedo": 1.5})
-    with pytest.raises(ValueError, match="slope sigma"):
+    with pytest.raises(ValueError, match=r"sigma_rad: must be in \(0, 1.3\) rad"):
         roadbrdf.gaussian_slope_surface("lambert", 2.0, cells=32)
     formulation = _formulation(tmp_path)
     with pytest.raises(ValueError, match="exclude each other"):

@@ -34,6 +34,7 @@
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
+#include "roadbrdf/surface/surface_request.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace roadbrdf::cli {
@@ -123,14 +124,24 @@ void run_surface(const SurfaceArgs& a) {
   const std::vector<FileArgument> outputs = {{"-o", a.output}, {"--preview", a.preview}};
   check_distinct_files(inputs, outputs);
   std::FILE* report = report_stream(a.output);
+  // The flags translated into the library's request (surface/surface_request.h owns the rules).
+  surface::SurfaceRequest request;
+  using Kind = surface::SurfaceRequest::Kind;
+  request.kind = a.flat ? Kind::flat : a.gaussian_slopes ? Kind::gaussian_slopes : Kind::formulation;
+  request.cell_mm = a.cell;
+  request.seed = a.seed;
+  // A size given for a validation surface is refused by validate(), whatever its text.
+  if (!a.size.empty()) request.size_mm = request.kind == Kind::formulation ? parse_length_mm(a.size) : 0.0;
+  request.matrix_level = a.matrix_level;
+  request.target_mpd = a.target_mpd;
+  request.mastic_fraction = a.mastic_fraction;
+  if (a.cells > 0) request.cells = a.cells;
+  request.sigma_rad = a.gaussian_slopes;
+  request.validate();
   surface::HeightField field;
   if (a.flat || a.gaussian_slopes) {
-    if (!a.size.empty()) {
-      throw InputError(
-          "--size is for samples of a formulation; a --flat or --gaussian-slopes surface is --cells x --cell");
-    }
     const surface::MaterialSpec m = material_from_argument(a);
-    const int n = a.cells > 0 ? a.cells : (a.flat ? 16 : 128);
+    const int n = request.cell_count();
     if (a.flat) {
       field = surface::make_flat(m, n, a.cell);
     } else {
@@ -146,16 +157,7 @@ void run_surface(const SurfaceArgs& a) {
     for (const auto& c : formulation.components) inputs.push_back({"fit of component '" + c.name + "'", c.fit_path});
     check_distinct_files(inputs, outputs);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
-    surface::GeneratorSettings s;
-    s.size_mm = parse_length_mm(a.size.empty() ? std::string("60mm") : a.size);
-    s.cell_size_mm = a.cell;
-    s.seed = a.seed;
-    if ((a.matrix_level ? 1 : 0) + (a.target_mpd ? 1 : 0) + (a.mastic_fraction ? 1 : 0) > 1) {
-      throw InputError("--matrix-level, --target-mpd and --mastic-fraction exclude each other");
-    }
-    if (a.matrix_level) s.matrix_level = *a.matrix_level;
-    s.target_mpd_mm = a.target_mpd;
-    s.mastic_fraction = a.mastic_fraction;
+    const surface::GeneratorSettings s = request.generator_settings();
     const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
     field = sample.field;
     for (const auto& note : sample.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
@@ -321,11 +323,10 @@ void register_surface_command(CLI::App& app) {
                 "Formulation file (JSON), or with --flat/--gaussian-slopes the material: MODEL (with -p) or FIT.json")
       ->required();
   c->add_option("--size", args.size, "Side of the periodic sample, e.g. 60mm (default 60mm)");
-  c->add_option("--cell", args.cell, "Grid spacing [mm] (default 0.1)")->check(CLI::Range(0.005, 10.0));
+  c->add_option("--cell", args.cell, "Grid spacing [mm], 0.005 to 10 (default 0.1)");
   c->add_option("--seed", args.seed, "Random seed (default 1)");
   c->add_option("--matrix-level", args.matrix_level,
-                "Mastic level as a fraction of the slab thickness (largest grain size), default 0.7")
-      ->check(CLI::Range(0.0, 1.0));
+                "Mastic level as a fraction of the slab thickness (largest grain size), 0 to 1, default 0.7");
   c->add_option("--target-mpd", args.target_mpd, "Choose the mastic level so that the MPD is this [mm]");
   c->add_option("--mastic-fraction", args.mastic_fraction,
                 "Choose the mastic level so that the exposed (projected) area fraction of the mastic is this, in "
@@ -335,8 +336,8 @@ void register_surface_command(CLI::App& app) {
   c->add_option("--gaussian-slopes,--vgrooves", args.gaussian_slopes,
                 "Isotropic random rough surface of one material with facet slope angle sigma [rad] (validation; "
                 "compare with oren-nayar sigma)");
-  c->add_option("--cells", args.cells, "Cells per side of a validation surface (default 16 flat, 128 rough)")
-      ->check(CLI::Range(2, 4096));
+  c->add_option("--cells", args.cells,
+                "Cells per side of a validation surface, 2 (32 rough) to 4096 (default 16 flat, 128 rough)");
   add_model_flags(c, args.parameter_items, args.option_items);
   add_fit_flag(c, args.fit);
   c->add_option("-o,--output", args.output, "Output SURFACE.json (format: src/roadbrdf/surface/height_field.h)")

@@ -98,7 +98,8 @@ std::string flag_for_field(const std::string& field) {
   static const std::map<std::string, std::string> renamed = {
       {"models", "--model"},      {"options", "--option"}, {"fixed", "--fix"},
       {"bounds", "--bound"},      {"methods", "--method"}, {"use_sigma", "--no-sigma"},
-      {"fit", "--fit"},           {"acceptance_deg", "--acceptance"}, {"formulation", "FORMULATION"}};
+      {"fit", "--fit"},           {"acceptance_deg", "--acceptance"}, {"formulation", "FORMULATION"},
+      {"size_mm", "--size"},      {"cell_mm", "--cell"},   {"sigma_rad", "--gaussian-slopes"}};
   const auto dot = field.find('.');
   const std::string head = field.substr(0, dot);
   std::string flag;

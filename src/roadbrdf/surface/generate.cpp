@@ -1,5 +1,7 @@
 #include "roadbrdf/surface/generate.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -72,21 +74,38 @@ double mpd_of_level(const std::vector<double>& top_nodes, double level, HeightFi
 
 }  // namespace
 
-GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSettings& s) {
-  if (!(s.size_mm > 0.0) || !(s.cell_size_mm > 0.0)) throw InputError("surface: size and cell size must be > 0");
-  const int n = static_cast<int>(std::lround(s.size_mm / s.cell_size_mm));
-  if (n < 8) throw InputError("surface: the sample must span at least 8 cells");
+void validate(const GeneratorSettings& s) {
+  if (!(s.cell_size_mm >= 0.005 && s.cell_size_mm <= 10.0)) {
+    throw FieldError("cell_mm", fmt::format("must be in [0.005, 10] mm, got {}", s.cell_size_mm));
+  }
+  if (!(s.size_mm > 0.0 && std::isfinite(s.size_mm))) {
+    throw FieldError("size_mm", fmt::format("must be a positive length [mm], got {}", s.size_mm));
+  }
+  const double n = std::round(s.size_mm / s.cell_size_mm);
+  if (n < 8) throw FieldError("size_mm", "the sample must span at least 8 cells");
   if (std::fabs(n * s.cell_size_mm - s.size_mm) > 1e-6 * s.size_mm) {
-    throw InputError("surface: the size must be a whole number of cells");
+    throw FieldError("size_mm", fmt::format("must be a whole number of cells of {} mm, got {}", s.cell_size_mm,
+                                            s.size_mm));
   }
-  if (static_cast<long>(n) * n > 40'000'000L) throw InputError("surface: more than 4e7 cells; use a larger --cell");
-  if (!(s.matrix_level >= 0.0 && s.matrix_level <= 1.0)) throw InputError("surface: matrix level must be in [0, 1]");
-  if (s.mastic_fraction && s.target_mpd_mm) throw InputError("surface: target MPD and mastic fraction exclude each other");
+  if (n * n > 4e7) throw FieldError("size_mm", "more than 4e7 cells: use a larger cell_mm or a smaller sample");
+  if (!(s.matrix_level >= 0.0 && s.matrix_level <= 1.0)) {
+    throw FieldError("matrix_level", fmt::format("must be in [0, 1] (a fraction of the slab thickness), got {}",
+                                                 s.matrix_level));
+  }
+  if (s.target_mpd_mm && s.mastic_fraction) {
+    throw FieldError("mastic_fraction", "matrix_level, target_mpd and mastic_fraction exclude each other");
+  }
+  if (s.target_mpd_mm && !(*s.target_mpd_mm > 0.0)) {
+    throw FieldError("target_mpd", fmt::format("must be > 0 mm, got {}", *s.target_mpd_mm));
+  }
   if (s.mastic_fraction && !(*s.mastic_fraction > 0.0 && *s.mastic_fraction < 1.0)) {
-    std::ostringstream e;
-    e << "surface: the exposed mastic fraction must be in (0, 1) (exclusive), got " << *s.mastic_fraction;
-    throw InputError(e.str());
+    throw FieldError("mastic_fraction", fmt::format("must be in (0, 1) (exclusive), got {}", *s.mastic_fraction));
   }
+}
+
+GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSettings& s) {
+  validate(s);
+  const int n = static_cast<int>(std::lround(s.size_mm / s.cell_size_mm));
   if (recipe.classes.empty()) throw InputError("surface: no grain class");
   if (recipe.classes.size() > 60000) throw InputError("surface: too many classes");
   const double L = n * s.cell_size_mm;
@@ -232,7 +251,6 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
 
   double level = s.matrix_level * T;
   if (s.target_mpd_mm) {
-    if (!(*s.target_mpd_mm > 0.0)) throw InputError("surface: target MPD must be > 0");
     double lo = 0.0, hi = T;  // MPD decreases as the matrix rises
     const double mpd_lo = mpd_of_level(top_nodes, lo, f);
     if (mpd_lo < *s.target_mpd_mm) {

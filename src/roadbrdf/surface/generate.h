@@ -95,6 +95,11 @@ struct GeneratedSample {
   std::vector<std::string> notes;                // jamming etc.
 };
 
+// Throws FieldError naming the SurfaceRequest field (surface_request.h): cell_mm, size_mm (at least
+// 8 and at most 4e7 cells, a whole number of cells), matrix_level, target_mpd, mastic_fraction.
+void validate(const GeneratorSettings& settings);
+
+// Validates `settings` first.
 GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSettings& settings);
 
 // Validation surface: an isotropic random rough surface of one material whose facet slopes are
