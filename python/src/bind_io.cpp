@@ -121,15 +121,7 @@ void bind_instruments(py::module_& m) {
       "calibrate_manifest",
       [](const std::string& path, const std::string& panel, const std::string& panel_brf,
          std::optional<double> brf_start, std::optional<double> brf_step, const std::string& overlap) {
-        std::optional<Spectrum> brf;
-        if (!panel_brf.empty()) {
-          SpectrumReadOptions o;
-          o.first_wavelength = brf_start;
-          o.step = brf_step;
-          brf = read_spectrum(panel_brf, o);
-        } else if (brf_start || brf_step) {
-          throw InputError("panel_brf_start/panel_brf_step need panel_brf");
-        }
+        const std::optional<Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks first
         return dataset_to_dict(calibrate_manifest(read_manifest(path), read_spectrum(panel), brf,
                                                   manifest_options(overlap)));
       },

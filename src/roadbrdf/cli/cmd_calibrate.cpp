@@ -51,14 +51,7 @@ void run(const CalibrateArgs& a) {
   in.reference = read_dataset(a.reference, radiance);
   if (!a.dark.empty()) in.dark = read_dataset(a.dark, radiance);
   in.panel_reflectance = read_spectrum(a.panel);
-  if (!a.panel_brf.empty()) {
-    SpectrumReadOptions o;
-    o.first_wavelength = a.brf_start;
-    o.step = a.brf_step;
-    in.panel_brf = read_spectrum(a.panel_brf, o);
-  } else if (a.brf_start || a.brf_step) {
-    throw InputError("--panel-brf-start/--panel-brf-step need --panel-brf");
-  }
+  in.panel_brf = read_panel_brf(a.panel_brf, a.brf_start, a.brf_step);
   SpectralDataset out = calibrate(in);
   out.metadata["sample_radiance"] = a.sample;
   out.metadata["reference_radiance"] = a.reference;

@@ -89,15 +89,7 @@ SpectralDataset convert_instrument_input(const std::string& from, const std::str
 SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
                                                      const std::string& panel_brf, std::optional<double> brf_start,
                                                      std::optional<double> brf_step, const InstrumentArgs& args) {
-  std::optional<Spectrum> brf;
-  if (!panel_brf.empty()) {
-    SpectrumReadOptions o;
-    o.first_wavelength = brf_start;
-    o.step = brf_step;
-    brf = read_spectrum(panel_brf, o);
-  } else if (brf_start || brf_step) {
-    throw InputError("--panel-brf-start/--panel-brf-step need --panel-brf");
-  }
+  const std::optional<Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks come first
   return calibrate_manifest(read_manifest(manifest), read_spectrum(panel), brf, manifest_options(args));
 }
 

@@ -15,6 +15,19 @@
 
 namespace roadbrdf {
 
+std::optional<Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
+                                       std::optional<double> step) {
+  if (path.empty()) {
+    if (first_wavelength) throw FieldError("panel_brf_start", "needs the panel BRF file (panel_brf)");
+    if (step) throw FieldError("panel_brf_step", "needs the panel BRF file (panel_brf)");
+    return std::nullopt;
+  }
+  SpectrumReadOptions o;
+  o.first_wavelength = first_wavelength;
+  o.step = step;
+  return read_spectrum(path, o);
+}
+
 Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& options) {
   InputFile in(path);
   Spectrum s;

@@ -34,6 +34,12 @@ struct SpectrumReadOptions {
 // optional non-numeric header line. Wavelengths must be strictly increasing. Throws FileError.
 Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& options = {});
 
+// The optional measured BRF of the reference panel (CalibrationInput::panel_brf) as the front ends
+// give it: a file (`path`, "" = none) and, for a one-column file, its first wavelength and step [nm].
+// A first wavelength or step without a file is FieldError("panel_brf_start" / "panel_brf_step").
+std::optional<Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
+                                       std::optional<double> step);
+
 struct CalibrationInput {
   SpectralDataset sample;            // sample radiances (any unit), N geometries
   SpectralDataset reference;         // reference-panel radiances: same geometries, or a single row used for all
