@@ -10,12 +10,6 @@
 
 namespace roadbrdf {
 
-std::vector<double> WavelengthBands::centers() const {
-  std::vector<double> c;
-  for (std::size_t k = 0; k < lower.size(); ++k) c.push_back(0.5 * (lower[k] + upper[k]));
-  return c;
-}
-
 WavelengthBands bands_from_edges(const std::vector<double>& edges) {
   if (edges.size() < 2) throw InputError("band averaging needs at least two band edges (START:STOP:STEP)");
   WavelengthBands b;

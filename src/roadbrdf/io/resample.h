@@ -12,7 +12,6 @@ namespace roadbrdf {
 // Output bands: band k covers [lower[k], upper[k]] and is reported at its centre.
 struct WavelengthBands {
   std::vector<double> lower, upper;
-  std::vector<double> centers() const;
 };
 // Consecutive intervals of a list of edges: [e0,e1], [e1,e2], ... (so "400:1000:10" gives the
 // 60 bands 400-410, ..., 990-1000 nm reported at 405, ..., 995 nm). Throws InputError.

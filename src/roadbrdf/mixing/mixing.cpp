@@ -56,8 +56,6 @@ std::vector<Method> all_methods() {
 
 bool method_needs_data(Method method) { return method_entry(method).needs_data; }
 
-std::string method_description(Method method) { return method_entry(method).description; }
-
 MixResult mix(const MixInputs& inputs, Method method, const MixSettings& settings, const SpectralDataset* data,
               const std::vector<std::size_t>* training) {
   const MethodEntry& entry = method_entry(method);

@@ -97,7 +97,6 @@ std::string to_string(Method method);
 Method method_from_string(const std::string& text);  // throws InputError
 std::vector<Method> all_methods();
 bool method_needs_data(Method method);  // fitted, shadowed
-std::string method_description(Method method);
 
 struct MixSettings {
   std::optional<double> binder_coverage;       // overrides the formulation (areal)
