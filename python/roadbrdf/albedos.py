@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import warnings
 
-import numpy as np
 
 from . import _roadbrdf
 from .core import InputError
@@ -47,13 +46,7 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
         if params:
             raise InputError("params cannot be combined with a spectral model")
         return _warn_notes(_roadbrdf.albedo_spectral(model._spectral, *common))
-    given = dict(params or {})
-    names = model.parameter_names
-    unknown = [k for k in given if k not in names]
-    if unknown:
-        raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
-    values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
-    return _warn_notes(_roadbrdf.albedo_model(model._model, values, *common))
+    return _warn_notes(_roadbrdf.albedo_model(model._model, model.parameter_values(params), *common))
 
 
 def _warn_notes(report: dict) -> dict:

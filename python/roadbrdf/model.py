@@ -82,6 +82,19 @@ class Model:
         """``{name: default}`` for every parameter."""
         return {p["name"]: p["default"] for p in self.parameters}
 
+    def _check_names(self, given: dict) -> None:
+        names = self.parameter_names
+        unknown = [k for k in given if k not in names]
+        if unknown:
+            raise InputError(f"model '{self.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
+
+    def parameter_values(self, params: dict | None = None) -> list:
+        """One parameter set in the model's order: ``params`` ({name: value}) with the defaults for the
+        rest. Unknown names raise InputError; the library checks the values against the bounds."""
+        given = dict(params or {})
+        self._check_names(given)
+        return [float(given.get(p["name"], p["default"])) for p in self.parameters]
+
     def evaluate(self, theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike, phi_r: ArrayLike,
                  params: dict | None = None, **kwargs: ArrayLike) -> float | np.ndarray:
         """BRDF [sr^-1] at the given angles [deg].
@@ -95,11 +108,7 @@ class Model:
         """
         given = dict(params or {})
         given.update(kwargs)
-        names = self.parameter_names
-        unknown = [k for k in given if k not in names]
-        if unknown:
-            raise InputError(
-                f"model '{self.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
+        self._check_names(given)
         values = []
         for p in self.parameters:
             v = as_float_array(given.get(p["name"], p["default"]), p["name"])

@@ -51,13 +51,7 @@ def rtable(model: Model | SpectralModel | PathLike, params: dict | None = None, 
             raise InputError("params cannot be combined with a spectral model")
         spectral = model._spectral
     else:
-        given = dict(params or {})
-        names = model.parameter_names
-        unknown = [k for k in given if k not in names]
-        if unknown:
-            raise InputError(f"model '{model.name}' has no parameter '{unknown[0]}' (parameters: {' '.join(names)})")
-        values = [float(given.get(p["name"], p["default"])) for p in model.parameters]
-        spectral = _roadbrdf.constant_spectral_model(model._model, values)
+        spectral = _roadbrdf.constant_spectral_model(model._model, model.parameter_values(params))
     return RTable(_roadbrdf.rtable_report(spectral, float(alpha), illuminant,
                                           None if wavelength is None else float(wavelength),
                                           None if band is None else (float(band[0]), float(band[1])),
