@@ -2,8 +2,12 @@
 // min_interval, always at 100 %; the time left is elapsed * remaining / done. A fake clock, no timing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "roadbrdf/core/progress.h"
 
@@ -65,6 +69,55 @@ TEST(Progress, DisabledOrShortWorkWritesNothing) {
   EXPECT_EQ(contents(f), "");
   std::fclose(f);
   EXPECT_FALSE(ProgressBar::terminal_enabled(true));  // --quiet: never, whatever the stream
+}
+
+}  // namespace
+}  // namespace roadbrdf
+
+namespace roadbrdf {
+namespace {
+
+TEST(ProgressCounter, ManyThreadsReportAMonotoneCountEndingAtTheTotal) {
+  std::vector<std::size_t> seen;
+  std::size_t last_total = 0;
+  const ProgressCallback callback = [&](std::size_t done, std::size_t total) {
+    seen.push_back(done);  // never called by two threads at once (the counter's lock)
+    last_total = total;
+  };
+  constexpr std::size_t kUnits = 4000;
+  {
+    ProgressCounter counter(callback, kUnits);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t) {
+      threads.emplace_back([&] {
+        for (std::size_t k = 0; k < kUnits / 4; ++k) counter.add();
+      });
+    }
+    for (auto& t : threads) t.join();
+    counter.finish();
+    counter.finish();  // once only
+  }
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), kUnits);
+  EXPECT_LE(std::count(seen.begin(), seen.end(), kUnits), 2);  // the last add and finish, once
+  EXPECT_EQ(last_total, kUnits);
+}
+
+TEST(ProgressCounter, GrowingTotalAndEmptyCallback) {
+  std::vector<std::pair<std::size_t, std::size_t>> seen;
+  const ProgressCallback callback = [&](std::size_t d, std::size_t t) { seen.emplace_back(d, t); };
+  ProgressCounter counter(callback, 2);
+  counter.add(2);
+  counter.add_total(3);
+  counter.add(3);
+  counter.finish();
+  const std::vector<std::pair<std::size_t, std::size_t>> expected = {{2, 2}, {5, 5}, {5, 5}};
+  EXPECT_EQ(seen, expected);
+  const ProgressCallback none;
+  ProgressCounter quiet(none, 1);
+  quiet.add();
+  quiet.finish();  // nothing to call: no crash
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 // any other exception, a crash or a sanitizer report is a bug.
 //
 // Built and run like every harness of tests/fuzz (tests/fuzz/README.md).
-// Seed corpora: tests/fuzz/corpus/<parser>/, copies of roadbrdf's own synthetic files
-// (tests/data/instruments/make_synthetic.py); no third-party file.
+// Seed corpora: BUILD/tests/fuzz/corpus/<parser>/, roadbrdf's own synthetic files, written when the
+// build is configured (cmake/SyntheticInstruments.cmake); no third-party file.
 #pragma once
 
 #include <unistd.h>

@@ -12,7 +12,8 @@ for program in "$build"/tests/fuzz/*_fuzz; do
   work="$build/fuzz-corpus/$name"
   crashes="$build/crashes/$name"
   mkdir -p "$work" "$crashes"
-  cp -n "$source_dir/corpus/$name"/* "$work"/ 2>/dev/null || true
+  # Seeds: the repository's corpus, or the generated one of the instrument-file parsers.
+  cp -n "$source_dir/corpus/$name"/* "$build/tests/fuzz/corpus/$name"/* "$work"/ 2>/dev/null || true
   if "$program" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$crashes/" \
        -print_final_stats=1 "$work" > "$build/crashes/$name.log" 2>&1; then
     echo "$name: $(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$build/crashes/$name.log" | grep -o '[0-9]*$') runs, no crash"

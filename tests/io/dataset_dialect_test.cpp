@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/dataset_dialect.h"
@@ -194,6 +195,47 @@ TEST(LongShape, SparseLongFileIsRefusedBeforeAllocatingTheTable) {
   EXPECT_NE(e.find("sparse.csv:2: the geometry first given on this line has no value at wavelength 401 nm"),
             std::string::npos)
       << e;
+}
+
+TEST(LongShape, AnAbsentRowIsAMissingCellCountedAndWarned) {
+  // Three geometries x two wavelengths, the second geometry's 600 nm row never written: that cell
+  // reads as missing, exactly as if its row had an empty brdf cell.
+  const std::string absent =
+      "theta_i,phi_i,theta_r,phi_r,wavelength,brdf\n0,0,30,180,500,0.1\n0,0,30,180,600,0.2\n"
+      "10,0,30,180,500,0.3\n20,0,30,180,500,0.5\n20,0,30,180,600,0.6\n";
+  const std::string empty_cell =
+      "theta_i,phi_i,theta_r,phi_r,wavelength,brdf\n0,0,30,180,500,0.1\n0,0,30,180,600,0.2\n"
+      "10,0,30,180,500,0.3\n10,0,30,180,600,\n20,0,30,180,500,0.5\n20,0,30,180,600,0.6\n";
+  std::vector<std::string> warnings;
+  DatasetReadOptions o;
+  o.warn = [&](const std::string& w) { warnings.push_back(w); };
+  DatasetReadStats stats;
+  const SpectralDataset a = read_dataset(write_file("absent.csv", absent), o, stats);
+  const SpectralDataset b = read_dataset(write_file("empty_cell.csv", empty_cell), quiet());
+  ASSERT_EQ(a.geometries.size(), 3u);
+  ASSERT_EQ(a.wavelengths, (std::vector<double>{500.0, 600.0}));
+  EXPECT_TRUE(std::isnan(a.brdf[3]));
+  for (std::size_t k : {0u, 1u, 2u, 4u, 5u}) EXPECT_EQ(a.brdf[k], b.brdf[k]) << k;
+  EXPECT_EQ(missing_value_count(a), 1u);
+  EXPECT_EQ(stats.absent_rows, 1u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("1 (geometry, wavelength) pairs of 6 have no row (kept as missing NaN cells; first: the "
+                             "geometry of "),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[0].find("absent.csv:4 at 600 nm"), std::string::npos) << warnings[0];
+  // Refusing missing values refuses the absent row, at the line of its geometry.
+  DatasetReadOptions strict = quiet();
+  strict.allow_missing = false;
+  try {
+    read_dataset(write_file("absent_strict.csv", absent), strict);
+    ADD_FAILURE() << "an absent row was accepted with allow_missing = false";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("absent_strict.csv:4: the geometry first given on this line has no value at "
+                                         "wavelength 600 nm (missing values are refused here)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(LongShape, DuplicatesAreReportedAtTheirFirstRepetitionInFileOrder) {

@@ -14,7 +14,7 @@
 namespace roadbrdf {
 namespace {
 
-std::string dir() { return test::test_data_dir() + "/instruments/"; }
+std::string dir() { return test::instrument_files_dir() + "/"; }
 
 TEST(InstrumentCli, CalibrateManifestEqualsTheLibrary) {
   const std::string out = test::scratch_path("run.brdf.csv");

@@ -1,5 +1,5 @@
 // Instrument-file readers and manifests on roadbrdf's own synthetic files
-// (tests/data/instruments/, written by make_synthetic.py from closed forms given there).
+// (written into the build tree by tests/data/instruments/make_synthetic.py from closed forms given there).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@
 namespace roadbrdf {
 namespace {
 
-std::string dir() { return test::test_data_dir() + "/instruments/"; }
+std::string dir() { return test::instrument_files_dir() + "/"; }
 
 // The closed forms of make_synthetic.py.
 double white(double l) { return 20000.0 + 4.0 * l; }

@@ -20,7 +20,7 @@ using Harness = int (*)(const std::uint8_t*, std::size_t);
 
 std::vector<std::string> seeds(const std::string& parser) {
   std::vector<std::string> out;
-  for (const auto& e : std::filesystem::directory_iterator(test::source_dir() + "/tests/fuzz/corpus/" + parser)) {
+  for (const auto& e : std::filesystem::directory_iterator(test::generated_corpus_dir() + "/" + parser)) {
     std::ifstream in(e.path(), std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();

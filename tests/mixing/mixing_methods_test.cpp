@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <random>
+#include <vector>
 
 #include "mixing_test_util.h"
 #include "roadbrdf/mixing/hapke_imsa.h"
@@ -99,6 +100,16 @@ TEST(FittedMixing, ExactDataGivesExactWeights) {
   // Cross-validation of exact data: held-out error ~ 0.
   const Comparison cmp = compare_method(c.inputs, Method::kFitted, {}, data, 5);
   EXPECT_LT(cmp.relative_rmse, 1e-8);
+  // Progress: one unit per mix, the in-sample one and one per fold (comparison_mixes).
+  std::vector<std::size_t> done;
+  const ProgressCallback callback = [&](std::size_t d, std::size_t total) {
+    EXPECT_EQ(total, 6u);
+    done.push_back(d);
+  };
+  ProgressCounter progress(callback, comparison_mixes(Method::kFitted, 5));
+  compare_method(c.inputs, Method::kFitted, {}, data, 5, 1, nullptr, &progress);
+  EXPECT_EQ(done, (std::vector<std::size_t>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(comparison_mixes(Method::kAreal, 5), 1u);  // nothing fitted: one mix predicts every fold
 }
 
 TEST(Nnls, MatchesKnownActiveSetSolution) {

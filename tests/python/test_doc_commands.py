@@ -49,6 +49,7 @@ def tree(tmp_path_factory):
     (scratch / "build").mkdir()
     (scratch / "build" / "roadbrdf").symlink_to(cli)
     (scratch / "build" / "python").symlink_to(cli.parent / "python")
+    (scratch / "build" / "tests").symlink_to(cli.parent / "tests")  # the generated instrument files
     return scratch
 
 

@@ -73,3 +73,25 @@ def test_cli_fit_and_convert_keep_missing_cells(tmp_path, cli):
     with pytest.warns(UserWarning):
         d = roadbrdf.read_dataset(out)
     assert np.isnan(d.brdf[5, 1])
+
+
+def test_long_file_without_a_row_reads_and_fits_as_a_missing_cell(tmp_path):
+    table = rows()
+    long = tmp_path / "absent.csv"
+    with open(long, "w") as f:
+        f.write("theta_i,phi_i,theta_r,phi_r,wavelength,brdf\n")
+        for i, r in enumerate(table):
+            for j, wl in enumerate((500, 600)):
+                if (i, j) != (5, 1):  # the row of geometry 5 at 600 nm is never written
+                    f.write(",".join(f"{v:.10g}" for v in r[:4]) + f",{wl},{r[4 + j]:.10g}\n")
+    with pytest.warns(UserWarning, match=r"1 \(geometry, wavelength\) pairs of 48 have no row"):
+        d = roadbrdf.read_dataset(long)
+    assert np.isnan(d.brdf[5, 1]) and np.isfinite(np.delete(d.brdf.ravel(), 5 * 2 + 1)).all()
+    with pytest.warns(UserWarning):
+        absent = roadbrdf.fit(long, "oren-nayar", warm_start=False)
+        holed = roadbrdf.fit(write(tmp_path / "holed.csv", table, (5, 1, "nan")), "oren-nayar", warm_start=False)
+    assert absent.missing_values == 1
+    np.testing.assert_allclose(absent.best.parameters, holed.best.parameters, rtol=1e-12)
+    with pytest.raises(roadbrdf.InputError, match=r"absent\.csv:\d+: the geometry first given on this line has no "
+                                                  r"value at wavelength 600 nm"):
+        roadbrdf.read_dataset(long, allow_missing=False)

@@ -329,3 +329,25 @@ TEST(Packing, GradingsGiveDifferentTexturesAndDeterministicSamples) {
   EXPECT_EQ(again.field.heights, coarse_rich.field.heights);
   EXPECT_EQ(again.field.material, coarse_rich.field.material);
 }
+
+TEST(Packing, ProgressIsTheShareOfTheTargetVolumesAndChangesNothing) {
+  // packing.h: random sequential addition reports 0..500, deposition (after a jam) 500..1000, in
+  // thousandths of the target volume placed in the layer; reporting does not change the sample.
+  for (const auto& [fine, coarse, dense] : {std::tuple{0.06, 0.12, false}, std::tuple{0.14, 0.30, true}}) {
+    std::vector<std::size_t> done;
+    rs::GeneratorSettings s = settings(30.0, 7);
+    s.progress = [&](std::size_t d, std::size_t total) {
+      EXPECT_EQ(total, 1000u);
+      done.push_back(d);
+    };
+    const rs::GeneratedSample with = rs::generate_sample(two_classes(fine, coarse), s);
+    const rs::GeneratedSample without = rs::generate_sample(two_classes(fine, coarse), settings(30.0, 7));
+    EXPECT_EQ(with.grains.size(), without.grains.size());
+    EXPECT_EQ(with.field.heights, without.field.heights);
+    ASSERT_GE(done.size(), 2u);
+    EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
+    EXPECT_EQ(done.back(), 1000u);
+    // Before the final report: below half without deposition; past half with it.
+    EXPECT_EQ(done[done.size() - 2] > 500, dense) << done[done.size() - 2];
+  }
+}

@@ -5,12 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/surface/generate.h"
+#include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace rs = roadbrdf::surface;
@@ -62,4 +67,49 @@ TEST(VirtualAlbedo, RejectsBadAngles) {
   EXPECT_THROW(rs::render_albedo(f, {90.0}, {550.0}, settings(16)), roadbrdf::InputError);
   EXPECT_THROW(rs::render_albedo(f, {-1.0}, {550.0}, settings(16)), roadbrdf::InputError);
   EXPECT_THROW(rs::render_albedo(f, {30.0}, {}, settings(16)), roadbrdf::InputError);
+}
+
+// Progress (core/progress.h): the renderer reports blocks of paths (ceil(samples / paths_per_block)
+// per geometry, so the total is known before any path is traced), render_albedo reports its
+// estimates (sun zeniths + white-sky nodes); both counts never decrease and end at the total.
+namespace {
+
+struct Recorder {
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  roadbrdf::ProgressCallback callback() {
+    return [this](std::size_t done, std::size_t total) { calls.emplace_back(done, total); };
+  }
+  bool monotone() const {
+    for (std::size_t k = 1; k < calls.size(); ++k) {
+      if (calls[k].first < calls[k - 1].first) return false;
+    }
+    return true;
+  }
+};
+
+}  // namespace
+
+TEST(Progress, RendererReportsBlocksAndAlbedoReportsEstimates) {
+  const rs::HeightField f = rs::make_flat(model_material("lambert", {{"albedo", 0.5}}), 8, 0.1);
+  const rs::Renderer r(f, rs::load_materials(f, {550.0}), 1);
+  Recorder blocks;
+  rs::RenderSettings s = settings(1000);
+  s.paths_per_block = 300;  // 4 blocks per geometry (300, 300, 300, 100)
+  s.progress = blocks.callback();
+  const std::vector<roadbrdf::Geometry> g = {roadbrdf::geometry_from_degrees(0, 0, 30, 0),
+                                             roadbrdf::geometry_from_degrees(30, 0, 45, 180),
+                                             roadbrdf::geometry_from_degrees(60, 0, 10, 90)};
+  r.brdf(g, s);
+  ASSERT_FALSE(blocks.calls.empty());
+  EXPECT_TRUE(blocks.monotone());
+  EXPECT_EQ(blocks.calls.back(), std::make_pair(std::size_t{12}, std::size_t{12}));
+  for (const auto& c : blocks.calls) EXPECT_EQ(c.second, 12u);
+
+  Recorder estimates;
+  rs::RenderSettings a = settings(64);
+  a.progress = estimates.callback();
+  rs::render_albedo(f, {0.0, 30.0, 60.0}, {550.0}, a, 4);
+  const std::vector<std::pair<std::size_t, std::size_t>> expected = {{1, 7}, {2, 7}, {3, 7}, {4, 7},
+                                                                     {5, 7}, {6, 7}, {7, 7}, {7, 7}};
+  EXPECT_EQ(estimates.calls, expected);  // one per estimate (one thread calls), then finish
 }

@@ -103,6 +103,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   // Black-sky per zenith, white-sky.
   std::vector<std::vector<double>> bs(zeniths.size()), bs_err(zeniths.size());
   bool converged = true;
+  ProgressCounter progress(a.progress, zeniths.size() + 1);
   for (std::size_t z = 0; z < zeniths.size(); ++z) {
     const double theta = zeniths[z] * kDegree;
     SpectralIntegral r =
@@ -112,8 +113,10 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     converged = converged && r.converged;
     bs[z] = std::move(r.value);
     bs_err[z] = std::move(r.error);
+    progress.add();
   }
   SpectralIntegral ws = white_sky(model, params.data(), n_sets, settings);
+  progress.finish();
   converged = converged && ws.converged;
   if (!isotropic) {
     notes.push_back(a.azimuth_mean && !a.sun_azimuth_deg ? "anisotropic model: black-sky averaged over the sun azimuth"

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::albedo {
@@ -27,6 +28,9 @@ struct AlbedoRequest {
   std::vector<double> wavelengths;  // [nm] of a fit file; empty: its own
   std::string illuminant;           // "" or A, D65, a file: also the luminous (V(lambda)-weighted) albedo
   double tolerance = 1e-5;          // absolute quadrature tolerance per value
+  // Integrals done: one black-sky integral per sun zenith (all wavelengths at once), then the
+  // white-sky one.
+  ProgressCallback progress;
 };
 
 // Throws InputError for inconsistent requests.

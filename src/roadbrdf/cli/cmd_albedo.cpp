@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
@@ -43,6 +44,7 @@ struct AlbedoArgs {
   double tolerance = 1e-5;
   bool as_json = false;
   std::string output;
+  bool quiet = false;
 };
 
 void run(const AlbedoArgs& a) {
@@ -60,7 +62,10 @@ void run(const AlbedoArgs& a) {
   if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
+  ProgressBar bar("albedo: integrals", stderr, ProgressBar::terminal_enabled(a.quiet));
+  request.progress = bar.callback();
   const nlohmann::json report = albedo::compute_albedo(sm, request);
+  bar.finish();
   // Mostly extrapolated or non-physical results are also warnings (the notes are in the output too).
   for (const auto& note : report.at("notes")) {
     const std::string n = note.get<std::string>();
@@ -103,6 +108,7 @@ void register_albedo_command(CLI::App& app) {
   command->add_option("--tolerance", args.tolerance, "Absolute quadrature tolerance per value (default 1e-5)");
   command->add_flag("--json", args.as_json, "JSON output");
   command->add_option("-o,--output", args.output, "Output file (default: standard output)");
+  add_quiet_flag(command, args.quiet);
   command->callback([] { run(args); });
 }
 

@@ -188,7 +188,7 @@ void register_fit_command(CLI::App& app) {
               "Do not solve the linear amplitudes (parameters flagged linear) before each start");
   c->add_option("--residuals", args.residuals, "Write measured, fitted and residual values per geometry and wavelength (CSV)");
   c->add_option("-o,--output", args.output, "Fit file to write (JSON)")->required();
-  c->add_flag("--quiet", args.quiet, "No progress bar (it is only drawn on a terminal anyway)");
+  add_quiet_flag(c, args.quiet);
   c->callback([] { run(args); });
 }
 

@@ -12,6 +12,7 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -41,6 +42,7 @@ struct MixArgs {
   std::optional<double> mastic_fraction;
   std::string reference;
   std::string output;
+  bool quiet = false;
 };
 
 void run(const MixArgs& a) {
@@ -60,9 +62,12 @@ void run(const MixArgs& a) {
   request.mastic_fraction = a.mastic_fraction;
   request.reference = a.reference;
   request.residuals = !a.residuals.empty();
+  ProgressBar bar("mix: mixes (methods x folds)", stderr, ProgressBar::terminal_enabled(a.quiet));
+  request.progress = bar.callback();
   const MixRun run = run_mix(request, {{"-o", a.output}, {"--residuals", a.residuals}}, [](const std::string& field) {
     return field == "formulation" ? std::string("FORMULATION") : flag_for_field(field);
   });
+  bar.finish();
   for (const auto& note : run.notes) fmt::print(stderr, "roadbrdf: warning: {}\n", note);
   write_mix_file(a.output, run.content);
   if (!a.residuals.empty()) write_residual_file(a.residuals, *run.data, run.content.comparisons);
@@ -99,6 +104,7 @@ void register_mix_command(CLI::App& app) {
   command->add_option("--reference", args.reference,
                       "Fit file of the measured mixture: the albedo difference column compares with it");
   command->add_option("-o,--output", args.output, "Output MIX.json (format: src/roadbrdf/mixing/mix_file.h)")->required();
+  add_quiet_flag(command, args.quiet);
   command->callback([] { run(args); });
 }
 

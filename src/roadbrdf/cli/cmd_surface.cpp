@@ -24,6 +24,7 @@
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -56,6 +57,7 @@ struct SurfaceArgs {
   std::vector<std::string> parameter_items, option_items;
   std::string fit;
   std::string output;
+  bool quiet = false;
 };
 
 double parse_length_mm(const std::string& text) {
@@ -157,8 +159,11 @@ void run_surface(const SurfaceArgs& a) {
     for (const auto& c : formulation.components) inputs.push_back({"fit of component '" + c.name + "'", c.fit_path});
     check_distinct_files(inputs, outputs);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
-    const surface::GeneratorSettings s = request.generator_settings();
+    surface::GeneratorSettings s = request.generator_settings();
+    ProgressBar bar("surface: packing grains", stderr, ProgressBar::terminal_enabled(a.quiet));
+    s.progress = bar.callback();
     const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
+    bar.finish();
     field = sample.field;
     for (const auto& note : sample.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
     for (const auto& m : field.materials) {
@@ -200,6 +205,7 @@ struct RenderArgs {
   int max_bounces = 0;
   std::string format = "wide";
   std::string output;
+  bool quiet = false;
 };
 
 surface::RenderSettings render_settings(const RenderArgs& a);
@@ -219,9 +225,12 @@ void run_render(const RenderArgs& a) {
   const GeometryTable grid = read_geometry_file(a.grid);
   const std::vector<double> wavelengths =
       a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
-  const surface::RenderSettings s = render_settings(a);
+  surface::RenderSettings s = render_settings(a);
+  ProgressBar bar("render: blocks of paths", stderr, ProgressBar::terminal_enabled(a.quiet));
+  s.progress = bar.callback();
   std::vector<surface::Estimate> estimates;
   SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
+  bar.finish();
   std::FILE* report = report_stream(a.output);
   data.convention = grid.convention;
   write_dataset(data, a.output, dataset_format_from_string(a.format));
@@ -280,8 +289,11 @@ void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
   const std::vector<double> zeniths = parse_range_list(a.albedo, "--albedo");
   const std::vector<double> wavelengths =
       a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
-  const surface::VirtualAlbedo r =
-      surface::render_albedo(field, zeniths, wavelengths, render_settings(a), a.white_sky_nodes);
+  surface::RenderSettings settings = render_settings(a);
+  ProgressBar bar("render: albedo estimates", stderr, ProgressBar::terminal_enabled(a.quiet));
+  settings.progress = bar.callback();
+  const surface::VirtualAlbedo r = surface::render_albedo(field, zeniths, wavelengths, settings, a.white_sky_nodes);
+  bar.finish();
   AtomicFile file(a.output);
   std::ostream& out = file.stream();
   out << "# virtual albedo of " << a.surface << " (roadbrdf render --albedo); dimensionless reflectances, "
@@ -342,6 +354,7 @@ void register_surface_command(CLI::App& app) {
   add_fit_flag(c, args.fit);
   c->add_option("-o,--output", args.output, "Output SURFACE.json (format: src/roadbrdf/surface/height_field.h)")
       ->required();
+  add_quiet_flag(c, args.quiet);
   c->callback([] { run_surface(args); });
 
   static RenderArgs rargs;
@@ -376,6 +389,7 @@ void register_surface_command(CLI::App& app) {
   r->add_option("--format", rargs.format, "Output CSV layout: wide | long (default wide)")
       ->check(CLI::IsMember({"wide", "long"}));
   r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")->required();
+  add_quiet_flag(r, rargs.quiet);
   r->callback([] { run_render(rargs); });
 }
 

@@ -112,6 +112,10 @@ std::string flag_for_field(const std::string& field) {
   return dot == std::string::npos ? flag : flag + " " + field.substr(dot + 1);
 }
 
+void add_quiet_flag(CLI::App* command, bool& quiet) {
+  command->add_flag("--quiet", quiet, "No progress bar (it is only drawn on a terminal anyway)");
+}
+
 void add_fit_flag(CLI::App* command, std::string& fit) {
   command->add_option("--fit", fit,
                       "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a "

@@ -57,6 +57,8 @@ std::string flag_for_field(const std::string& field);
 // Adds "--fit NAME": which fit of a fit file (its model name) or which method of a MIX.json, the
 // option name every command uses; the old spelling --fit-model is refused with a message naming --fit.
 void add_fit_flag(CLI::App* command, std::string& fit);
+// --quiet: no progress bar (core/progress.h; it is only drawn when standard error is a terminal).
+void add_quiet_flag(CLI::App* command, bool& quiet);
 
 // Adds the usual "-p NAME=VALUE" and "--option NAME=VALUE" flags to a sub-command.
 void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,

@@ -79,4 +79,22 @@ void ProgressBar::finish() {
   }
 }
 
+void ProgressCounter::add(std::size_t units) {
+  done_ += units;
+  if (!callback_ || !report_.try_lock()) return;
+  const std::lock_guard<std::mutex> lock(report_, std::adopt_lock);
+  // Read under the lock, so that the reported count never decreases.
+  const std::size_t total = total_.load();
+  if (!finished_) callback_(std::min(done_.load(), total), total);
+}
+
+void ProgressCounter::add_total(std::size_t units) { total_ += units; }
+
+void ProgressCounter::finish() {
+  const std::lock_guard<std::mutex> lock(report_);
+  if (finished_) return;
+  finished_ = true;
+  if (callback_) callback_(total_.load(), total_.load());
+}
+
 }  // namespace roadbrdf

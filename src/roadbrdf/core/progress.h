@@ -8,13 +8,43 @@
 // no bar); finish() ends the line.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdio>
 #include <functional>
+#include <mutex>
 #include <string>
 
 namespace roadbrdf {
+
+// How the library's long loops report progress (FitOptions, MixRequest, GeneratorSettings,
+// RenderSettings, AlbedoRequest): done and total units of work; `done` never decreases within one
+// piece of work and ends at total. An empty callback costs nothing. The front ends connect it to a
+// ProgressBar (command line) or leave it empty (Python).
+using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
+
+// Counts units of work done by any number of threads and forwards the count to a callback from one
+// thread at a time: a worker that finds the callback busy skips the report instead of waiting, so
+// the callback (e.g. a ProgressBar, which is not thread-safe) never slows the work down.
+class ProgressCounter {
+ public:
+  ProgressCounter(const ProgressCallback& callback, std::size_t total) : callback_(callback), total_(total) {}
+  ProgressCounter(const ProgressCounter&) = delete;
+  ProgressCounter& operator=(const ProgressCounter&) = delete;
+
+  void add(std::size_t units = 1);
+  // Work that became known on the way (adaptive rounds): the total grows.
+  void add_total(std::size_t units);
+  // Reports total/total once (waiting for a report in progress).
+  void finish();
+
+ private:
+  const ProgressCallback& callback_;
+  std::atomic<std::size_t> done_{0}, total_;
+  std::mutex report_;
+  bool finished_ = false;
+};
 
 class ProgressBar {
  public:
@@ -31,6 +61,10 @@ class ProgressBar {
 
   void update(std::size_t done, std::size_t total);
   void finish();
+  // update() as a ProgressCallback for the library; the bar must outlive the work.
+  ProgressCallback callback() {
+    return [this](std::size_t done, std::size_t total) { update(done, total); };
+  }
   bool enabled() const { return enabled_; }
   bool shown() const { return shown_; }
 

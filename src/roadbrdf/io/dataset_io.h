@@ -11,7 +11,8 @@
 //   exactly the same wavelengths in the same order.
 //
 // Long CSV: the four angle columns plus wavelength,brdf[,sigma]; one row per (geometry, wavelength).
-//   Every geometry must have every wavelength exactly once.
+//   The wavelengths are those of all rows; a (geometry, wavelength) pair without a row is a
+//   missing cell (NaN), like an empty one. Two rows of the same pair are duplicates.
 //
 // Files as people write them are read alike: ';' or tab delimiters, decimal commas, a byte order
 // mark, CRLF, header names in any case, with units or aliases (io/dataset_dialect.h).
@@ -49,7 +50,9 @@ struct DatasetReadOptions {
   // Empty cells and "nan"/"NA" in BRDF and sigma columns are measurements that were not made:
   // kept as NaN (default; counted in DatasetReadStats and the warning, never replaced by a value),
   // or an error when false. Angles and wavelengths can never be missing. Averaged duplicates
-  // average the values that were measured (a cell missing in every duplicate stays missing).
+  // average the values that were measured (a cell missing in every duplicate stays missing). A
+  // long file's (geometry, wavelength) pair without a row is missing too (DatasetReadStats
+  // absent_rows).
   bool allow_missing = true;
   // Accept any "# units:" metadata (e.g. radiances read by `calibrate`); otherwise only sr^-1.
   bool any_units = false;
@@ -64,7 +67,8 @@ void validate_read_options(const DatasetReadOptions& options);
 // Counts found while reading (also in the warnings).
 struct DatasetReadStats {
   std::size_t negative_values = 0;
-  std::size_t missing_values = 0;
+  std::size_t missing_values = 0;  // missing cells written as such (empty, nan, NA)
+  std::size_t absent_rows = 0;     // long files: (geometry, wavelength) pairs without a row, also missing
   std::size_t averaged_duplicate_rows = 0;
   std::size_t implausible_values = 0;  // BRDF values above 1e3 sr^-1
   bool micrometre_wavelengths = false;  // every wavelength below 30 "nm": probably micrometres

@@ -305,7 +305,7 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
       throw FileError(reader.path(), reader.line_number(), 0, e.what());
     }
   }
-  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0};
+  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0, {}};
   std::size_t column_count = 0;
   bool is_long = false;
   const std::vector<HeaderCell> names = header_names(r, header, column_count, is_long);

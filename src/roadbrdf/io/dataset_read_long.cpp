@@ -187,6 +187,10 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
     warn(fmt::format("{}: {} of {} BRDF values are missing (kept as NaN; first at {})", r.reader.path(),
                      r.stats.missing_values, total, r.first_missing));
   }
+  if (r.stats.absent_rows > 0) {
+    warn(fmt::format("{}: {} (geometry, wavelength) pairs of {} have no row (kept as missing NaN cells; first: {})",
+                     r.reader.path(), r.stats.absent_rows, total, r.first_absent));
+  }
   if (r.stats.averaged_duplicate_rows > 0) {
     warn(fmt::format("{}: {} duplicate geometry rows were averaged", r.reader.path(), r.stats.averaged_duplicate_rows));
   }
@@ -335,16 +339,35 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
                                   rec.wavelength, records[earlier].line, duplicates_hint()));
     }
   }
-  // Completeness: every geometry has every wavelength.
+  // Completeness: a (geometry, wavelength) pair without a row is a measurement that was not made,
+  // a missing cell like an empty or "nan" one (counted and warned about), unless missing values
+  // are refused. A table that would be more than half missing is refused too: its geometries are on
+  // different wavelength grids, and the table would take memory out of proportion to the file.
   {
+    std::size_t distinct = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) distinct += k == 0 || !same(order[k], order[k - 1]);
+    const bool too_sparse = n * m > 2 * distinct;
     std::size_t k = 0;
     for (std::size_t g = 0; g < n; ++g) {
       for (std::size_t j = 0; j < m; ++j) {
         if (k >= order.size() || records[order[k]].geometry != g || wl_index[order[k]] != j) {
-          throw FileError(reader.path(), first_lines[g], 0,
-                          fmt::format("the geometry first given on this line has no value at wavelength {} nm (every "
-                                      "geometry needs every wavelength)",
-                                      wls[j]));
+          if (!r.options.allow_missing) {
+            throw FileError(reader.path(), first_lines[g], 0,
+                            fmt::format("the geometry first given on this line has no value at wavelength {} nm "
+                                        "(missing values are refused here)",
+                                        wls[j]));
+          }
+          if (too_sparse) {
+            throw FileError(reader.path(), first_lines[g], 0,
+                            fmt::format("the geometry first given on this line has no value at wavelength {} nm, "
+                                        "and {} of the {} x {} (geometry, wavelength) pairs have no row: the "
+                                        "geometries are on different wavelength grids (put them on one grid first)",
+                                        wls[j], n * m - distinct, n, m));
+          }
+          if (r.stats.absent_rows++ == 0) {
+            r.first_absent = fmt::format("the geometry of {}:{} at {} nm", reader.path(), first_lines[g], wls[j]);
+          }
+          continue;
         }
         while (k < order.size() && records[order[k]].geometry == g && wl_index[order[k]] == j) ++k;
       }

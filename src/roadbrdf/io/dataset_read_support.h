@@ -33,6 +33,7 @@ struct Reading {
   std::string first_missing;
   std::string first_large;     // location of the first value above kImplausibleBrdf
   double largest = 0.0;
+  std::string first_absent;  // the first (geometry, wavelength) pair of a long file without a row
 };
 
 // Key identifying a geometry: zenith angles and azimuths (azimuth mod 360, undefined azimuth at

@@ -13,8 +13,13 @@
 
 namespace roadbrdf::mixing {
 
+std::size_t comparison_mixes(Method method, int folds) {
+  return method_needs_data(method) ? 1 + static_cast<std::size_t>(std::max(folds, 0)) : 1;
+}
+
 Comparison compare_method(const MixInputs& inputs, Method method, const MixSettings& settings,
-                          const SpectralDataset& data, int folds, unsigned seed, const SpectralModel* reference) {
+                          const SpectralDataset& data, int folds, unsigned seed, const SpectralModel* reference,
+                          ProgressCounter* progress) {
   const std::size_t N = data.geometry_count();
   const std::size_t M = data.wavelength_count();
   if (folds < 2) throw FieldError("folds", "must be at least 2");
@@ -26,6 +31,7 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   c.method = method;
   c.folds = folds;
   c.result = mix(inputs, method, settings, &data);
+  if (progress) progress->add();
   // Errors of predictions (N_rows x M, rows = geometry indices) against the data.
   // Missing values (NaN) are measurements not made: left out of every error and count.
   const double measured = static_cast<double>(N * M - missing_value_count(data));
@@ -63,6 +69,7 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
       std::vector<std::size_t> train, test;
       for (std::size_t i = 0; i < N; ++i) (static_cast<int>(i % folds) == fold ? test : train).push_back(order[i]);
       const MixResult part = mix(inputs, method, settings, &data, &train);
+      if (progress) progress->add();
       std::vector<Geometry> geometries;
       for (std::size_t n : test) geometries.push_back(data.geometries[n]);
       const std::vector<double> predicted = evaluate_spectral(*part.model, geometries, data.wavelengths);

@@ -66,6 +66,7 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   check_distinct_files(read, outputs);
   MixRun run;
   run.request = request;
+  run.request.progress = nullptr;  // the caller's callback does not outlive this call
   const Formulation formulation = read_formulation(request.formulation);
   if (formulation.mastic) read.push_back({"mastic.fit of " + request.formulation, formulation.mastic->fit_path});
   for (const auto& c : formulation.components) read.push_back({"fit of component '" + c.name + "'", c.fit_path});
@@ -86,6 +87,12 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   run.content.inputs = run.inputs.get();
   run.content.data_path = request.data;
   run.content.folds = request.folds;
+  std::size_t mixes = 0;
+  for (Method m : methods) {
+    if (run.data) mixes += comparison_mixes(m, request.folds);
+    if (!run.data && !method_needs_data(m)) ++mixes;
+  }
+  ProgressCounter progress(request.progress, mixes);
   for (Method m : methods) {
     if (!run.data && method_needs_data(m)) {
       run.notes.push_back(fmt::format("method '{}' skipped: it is fitted to a measured mixture (give data)", to_string(m)));
@@ -94,11 +101,12 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
     try {
       if (run.data) {
         Comparison c = compare_method(*run.inputs, m, settings, *run.data, request.folds, request.seed,
-                                      reference ? &*reference : nullptr);
+                                      reference ? &*reference : nullptr, &progress);
         run.content.results.push_back(c.result);
         run.content.comparisons.push_back(std::move(c));
       } else {
         run.content.results.push_back(mix(*run.inputs, m, settings));
+        progress.add();
       }
     } catch (const FieldError&) {
       throw;  // a bad request, not a method that does not apply
@@ -107,6 +115,7 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
       run.notes.push_back(fmt::format("method '{}' skipped: {}", to_string(m), e.what()));
     }
   }
+  progress.finish();
   if (run.content.results.empty()) throw InputError("no mixing method could be applied to " + request.formulation);
   return run;
 }

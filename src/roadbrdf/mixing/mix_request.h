@@ -40,6 +40,7 @@ struct MixRequest {
   std::optional<double> mastic_fraction;   // overrides the formulation (mastic), in [0, 1]
   std::string reference;                   // fit file or MIX.json of the measured mixture; needs data
   bool residuals = false;                  // held-out residuals will be written: needs data
+  ProgressCallback progress;               // mixes done (every method, every fold); not kept in MixRun
 
   // Checks everything that needs no file. Throws FieldError.
   void validate() const;

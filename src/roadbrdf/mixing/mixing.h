@@ -59,6 +59,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/mixing/albedo_cache.h"
@@ -170,9 +171,12 @@ struct Comparison {
 // Compare a method with measured data: k-fold cross-validation over geometries (folds >= 2;
 // geometries shuffled with a fixed seed; methods without fitted parameters predict every fold the
 // same), in-sample errors, held-out reduced chi^2 (data with sigma), albedo, and the albedo
-// difference to `reference` (e.g. the fit of the measured mixed sample) when given.
+// difference to `reference` (e.g. the fit of the measured mixed sample) when given. `progress`
+// counts one unit per mix: 1 + folds for a method fitted to the data, 1 otherwise
+// (comparison_mixes).
 Comparison compare_method(const MixInputs& inputs, Method method, const MixSettings& settings,
                           const SpectralDataset& data, int folds, unsigned seed = 1,
-                          const SpectralModel* reference = nullptr);
+                          const SpectralModel* reference = nullptr, ProgressCounter* progress = nullptr);
+std::size_t comparison_mixes(Method method, int folds);
 
 }  // namespace roadbrdf::mixing

@@ -148,6 +148,7 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   ps.insertion_attempts = s.max_failures;
   ps.deposition_tries = s.deposition_tries;
   ps.settle_moves = s.settle_moves;
+  ps.progress = s.progress;
   const PackingResult packed = pack_ellipsoids(pack_classes, ps);
   // Grains entirely below the slab never reach the surface: dropped.
   std::vector<Ellipsoid> grains;

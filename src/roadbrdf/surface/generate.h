@@ -78,6 +78,7 @@ struct GeneratorSettings {
   long settle_moves = 500;         // deposition: settling moves per grain
   double elongation_min = 0.6, elongation_max = 0.9;  // b/a
   double flatness_min = 0.5, flatness_max = 0.85;     // c/b
+  ProgressCallback progress;       // the packing's (packing.h PackingSettings::progress)
 };
 
 struct GeneratedSample {

@@ -296,6 +296,11 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
     return it;
   };
 
+  double target_total = 0.0;
+  for (const auto& c : classes) target_total += c.layer_volume_mm3;
+  constexpr std::size_t kProgressUnits = 1000;
+  ProgressCounter progress(s.progress, kProgressUnits);
+  std::size_t reported = 0;
   PackingResult out;
   for (int phase = 0; phase < 2; ++phase) {
     // Phase 0: random sequential addition in the layer. Phase 1 (when phase 0 jams): deposition.
@@ -406,12 +411,23 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
       out.layer_volume_mm3[k] += in_layer;
       ++out.grain_count[k];
       useless = in_layer > 0.0 ? 0 : useless + 1;
+      if (s.progress && target_total > 0.0) {
+        double placed = 0.0;
+        for (std::size_t c = 0; c < K; ++c) placed += std::min(out.layer_volume_mm3[c], classes[c].layer_volume_mm3);
+        const auto units = static_cast<std::size_t>(
+            (kProgressUnits / 2) * (static_cast<double>(phase) + std::min(1.0, placed / target_total)));
+        if (units > reported) {
+          progress.add(units - reported);
+          reported = units;
+        }
+      }
       if (useless >= s.patience) break;  // the deposit has grown below the layer
     }
     out.grains.reserve(packer.items().size());
     for (const Item& it : packer.items()) out.grains.push_back(it.e);
     if (out.reached) break;
   }
+  progress.finish();
   return out;
 }
 

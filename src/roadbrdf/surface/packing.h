@@ -40,6 +40,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "roadbrdf/core/progress.h"
+
 namespace roadbrdf::surface {
 
 using Mat3 = std::array<double, 9>;  // row-major
@@ -82,6 +84,10 @@ struct PackingSettings {
   long deposition_tries = 16;      // deposition: random vertical lines tried per grain (the highest rest wins)
   long settle_moves = 0;           // deposition: settling moves of each deposited grain
   long patience = 50;              // deposition stops after this many grains in a row entirely below the layer
+  // Share of the target volumes placed in the layer, in units of 1/1000: random sequential
+  // addition reports 0..500 and, when it jams, deposition 500..1000 (it starts again from an
+  // empty box); reaching the targets reports 1000.
+  ProgressCallback progress;
 };
 
 struct PackingResult {

@@ -82,6 +82,7 @@
 #include <vector>
 
 #include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/materials.h"
@@ -112,6 +113,9 @@ struct RenderSettings {
   double absolute_error_floor = 1e-5;      // [sr^-1]
   long max_samples = 1L << 20;
   int min_blocks = 4;
+  // Blocks of paths done out of those scheduled so far (adaptive rounds add to the total);
+  // render_albedo reports estimates (sun zeniths and white-sky nodes) instead.
+  ProgressCallback progress;
 };
 
 struct Estimate {

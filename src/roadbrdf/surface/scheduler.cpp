@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/surface/render.h"
 
 namespace roadbrdf::surface {
@@ -77,6 +78,7 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
   std::vector<long> extra(job_count, min_blocks);  // blocks to add in the next round
   std::vector<Estimate> out(job_count);
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
+  ProgressCounter progress(s.progress, 0);  // blocks done / scheduled
 
   for (;;) {
     std::vector<std::pair<std::size_t, long>> items;  // (job, block)
@@ -84,6 +86,7 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
       for (long k = 0; k < extra[g]; ++k) items.emplace_back(g, acc[g].blocks + k);
     }
     if (items.empty()) break;
+    progress.add_total(items.size());
     // Per block: mean and m2 (m values each) and the number of paths.
     std::vector<double> sums(items.size() * 2 * m, 0.0);
     std::vector<long> counts(items.size(), 0);
@@ -98,6 +101,7 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
                             double* mean = sums.data() + item * 2 * m;
                             run_block(source, job, s.seed, block, count, mean, mean + m, values, *workspace);
                             counts[item] = count;
+                            progress.add();
                           }
                         });
     });
@@ -143,6 +147,7 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
     }
     if (!adaptive) break;
   }
+  progress.finish();
   return out;
 }
 

@@ -1,16 +1,18 @@
 #include "roadbrdf/surface/virtual_albedo.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/quadrature.h"
 
 namespace roadbrdf::surface {
 
 VirtualAlbedo render_albedo(const HeightField& field, const std::vector<double>& sun_zenith_deg,
-                            const std::vector<double>& wavelengths, const RenderSettings& settings,
+                            const std::vector<double>& wavelengths, const RenderSettings& request_settings,
                             int white_sky_nodes) {
   if (sun_zenith_deg.empty() && white_sky_nodes <= 0) throw InputError("render albedo: no sun zenith angle");
   for (double t : sun_zenith_deg) {
@@ -23,6 +25,11 @@ VirtualAlbedo render_albedo(const HeightField& field, const std::vector<double>&
     if (!(wavelengths[k] > wavelengths[k - 1])) throw InputError("render albedo: wavelengths must increase");
   }
   const std::size_t m = wavelengths.size();
+  // Progress in estimates (one per sun zenith and white-sky node), not in the blocks of each.
+  RenderSettings settings = request_settings;
+  settings.progress = nullptr;
+  ProgressCounter progress(request_settings.progress,
+                           sun_zenith_deg.size() + static_cast<std::size_t>(std::max(white_sky_nodes, 0)));
   Renderer renderer(field, load_materials(field, wavelengths), m);
   VirtualAlbedo out;
   out.wavelengths = wavelengths;
@@ -35,6 +42,7 @@ VirtualAlbedo render_albedo(const HeightField& field, const std::vector<double>&
     out.black_sky_error.push_back(e.standard_error);
     out.paths += e.paths;
     out.converged.push_back(e.converged);
+    progress.add();
   }
   if (white_sky_nodes > 0) {
     const QuadratureRule rule = gauss_legendre(white_sky_nodes, 0.0, 1.0);
@@ -50,11 +58,13 @@ VirtualAlbedo render_albedo(const HeightField& field, const std::vector<double>&
       }
       out.paths += e.paths;
       out.converged.push_back(e.converged);
+      progress.add();
     }
     out.white_sky_error.resize(m);
     for (std::size_t w = 0; w < m; ++w) out.white_sky_error[w] = std::sqrt(variance[w]);
     out.white_sky_nodes = white_sky_nodes;
   }
+  progress.finish();
   return out;
 }
 

@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
-"""Write roadbrdf's own synthetic instrument files (tests/data/instruments/), from the format
-descriptions in docs/data.md ("Instrument files") -- no real file is copied or read.
+"""Write roadbrdf's own synthetic instrument files, from the format descriptions in docs/data.md
+("Instrument files") -- no real file is copied or read.
 
-    python3 tests/data/instruments/make_synthetic.py [OUTPUT_FOLDER]
+    python3 tests/data/instruments/make_synthetic.py OUTPUT_FOLDER [CORPUS_FOLDER]
+
+The files are not kept in the repository: CMake runs this script when it configures the tests
+(tests/CMakeLists.txt), into BUILD/tests/data/instruments, and the fuzz seeds of the asd, sed, sig
+and manifest parsers into BUILD/tests/fuzz/corpus/<parser>/ (CORPUS_FOLDER); the pytest fixture
+`instruments` runs it into a scratch folder.
 
 Every signal is a closed form, so that the tests know the expected values without reading the
 files back with the code under test:
@@ -134,7 +139,10 @@ def sig_file(overlap=True):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
+    if len(sys.argv) not in (2, 3):
+        sys.exit("usage: make_synthetic.py OUTPUT_FOLDER [CORPUS_FOLDER]")
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
     wl = wavelengths()
     W = [white(l) for l in wl]
     files = {}
@@ -171,8 +179,29 @@ def main():
     files["run_settings_mismatch.csv"] = (b"file,role,gamma,alpha,beta,delta\nwhite_it34.asd,white,,,,\n"
                                           b"run_001.asd,sample,0,45,0,0\n")
     for name, data in files.items():
-        with open(os.path.join(out, name), "wb") as f:
-            f.write(data)
+        write(os.path.join(out, name), data)
+    if len(sys.argv) == 3:
+        # Fuzz seeds: one file of each reader's variants.
+        seeds = {"asd": ["run_001.asd", "v6_float_reflectance.asd", "v7_integer_saturated.asd",
+                         "v7_radiance_calibrations.asd"],
+                 "sed": ["sed_001.sed", "sed_no_reflectance.sed"],
+                 "sig": ["sig_overlap.sig", "sig_no_overlap.sig"],
+                 "manifest": ["run.csv", "run_sed.csv"]}
+        for parser, names in seeds.items():
+            os.makedirs(os.path.join(sys.argv[2], parser), exist_ok=True)
+            for name in names:
+                write(os.path.join(sys.argv[2], parser, name), files[name])
+
+
+def write(path, data):
+    """Writes only when the content changed, so that a re-configure does not touch the files."""
+    if os.path.exists(path):
+        with open(path, "rb") as f:
+            if f.read() == data:
+                return
+    with open(path + ".part", "wb") as f:
+        f.write(data)
+    os.replace(path + ".part", path)
 
 
 if __name__ == "__main__":
