@@ -54,6 +54,28 @@ TEST(Albedo, LambertIsItsAlbedo) {
   for (int s = 0; s < 3; ++s) EXPECT_NEAR(ws.value[s], p[s], 1e-12);
 }
 
+// The non-adaptive rule of convergence studies: exact for a Lambertian (rho) with one panel, and
+// converging on Oren-Nayar to the independent brute force below as the panels are refined.
+double brute_force_black_sky(const Model& m, const std::vector<double>& p, double theta_i, int n);
+
+TEST(Albedo, FixedRuleIsExactForLambertAndConvergesOnOrenNayar) {
+  auto lambert = make_model("lambert");
+  const std::vector<double> rho = {0.05, 0.97};
+  for (double deg : {0.0, 45.0, 80.0}) {
+    const SpectralIntegral bs = black_sky_fixed(*lambert, rho.data(), 2, deg * kDegree, 0.0, 1, 4);
+    for (int s = 0; s < 2; ++s) EXPECT_NEAR(bs.value[s], rho[s], 1e-12) << deg;
+    EXPECT_FALSE(bs.converged);  // no error estimate, as documented
+    EXPECT_EQ(bs.max_error(), 0.0);
+  }
+  auto on = make_model("oren-nayar");
+  const std::vector<double> p = params_of(*on, {{"albedo", 0.6}, {"sigma", 0.5}});
+  const double reference = brute_force_black_sky(*on, p, 35.0 * kDegree, 1500);
+  const double coarse = std::fabs(black_sky_fixed(*on, p.data(), 1, 35.0 * kDegree, 0.0, 1, 2).value[0] - reference);
+  const double fine = std::fabs(black_sky_fixed(*on, p.data(), 1, 35.0 * kDegree, 0.0, 8, 32).value[0] - reference);
+  EXPECT_LT(fine, 1e-5 + 3e-6);  // the brute force's own midpoint error is ~1e-6
+  EXPECT_LE(fine, coarse);
+}
+
 // Independent brute force: midpoint rule in theta_r and phi_r (no Gauss rules, no splitting).
 double brute_force_black_sky(const Model& m, const std::vector<double>& p, double theta_i, int n) {
   double sum = 0.0;

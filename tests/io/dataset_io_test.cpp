@@ -284,8 +284,14 @@ TEST(DatasetIo, MissingValuesRoundTripAsNan) {
 TEST(DatasetIo, LongFormatErrors) {
   const std::string h = "theta_i,phi_i,theta_r,phi_r,wavelength,brdf\n";
   expect_error(h + "0,0,30,180,500,0.1\n0,0,30,180,500,0.2\n", 3, 1, "already has wavelength 500 nm at line 2");
+  // A pair without a row is a missing cell (dataset_dialect_test.cpp), an error when missing values
+  // are refused, and always when the table would be more than half missing.
+  DatasetReadOptions strict;
+  strict.allow_missing = false;
   expect_error(h + "0,0,30,180,500,0.1\n0,0,30,180,600,0.2\n10,0,30,180,500,0.3\n", 4, 0,
-               "no value at wavelength 600 nm");
+               "no value at wavelength 600 nm (missing values are refused here)", strict);
+  expect_error(h + "0,0,30,180,500,0.1\n10,0,30,180,600,0.2\n20,0,30,180,700,0.3\n", 2, 0,
+               "has no value at wavelength 600 nm, and 6 of the 3 x 3 (geometry, wavelength) pairs have no row");
   expect_error("theta_i,phi_i,theta_r,phi_r,wavelength,brdf,colour\n0,0,30,180,500,0.1,red\n", 1, 45,
                "unexpected column 'colour'");
   expect_error(h + "0,0,30,180,-500,0.1\n", 2, 12, "not positive");

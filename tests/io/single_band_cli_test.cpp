@@ -217,11 +217,11 @@ TEST(SingleBand, CuretSample45Chain) {
   const auto table = json_of("rtable " + fit + " --json");
   EXPECT_EQ(table["weighting"]["wavelength_nm"].get<double>(), 550.0);
   EXPECT_GT(table["Q0"].get<double>(), 0.0);
-  // Coverage (docs/data.md): CUReT's largest viewing and incidence zeniths are 1.463021 rad =
-  // 83.882 deg and 1.374447 rad = 78.750 deg (data/third-party/curet/table.txt, rows 3 and 1), so
+  // Coverage (docs/data.md): CUReT's largest viewing and incidence zeniths are 1.46402 rad =
+  // 83.882 deg and 1.374447 rad = 78.750 deg (data/third-party/curet/table.txt, rows 126 and 1), so
   // every r-table cell (observer at theta_r = 89 deg, beyond 83.882 + 5) is extrapolated.
   const auto& coverage = table["coverage"];
-  EXPECT_NEAR(coverage["fit"]["theta_r_deg"][1].get<double>(), 1.463021 * 180.0 / kPi, 1e-4);
+  EXPECT_NEAR(coverage["fit"]["theta_r_deg"][1].get<double>(), 1.46402 * 180.0 / kPi, 1e-4);
   EXPECT_NEAR(coverage["fit"]["theta_i_deg"][1].get<double>(), 1.374447 * 180.0 / kPi, 1e-4);
   EXPECT_EQ(coverage["cells_outside"].get<std::size_t>(), coverage["cells"].get<std::size_t>());
 }
