@@ -269,7 +269,7 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
   EXPECT_EQ(d.option_values.at("phase"), "hg");
   ASSERT_EQ(d.options.size(), 2u);
   EXPECT_EQ(d.options[0].name, "phase");
-  EXPECT_EQ(d.options[0].values, (std::vector<std::string>{"hg", "legendre"}));
+  EXPECT_EQ(d.options[0].values, (std::vector<std::string>{"hg", "legendre", "hg2"}));
   EXPECT_EQ(d.options[1].name, "h_function");
   EXPECT_EQ(d.options[1].values, (std::vector<std::string>{"hapke1981", "hapke2002", "exact"}));
   EXPECT_TRUE(d.reciprocal);
@@ -280,6 +280,14 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
   ASSERT_EQ(dl.parameters.size(), 5u);
   EXPECT_EQ(dl.parameters[3].name, "legendre_b");
   EXPECT_EQ(dl.parameters[4].name, "legendre_c");
+  // The physical ranges of b and c are the extent of the region where p >= 0 (models/hapke.h).
+  EXPECT_EQ(dl.physical_range(3), (std::pair<double, double>{-std::sqrt(3.0), std::sqrt(3.0)}));
+  EXPECT_EQ(dl.physical_range(4), (std::pair<double, double>{-1.0, 2.0}));
+  const ModelDescription& d2 = make_model("hapke", {{"phase", "hg2"}})->description();
+  ASSERT_EQ(d2.parameters.size(), 5u);
+  EXPECT_EQ(d2.parameters[3].name, "hg2_b");
+  EXPECT_EQ(d2.parameters[4].name, "hg2_c");
+  EXPECT_EQ(d2.physical_range(3), (std::pair<double, double>{0.0, 0.999}));
   EXPECT_THROW(make_model("hapke", {{"h_function", "h3"}}), InputError);
   EXPECT_THROW(make_model("hapke", {{"phase", "dhg"}}), InputError);
 }
@@ -352,6 +360,74 @@ TEST(Hapke, LegendreBoundsKeepThePhaseFunctionNonNegative) {
     }
   }
   EXPECT_NEAR(lowest, 0.0, 1e-15);
+}
+
+TEST(Hapke, LegendreRegionOfNonNegativityIsTheStatedOne) {
+  // Brute force over a grid of the physical box [-sqrt 3, sqrt 3] x [-1, 2]: min over cos g of p
+  // is >= 0 exactly where |b| <= 1 + c and (|b| >= 3c or b^2 <= 3c (2 - c)) (models/hapke.h), up
+  // to the grid's resolution at the region's edge.
+  int inside = 0, outside = 0;
+  for (int i = 0; i <= 60; ++i) {
+    for (int j = 0; j <= 60; ++j) {
+      const double b = -std::sqrt(3.0) + 2.0 * std::sqrt(3.0) * i / 60.0, c = -1.0 + 3.0 * j / 60.0;
+      double lowest = 1e300;
+      for (int k = 0; k <= 2000; ++k) lowest = std::fmin(lowest, Hapke::legendre(b, c, -1.0 + 2.0 * k / 2000.0));
+      const bool stated = std::fabs(b) <= 1.0 + c && (std::fabs(b) >= 3.0 * c || b * b <= 3.0 * c * (2.0 - c));
+      if (stated) {
+        EXPECT_GE(lowest, -1e-12) << "b=" << b << " c=" << c;
+        ++inside;
+      } else {
+        EXPECT_LT(lowest, 1e-5) << "b=" << b << " c=" << c;  // negative (up to the cos g grid)
+        ++outside;
+      }
+    }
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_GT(outside, 100);
+}
+
+TEST(Hapke, DoubleHenyeyGreensteinClosedForms) {
+  // Hapke (2012) eq. 6.7: the lobe partition c = 1 is the backward lobe HG(-b) alone, c = -1 the
+  // forward lobe HG(b); at g = 0 (backscatter) p = (1+c)/2 (1+b)/(1-b)^2 + (1-c)/2 (1-b)/(1+b)^2.
+  const double b = 0.35;
+  for (double u : {-1.0, -0.3, 0.0, 0.6, 1.0}) {
+    EXPECT_NEAR(Hapke::double_henyey_greenstein(b, 1.0, u), Hapke::henyey_greenstein(-b, u), 1e-15);
+    EXPECT_NEAR(Hapke::double_henyey_greenstein(b, -1.0, u), Hapke::henyey_greenstein(b, u), 1e-15);
+    EXPECT_EQ(Hapke::double_henyey_greenstein(0.0, 0.4, u), 1.0);  // b = 0: isotropic whatever c
+  }
+  const double c = 0.6;
+  EXPECT_NEAR(Hapke::double_henyey_greenstein(b, c, 1.0),
+              0.5 * (1 + c) * (1 + b) / sqr(1 - b) + 0.5 * (1 - c) * (1 - b) / sqr(1 + b), 1e-14);
+  // Normalisation and mean cosine of the phase angle <cos g> = b c, by the composite Gauss rule of
+  // the test above (independent of the model's code).
+  std::vector<double> x, wt;
+  gauss_legendre_01(20, x, wt);
+  auto integrate = [&](auto&& f) {
+    const int panels = 200;
+    double sum = 0.0;
+    for (int q = 0; q < panels; ++q) {
+      const double a = -1.0 + 2.0 * q / panels;
+      for (std::size_t k = 0; k < x.size(); ++k) sum += wt[k] * (2.0 / panels) * f(a + (2.0 / panels) * x[k]);
+    }
+    return 0.5 * sum;
+  };
+  for (double width : {0.0, 0.2, 0.6, 0.9}) {
+    for (double part : {-1.0, -0.4, 0.0, 0.5, 1.0}) {
+      EXPECT_NEAR(integrate([&](double u) { return Hapke::double_henyey_greenstein(width, part, u); }), 1.0, 1e-12);
+      EXPECT_NEAR(integrate([&](double u) { return u * Hapke::double_henyey_greenstein(width, part, u); }),
+                  width * part, 1e-12)
+          << width << " " << part;
+    }
+  }
+  // In the model: b0 = 0 and exact H, f = w/(4 pi (mu0 + mu)) [p(g) + H H - 1] with the same H as hg.
+  const Geometry g = geometry_from_degrees(40.0, 0.0, 25.0, 150.0);
+  const double cos_g = std::cos(40 * kDegree) * std::cos(25 * kDegree) +
+                       std::sin(40 * kDegree) * std::sin(25 * kDegree) * std::cos(150 * kDegree);
+  const std::vector<double> p2 = {0.7, 0.0, 0.05, b, c}, p_iso = {0.7, 0.0, 0.05, 0.0};
+  const double scale = 0.7 / (4.0 * kPi * (std::cos(40 * kDegree) + std::cos(25 * kDegree)));
+  const double hg_isotropic = hapke("hg", "exact")->evaluate(p_iso.data(), g);  // p = 1
+  const double expected = hg_isotropic + scale * (Hapke::double_henyey_greenstein(b, c, cos_g) - 1.0);
+  EXPECT_NEAR(hapke("hg2", "exact")->evaluate(p2.data(), g), expected, 1e-14 * expected);
 }
 
 TEST(Hapke, EvaluatesEquation328AtAChosenGeometry) {
@@ -440,12 +516,13 @@ TEST(Hapke, NotEnergyConservingWithTheOppositionTerm) {
 TEST(Hapke, ReciprocalForEveryOption) {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const std::string phase : {"hg", "legendre"}) {
+  for (const std::string phase : {"hg", "legendre", "hg2"}) {
     for (const std::string hf : {"hapke1981", "hapke2002", "exact"}) {
       const auto model = hapke(phase, hf);
       for (int k = 0; k < 200; ++k) {
         std::vector<double> p = {u(rng), u(rng), 0.01 + u(rng), 1.8 * u(rng) - 0.9};
         if (phase == "legendre") p = {u(rng), u(rng), 0.01 + u(rng), 2 * u(rng) - 1, u(rng)};
+        if (phase == "hg2") p = {u(rng), u(rng), 0.01 + u(rng), 0.95 * u(rng), 2 * u(rng) - 1};
         const Geometry g = geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)),
                                                  2 * kPi * u(rng));
         const double a = model->evaluate(p.data(), g);
@@ -460,7 +537,7 @@ TEST(Hapke, ReciprocalForEveryOption) {
 TEST(Hapke, GradientMatchesFiniteDifferences) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const std::string phase : {"hg", "legendre"}) {
+  for (const std::string phase : {"hg", "legendre", "hg2"}) {
     for (const std::string hf : {"hapke1981", "hapke2002", "exact"}) {
       const auto model = hapke(phase, hf);
       const std::size_t n = model->parameter_count();
@@ -468,6 +545,7 @@ TEST(Hapke, GradientMatchesFiniteDifferences) {
       for (int k = 0; k < 30; ++k) {
         std::vector<double> p = {0.05 + 0.94 * u(rng), u(rng), 0.02 + u(rng), 1.6 * u(rng) - 0.8};
         if (phase == "legendre") p = {0.05 + 0.94 * u(rng), u(rng), 0.02 + u(rng), 1.8 * u(rng) - 0.9, u(rng)};
+        if (phase == "hg2") p = {0.05 + 0.94 * u(rng), u(rng), 0.02 + u(rng), 0.05 + 0.85 * u(rng), 1.8 * u(rng) - 0.9};
         const Geometry g = geometry_from_radians(std::acos(u(rng)), 0.0, std::acos(u(rng)), 2 * kPi * u(rng));
         const double f = model->evaluate_with_gradient(p.data(), g, grad.data());
         EXPECT_NEAR(f, model->evaluate(p.data(), g), 1e-15 * f);

@@ -29,6 +29,22 @@
 // too (as in Hapke 1981): with b0 = 0 the model is exactly report eq. 3.29 with N = 2
 // (a_1 = legendre_b, a_2 = legendre_c); with b0 > 0 it adds the narrow SHOE peak that a two-term
 // series cannot represent.
+// Bounds of b and c (reviewed against the condition p >= 0, which is what makes p a phase function):
+// with x = cos g, p(x) = 1 - c/2 + b x + (3c/2) x^2 is >= 0 on [-1, 1] exactly when |b| <= 1 + c
+// (the ends) and, if |b| < 3c, b^2 <= 3c (2 - c) (the interior minimum 1 - c/2 - b^2/(6c)). That
+// region spans c in [-1, 2] and b in [-sqrt 3, sqrt 3] but is not a box. The default fitting box
+// [-1, 1] x [0, 1] lies inside it (see "Properties"), so a default fit is always a phase function; the
+// physical ranges (`fit --bounds`) are the region's extent, and a fit there may leave the region
+// (p < 0 at some g: the BRDF is then negative at some geometries, which the albedo and r-table
+// checks flag).
+//
+// Option phase = hg2: the double Henyey-Greenstein function of Hapke (2012, "Theory of Reflectance and
+// Emittance Spectroscopy", 2nd ed., eq. 6.7; the form most soil and sand studies fit):
+//   p(g) = (1 + c)/2 (1 - b^2)/(1 - 2b cos g + b^2)^{3/2} + (1 - c)/2 (1 - b^2)/(1 + 2b cos g + b^2)^{3/2}
+//        = (1 + c)/2 HG(-b) + (1 - c)/2 HG(b)   (HG as above: xi = -b is the backward lobe),
+// 0 <= b < 1 the width of both lobes, -1 <= c <= 1 the partition: c > 0 backscattering (c = 1 is
+// HG(-b), c = -1 is HG(b)). Normalised for every (b, c), p > 0, and its mean cosine of the phase
+// angle is <cos g> = b c (each HG(xi) has <cos g> = -xi).
 //
 // Option h_function: hapke1981 (H1), hapke2002 (H2) or exact (Chandrasekhar's H for isotropic
 // scattering by quadrature), see models/hapke_h_function.h. The exact H is evaluated on every path
@@ -37,7 +53,7 @@
 //
 // Properties:
 //   - reciprocal: H(mu0) H(mu) and mu0 + mu are symmetric in the two directions, B and p depend on g only.
-//   - non-negative inside the bounds: B >= 0, p >= 0 (HG: p > 0 for |xi| < 1; Legendre with |b| <= 1,
+//   - non-negative inside the bounds: B >= 0, p >= 0 (HG, hg2: p > 0 for |xi| < 1, b < 1; Legendre with |b| <= 1,
 //     0 <= c <= 1: at the ends cos g = +-1, p = 1 +- b + c >= c >= 0 (0 only for c = 0, |b| = 1), and an
 //     interior minimum 1 - c/2 - b^2/(6c), reached when |b| < 3c, is >= 1 - 2c for c <= 1/3 and
 //     >= 1 - c/2 - 1/(6c) for c >= 1/3, both >= 1/3),
@@ -74,9 +90,10 @@ namespace roadbrdf {
 struct Hapke {
   static constexpr const char* kName = "hapke";
   static constexpr int kMaxParameters = 5;
-  // Parameter order: w, b0, h, then xi (phase = hg) or legendre_b, legendre_c (phase = legendre).
-  enum Parameter { kW = 0, kB0 = 1, kH = 2, kXi = 3, kLegendreB = 3, kLegendreC = 4 };
-  enum class Phase { kHenyeyGreenstein, kLegendre };
+  // Parameter order: w, b0, h, then xi (phase = hg), legendre_b, legendre_c (phase = legendre) or
+  // hg2_b, hg2_c (phase = hg2).
+  enum Parameter { kW = 0, kB0 = 1, kH = 2, kXi = 3, kLegendreB = 3, kLegendreC = 4, kHg2B = 3, kHg2C = 4 };
+  enum class Phase { kHenyeyGreenstein, kLegendre, kDoubleHenyeyGreenstein };
   enum class HFunction { kHapke1981, kHapke2002, kExact };
 
   static constexpr double kMinCosineSum = 1e-9;
@@ -85,8 +102,9 @@ struct Hapke {
     return {
         {"phase",
          "single-particle phase function p(g), g = phase angle: hg = Henyey-Greenstein with asymmetry xi "
-         "(xi > 0 forward); legendre = 1 + b cos g + c P2(cos g) (b > 0 backward, Hapke 1981)",
-         {"hg", "legendre"},
+         "(xi > 0 forward); legendre = 1 + b cos g + c P2(cos g) (b > 0 backward, Hapke 1981); hg2 = double "
+         "Henyey-Greenstein (1 + c)/2 HG(-b) + (1 - c)/2 HG(b) (c > 0 backward, Hapke 2012 eq. 6.7)",
+         {"hg", "legendre", "hg2"},
          "hg"},
         {"h_function",
          "Chandrasekhar H function: hapke1981 = (1+2x)/(1+2x sqrt(1-w)) (error < 4%); hapke2002 = Hapke 2002 "
@@ -97,15 +115,18 @@ struct Hapke {
   }
 
   static ModelDescription describe(const OptionSet& options) {
-    const bool legendre = options.at("phase") == "legendre";
+    const std::string& phase = options.at("phase");
+    const char* phase_name = phase == "legendre" ? "two-term Legendre"
+                             : phase == "hg2"    ? "double Henyey-Greenstein"
+                                                 : "Henyey-Greenstein";
     ModelDescription d;
     d.summary = std::string("Hapke IMSA particulate-medium BRDF with shadow-hiding opposition effect, ") +
-                (legendre ? "two-term Legendre" : "Henyey-Greenstein") + " phase function, " +
-                options.at("h_function") + " H function";
+                phase_name + " phase function, " + options.at("h_function") + " H function";
     d.citation =
         "Hapke, JGR 86:3039 (1981); Hapke, Icarus 67:264 (1986) for B(g); Hapke, Icarus 157:523 (2002) eq. 13 "
-        "for H2; Chandrasekhar, Radiative Transfer (1960) for H; report eqs. 3.28-3.29 with B(g), HG and g "
-        "corrected (README known errors)";
+        "for H2; Hapke, Theory of Reflectance and Emittance Spectroscopy, 2nd ed. (2012) eq. 6.7 for hg2; "
+        "Chandrasekhar, Radiative Transfer (1960) for H; report eqs. 3.28-3.29 with B(g), HG and g corrected "
+        "(docs/report-corrections.md)";
     d.parameters = {
         {"w", "1", "single-scattering albedo of the particles", 0.5, 0.0, 1.0, true, false},
         {"b0", "1", "amplitude B0 of the shadow-hiding opposition peak: B(g) = B0/(1 + tan(g/2)/h)", 0.0, 0.0, 1.0,
@@ -115,15 +136,27 @@ struct Hapke {
          "porosity and grain-size distribution (structural, shared across wavelengths)",
          0.05, 1e-3, 2.0, false, false},
     };
-    if (legendre) {
+    if (phase == "legendre") {
       d.parameters.push_back({"legendre_b", "1",
                               "coefficient b of P1(cos g) in p(g) = 1 + b cos g + c P2(cos g); g = phase angle, "
                               "so b > 0 is backscattering",
                               0.0, -1.0, 1.0, true, false});
       d.parameters.push_back({"legendre_c", "1",
-                              "coefficient c of P2(cos g) = (3 cos^2 g - 1)/2 in p(g); the bounds of b and c keep "
-                              "p >= 0",
+                              "coefficient c of P2(cos g) = (3 cos^2 g - 1)/2 in p(g); the default bounds of b "
+                              "and c keep p >= 0; in the wider physical ranges p >= 0 needs |b| <= 1 + c and, "
+                              "where |b| < 3c, b^2 <= 3c (2 - c)",
                               0.0, 0.0, 1.0, true, false});
+      d.physical_bounds = {{"legendre_b", {-std::sqrt(3.0), std::sqrt(3.0)}}, {"legendre_c", {-1.0, 2.0}}};
+    } else if (phase == "hg2") {
+      d.parameters.push_back({"hg2_b", "1",
+                              "width of both lobes of the double Henyey-Greenstein p(g) = (1 + c)/2 HG(-b) + "
+                              "(1 - c)/2 HG(b): 0 isotropic, towards 1 narrow",
+                              0.3, 0.0, 0.95, true, false});
+      d.parameters.push_back({"hg2_c", "1",
+                              "partition of the double Henyey-Greenstein lobes: c > 0 backscattering (1: only "
+                              "the backward lobe), c < 0 forward; <cos g> = b c",
+                              0.0, -1.0, 1.0, true, false});
+      d.physical_bounds = {{"hg2_b", {0.0, 0.999}}};
     } else {
       d.parameters.push_back({"xi", "1",
                               "Henyey-Greenstein asymmetry: p(g) = (1 - xi^2)/(1 + 2 xi cos g + xi^2)^1.5, "
@@ -137,7 +170,9 @@ struct Hapke {
   }
 
   explicit Hapke(const OptionSet& options)
-      : phase_(options.at("phase") == "legendre" ? Phase::kLegendre : Phase::kHenyeyGreenstein),
+      : phase_(options.at("phase") == "legendre" ? Phase::kLegendre
+               : options.at("phase") == "hg2"    ? Phase::kDoubleHenyeyGreenstein
+                                                 : Phase::kHenyeyGreenstein),
         h_function_(options.at("h_function") == "hapke1981"   ? HFunction::kHapke1981
                     : options.at("h_function") == "hapke2002" ? HFunction::kHapke2002
                                                               : HFunction::kExact) {}
@@ -167,10 +202,36 @@ struct Hapke {
     return (1.0 - xi2) / (base * sqrt(base));
   }
 
+  // d/dxi of henyey_greenstein: -[2 xi + 3 (1 - xi^2)(cos g + xi)/D] / D^1.5, D = 1 + 2 xi cos g + xi^2.
+  static double henyey_greenstein_derivative(double xi, double cos_g) {
+    const double base = 1.0 + 2.0 * xi * cos_g + xi * xi;
+    return -(2.0 * xi + 3.0 * (1.0 - xi * xi) * (cos_g + xi) / base) / (base * std::sqrt(base));
+  }
+
   // Two-term Legendre phase function of the phase angle g (normalised, as P1 and P2 integrate to 0).
   template <typename T>
   static T legendre(const T& b, const T& c, double cos_g) {
     return 1.0 + b * cos_g + c * (1.5 * cos_g * cos_g - 0.5);
+  }
+
+  // Double Henyey-Greenstein phase function of the phase angle g (Hapke 2012 eq. 6.7), normalised as
+  // a weighted mean of two normalised lobes.
+  template <typename T>
+  static T double_henyey_greenstein(const T& b, const T& c, double cos_g) {
+    return 0.5 * (1.0 + c) * henyey_greenstein(T(-b), cos_g) + 0.5 * (1.0 - c) * henyey_greenstein(b, cos_g);
+  }
+
+  template <typename T>
+  T phase_function(const T* p, double cos_g) const {
+    switch (phase_) {
+      case Phase::kLegendre:
+        return legendre(p[kLegendreB], p[kLegendreC], cos_g);
+      case Phase::kDoubleHenyeyGreenstein:
+        return double_henyey_greenstein(p[kHg2B], p[kHg2C], cos_g);
+      case Phase::kHenyeyGreenstein:
+        break;
+    }
+    return henyey_greenstein(p[kXi], cos_g);
   }
 
   template <typename T>
@@ -215,8 +276,7 @@ struct Hapke {
   T operator()(const T* p, const Prepared& g) const {
     const T& w = p[kW];
     const T b = opposition(p[kB0], p[kH], g.tan_half_g);
-    const T phase = phase_ == Phase::kLegendre ? legendre(p[kLegendreB], p[kLegendreC], g.cos_g)
-                                               : henyey_greenstein(p[kXi], g.cos_g);
+    const T phase = phase_function(p, g.cos_g);
     const T multiple = h_function(g.mu0, w) * h_function(g.mu, w) - 1.0;
     return w * g.scale * ((1.0 + b) * phase + multiple);
   }
@@ -268,6 +328,8 @@ struct Hapke {
 //   HG:       df/dxi = w s (1 + B) dp/dxi, dp/dxi = -[2 xi + 3 (1 - xi^2)(cos g + xi)/D] / D^1.5,
 //             D = 1 + 2 xi cos g + xi^2
 //   Legendre: df/db = w s (1 + B) cos g,   df/dc = w s (1 + B) (3 cos^2 g - 1)/2.
+//   hg2:      df/db = w s (1 + B) [-(1 + c)/2 HG'(-b) + (1 - c)/2 HG'(b)],
+//             df/dc = w s (1 + B) [HG(-b) - HG(b)]/2   (HG' = dp/dxi of the HG line).
 // The value is computed by the same expressions as operator() (same rounding, bit for bit); dH/dw is
 // that of the ceres::Jet path of h_function, so the gradient equals the automatic derivative to
 // rounding. Every gradient path of the model (single, batch, prepared) comes here, so they agree
@@ -293,13 +355,11 @@ inline void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std:
       hv[distinct + c] = h_function(x, Jet1(w, 0)).v[0];
     }
   }
-  const bool legendre_phase = phase_ == Phase::kLegendre;
-  const std::size_t P = legendre_phase ? 5 : 4;
+  const std::size_t P = phase_ == Phase::kHenyeyGreenstein ? 4 : 5;
   for (std::size_t k = 0; k < n; ++k) {
     const Prepared& q = g[k];
     const double b = opposition(b0, h, q.tan_half_g);
-    const double phase = legendre_phase ? legendre(p[kLegendreB], p[kLegendreC], q.cos_g)
-                                        : henyey_greenstein(p[kXi], q.cos_g);
+    const double phase = phase_function(p, q.cos_g);
     const double h0 = hv[s.index_i[k]], h1 = hv[s.index_r[k]];
     const double bracket = (1.0 + b) * phase + (h0 * h1 - 1.0);
     values[k] = w * q.scale * bracket;
@@ -317,13 +377,21 @@ inline void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std:
       d[kH] = 0.0;
     }
     const double forward = ws * (1.0 + b);
-    if (legendre_phase) {
-      d[kLegendreB] = forward * q.cos_g;
-      d[kLegendreC] = forward * (1.5 * q.cos_g * q.cos_g - 0.5);
-    } else {
-      const double xi = p[kXi];
-      const double base = 1.0 + 2.0 * xi * q.cos_g + xi * xi;
-      d[kXi] = -forward * (2.0 * xi + 3.0 * (1.0 - xi * xi) * (q.cos_g + xi) / base) / (base * std::sqrt(base));
+    switch (phase_) {
+      case Phase::kLegendre:
+        d[kLegendreB] = forward * q.cos_g;
+        d[kLegendreC] = forward * (1.5 * q.cos_g * q.cos_g - 0.5);
+        break;
+      case Phase::kDoubleHenyeyGreenstein: {
+        const double width = p[kHg2B], c = p[kHg2C];
+        d[kHg2B] = forward * (-0.5 * (1.0 + c) * henyey_greenstein_derivative(-width, q.cos_g) +
+                              0.5 * (1.0 - c) * henyey_greenstein_derivative(width, q.cos_g));
+        d[kHg2C] = forward * 0.5 * (henyey_greenstein(-width, q.cos_g) - henyey_greenstein(width, q.cos_g));
+        break;
+      }
+      case Phase::kHenyeyGreenstein:
+        d[kXi] = forward * henyey_greenstein_derivative(p[kXi], q.cos_g);
+        break;
     }
   }
 }
