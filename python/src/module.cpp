@@ -33,60 +33,56 @@ py::object description_dict(const ModelDescription& md) {
 
 using Array = roadbrdf::python::DoubleArray;
 
-// Evaluate at flattened, already-broadcast inputs: angles in degrees (n values each) and a
-// parameter matrix n x P. One C++ loop, no Python per element.
-Array evaluate_flat(const Model& model, const Array& theta_i, const Array& phi_i, const Array& theta_r,
-                    const Array& phi_r, const Array& parameters) {
+// Evaluate a model at flattened, already-broadcast angles in degrees (n values each), with the
+// parameter set of element k given by parameters_at(k). One C++ loop without the GIL, no Python per
+// element. `extra` names the other input and its required length, for the error.
+template <typename ParametersAt>
+Array evaluate_at_angles(const Model& model, const Array& theta_i, const Array& phi_i, const Array& theta_r,
+                         const Array& phi_r, py::ssize_t extra_size, py::ssize_t extra_per_element,
+                         const char* extra, ParametersAt&& parameters_at) {
   const py::ssize_t n = theta_i.size();
-  const auto P = static_cast<py::ssize_t>(model.parameter_count());
-  if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || parameters.size() != n * P) {
-    throw InputError(
-        "evaluate_flat: the angle arrays need one length and the parameters that length x parameter count");
+  if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || extra_size != n * extra_per_element) {
+    throw InputError(std::string("evaluate_flat: the angle arrays need one length and the ") + extra);
   }
   Array out(n);
   const double* ti = theta_i.data();
   const double* pi = phi_i.data();
   const double* tr = theta_r.data();
   const double* pr = phi_r.data();
-  const double* p = parameters.data();
   double* o = out.mutable_data();
   {
     py::gil_scoped_release release;
     for (py::ssize_t k = 0; k < n; ++k) {
-      o[k] = model.evaluate(p + k * P, geometry_from_degrees(ti[k], pi[k], tr[k], pr[k]));
+      o[k] = model.evaluate(parameters_at(k), geometry_from_degrees(ti[k], pi[k], tr[k], pr[k]));
     }
   }
   return out;
 }
 
-// Spectral model at flattened, broadcast inputs: angles in degrees and wavelengths in nm.
+// A model at a parameter matrix n x P (row k for element k).
+Array evaluate_flat(const Model& model, const Array& theta_i, const Array& phi_i, const Array& theta_r,
+                    const Array& phi_r, const Array& parameters) {
+  const auto P = static_cast<py::ssize_t>(model.parameter_count());
+  const double* p = parameters.data();
+  return evaluate_at_angles(model, theta_i, phi_i, theta_r, phi_r, parameters.size(), P,
+                            "parameters that length x parameter count", [p, P](py::ssize_t k) { return p + k * P; });
+}
+
+// A spectral model at wavelengths in nm (one per element); the parameters are interpolated once per
+// run of equal wavelengths.
 Array evaluate_spectral_flat(const SpectralModel& model, const Array& theta_i, const Array& phi_i,
                              const Array& theta_r, const Array& phi_r, const Array& wavelength) {
-  const py::ssize_t n = theta_i.size();
-  if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || wavelength.size() != n) {
-    throw InputError(
-        "evaluate_flat: the angle arrays need one length and the parameters that length x parameter count");
-  }
-  Array out(n);
-  const double* ti = theta_i.data();
-  const double* pi = phi_i.data();
-  const double* tr = theta_r.data();
-  const double* pr = phi_r.data();
   const double* wl = wavelength.data();
-  double* o = out.mutable_data();
-  {
-    py::gil_scoped_release release;
-    double last = std::numeric_limits<double>::quiet_NaN();
-    std::vector<double> p;
-    for (py::ssize_t k = 0; k < n; ++k) {
-      if (!(wl[k] == last)) {
-        p = model.parameters_at(wl[k]);
-        last = wl[k];
-      }
-      o[k] = model.model().evaluate(p.data(), geometry_from_degrees(ti[k], pi[k], tr[k], pr[k]));
-    }
-  }
-  return out;
+  double last = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> p;
+  return evaluate_at_angles(model.model(), theta_i, phi_i, theta_r, phi_r, wavelength.size(), 1,
+                            "wavelengths that length", [&](py::ssize_t k) {
+                              if (!(wl[k] == last)) {
+                                p = model.parameters_at(wl[k]);
+                                last = wl[k];
+                              }
+                              return p.data();
+                            });
 }
 
 }  // namespace

@@ -80,6 +80,9 @@ def test_mix_with_data_is_identical(cli, case, options):
     best = result.best
     assert best is not None and best.comparison["rmse"] > 0
     assert result.spectral_model().evaluate(30, 0, 30, 180, 500.0) > 0
+    # The written MIX.json is a spectral model for every reader (read_fit, as `--fit METHOD` in the CLI).
+    assert roadbrdf.read_fit(tmp / "py.mix.json", best.method).evaluate(30, 0, 30, 180, 500.0) == pytest.approx(
+        result.spectral_model().evaluate(30, 0, 30, 180, 500.0), rel=1e-12)
     assert "held-out" in result.summary and "roadbrdf.MixResult" in repr(result)
     pd = pytest.importorskip("pandas")
     df = result.to_dataframe()

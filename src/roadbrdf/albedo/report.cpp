@@ -11,6 +11,7 @@
 #include "roadbrdf/albedo/coverage.h"
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/albedo/solar.h"
+#include "roadbrdf/albedo/uncertainty.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/number.h"
@@ -116,7 +117,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     progress.add();
   }
   SpectralIntegral ws = white_sky(model, params.data(), n_sets, settings);
-  progress.finish();
+  progress.add();
   converged = converged && ws.converged;
   if (!isotropic) {
     notes.push_back(a.azimuth_mean && !a.sun_azimuth_deg ? "anisotropic model: black-sky averaged over the sun azimuth"
@@ -281,6 +282,53 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     }
   }
 
+  // Standard uncertainties from the fit's parameter covariance (albedo/uncertainty.h), at the fit's
+  // own wavelengths (an interpolated parameter set has no covariance of its own).
+  nlohmann::json uncertainty = nullptr;
+  const std::vector<double>& covariance = sm.parameter_covariance();
+  if (!covariance.empty() && spectral && a.wavelengths.empty()) {
+    progress.add_total(zeniths.size() + 1);
+    QuadratureSettings tight = settings;
+    tight.tolerance = kDerivativeTolerance;
+    const SetIntegral white = [&](const std::vector<double>& p, std::size_t n) {
+      return white_sky(model, p.data(), n, tight).value;
+    };
+    const std::vector<double> g_ws = albedo_gradient(model, params, n_sets, covariance, white);
+    progress.add();
+    const bool mean_azimuth = !isotropic && a.azimuth_mean && !a.sun_azimuth_deg;
+    const double phi_s = a.sun_azimuth_deg.value_or(0.0) * kDegree;
+    std::vector<std::vector<double>> u_bs, u_blue;
+    for (std::size_t z = 0; z < zeniths.size(); ++z) {
+      const double theta = zeniths[z] * kDegree;
+      const SetIntegral black = [&](const std::vector<double>& p, std::size_t n) {
+        return (mean_azimuth ? black_sky_azimuth_mean(model, p.data(), n, theta, tight)
+                             : black_sky(model, p.data(), n, theta, phi_s, tight))
+            .value;
+      };
+      const std::vector<double> g_bs = albedo_gradient(model, params, n_sets, covariance, black);
+      u_bs.push_back(propagate(g_bs, covariance, n_sets, n_params));
+      if (!diffuse.empty()) {
+        // blue = (1 - D) black + D white: its gradient is the same combination of theirs.
+        std::vector<double> g_blue(g_bs.size());
+        for (std::size_t k = 0; k < g_bs.size(); ++k) {
+          const double d = diffuse[z][k / n_params];
+          g_blue[k] = (1.0 - d) * g_bs[k] + d * g_ws[k];
+        }
+        u_blue.push_back(propagate(g_blue, covariance, n_sets, n_params));
+      }
+      progress.add();
+    }
+    uncertainty = {{"method", "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength"},
+                   {"black_sky", u_bs},
+                   {"white_sky", propagate(g_ws, covariance, n_sets, n_params)},
+                   {"blue_sky", nullable(u_blue)}};
+    notes.push_back("standard uncertainties from the fit's parameter covariance, per wavelength (not propagated to "
+                    "the broadband values)");
+  } else if (!covariance.empty()) {
+    notes.push_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
+  }
+  progress.finish();
+
   // Non-physical values, and how much of the result the model extrapolates beyond the fit's data
   // (albedo/coverage.h; at the middle parameter set).
   flag_non_physical(zeniths, wavelengths, bs, ws.value, notes);
@@ -305,7 +353,10 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                 {"errors", "absolute error estimates of the same quantities"},
                 {"broadband", "solar-weighted values; null when they cannot be formed (one wavelength; see notes)"},
                 {"coverage", "the fit's measured directions (deg) and the fractions (1) of the black-sky [sun zenith] "
-                             "and white-sky integrals outside them; null when unknown"}};
+                             "and white-sky integrals outside them; null when unknown"},
+                {"uncertainty", "standard uncertainties (1) of black_sky, white_sky and blue_sky from the fit's "
+                                "parameter covariance, same shapes; null when unknown (a model, a mixture, "
+                                "--wavelengths), null entries where the covariance is undefined"}};
   j["sun_zenith_deg"] = zeniths;
   j["wavelengths"] = wavelengths;
   j["tolerance"] = a.tolerance;
@@ -331,6 +382,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   }
   j["luminous"] = luminous;
   j["coverage"] = coverage;  // null: no coverage known (a model, a mixture, an older fit file)
+  j["uncertainty"] = uncertainty;
   j["notes"] = notes;
   return j;
 }

@@ -4,7 +4,10 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/csv.h"
@@ -51,6 +54,57 @@ AngularCoverage read_coverage(const JsonNode& node) {
   }
   c.geometries = static_cast<std::size_t>(node.at("geometries").integer(1, 1LL << 40));
   return c;
+}
+
+// The parameter covariance per wavelength (SpectralModel::parameter_covariance) from "stderr" and
+// "correlation": cov_ab = r_ab s_a s_b, 0 for a fixed parameter, NaN where either is null (undefined).
+// Empty when the file has neither, or orders its parameters otherwise than the model.
+std::vector<double> read_covariance(const JsonNode& fit, const ModelDescription& d, std::size_t m) {
+  const auto stderr_node = fit.find("stderr");
+  const auto correlation_node = fit.find("correlation");
+  if (!stderr_node || !correlation_node) return {};
+  const std::size_t p = d.parameters.size();
+  if (const auto order = fit.find("parameter_order")) {
+    const std::vector<std::string> names = order->strings();
+    if (names.size() != p) return {};
+    for (std::size_t k = 0; k < p; ++k) {
+      if (names[k] != d.parameters[k].name) return {};
+    }
+  }
+  std::vector<bool> fixed(p, false);
+  if (const auto f = fit.find("fixed")) {
+    for (const std::string& name : f->strings()) {
+      if (const auto k = d.parameter_index(name)) fixed[*k] = true;
+    }
+  }
+  constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+  auto value_or_undefined = [](const JsonNode& v) { return v.is_null() ? kUndefined : v.number(); };
+  std::vector<double> se(p * m, kUndefined);
+  for (std::size_t k = 0; k < p; ++k) {
+    const auto column = stderr_node->find(d.parameters[k].name);
+    if (!column) return {};
+    if (column->size() != m) column->fail("expected one value per wavelength");
+    for (std::size_t w = 0; w < m; ++w) se[k * m + w] = value_or_undefined((*column)[w]);
+  }
+  if (correlation_node->size() != m) correlation_node->fail("expected one matrix per wavelength");
+  std::vector<double> covariance(m * p * p, kUndefined);
+  for (std::size_t w = 0; w < m; ++w) {
+    const JsonNode matrix = (*correlation_node)[w];
+    if (!matrix.is_null() && matrix.size() != p) matrix.fail("expected a p x p matrix");
+    for (std::size_t a = 0; a < p; ++a) {
+      const std::optional<JsonNode> row = matrix.is_null() ? std::nullopt : std::optional<JsonNode>(matrix[a]);
+      if (row && !row->is_null() && row->size() != p) row->fail("expected a p x p matrix");
+      for (std::size_t b = 0; b < p; ++b) {
+        double& c = covariance[(w * p + a) * p + b];
+        if (fixed[a] || fixed[b]) {
+          c = 0.0;
+        } else if (row && !row->is_null()) {
+          c = value_or_undefined((*row)[b]) * se[a * m + w] * se[b * m + w];
+        }
+      }
+    }
+  }
+  return covariance;
 }
 
 }  // namespace
@@ -240,6 +294,7 @@ SpectralModel read_fit_file(const std::string& path, const std::string& model_na
         read_parameter_table(fit.at("parameters"), model->description(), wavelengths.size(), wavelengths);
     SpectralModel spectral(model, wavelengths, table);
     if (const auto c = fit.find("coverage")) spectral.set_coverage(read_coverage(*c));
+    spectral.set_parameter_covariance(read_covariance(fit, model->description(), wavelengths.size()));
     return spectral;
   }
   fits.fail("no fit of model '" + wanted + "' in this file");

@@ -1,6 +1,7 @@
 #include "roadbrdf/models/spectral_model.h"
 
 #include <algorithm>
+#include <string>
 
 #include "roadbrdf/core/error.h"
 
@@ -46,6 +47,15 @@ std::vector<double> SpectralModel::parameters_at(double wavelength_nm) const {
     p[q] = (1.0 - t) * parameters_[j * n + q] + t * parameters_[k * n + q];
   }
   return p;
+}
+
+void SpectralModel::set_parameter_covariance(std::vector<double> covariance) {
+  const std::size_t p = model_->parameter_count();
+  if (!covariance.empty() && covariance.size() != wavelengths_.size() * p * p) {
+    throw InputError("parameter covariance: " + std::to_string(covariance.size()) + " values, expected " +
+                     std::to_string(wavelengths_.size() * p * p) + " (wavelengths x parameters^2)");
+  }
+  covariance_ = std::move(covariance);
 }
 
 }  // namespace roadbrdf

@@ -35,8 +35,17 @@ class SpectralModel {
   const std::optional<AngularCoverage>& coverage() const { return coverage_; }
   void set_coverage(std::optional<AngularCoverage> coverage) { coverage_ = std::move(coverage); }
 
+  // The covariance of the fitted parameters at each tabulated wavelength (from the fit file's
+  // standard errors and correlations): wavelengths() x P x P, row-major; NaN where undefined, 0 for
+  // fixed parameters; empty when unknown (a model given by its parameters, a mixture). Albedo
+  // uncertainties are propagated from it (albedo/uncertainty.h).
+  const std::vector<double>& parameter_covariance() const { return covariance_; }
+  // Throws InputError unless `covariance` has wavelengths() x P x P values (or is empty).
+  void set_parameter_covariance(std::vector<double> covariance);
+
  private:
   std::optional<AngularCoverage> coverage_;
+  std::vector<double> covariance_;
   std::shared_ptr<const Model> model_;
   std::vector<double> wavelengths_;
   std::vector<double> parameters_;

@@ -1,0 +1,120 @@
+// Albedo uncertainties from the fit's parameter covariance (albedo/uncertainty.h): the Lambertian
+// closed form (A = albedo exactly, so u(A) = u(albedo)), brute-force sampling of a correlated
+// Oren-Nayar parameter distribution, and the covariance read from a fit file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/albedo/hemisphere.h"
+#include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/models/registry.h"
+#include "roadbrdf/models/spectral_model.h"
+#include "support/scratch.h"
+
+namespace roadbrdf {
+namespace {
+
+TEST(AlbedoUncertainty, LambertIsTheAlbedoUncertaintyForEverySky) {
+  SpectralModel sm(make_model("lambert"), {500.0, 600.0}, {0.3, 0.5});
+  sm.set_parameter_covariance({1e-4, 4e-4});  // u = 0.01 and 0.02
+  albedo::AlbedoRequest request;
+  request.sun_zenith_deg = {0.0, 60.0};
+  request.diffuse_fraction = "0.3";
+  const nlohmann::json j = albedo::compute_albedo(sm, request);
+  const auto& u = j.at("uncertainty");
+  for (std::size_t z = 0; z < 2; ++z) {
+    EXPECT_NEAR(u["black_sky"][z][0].get<double>(), 0.01, 1e-9);
+    EXPECT_NEAR(u["black_sky"][z][1].get<double>(), 0.02, 1e-9);
+    EXPECT_NEAR(u["blue_sky"][z][1].get<double>(), 0.02, 1e-9);  // both integrals move with the albedo
+  }
+  EXPECT_NEAR(u["white_sky"][0].get<double>(), 0.01, 1e-9);
+  EXPECT_NEAR(u["white_sky"][1].get<double>(), 0.02, 1e-9);
+  // Undefined covariance: null, never a number.
+  sm.set_parameter_covariance({std::numeric_limits<double>::quiet_NaN(), 4e-4});
+  const nlohmann::json k = albedo::compute_albedo(sm, request);
+  EXPECT_TRUE(k["uncertainty"]["white_sky"][0].is_null());
+  EXPECT_NEAR(k["uncertainty"]["white_sky"][1].get<double>(), 0.02, 1e-9);
+  // A model given by its parameters has none.
+  EXPECT_TRUE(albedo::compute_albedo(SpectralModel(make_model("lambert"), {0.4}), request)["uncertainty"].is_null());
+  EXPECT_THROW(sm.set_parameter_covariance({1.0}), InputError);
+}
+
+TEST(AlbedoUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
+  // Oren-Nayar, albedo 0.5 +- 0.01 and sigma 0.3 +- 0.05, correlation 0.6: the standard deviation of
+  // the black-sky albedo (30 deg) and white-sky albedo over 4000 parameter sets drawn from that
+  // normal distribution (Cholesky factor), against the linearised value. The sampling error of a
+  // standard deviation is 1/sqrt(2N) = 1.1 %; the tolerance 5 % also covers the curvature in sigma.
+  const auto model = make_model("oren-nayar");
+  const double s_a = 0.01, s_s = 0.05, r = 0.6;
+  SpectralModel sm(model, {550.0}, {0.5, 0.3});
+  sm.set_parameter_covariance({s_a * s_a, r * s_a * s_s, r * s_a * s_s, s_s * s_s});
+  albedo::AlbedoRequest request;
+  request.sun_zenith_deg = {30.0};
+  const nlohmann::json j = albedo::compute_albedo(sm, request);
+  const double u_black = j["uncertainty"]["black_sky"][0][0].get<double>();
+  const double u_white = j["uncertainty"]["white_sky"][0].get<double>();
+
+  constexpr std::size_t kSamples = 4000;
+  std::mt19937_64 rng(2024);
+  std::normal_distribution<double> normal;
+  std::vector<double> sets;
+  for (std::size_t k = 0; k < kSamples; ++k) {
+    const double z1 = normal(rng), z2 = normal(rng);
+    sets.push_back(0.5 + s_a * z1);
+    sets.push_back(0.3 + s_s * (r * z1 + std::sqrt(1.0 - r * r) * z2));
+  }
+  auto standard_deviation = [](const std::vector<double>& v) {
+    double mean = 0.0;
+    for (double x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    double sum = 0.0;
+    for (double x : v) sum += (x - mean) * (x - mean);
+    return std::sqrt(sum / static_cast<double>(v.size() - 1));
+  };
+  const double sampled_black = standard_deviation(albedo::black_sky(*model, sets.data(), kSamples, 30.0 * kDegree).value);
+  const double sampled_white = standard_deviation(albedo::white_sky(*model, sets.data(), kSamples).value);
+  EXPECT_NEAR(u_black, sampled_black, 0.05 * sampled_black);
+  EXPECT_NEAR(u_white, sampled_white, 0.05 * sampled_white);
+  EXPECT_GT(u_black, 0.5 * s_a);  // the albedo term alone would give about s_a x (black-sky at albedo 1)
+}
+
+TEST(AlbedoUncertainty, CovarianceIsReadFromTheFitFile) {
+  const test::ScratchDirectory scratch;
+  const std::string path = (scratch.path() / "f.fit.json").string();
+  std::ofstream(path) << R"({"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{
+    "model": "oren-nayar", "options": {}, "wavelengths": [500, 600],
+    "parameters": {"albedo": [0.4, 0.5], "sigma": [0.2, 0.3]},
+    "stderr": {"albedo": [0.01, 0.02], "sigma": [null, 0.1]},
+    "parameter_order": ["albedo", "sigma"], "fixed": [],
+    "correlation": [null, [[1, -0.5], [-0.5, 1]]]}]})";
+  const SpectralModel sm = read_fit_file(path);
+  const std::vector<double>& c = sm.parameter_covariance();
+  ASSERT_EQ(c.size(), 8u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_TRUE(std::isnan(c[k])) << k;  // 500 nm: undefined
+  EXPECT_DOUBLE_EQ(c[4], 0.02 * 0.02);
+  EXPECT_DOUBLE_EQ(c[5], -0.5 * 0.02 * 0.1);
+  EXPECT_DOUBLE_EQ(c[6], -0.5 * 0.02 * 0.1);
+  EXPECT_DOUBLE_EQ(c[7], 0.1 * 0.1);
+  // A fixed parameter has no uncertainty: its rows and columns are 0.
+  const std::string fixed = (scratch.path() / "fixed.fit.json").string();
+  std::ofstream(fixed) << R"({"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{
+    "model": "oren-nayar", "options": {}, "wavelengths": [500],
+    "parameters": {"albedo": [0.4], "sigma": [0.2]}, "stderr": {"albedo": [0.01], "sigma": [null]},
+    "fixed": ["sigma"], "correlation": [[[1, null], [null, null]]]}]})";
+  const std::vector<double> f = read_fit_file(fixed).parameter_covariance();
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_DOUBLE_EQ(f[0], 0.01 * 0.01);
+  EXPECT_EQ(f[1], 0.0);
+  EXPECT_EQ(f[2], 0.0);
+  EXPECT_EQ(f[3], 0.0);
+}
+
+}  // namespace
+}  // namespace roadbrdf
