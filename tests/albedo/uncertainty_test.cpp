@@ -6,12 +6,14 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
@@ -51,7 +53,7 @@ TEST(AlbedoUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
   // the black-sky albedo (30 deg) and white-sky albedo over 4000 parameter sets drawn from that
   // normal distribution (Cholesky factor), against the linearised value. The sampling error of a
   // standard deviation is 1/sqrt(2N) = 1.1 %; the tolerance 5 % also covers the curvature in sigma.
-  const auto model = make_model("oren-nayar");
+  const std::shared_ptr<const Model> model = make_model("oren-nayar");
   const double s_a = 0.01, s_s = 0.05, r = 0.6;
   SpectralModel sm(model, {550.0}, {0.5, 0.3});
   sm.set_parameter_covariance({s_a * s_a, r * s_a * s_s, r * s_a * s_s, s_s * s_s});

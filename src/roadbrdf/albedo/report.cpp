@@ -318,10 +318,22 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
       }
       progress.add();
     }
+    // Undefined (NaN) uncertainties are JSON null, in the document itself and not only when dumped.
+    auto with_nulls = [](const std::vector<double>& v) {
+      nlohmann::json out = nlohmann::json::array();
+      for (double x : v) out.push_back(std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x));
+      return out;
+    };
+    auto rows_with_nulls = [&](const std::vector<std::vector<double>>& rows) {
+      if (rows.empty()) return nlohmann::json(nullptr);
+      nlohmann::json out = nlohmann::json::array();
+      for (const auto& row : rows) out.push_back(with_nulls(row));
+      return out;
+    };
     uncertainty = {{"method", "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength"},
-                   {"black_sky", u_bs},
-                   {"white_sky", propagate(g_ws, covariance, n_sets, n_params)},
-                   {"blue_sky", nullable(u_blue)}};
+                   {"black_sky", rows_with_nulls(u_bs)},
+                   {"white_sky", with_nulls(propagate(g_ws, covariance, n_sets, n_params))},
+                   {"blue_sky", rows_with_nulls(u_blue)}};
     notes.push_back("standard uncertainties from the fit's parameter covariance, per wavelength (not propagated to "
                     "the broadband values)");
   } else if (!covariance.empty()) {
@@ -356,7 +368,8 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                              "and white-sky integrals outside them; null when unknown"},
                 {"uncertainty", "standard uncertainties (1) of black_sky, white_sky and blue_sky from the fit's "
                                 "parameter covariance, same shapes; null when unknown (a model, a mixture, "
-                                "--wavelengths), null entries where the covariance is undefined"}};
+                                "--wavelengths), null entries where the covariance is undefined; the table's "
+                                "last columns *_u"}};
   j["sun_zenith_deg"] = zeniths;
   j["wavelengths"] = wavelengths;
   j["tolerance"] = a.tolerance;
@@ -429,6 +442,9 @@ std::string albedo_table(const nlohmann::json& j) {
     lum_ws = j.at("luminous").at("white_sky").get<double>();
     illuminant = j.at("luminous").at("illuminant").get<std::string>();
   }
+  // Standard uncertainties (JSON "uncertainty"), as the last columns; "nan" where undefined.
+  const auto& uncertainty = j.contains("uncertainty") ? j.at("uncertainty") : nlohmann::json(nullptr);
+  auto u_text = [](const nlohmann::json& v) { return v.is_null() ? std::string("nan") : fmt::format("{:.2e}", v.get<double>()); };
   std::ostringstream text;
     text << fmt::format("# albedo of {} ({}); dimensionless reflectances, absolute error estimates (tolerance {:g})\n",
                         model_name, spectral ? "fit file" : "constant parameters", tolerance);
@@ -438,6 +454,13 @@ std::string albedo_table(const nlohmann::json& j) {
       text << fmt::format(",black_sky_{0:g}deg,black_sky_error_{0:g}deg", z);
       if (!blue.empty()) text << fmt::format(",diffuse_fraction_{0:g}deg,blue_sky_{0:g}deg,blue_sky_error_{0:g}deg", z);
     }
+    if (!uncertainty.is_null()) {
+      text << ",white_sky_u";
+      for (double z : zeniths) {
+        text << fmt::format(",black_sky_u_{:g}deg", z);
+        if (!blue.empty()) text << fmt::format(",blue_sky_u_{:g}deg", z);
+      }
+    }
     text << '\n';
     for (std::size_t s = 0; s < n_sets; ++s) {
       text << (spectral ? fmt::format("{:g}", wavelengths[s]) : std::string("-"));
@@ -445,6 +468,13 @@ std::string albedo_table(const nlohmann::json& j) {
       for (std::size_t z = 0; z < zeniths.size(); ++z) {
         text << fmt::format(",{:.8f},{:.2e}", bs[z][s], bs_err[z][s]);
         if (!blue.empty()) text << fmt::format(",{:.6f},{:.8f},{:.2e}", diffuse[z][s], blue[z][s], blue_err[z][s]);
+      }
+      if (!uncertainty.is_null()) {
+        text << ',' << u_text(uncertainty.at("white_sky")[s]);
+        for (std::size_t z = 0; z < zeniths.size(); ++z) {
+          text << ',' << u_text(uncertainty.at("black_sky")[z][s]);
+          if (!blue.empty()) text << ',' << u_text(uncertainty.at("blue_sky")[z][s]);
+        }
       }
       text << '\n';
     }
