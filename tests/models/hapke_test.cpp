@@ -22,6 +22,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -319,21 +320,25 @@ TEST(Hapke, PhaseFunctionClosedForms) {
   EXPECT_NEAR(Hapke::legendre(0.3, 0.5, -1.0), 1.2, 1e-15);
 }
 
+// (1/2) int_{-1}^{1} f(u) du by a composite 20-point Gauss rule on 200 panels (independent of the
+// library's rules; HG with |xi| = 0.9 is sharply peaked).
+double half_cosine_integral(const std::function<double(double)>& f) {
+  std::vector<double> x, wt;
+  gauss_legendre_01(20, x, wt);
+  const int panels = 200;
+  double sum = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double a = -1.0 + 2.0 * p / panels;
+    for (std::size_t k = 0; k < x.size(); ++k) sum += wt[k] * (2.0 / panels) * f(a + (2.0 / panels) * x[k]);
+  }
+  return 0.5 * sum;
+}
+
 TEST(Hapke, PhaseFunctionsAreNormalisedWithTheStatedAsymmetrySign) {
   // (1/4pi) int p dOmega = (1/2) int_{-1}^{1} p d(cos g) = 1; mean cosine of the scattering angle
   // Theta = pi - g: <cos Theta> = -(1/2) int p cos g d(cos g) = xi for HG (xi > 0 forward), -b/3 for
-  // the Legendre form (b > 0 backward). Composite Gauss rule (HG with |xi| = 0.9 is sharply peaked).
-  std::vector<double> x, wt;
-  gauss_legendre_01(20, x, wt);
-  auto integrate = [&](auto&& f) {
-    const int panels = 200;
-    double sum = 0.0;
-    for (int p = 0; p < panels; ++p) {
-      const double a = -1.0 + 2.0 * p / panels;
-      for (std::size_t k = 0; k < x.size(); ++k) sum += wt[k] * (2.0 / panels) * f(a + (2.0 / panels) * x[k]);
-    }
-    return 0.5 * sum;
-  };
+  // the Legendre form (b > 0 backward).
+  const auto& integrate = half_cosine_integral;
   for (double xi : {-0.9, -0.5, 0.0, 0.3, 0.9}) {
     EXPECT_NEAR(integrate([&](double c) { return Hapke::henyey_greenstein(xi, c); }), 1.0, 1e-12) << xi;
     EXPECT_NEAR(integrate([&](double c) { return -c * Hapke::henyey_greenstein(xi, c); }), xi, 1e-12) << xi;
@@ -398,19 +403,8 @@ TEST(Hapke, DoubleHenyeyGreensteinClosedForms) {
   const double c = 0.6;
   EXPECT_NEAR(Hapke::double_henyey_greenstein(b, c, 1.0),
               0.5 * (1 + c) * (1 + b) / sqr(1 - b) + 0.5 * (1 - c) * (1 - b) / sqr(1 + b), 1e-14);
-  // Normalisation and mean cosine of the phase angle <cos g> = b c, by the composite Gauss rule of
-  // the test above (independent of the model's code).
-  std::vector<double> x, wt;
-  gauss_legendre_01(20, x, wt);
-  auto integrate = [&](auto&& f) {
-    const int panels = 200;
-    double sum = 0.0;
-    for (int q = 0; q < panels; ++q) {
-      const double a = -1.0 + 2.0 * q / panels;
-      for (std::size_t k = 0; k < x.size(); ++k) sum += wt[k] * (2.0 / panels) * f(a + (2.0 / panels) * x[k]);
-    }
-    return 0.5 * sum;
-  };
+  // Normalisation and mean cosine of the phase angle <cos g> = b c (independent quadrature).
+  const auto& integrate = half_cosine_integral;
   for (double width : {0.0, 0.2, 0.6, 0.9}) {
     for (double part : {-1.0, -0.4, 0.0, 0.5, 1.0}) {
       EXPECT_NEAR(integrate([&](double u) { return Hapke::double_henyey_greenstein(width, part, u); }), 1.0, 1e-12);
