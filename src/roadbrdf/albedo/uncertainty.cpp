@@ -15,7 +15,6 @@ std::vector<double> albedo_gradient(const Model& model, const std::vector<double
   for (std::size_t k = 0; k < P; ++k) {
     const auto [lower, upper] = d.physical_range(k);
     std::vector<double> up = params, down = params;
-    std::vector<double> step(n_sets, 0.0);
     std::vector<double> span(n_sets, 0.0);  // (p + h_up) - (p - h_down) as stored
     bool any = false;
     for (std::size_t s = 0; s < n_sets; ++s) {

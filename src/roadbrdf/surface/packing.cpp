@@ -302,6 +302,7 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
   ProgressCounter progress(s.progress, kProgressUnits);
   std::size_t reported = 0;
   PackingResult out;
+  double placed = 0.0;  // sum over classes of min(layer volume, target): what the progress counts
   for (int phase = 0; phase < 2; ++phase) {
     // Phase 0: random sequential addition in the layer. Phase 1 (when phase 0 jams): deposition.
     const bool deposit = phase == 1;
@@ -311,6 +312,7 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
     out.grain_count.assign(K, 0);
     out.deposition = deposit;
     Packer packer(s, deposit ? B : s.layer_bottom_mm, bin);
+    placed = 0.0;
     // The class furthest behind its target in the layer (-1: all reached).
     auto next_class = [&]() {
       int best = -1;
@@ -408,12 +410,12 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
       packer.add(best);
       out.placed_volume_mm3[k] += best.e.volume();
       const double in_layer = layer_volume(best);
+      const double target = classes[k].layer_volume_mm3;
+      placed += std::min(out.layer_volume_mm3[k] + in_layer, target) - std::min(out.layer_volume_mm3[k], target);
       out.layer_volume_mm3[k] += in_layer;
       ++out.grain_count[k];
       useless = in_layer > 0.0 ? 0 : useless + 1;
       if (s.progress && target_total > 0.0) {
-        double placed = 0.0;
-        for (std::size_t c = 0; c < K; ++c) placed += std::min(out.layer_volume_mm3[c], classes[c].layer_volume_mm3);
         const auto units = static_cast<std::size_t>(
             (kProgressUnits / 2) * (static_cast<double>(phase) + std::min(1.0, placed / target_total)));
         if (units > reported) {
