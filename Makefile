@@ -4,7 +4,8 @@ JOBS ?= $(shell nproc)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
 
-.PHONY: deps deps-app configure build build-app demo test configure-sanitize test-sanitize test-sanitize-ci fuzz bench install clean
+.PHONY: deps deps-app configure build build-app demo test configure-sanitize test-sanitize test-sanitize-ci fuzz bench install clean \
+  format tidy
 
 # Package sets of packages.txt: the demo needs [build] and [python], the tests every set.
 deps:
@@ -93,3 +94,15 @@ install: build-app
 
 clean:
 	rm -rf $(BUILD)
+
+# C++ style (.clang-format): `make format` applies it to every C++ file; ctest style.clang_format
+# (part of `make test`) fails when a file differs.
+format:
+	bash scripts/check_format.sh . --fix
+
+# Static analysis (.clang-tidy: bugprone, performance, cognitive complexity) of every library,
+# program and Python-module source in $(BUILD)'s compile database; any finding is an error. Takes
+# about TIDY_MINUTES on two cores, so CI does not run it: run it before a change lands.
+TIDY_FILES = '(src|python/src)/.*\.cpp$$'
+tidy: configure
+	run-clang-tidy-14 -quiet -p $(BUILD) -j $(JOBS) $(TIDY_FILES)

@@ -23,12 +23,11 @@ struct Fixture {
     const auto& d = model->description();
     for (std::size_t s = 0; s < n; ++s) {
       const double t = n > 1 ? static_cast<double>(s) / static_cast<double>(n - 1) : 0.0;
-      std::vector<double> p = parameters_from_assignments(
-          d, {{"oren-nayar.albedo", 0.05 + 0.2 * t},
-              {"oren-nayar.sigma", 0.3},
-              {"torrance-sparrow.ks", 0.05 - 0.02 * t},
-              {"torrance-sparrow.roughness", 0.3},
-              {"torrance-sparrow.ior", 1.6 - 0.1 * t}});
+      std::vector<double> p = parameters_from_assignments(d, {{"oren-nayar.albedo", 0.05 + 0.2 * t},
+                                                              {"oren-nayar.sigma", 0.3},
+                                                              {"torrance-sparrow.ks", 0.05 - 0.02 * t},
+                                                              {"torrance-sparrow.roughness", 0.3},
+                                                              {"torrance-sparrow.ior", 1.6 - 0.1 * t}});
       params.insert(params.end(), p.begin(), p.end());
     }
   }

@@ -13,9 +13,9 @@ namespace {
 // A wide file of 2151 wavelengths x `geometries` rows, values with 6 significant digits as
 // instruments write them (400 rows: the 9 MB file of issue 18).
 std::string make_file(int geometries) {
-  const std::string p = (std::filesystem::temp_directory_path() /
-                         ("roadbrdf_bench_2151x" + std::to_string(geometries) + ".csv"))
-                            .string();
+  const std::string p =
+      (std::filesystem::temp_directory_path() / ("roadbrdf_bench_2151x" + std::to_string(geometries) + ".csv"))
+          .string();
   if (std::filesystem::exists(p)) return p;
   roadbrdf::SpectralDataset d;
   for (int k = 0; k < 2151; ++k) d.wavelengths.push_back(350.0 + k);

@@ -26,8 +26,34 @@ PathLike = Union[str, "os.PathLike[str]"]
 def read_fit(path: str, model: str | None = None) -> SpectralModel:
     """Read a fit file written by ``roadbrdf fit`` (or a MIX.json written by ``roadbrdf mix``) as a
     spectral model: the best-ranked fit, or the fit of ``model`` (its name as in the file, e.g.
-    ``"oren-nayar+torrance-sparrow"``; for a MIX.json, the method, e.g. ``"shadowed"``)."""
+    ``"oren-nayar+torrance-sparrow"``; for a MIX.json, the method, e.g. ``"shadowed"``). In a grouped
+    fit file (``fit --group-by``) name the group too, as ``--fit`` does: ``"oren-nayar,theta_i=40"``."""
     return SpectralModel(_roadbrdf.read_spectral_model_file(str(path), model or ""))
+
+
+def params(fit_file: PathLike, wavelengths: str | Sequence[float] | None = None,
+           models: str | Sequence[str] = (), format: str | None = None):
+    """The fitted parameters of a fit file, as ``roadbrdf params`` prints them.
+
+    One row per fit (model, and group in a grouped file) and wavelength: ``model``, the group columns
+    ``<column>_deg``, ``wavelength_nm``, each parameter and its ``<name>_stderr``, ``rmse_per_sr``,
+    ``relative_rmse_percent``, ``max_relative_error_percent``, ``aic``, ``bic``, ``converged``,
+    ``at_bounds``. A wavelength that was not fitted is answered by the nearest fitted one; the notes
+    saying so are in ``df.attrs["notes"]``, the parameter units in ``df.attrs["units"]``.
+
+    With ``format`` ("table", "csv", "markdown", "latex") the table's text is returned instead, byte for
+    byte what the command prints.
+    """
+    if isinstance(models, str):
+        models = [models]
+    t = _roadbrdf.params_table(os.fspath(fit_file), wavelengths, [str(m) for m in models], format or "")
+    if format:
+        return t["text"]
+    import pandas as pd
+    df = pd.DataFrame({c: t["data"][c] for c in t["columns"]}, columns=list(t["columns"]))
+    df.attrs["notes"] = list(t["notes"])
+    df.attrs["units"] = dict(t["units"])
+    return df
 
 
 class ModelFit:
@@ -67,6 +93,8 @@ class ModelFit:
         self._index = index
         s = summary
         self.model: str = s.model_name(index)
+        #: The geometry group of this fit (``fit(..., group_by=...)``): ``{column: degrees}``, empty without groups.
+        self.group: dict = dict(s.group(index))
         self.options: dict = dict(s.options(index))
         self.wavelengths: np.ndarray = np.asarray(s.wavelengths, dtype=float)
         self.parameter_names: list = list(s.parameter_names(index))
@@ -107,7 +135,9 @@ class ModelFit:
 
     def __repr__(self) -> str:
         t = self.totals
-        return (f"roadbrdf.ModelFit({self.model!r}: {len(self.parameter_names)} parameters x {self.wavelengths.size} "
+        group = "".join(f", {k}={v:g}" for k, v in self.group.items())
+        return (f"roadbrdf.ModelFit({self.model!r}{group}: {len(self.parameter_names)} parameters x "
+                f"{self.wavelengths.size} "
                 f"wavelengths, RMSE {t['rmse']:.4g} sr^-1, BIC {t['bic']:.2f}, "
                 f"converged {t['converged_count']}/{self.wavelengths.size})")
 
@@ -135,6 +165,12 @@ class FitResult:
         return np.asarray(self._summary.wavelengths, dtype=float)
 
     @property
+    def notes(self) -> list:
+        """Wavelengths asked for that are not on the data's grid, each answered by the nearest band
+        (``"515 nm: nearest band 510 nm"``), as ``roadbrdf fit`` notes them on standard error."""
+        return list(self._summary.notes)
+
+    @property
     def summary(self) -> str:
         return self._summary.table()
 
@@ -146,12 +182,20 @@ class FitResult:
     def warnings(self, where: str = "the fit result") -> list:
         return list(self._summary.warnings(where))
 
-    def model_fit(self, model: str) -> ModelFit:
-        for f in self.fits:
-            if f.model == model:
-                return f
+    def model_fit(self, model: str, **group: float) -> ModelFit:
+        """The fit of ``model``; in a grouped result also name its group, e.g. ``model_fit("lambert", theta_i=40)``."""
         names = [f.model for f in self.fits]
-        raise InputError(f"no fit of model '{model}' in this result{_roadbrdf.did_you_mean(model, names)}")
+        if model not in names:
+            raise InputError(f"no fit of model '{model}' in this result{_roadbrdf.did_you_mean(model, names)}")
+        matching = [f for f in self.fits if f.model == model and
+                    all(k in f.group and abs(f.group[k] - float(v)) <= 1e-6 for k, v in group.items())]
+        if len(matching) == 1:
+            return matching[0]
+        labels = " ".join(",".join(f"{k}={v:g}" for k, v in f.group.items()) for f in self.fits if f.model == model)
+        if not matching:
+            raise InputError(f"fit: no fit of {model} for group {group}; its groups: {labels}")
+        raise InputError(f"fit: {len(matching)} fits of {model}, one per group ({labels}): name one, "
+                         f"e.g. model_fit({model!r}, {', '.join(f'{k}={v:g}' for k, v in matching[0].group.items())})")
 
     def spectral_model(self, model: str | None = None) -> SpectralModel:
         """The best fit (or that of ``model``) as a :class:`SpectralModel`."""
@@ -171,14 +215,18 @@ class FitResult:
         self._summary.write(os.fspath(path))
 
     def to_dataframe(self):
-        """A long pandas DataFrame: ``model``, ``wavelength_nm``, ``parameter``, ``value``, ``stderr``."""
+        """A long pandas DataFrame: ``model``, the group columns when grouped (degrees), ``wavelength_nm``,
+        ``parameter``, ``value``, ``stderr``."""
         import pandas as pd
+        group_columns = list(self.fits[0].group) if self.fits else []
         rows = []
         for f in self.fits:
+            key = tuple(f.group[c] for c in group_columns)
             for k, name in enumerate(f.parameter_names):
                 for w, wl in enumerate(f.wavelengths):
-                    rows.append((f.model, float(wl), name, float(f.parameters[k, w]), float(f.standard_errors[k, w])))
-        return pd.DataFrame(rows, columns=["model", "wavelength_nm", "parameter", "value", "stderr"])
+                    rows.append((f.model, *key, float(wl), name, float(f.parameters[k, w]),
+                                 float(f.standard_errors[k, w])))
+        return pd.DataFrame(rows, columns=["model", *group_columns, "wavelength_nm", "parameter", "value", "stderr"])
 
     def __repr__(self) -> str:
         return "roadbrdf.FitResult(\n" + self.summary.rstrip("\n") + "\n)"
@@ -201,7 +249,8 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         multistart: int = 1, seed: int = 1, wavelengths: str | Sequence[float] | None = None, threads: int = 1,
         max_iterations: int = 200, covariance: bool = True, warm_start: bool = True, solve_amplitudes: bool = True,
         joint_solver: str = "dense-schur", output: PathLike | None = None,
-        fix: Mapping[str, float] | None = None) -> FitResult:
+        fix: Mapping[str, float] | None = None, where: str = "",
+        group_by: str | Sequence[str] = ()) -> FitResult:
     """Fit one or more models to a dataset, exactly as ``roadbrdf fit`` does.
 
     Parameters
@@ -228,6 +277,11 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         Starting points (Latin hypercube over the nonlinear parameters, seeded by ``seed``).
     wavelengths : list of float or str
         Subset [nm]: numbers, or text in the command line's range grammar (``"400:1000:10"``).
+    where : str
+        Fit only the geometries where every comparison holds, e.g. ``"theta_r<=70"`` (``fit --where``).
+    group_by : str or list of str
+        Fit each group of geometries with equal angles separately, e.g. ``"theta_i"`` (``fit --group-by``);
+        each :class:`ModelFit` has its ``group``.
     output : path, optional
         Also write the fit file (JSON), as ``roadbrdf fit -o``.
 
@@ -240,6 +294,8 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         models = [models]
     if isinstance(shared, str):
         shared = [s.strip() for s in shared.split(",") if s.strip()]
+    if isinstance(group_by, str):
+        group_by = [s.strip() for s in group_by.split(",") if s.strip()]
     if fix is not None:
         if fixed is not None:
             raise InputError("fixed: give either fixed or its alias fix, not both")
@@ -257,7 +313,7 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         [str(s) for s in shared], _numbers(fixed, "fixed"), _numbers(start, "start"), bound_pairs, str(loss),
         str(robust), bool(use_sigma), bool(solid_angle_weights), int(multistart), int(seed), wavelengths,
         int(threads), int(max_iterations), bool(covariance), bool(warm_start), bool(solve_amplitudes),
-        str(joint_solver))
+        str(joint_solver), str(where), [str(c) for c in group_by])
     result = FitResult(summary)
     if output is not None:
         result.write(output)

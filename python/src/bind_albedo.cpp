@@ -16,10 +16,10 @@ namespace roadbrdf::python {
 
 namespace {
 
-py::object report(const SpectralModel& model, const std::vector<double>& sun_zenith,
-                        std::optional<double> sun_azimuth, bool azimuth_mean, const std::string& diffuse_fraction,
-                        const std::string& atmosphere, const std::string& spectrum,
-                        const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
+py::object report(const SpectralModel& model, const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth,
+                  bool azimuth_mean, const std::string& diffuse_fraction, const std::string& atmosphere,
+                  const std::string& spectrum, const std::vector<double>& wavelengths, const std::string& illuminant,
+                  double tolerance) {
   albedo::AlbedoRequest request;
   request.sun_zenith_deg = sun_zenith;
   request.sun_azimuth_deg = sun_azimuth;
@@ -49,8 +49,8 @@ void bind_albedo(py::module_& m) {
            const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
           check_parameters(model->description(), parameters);
           const SpectralModel sm(std::const_pointer_cast<const Model>(model), parameters);
-          return report(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum,
-                             wavelengths, illuminant, tolerance);
+          return report(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum, wavelengths,
+                        illuminant, tolerance);
         });
 }
 

@@ -14,6 +14,7 @@
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/fitting/params_table.h"
 
 namespace py = pybind11;
 
@@ -116,15 +117,25 @@ void bind_fitting(py::module_& m) {
       .def_property_readonly("wavelengths", [](const FitSummary& s) { return s.wavelengths; })
       .def_property_readonly("geometry_count", [](const FitSummary& s) { return s.geometry_count; })
       .def_property_readonly("missing_values", [](const FitSummary& s) { return s.missing_values; })
+      .def_property_readonly("notes", [](const FitSummary& s) { return s.notes; })
       .def("model_name", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).model; })
+      .def("group",
+           [](const FitSummary& s, std::size_t i) {
+             py::dict g;  // column -> degrees, in grouping order (empty without groups)
+             for (const auto& [column, value] : fit_at(s, i).group) g[py::str(column)] = value;
+             return g;
+           })
       .def("options", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).options; })
       .def("parameter_names", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).parameter_names; })
       .def("parameter_units", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).parameter_units; })
       .def("fixed", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).fixed; })
       .def("shared", [](const FitSummary& s, std::size_t i) { return fit_at(s, i).shared; })
-      .def("parameters", [](const FitSummary& s, std::size_t i) { return per_parameter(fit_at(s, i), &WavelengthFit::parameters); })
+      .def("parameters",
+           [](const FitSummary& s, std::size_t i) { return per_parameter(fit_at(s, i), &WavelengthFit::parameters); })
       .def("standard_errors",
-           [](const FitSummary& s, std::size_t i) { return per_parameter(fit_at(s, i), &WavelengthFit::standard_errors); })
+           [](const FitSummary& s, std::size_t i) {
+             return per_parameter(fit_at(s, i), &WavelengthFit::standard_errors);
+           })
       .def("correlation",
            [](const FitSummary& s, std::size_t i) {
              const FitResult& f = fit_at(s, i);
@@ -154,12 +165,14 @@ void bind_fitting(py::module_& m) {
              }
              return SpectralModel(s.models.at(i), wavelengths, table);
            })
-      .def("file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits)); },
-           "The fit file's content as Python objects (dicts, lists, numbers).")
+      .def(
+          "file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits)); },
+          "The fit file's content as Python objects (dicts, lists, numbers).")
       .def("table", &FitSummary::table, "The ranking table `roadbrdf fit` prints.")
       .def("warnings", &FitSummary::warnings, py::arg("where"))
-      .def("write", [](const FitSummary& s, const std::string& path) { write_fit_file(path, s.fits); }, py::arg("path"),
-           "Write the fit file (JSON, atomically), as `roadbrdf fit -o` does.");
+      .def(
+          "write", [](const FitSummary& s, const std::string& path) { write_fit_file(path, s.fits); }, py::arg("path"),
+          "Write the fit file (JSON, atomically), as `roadbrdf fit -o` does.");
 
   m.def(
       "fit",
@@ -170,7 +183,8 @@ void bind_fitting(py::module_& m) {
          const std::map<std::string, std::pair<double, double>>& bounds, const std::string& loss,
          const std::string& robust, bool use_sigma, bool solid_angle_weights, int multistart, unsigned seed,
          const py::object& wavelength_selection, int threads, int max_iterations, bool covariance, bool warm_start,
-         bool solve_amplitudes, const std::string& joint_solver) {
+         bool solve_amplitudes, const std::string& joint_solver, const std::string& where,
+         const std::vector<std::string>& group_by) {
         FitRequest request;
         request.models = models;
         request.options = options;
@@ -191,6 +205,8 @@ void bind_fitting(py::module_& m) {
         request.warm_start = warm_start;
         request.solve_amplitudes = solve_amplitudes;
         request.joint_solver = joint_solver;
+        request.where = where;
+        request.group_by = group_by;
         request.validate();
         const SpectralDataset data = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
         py::gil_scoped_release release;
@@ -201,7 +217,55 @@ void bind_fitting(py::module_& m) {
       py::arg("start"), py::arg("bounds"), py::arg("loss"), py::arg("robust"), py::arg("use_sigma"),
       py::arg("solid_angle_weights"), py::arg("multistart"), py::arg("seed"), py::arg("wavelength_selection"),
       py::arg("threads"), py::arg("max_iterations"), py::arg("covariance"), py::arg("warm_start"),
-      py::arg("solve_amplitudes"), py::arg("joint_solver"));
+      py::arg("solve_amplitudes"), py::arg("joint_solver"), py::arg("where"), py::arg("group_by"));
+  m.def(
+      "params_table",
+      [](const std::string& fit_file, const py::object& wavelength_selection, const std::vector<std::string>& models,
+         const std::string& format) {
+        ParamsRequest request;
+        request.fit_file = fit_file;
+        request.wavelengths = values_argument(wavelength_selection, "wavelengths");
+        request.models = models;
+        const ParamsTable t = read_params_table(request);
+        py::dict out;
+        out["notes"] = t.notes;
+        out["units"] = py::dict();
+        for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+          out["units"][py::str(t.parameter_names[k])] = t.parameter_units[k];
+        }
+        if (!format.empty()) out["text"] = t.render(params_format_from_string(format));
+        // Columns of csv_columns(), in its order.
+        py::list columns;
+        for (const auto& c : t.csv_columns()) columns.append(c);
+        out["columns"] = columns;
+        py::dict data;
+        std::size_t c = 0;
+        const auto names = t.csv_columns();
+        auto column = [&t](auto get) {
+          py::list l;
+          for (const ParamsRow& r : t.rows) l.append(get(r));
+          return l;
+        };
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.model; });
+        for (std::size_t g = 0; g < t.group_columns.size(); ++g) {
+          data[py::str(names[c++])] = column([g](const ParamsRow& r) { return r.group[g]; });
+        }
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.wavelength; });
+        for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+          data[py::str(names[c++])] = column([k](const ParamsRow& r) { return r.values[k]; });
+          data[py::str(names[c++])] = column([k](const ParamsRow& r) { return r.standard_errors[k]; });
+        }
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.rmse; });
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return 100.0 * r.relative_rmse; });
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return 100.0 * r.max_relative_error; });
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.aic; });
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.bic; });
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.converged; });
+        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.at_bounds; });
+        out["data"] = data;
+        return out;
+      },
+      py::arg("fit_file"), py::arg("wavelengths"), py::arg("models"), py::arg("format"));
 }
 
 }  // namespace roadbrdf::python

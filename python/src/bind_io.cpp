@@ -113,8 +113,8 @@ void bind_instruments(py::module_& m) {
   m.def(
       "manifest_dataset",
       [](const std::string& path, const std::string& quantity, const std::string& overlap) {
-        return dataset_to_dict(
-            manifest_dataset(read_manifest(path), instrument_quantity_from_string(quantity), manifest_options(overlap)));
+        return dataset_to_dict(manifest_dataset(read_manifest(path), instrument_quantity_from_string(quantity),
+                                                manifest_options(overlap)));
       },
       py::arg("path"), py::arg("quantity") = "target", py::arg("overlap") = "upper");
   m.def(
@@ -122,8 +122,8 @@ void bind_instruments(py::module_& m) {
       [](const std::string& path, const std::string& panel, const std::string& panel_brf,
          std::optional<double> brf_start, std::optional<double> brf_step, const std::string& overlap) {
         const std::optional<Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks first
-        return dataset_to_dict(calibrate_manifest(read_manifest(path), read_spectrum(panel), brf,
-                                                  manifest_options(overlap)));
+        return dataset_to_dict(
+            calibrate_manifest(read_manifest(path), read_spectrum(panel), brf, manifest_options(overlap)));
       },
       py::arg("path"), py::arg("panel_reflectance"), py::arg("panel_brf") = "", py::arg("panel_brf_start") = py::none(),
       py::arg("panel_brf_step") = py::none(), py::arg("overlap") = "upper");
@@ -138,7 +138,8 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
   if (angles.ndim() != 2 || angles.shape(1) != 4) throw InputError("angles must be an N x 4 array (deg)");
   const auto n = static_cast<std::size_t>(angles.shape(0));
   const auto m = static_cast<std::size_t>(wavelengths.size());
-  if (brdf.ndim() != 2 || static_cast<std::size_t>(brdf.shape(0)) != n || static_cast<std::size_t>(brdf.shape(1)) != m) {
+  if (brdf.ndim() != 2 || static_cast<std::size_t>(brdf.shape(0)) != n ||
+      static_cast<std::size_t>(brdf.shape(1)) != m) {
     throw InputError("brdf must be an N x M array (N geometries, M wavelengths)");
   }
   const double* a = angles.data();
@@ -181,14 +182,14 @@ void bind_io(py::module_& m) {
       },
       py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = true,
       py::arg("delimiter") = "auto", py::arg("decimal") = "auto");
-  m.def("write_dataset", [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
-                            const std::map<std::string, std::string>& metadata, const std::string& convention,
-                            const std::vector<std::string>& comments, const std::string& path,
-                            const std::string& format) {
-    SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
-    d.comments = comments;
-    write_dataset(d, path, dataset_format_from_string(format));
-  });
+  m.def("write_dataset",
+        [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
+           const std::map<std::string, std::string>& metadata, const std::string& convention,
+           const std::vector<std::string>& comments, const std::string& path, const std::string& format) {
+          SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+          d.comments = comments;
+          write_dataset(d, path, dataset_format_from_string(format));
+        });
   m.def(
       "read_curet",
       [](const std::string& abrdf, const std::string& table, int sample) {

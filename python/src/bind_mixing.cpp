@@ -24,11 +24,13 @@ void bind_mixing(py::module_& m) {
       .def_property_readonly("count", [](const MixRun& r) { return r.content.results.size(); })
       .def("method", [](const MixRun& r, std::size_t i) { return mixing::to_string(r.content.results.at(i).method); })
       .def("spectral_model", [](const MixRun& r, std::size_t i) { return *r.content.results.at(i).model; })
-      .def("content", [](const MixRun& r) { return json_to_python(mixing::mix_file_json(r.content)); },
-           "The MIX.json content as Python objects.")
+      .def(
+          "content", [](const MixRun& r) { return json_to_python(mixing::mix_file_json(r.content)); },
+          "The MIX.json content as Python objects.")
       .def("table", &MixRun::table, "The report `roadbrdf mix` prints.")
-      .def("write", [](const MixRun& r, const std::string& path) { mixing::write_mix_file(path, r.content); },
-           py::arg("path"))
+      .def(
+          "write", [](const MixRun& r, const std::string& path) { mixing::write_mix_file(path, r.content); },
+          py::arg("path"))
       .def(
           "write_residuals",
           [](const MixRun& r, const std::string& path) {

@@ -9,11 +9,11 @@
 
 #include "binding.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/spectra/cie.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_coverage.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/photometry/rtable_request.h"
+#include "roadbrdf/spectra/cie.h"
 
 namespace py = pybind11;
 
@@ -50,9 +50,9 @@ py::dict rtable_to_dict(const RTable& t, std::optional<double> declared_q0 = std
   if (!d["S1"].is_none()) {
     const double s = d["S1"].cast<double>();
     d["class"] = classify(s, ClassSystem::R).name;
-    d["classes"] = py::dict(py::arg("R") = classify(s, ClassSystem::R).name,
-                            py::arg("N") = classify(s, ClassSystem::N).name,
-                            py::arg("C") = classify(s, ClassSystem::C).name);
+    d["classes"] =
+        py::dict(py::arg("R") = classify(s, ClassSystem::R).name, py::arg("N") = classify(s, ClassSystem::N).name,
+                 py::arg("C") = classify(s, ClassSystem::C).name);
   } else {
     d["class"] = py::none();
   }
@@ -61,7 +61,8 @@ py::dict rtable_to_dict(const RTable& t, std::optional<double> declared_q0 = std
 }
 
 RTable rtable_from_array(const Array& r, const std::string& name, double alpha_deg) {
-  if (r.ndim() != 2 || r.shape(0) != static_cast<py::ssize_t>(kRows) || r.shape(1) != static_cast<py::ssize_t>(kColumns)) {
+  if (r.ndim() != 2 || r.shape(0) != static_cast<py::ssize_t>(kRows) ||
+      r.shape(1) != static_cast<py::ssize_t>(kColumns)) {
     throw InputError("r must be a 29 x 20 array (tan gamma rows, beta columns)");
   }
   RTable t;

@@ -25,10 +25,10 @@
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
-#include "roadbrdf/surface/surface_request.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
+#include "roadbrdf/surface/surface_request.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace py = pybind11;
@@ -112,8 +112,8 @@ surface::MaterialSpec material_spec(const std::string& fit, const std::string& f
 // Render options: validated by the library (surface/render_request.h), as for `roadbrdf render`.
 surface::RenderSettings render_settings(std::optional<long> samples, std::optional<double> target_error,
                                         long max_samples, double error_floor, double acceptance_deg,
-                                        const std::string& sampling, std::uint64_t seed, int threads,
-                                        int max_bounces, int white_sky_nodes = 8) {
+                                        const std::string& sampling, std::uint64_t seed, int threads, int max_bounces,
+                                        int white_sky_nodes = 8) {
   surface::RenderRequest r;
   r.samples = samples;
   r.target_error = target_error;
@@ -220,75 +220,74 @@ void bind_surface(py::module_& m) {
     return keep(std::move(f));
   });
 
-  m.def("gaussian_slope_surface", [](const std::string& fit, const std::string& fit_model, const std::string& model,
-                                     const std::map<std::string, double>& parameters,
-                                     const std::map<std::string, std::string>& options, double sigma_rad, int cells,
-                                     double cell_mm, std::uint64_t seed) {
-    surface::SurfaceRequest request;
-    request.kind = surface::SurfaceRequest::Kind::gaussian_slopes;
-    request.cells = cells;
-    request.cell_mm = cell_mm;
-    request.seed = seed;
-    request.sigma_rad = sigma_rad;
-    request.validate();
-    const surface::MaterialSpec spec = material_spec(fit, fit_model, model, parameters, options);
-    Field f;
-    {
-      py::gil_scoped_release release;
-      f = surface::make_gaussian_slope_surface(spec, sigma_rad, cells, cell_mm, seed);
-    }
-    surface::validate(f);
-    return keep(std::move(f));
-  });
+  m.def("gaussian_slope_surface",
+        [](const std::string& fit, const std::string& fit_model, const std::string& model,
+           const std::map<std::string, double>& parameters, const std::map<std::string, std::string>& options,
+           double sigma_rad, int cells, double cell_mm, std::uint64_t seed) {
+          surface::SurfaceRequest request;
+          request.kind = surface::SurfaceRequest::Kind::gaussian_slopes;
+          request.cells = cells;
+          request.cell_mm = cell_mm;
+          request.seed = seed;
+          request.sigma_rad = sigma_rad;
+          request.validate();
+          const surface::MaterialSpec spec = material_spec(fit, fit_model, model, parameters, options);
+          Field f;
+          {
+            py::gil_scoped_release release;
+            f = surface::make_gaussian_slope_surface(spec, sigma_rad, cells, cell_mm, seed);
+          }
+          surface::validate(f);
+          return keep(std::move(f));
+        });
 
   // `roadbrdf render SURFACE --grid`: angles [deg] as flat arrays of one length.
-  m.def("render_surface", [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i,
-                             const DoubleArray& theta_r, const DoubleArray& phi_r,
-                             const std::vector<double>& wavelengths, std::optional<long> samples,
-                             std::optional<double> target_error, long max_samples, double error_floor,
-                             double acceptance_deg, const std::string& sampling, std::uint64_t seed, int threads,
-                             int max_bounces) {
-    const py::ssize_t n = theta_i.size();
-    if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n) {
-      throw InputError("internal: render angle arrays of different sizes");
-    }
-    const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor, acceptance_deg,
-                                                      sampling, seed, threads, max_bounces);
-    std::vector<Geometry> geometries;
-    for (py::ssize_t k = 0; k < n; ++k) {
-      try {
-        geometries.push_back(
-            geometry_from_degrees(theta_i.data()[k], phi_i.data()[k], theta_r.data()[k], phi_r.data()[k]));
-      } catch (const InputError& e) {
-        throw InputError("geometry " + std::to_string(k + 1) + ": " + e.what());
-      }
-    }
-    SpectralDataset d;
-    std::vector<surface::Estimate> estimates;
-    {
-      py::gil_scoped_release release;
-      d = surface::render_dataset(f, geometries, wavelengths_or_default(f, wavelengths), s, &estimates);
-    }
-    const auto rows = static_cast<py::ssize_t>(d.geometry_count());
-    const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
-    py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
-    std::copy(d.brdf.begin(), d.brdf.end(), brdf.mutable_data());
-    std::copy(d.sigma.begin(), d.sigma.end(), sigma.mutable_data());
-    std::vector<long> paths;
-    std::vector<bool> converged;
-    for (const auto& e : estimates) {
-      paths.push_back(e.paths);
-      converged.push_back(e.converged);
-    }
-    py::dict out;
-    out["wavelengths"] = d.wavelengths;
-    out["brdf"] = brdf;
-    out["sigma"] = sigma;
-    out["metadata"] = d.metadata;
-    out["paths"] = paths;
-    out["converged"] = converged;
-    return out;
-  });
+  m.def("render_surface",
+        [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i, const DoubleArray& theta_r,
+           const DoubleArray& phi_r, const std::vector<double>& wavelengths, std::optional<long> samples,
+           std::optional<double> target_error, long max_samples, double error_floor, double acceptance_deg,
+           const std::string& sampling, std::uint64_t seed, int threads, int max_bounces) {
+          const py::ssize_t n = theta_i.size();
+          if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n) {
+            throw InputError("internal: render angle arrays of different sizes");
+          }
+          const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor,
+                                                            acceptance_deg, sampling, seed, threads, max_bounces);
+          std::vector<Geometry> geometries;
+          for (py::ssize_t k = 0; k < n; ++k) {
+            try {
+              geometries.push_back(
+                  geometry_from_degrees(theta_i.data()[k], phi_i.data()[k], theta_r.data()[k], phi_r.data()[k]));
+            } catch (const InputError& e) {
+              throw InputError("geometry " + std::to_string(k + 1) + ": " + e.what());
+            }
+          }
+          SpectralDataset d;
+          std::vector<surface::Estimate> estimates;
+          {
+            py::gil_scoped_release release;
+            d = surface::render_dataset(f, geometries, wavelengths_or_default(f, wavelengths), s, &estimates);
+          }
+          const auto rows = static_cast<py::ssize_t>(d.geometry_count());
+          const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
+          py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
+          std::copy(d.brdf.begin(), d.brdf.end(), brdf.mutable_data());
+          std::copy(d.sigma.begin(), d.sigma.end(), sigma.mutable_data());
+          std::vector<long> paths;
+          std::vector<bool> converged;
+          for (const auto& e : estimates) {
+            paths.push_back(e.paths);
+            converged.push_back(e.converged);
+          }
+          py::dict out;
+          out["wavelengths"] = d.wavelengths;
+          out["brdf"] = brdf;
+          out["sigma"] = sigma;
+          out["metadata"] = d.metadata;
+          out["paths"] = paths;
+          out["converged"] = converged;
+          return out;
+        });
 
   // `roadbrdf render SURFACE --albedo`.
   m.def("render_surface_albedo", [](const Field& f, const std::vector<double>& sun_zenith,

@@ -21,7 +21,8 @@ std::vector<double> values_argument(const py::object& value, const std::string& 
     values.push_back(value.cast<double>());
   } else {
     const DoubleArray array = DoubleArray::ensure(value);
-    if (!array || array.ndim() > 1) throw FieldError(field, "expected a number, a list of numbers or a string such as '0:60:30'");
+    if (!array || array.ndim() > 1)
+      throw FieldError(field, "expected a number, a list of numbers or a string such as '0:60:30'");
     values.assign(array.data(), array.data() + array.size());
   }
   check_range_values(values, field, rules);

@@ -39,8 +39,8 @@ struct pyobject_caster<roadbrdf::python::DoubleArray> {
 
   bool load(handle src, bool convert) {
     if (!convert && !type::check_(src)) return false;
-    const bool complex_values = PyComplex_Check(src.ptr()) ||
-                                (isinstance<array>(src) && reinterpret_borrow<array>(src).dtype().kind() == 'c');
+    const bool complex_values =
+        PyComplex_Check(src.ptr()) || (isinstance<array>(src) && reinterpret_borrow<array>(src).dtype().kind() == 'c');
     if (complex_values) throw roadbrdf::InputError("expected real numbers, got complex numbers");
     value = type::ensure(src);
     if (!value) {
@@ -59,9 +59,8 @@ namespace roadbrdf::python {
 
 // A dataset from the arrays of roadbrdf.Dataset (angles N x 4 in degrees, wavelengths, brdf N x M,
 // sigma or None, metadata, convention "zenith"|"road"); validated. Throws InputError.
-SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray& wavelengths,
-                                    const DoubleArray& brdf, const pybind11::object& sigma,
-                                    const std::map<std::string, std::string>& metadata,
+SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray& wavelengths, const DoubleArray& brdf,
+                                    const pybind11::object& sigma, const std::map<std::string, std::string>& metadata,
                                     const std::string& convention);
 
 // Values from a Python argument: None (empty), a number, a sequence of numbers or a string in the

@@ -38,8 +38,8 @@ using Array = roadbrdf::python::DoubleArray;
 // element. `extra` names the other input and its required length, for the error.
 template <typename ParametersAt>
 Array evaluate_at_angles(const Model& model, const Array& theta_i, const Array& phi_i, const Array& theta_r,
-                         const Array& phi_r, py::ssize_t extra_size, py::ssize_t extra_per_element,
-                         const char* extra, ParametersAt&& parameters_at) {
+                         const Array& phi_r, py::ssize_t extra_size, py::ssize_t extra_per_element, const char* extra,
+                         ParametersAt&& parameters_at) {
   const py::ssize_t n = theta_i.size();
   if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n || extra_size != n * extra_per_element) {
     throw InputError(std::string("evaluate_flat: the angle arrays need one length and the ") + extra);
@@ -70,8 +70,8 @@ Array evaluate_flat(const Model& model, const Array& theta_i, const Array& phi_i
 
 // A spectral model at wavelengths in nm (one per element); the parameters are interpolated once per
 // run of equal wavelengths.
-Array evaluate_spectral_flat(const SpectralModel& model, const Array& theta_i, const Array& phi_i,
-                             const Array& theta_r, const Array& phi_r, const Array& wavelength) {
+Array evaluate_spectral_flat(const SpectralModel& model, const Array& theta_i, const Array& phi_i, const Array& theta_r,
+                             const Array& phi_r, const Array& wavelength) {
   const double* wl = wavelength.data();
   double last = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> p;
@@ -134,11 +134,14 @@ PYBIND11_MODULE(_roadbrdf, m) {
 
   m.def(
       "make_model",
-      [](const std::string& name, const OptionSet& options) { return std::shared_ptr<Model>(make_model(name, options)); },
+      [](const std::string& name, const OptionSet& options) {
+        return std::shared_ptr<Model>(make_model(name, options));
+      },
       py::arg("name"), py::arg("options") = OptionSet{});
 
   py::class_<SpectralModel>(m, "SpectralModel")
-      .def_property_readonly("model", [](const SpectralModel& s) { return std::const_pointer_cast<Model>(s.model_ptr()); })
+      .def_property_readonly("model",
+                             [](const SpectralModel& s) { return std::const_pointer_cast<Model>(s.model_ptr()); })
       .def_property_readonly("wavelengths", &SpectralModel::wavelengths)
       .def_property_readonly("is_spectral", &SpectralModel::is_spectral)
       .def("parameters_at", &SpectralModel::parameters_at)

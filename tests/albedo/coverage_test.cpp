@@ -45,12 +45,12 @@ TEST(Coverage, RangesPlanesAndCovers) {
   EXPECT_NEAR(c.theta_r_max_deg, 60.0, 1e-9);
   EXPECT_EQ(c.azimuth_planes_deg, (std::vector<double>{0.0, 90.0, 180.0}));  // beta = 180 - dphi
   EXPECT_EQ(c.geometries, 9u * 13u * 3u);
-  EXPECT_TRUE(c.covers(geometry_from_degrees(44.0, 0.0, 30.0, 176.0)));    // within 5 deg of the plane and range
-  EXPECT_FALSE(c.covers(geometry_from_degrees(46.0, 0.0, 30.0, 180.0)));   // theta_i beyond 40 + 5
-  EXPECT_FALSE(c.covers(geometry_from_degrees(30.0, 0.0, 66.0, 180.0)));   // theta_r beyond 60 + 5
-  EXPECT_FALSE(c.covers(geometry_from_degrees(30.0, 0.0, 30.0, 135.0)));   // between the planes
-  EXPECT_TRUE(c.covers(geometry_from_degrees(30.0, 0.0, 3.0, 135.0)));     // near the normal: any plane
-  EXPECT_TRUE(c.covers(geometry_from_degrees(30.0, 10.0, 30.0, 280.0)));   // |dphi| = 270 -> 90: the plane 90
+  EXPECT_TRUE(c.covers(geometry_from_degrees(44.0, 0.0, 30.0, 176.0)));   // within 5 deg of the plane and range
+  EXPECT_FALSE(c.covers(geometry_from_degrees(46.0, 0.0, 30.0, 180.0)));  // theta_i beyond 40 + 5
+  EXPECT_FALSE(c.covers(geometry_from_degrees(30.0, 0.0, 66.0, 180.0)));  // theta_r beyond 60 + 5
+  EXPECT_FALSE(c.covers(geometry_from_degrees(30.0, 0.0, 30.0, 135.0)));  // between the planes
+  EXPECT_TRUE(c.covers(geometry_from_degrees(30.0, 0.0, 3.0, 135.0)));    // near the normal: any plane
+  EXPECT_TRUE(c.covers(geometry_from_degrees(30.0, 10.0, 30.0, 280.0)));  // |dphi| = 270 -> 90: the plane 90
 }
 
 TEST(Coverage, LambertianOutsideFractionsAreClosedForms) {
@@ -105,8 +105,8 @@ TEST(Coverage, FitFileRecordsItAndAlbedoReportsIt) {
   std::vector<std::pair<std::size_t, std::size_t>> progress;
   request.progress = [&](std::size_t done, std::size_t total) { progress.emplace_back(done, total); };
   const nlohmann::json report = albedo::compute_albedo(sm, request);
-  EXPECT_EQ(progress, (std::vector<std::pair<std::size_t, std::size_t>>{
-                          {1, 3}, {2, 3}, {3, 3}, {4, 6}, {5, 6}, {6, 6}, {6, 6}}));
+  EXPECT_EQ(progress,
+            (std::vector<std::pair<std::size_t, std::size_t>>{{1, 3}, {2, 3}, {3, 3}, {4, 6}, {5, 6}, {6, 6}, {6, 6}}));
   EXPECT_TRUE(report["uncertainty"].is_object());
   const auto& cov = report.at("coverage");
   // Planes 0 and 180 only, theta_r covered to 50 deg (see LambertianOutsideFractionsAreClosedForms).

@@ -177,8 +177,10 @@ TEST(Albedo, SharpLobeMuPhiAndMirrorPolarAgree) {
 // The mirror-polar rule is a second, independent parameterisation of the same integral.
 TEST(Albedo, MirrorPolarAgreesWithMuPhiRule) {
   auto m = make_model("oren-nayar+torrance-sparrow");
-  const std::vector<double> p = params_of(*m, {{"oren-nayar.albedo", 0.3}, {"oren-nayar.sigma", 0.3},
-                                              {"torrance-sparrow.ks", 0.05}, {"torrance-sparrow.roughness", 0.3}});
+  const std::vector<double> p = params_of(*m, {{"oren-nayar.albedo", 0.3},
+                                               {"oren-nayar.sigma", 0.3},
+                                               {"torrance-sparrow.ks", 0.05},
+                                               {"torrance-sparrow.roughness", 0.3}});
   for (double deg : {0.0, 40.0, 75.0}) {
     const SpectralIntegral a = black_sky(*m, p.data(), 1, deg * kDegree);
     const SpectralIntegral b = black_sky_mirror_polar(*m, p.data(), 1, deg * kDegree);
@@ -209,13 +211,16 @@ TEST(Albedo, WhiteSkyMatchesOuterIntegralOfBlackSky) {
   auto m = make_model("oren-nayar+torrance-sparrow");
   std::vector<double> p;
   for (double r : {0.3, 0.1}) {
-    const std::vector<double> q = params_of(*m, {{"oren-nayar.albedo", 0.2}, {"oren-nayar.sigma", 0.3},
-                                                {"torrance-sparrow.ks", 0.05}, {"torrance-sparrow.roughness", r},
-                                                {"torrance-sparrow.ior", 1.55}});
+    const std::vector<double> q = params_of(*m, {{"oren-nayar.albedo", 0.2},
+                                                 {"oren-nayar.sigma", 0.3},
+                                                 {"torrance-sparrow.ks", 0.05},
+                                                 {"torrance-sparrow.roughness", r},
+                                                 {"torrance-sparrow.ior", 1.55}});
     p.insert(p.end(), q.begin(), q.end());
   }
   const SpectralIntegral ws = white_sky(*m, p.data(), 2);
-  std::printf("ws %.8f %.8f err %.2e %.2e geometries %zu\n", ws.value[0], ws.value[1], ws.error[0], ws.error[1], ws.geometries);
+  std::printf("ws %.8f %.8f err %.2e %.2e geometries %zu\n", ws.value[0], ws.value[1], ws.error[0], ws.error[1],
+              ws.geometries);
   EXPECT_TRUE(ws.converged);
   const KronrodRule& rule = kronrod15();
   QuadratureSettings tight;

@@ -80,7 +80,8 @@ TEST(AlbedoUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
     for (double x : v) sum += (x - mean) * (x - mean);
     return std::sqrt(sum / static_cast<double>(v.size() - 1));
   };
-  const double sampled_black = standard_deviation(albedo::black_sky(*model, sets.data(), kSamples, 30.0 * kDegree).value);
+  const double sampled_black =
+      standard_deviation(albedo::black_sky(*model, sets.data(), kSamples, 30.0 * kDegree).value);
   const double sampled_white = standard_deviation(albedo::white_sky(*model, sets.data(), kSamples).value);
   EXPECT_NEAR(u_black, sampled_black, 0.05 * sampled_black);
   EXPECT_NEAR(u_white, sampled_white, 0.05 * sampled_white);

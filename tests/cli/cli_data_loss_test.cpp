@@ -62,8 +62,8 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
       {"fit " + data + " -m lambert -o " + f.path("hard.csv"), "-o", f.path("hard.csv"), "DATA", data},
       {"convert " + data + " -o " + data, "-o", data, "INPUT", data},
       {"resample " + data + " --wavelengths 500:700:100 -o " + data, "-o", data, "DATA", data},
-      {"calibrate " + data + " --reference " + f.path("grid.csv") + " --panel-reflectance " + f.path("r.csv") +
-           " -o " + f.path("grid.csv"),
+      {"calibrate " + data + " --reference " + f.path("grid.csv") + " --panel-reflectance " + f.path("r.csv") + " -o " +
+           f.path("grid.csv"),
        "-o", f.path("grid.csv"), "--reference", f.path("grid.csv")},
       {"eval lambert --geometry " + f.path("grid.csv") + " -o " + f.path("grid.csv"), "-o", f.path("grid.csv"),
        "--geometry", f.path("grid.csv")},
@@ -81,20 +81,20 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
       {"mix " + f.path("F.json") + " --data " + data + " --residuals " + data + " -o " + f.path("mix.json"),
        "--residuals", data, "--data", data},
       {"surface " + f.path("F.json") + " -o " + f.path("F.json"), "-o", f.path("F.json"), "INPUT", f.path("F.json")},
-      {"render " + f.path("flat.json") + " --albedo 30 -o " + f.path("flat.json"), "-o", f.path("flat.json"),
-       "SURFACE", f.path("flat.json")},
+      {"render " + f.path("flat.json") + " --albedo 30 -o " + f.path("flat.json"), "-o", f.path("flat.json"), "SURFACE",
+       f.path("flat.json")},
   };
   for (const Case& c : cases) {
     const auto r = run_cli(c.arguments);
-    EXPECT_TRUE(refused_with(r, {c.output_role + " '" + c.output + "' is the same file as the input " + c.input_role +
-                                     " '" + c.input + "'",
-                                 "refusing to overwrite an input"}))
+    EXPECT_TRUE(refused_with(
+        r, {c.output_role + " '" + c.output + "' is the same file as the input " + c.input_role + " '" + c.input + "'",
+            "refusing to overwrite an input"}))
         << c.arguments;
     EXPECT_EQ(f.changes(), std::vector<std::string>{}) << c.arguments;
   }
   const auto r = run_cli("fit " + data + " -m lambert -o " + f.path("x.json") + " --residuals " + f.path("x.json"));
-  EXPECT_TRUE(refused_with(r, {"outputs -o '" + f.path("x.json") + "' and --residuals '" + f.path("x.json") +
-                                   "' are the same file"}));
+  EXPECT_TRUE(refused_with(
+      r, {"outputs -o '" + f.path("x.json") + "' and --residuals '" + f.path("x.json") + "' are the same file"}));
   EXPECT_EQ(f.changes(), std::vector<std::string>{});
 }
 
@@ -124,10 +124,18 @@ CaseFolder large_inputs(const std::string& name) {
 // machine has a real one, and always a regular file under a file-size limit.
 std::vector<std::string> standard_output_commands(const CaseFolder& f) {
   const std::string data = f.path("data.csv");
-  return {"convert " + data, "eval lambert --geometry " + f.path("grid.csv"), "check " + data + " --json",
-          "check " + data, "rtable lambert", "rtable lambert --json", "models --json", "models",
-          "albedo " + f.path("lambert.fit.json"), "albedo lambert --json",
-          "fit " + data + " -m lambert -o -", "convert " + data + " -o -"};
+  return {"convert " + data,
+          "eval lambert --geometry " + f.path("grid.csv"),
+          "check " + data + " --json",
+          "check " + data,
+          "rtable lambert",
+          "rtable lambert --json",
+          "models --json",
+          "models",
+          "albedo " + f.path("lambert.fit.json"),
+          "albedo lambert --json",
+          "fit " + data + " -m lambert -o -",
+          "convert " + data + " -o -"};
 }
 
 TEST(CliDataLoss, FailedWritesToStandardOutputAreErrors) {
@@ -163,9 +171,9 @@ TEST(CliDataLoss, FullDiskIsAnErrorNamingTheOutput) {
   if (!test::dev_full_refuses_writes()) GTEST_SKIP() << test::kNoFullDevice;
   CaseFolder f = inputs("file-full");
   f.snapshot();
-  for (const std::string& arguments : std::vector<std::string>{
-           "convert " + f.path("data.csv") + " -o /dev/full", "fit " + f.path("data.csv") + " -m lambert -o /dev/full",
-        "rtable lambert -o /dev/full"}) {
+  for (const std::string& arguments : std::vector<std::string>{"convert " + f.path("data.csv") + " -o /dev/full",
+                                                               "fit " + f.path("data.csv") + " -m lambert -o /dev/full",
+                                                               "rtable lambert -o /dev/full"}) {
     const auto r = run_cli(arguments);
     EXPECT_TRUE(refused_with(r, {"/dev/full: write failed: No space left on device"})) << arguments;
     EXPECT_EQ(f.changes(), std::vector<std::string>{}) << arguments;
@@ -178,9 +186,9 @@ TEST(CliDataLoss, OutputFilePastTheFileSizeLimitIsAnErrorAndLeavesNothing) {
   CaseFolder f = large_inputs("file-limit");
   const std::string out = f.path("out");
   const std::uintmax_t limit = test::file_size_limit_bytes(test::scratch_path("file-limit.probe"));
-  for (const std::string& arguments : std::vector<std::string>{
-           "convert " + f.path("data.csv") + " -o " + out, "fit " + f.path("data.csv") + " -m lambert -o " + out,
-           "rtable lambert -o " + out}) {
+  for (const std::string& arguments :
+       std::vector<std::string>{"convert " + f.path("data.csv") + " -o " + out,
+                                "fit " + f.path("data.csv") + " -m lambert -o " + out, "rtable lambert -o " + out}) {
     ASSERT_EQ(run_cli(arguments).status, 0) << arguments;
     ASSERT_GT(fs::file_size(out), limit) << arguments << " writes too little to reach the limit";
     fs::remove(out);
@@ -251,10 +259,11 @@ TEST(CliDataLoss, DirectoriesAreNotFiles) {
   fs::create_directories(f.path("folder"));
   f.snapshot();
   for (const std::string& arguments : std::vector<std::string>{
-           "convert " + f.path("folder"), "check " + f.path("folder"), "fit " + f.path("folder") + " -m lambert -o x.json",
-        "eval lambert --geometry " + f.path("folder"), "albedo " + f.path("lambert.fit.json") + " --spectrum " + f.path("folder"),
-        "convert " + f.path("folder") + " --from alta --wavelength 550",
-        "rtable --import " + f.path("folder") + " --import-format rtb"}) {
+           "convert " + f.path("folder"), "check " + f.path("folder"),
+           "fit " + f.path("folder") + " -m lambert -o x.json", "eval lambert --geometry " + f.path("folder"),
+           "albedo " + f.path("lambert.fit.json") + " --spectrum " + f.path("folder"),
+           "convert " + f.path("folder") + " --from alta --wavelength 550",
+           "rtable --import " + f.path("folder") + " --import-format rtb"}) {
     EXPECT_TRUE(refused_with(run_cli(arguments), {f.path("folder") + ": is a directory"})) << arguments;
   }
   EXPECT_TRUE(refused_with(run_cli("convert " + f.path("data.csv") + " -o " + f.path("folder")),
@@ -275,7 +284,8 @@ TEST(CliDataLoss, LongOutputNameWorks) {
 
 TEST(CliDataLoss, StandardInputAndOutputAsDash) {
   CaseFolder f = inputs("dash");
-  const auto r = test::run_shell("cat " + f.path("data.csv") + " | " + test::cli_program() + " convert - --to long -o - 2>&1");
+  const auto r =
+      test::run_shell("cat " + f.path("data.csv") + " | " + test::cli_program() + " convert - --to long -o - 2>&1");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("theta_i,phi_i,theta_r,phi_r,wavelength,brdf,sigma"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists("-"));

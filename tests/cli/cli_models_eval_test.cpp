@@ -1,7 +1,7 @@
 // The roadbrdf program: models and eval sub-commands, error messages and exit codes.
-#include "support/scratch.h"
-#include "support/cli.h"
 #include <gtest/gtest.h>
+#include "support/cli.h"
+#include "support/scratch.h"
 
 #include <array>
 #include <cstdio>
@@ -18,9 +18,7 @@ namespace {
 using Result = roadbrdf::test::CliResult;
 Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
-std::string temp_path(const std::string& name) {
-  return roadbrdf::test::scratch_path("cli_test_" + name);
-}
+std::string temp_path(const std::string& name) { return roadbrdf::test::scratch_path("cli_test_" + name); }
 
 TEST(CliEval, LambertAtOneGeometry) {
   const Result r = run("eval lambert -p albedo=0.5 --theta-i 30 --phi-i 0 --theta-r 45 --phi-r 180");

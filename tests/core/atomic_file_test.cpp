@@ -207,7 +207,7 @@ TEST(AtomicFile, WriteRefusedMidwayIsAnErrorAndLeavesNothing) {
   if (child == 0) {
     ::close(channel[0]);
     ::signal(SIGXFSZ, SIG_IGN);
-    const struct rlimit limit {4096, 4096};
+    const struct rlimit limit { 4096, 4096 };
     ::setrlimit(RLIMIT_FSIZE, &limit);
     std::string message = "no error";
     try {
@@ -337,16 +337,21 @@ TEST(DistinctFiles, OutputThatIsAnInputIsRefused) {
 
 TEST(DistinctFiles, TwoOutputsNamingOneFileAreRefused) {
   const std::string dir = folder("two-outputs");
-  const std::string message = error_of(
-      [&] { check_distinct_files({}, {{"-o", dir + "/a.csv"}, {"--residuals", dir + "/../two-outputs/a.csv"}}); });
+  const std::string message = error_of([&] {
+    check_distinct_files({}, {{"-o", dir + "/a.csv"}, {"--residuals", dir + "/../two-outputs/a.csv"}});
+  });
   EXPECT_NE(message.find("are the same file"), std::string::npos) << message;
   EXPECT_EQ(error_of([&] { check_distinct_files({}, {{"-o", "/dev/null"}, {"--residuals", "/dev/null"}}); }), "");
 }
 
 TEST(DistinctFiles, StandardStreamsAtMostOnce) {
-  EXPECT_NE(error_of([] { check_distinct_files({{"A", "-"}, {"B", "-"}}, {}); }).find("standard input"),
+  EXPECT_NE(error_of([] {
+              check_distinct_files({{"A", "-"}, {"B", "-"}}, {});
+            }).find("standard input"),
             std::string::npos);
-  EXPECT_NE(error_of([] { check_distinct_files({}, {{"-o", "-"}, {"--residuals", "-"}}); }).find("standard output"),
+  EXPECT_NE(error_of([] {
+              check_distinct_files({}, {{"-o", "-"}, {"--residuals", "-"}});
+            }).find("standard output"),
             std::string::npos);
   EXPECT_EQ(error_of([] { check_distinct_files({{"A", "-"}}, {{"-o", "-"}}); }), "");
 }

@@ -35,8 +35,7 @@ TEST(InputFile, DirectoryIsAnErrorNotAnEmptyFile) {
 
 TEST(InputFile, MissingFileNamesTheReason) {
   const std::string path = test::scratch_path("does-not-exist.csv");
-  EXPECT_EQ(error_of([&] { InputFile in(path); }),
-            path + ": cannot open file for reading: No such file or directory");
+  EXPECT_EQ(error_of([&] { InputFile in(path); }), path + ": cannot open file for reading: No such file or directory");
 }
 
 TEST(InputFile, ReadErrorIsAnError) {

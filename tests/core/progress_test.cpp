@@ -34,7 +34,8 @@ TEST(Progress, DrawsAfterTheDelayThrottledAndEndsTheLine) {
   ASSERT_NE(f, nullptr);
   double now = 100.0;
   {
-    ProgressBar bar("work", f, true, [&now] { return now; }, 1.0, 0.5);
+    ProgressBar bar(
+        "work", f, true, [&now] { return now; }, 1.0, 0.5);
     bar.update(1, 10);  // before the delay: nothing
     EXPECT_FALSE(bar.shown());
     now = 101.0;
@@ -42,15 +43,16 @@ TEST(Progress, DrawsAfterTheDelayThrottledAndEndsTheLine) {
     now = 101.2;
     bar.update(3, 10);  // throttled
     now = 101.6;
-    bar.update(4, 10);  // drawn
+    bar.update(4, 10);   // drawn
     bar.update(10, 10);  // 100 %: always drawn
     EXPECT_TRUE(bar.shown());
   }
   const std::string out = contents(f);
   std::fclose(f);
-  EXPECT_EQ(out, "\rwork [####....................] 2/10 20%  1.0 s, ~4.0 s left\x1b[K"
-                 "\rwork [#########...............] 4/10 40%  1.6 s, ~2.4 s left\x1b[K"
-                 "\rwork [########################] 10/10 100%  1.6 s\x1b[K\n");
+  EXPECT_EQ(out,
+            "\rwork [####....................] 2/10 20%  1.0 s, ~4.0 s left\x1b[K"
+            "\rwork [#########...............] 4/10 40%  1.6 s, ~2.4 s left\x1b[K"
+            "\rwork [########################] 10/10 100%  1.6 s\x1b[K\n");
 }
 
 TEST(Progress, DisabledOrShortWorkWritesNothing) {

@@ -80,7 +80,7 @@ TEST(Range, Rules) {
 TEST(NearestName, EditDistanceByHand) {
   EXPECT_EQ(edit_distance("", ""), 0u);
   EXPECT_EQ(edit_distance("fit", "fit"), 0u);
-  EXPECT_EQ(edit_distance("fti", "fit"), 1u);        // one transposition
+  EXPECT_EQ(edit_distance("fti", "fit"), 1u);         // one transposition
   EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);  // the textbook example: k->s, e->i, +g
   EXPECT_EQ(edit_distance("abc", ""), 3u);
 }

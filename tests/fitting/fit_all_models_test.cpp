@@ -27,8 +27,8 @@ TEST_P(EveryModel, RecoversParametersFromNoisySyntheticData) {
   }
   const auto grid = test::test_grid(6, 7, 7);
   const double rel = 0.01;
-  const SpectralDataset data =
-      test::synthetic_dataset(*model, grid, {550.0}, [&](std::size_t) { return truth; }, rel, 1e-5, 77, true);
+  const SpectralDataset data = test::synthetic_dataset(
+      *model, grid, {550.0}, [&](std::size_t) { return truth; }, rel, 1e-5, 77, true);
   FitOptions o;
   o.multistart = 8;
   const FitResult r = fit_model(*model, data, o);

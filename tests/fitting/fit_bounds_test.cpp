@@ -20,7 +20,7 @@ TEST(FitBounds, PhysicalRangeComesFromTheMetadata) {
   auto model = make_model("retro-phong");
   const ModelDescription& d = model->description();
   const std::size_t n = *d.parameter_index("n");
-  EXPECT_EQ(d.parameters[n].upper, 1000.0);                     // the default fitting range
+  EXPECT_EQ(d.parameters[n].upper, 1000.0);  // the default fitting range
   EXPECT_EQ(d.physical_range(n), (std::pair<double, double>{0.0, 1e6}));
   const std::size_t kd = *d.parameter_index("kd");
   EXPECT_EQ(d.physical_range(kd), (std::pair<double, double>{0.0, 1.0}));  // not declared: the bounds

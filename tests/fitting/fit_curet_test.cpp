@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/models/registry.h"
-#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {

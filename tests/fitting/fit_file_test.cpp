@@ -13,8 +13,8 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
-#include "synthetic.h"
 #include "support/paths.h"
+#include "synthetic.h"
 
 namespace roadbrdf {
 namespace {
@@ -31,7 +31,10 @@ SpectralDataset on_data() {
   auto model = make_model("oren-nayar");
   std::vector<double> wl = {450.0, 500.0, 550.0, 600.0};
   return test::synthetic_dataset(
-      *model, test::test_grid(), wl, [](std::size_t w) { return std::vector<double>{0.2 + 0.1 * double(w), 0.4}; },
+      *model, test::test_grid(), wl,
+      [](std::size_t w) {
+        return std::vector<double>{0.2 + 0.1 * double(w), 0.4};
+      },
       0.01, 0.0, 21);
 }
 
@@ -62,7 +65,8 @@ TEST(FitFile, WrittenFileReadsBackTheSameParameters) {
     const std::size_t p = fits[i].parameter_names.size();
     for (std::size_t w = 0; w < data.wavelengths.size(); ++w) {
       EXPECT_EQ(sm.wavelengths()[w], data.wavelengths[w]);
-      for (std::size_t k = 0; k < p; ++k) EXPECT_EQ(sm.parameter_table()[w * p + k], fits[i].wavelengths[w].parameters[k]);
+      for (std::size_t k = 0; k < p; ++k)
+        EXPECT_EQ(sm.parameter_table()[w * p + k], fits[i].wavelengths[w].parameters[k]);
     }
   }
   // Oren-Nayar data: the best (lowest BIC) is oren-nayar, and "best" names it.
@@ -72,9 +76,9 @@ TEST(FitFile, WrittenFileReadsBackTheSameParameters) {
   EXPECT_EQ(j["format"], "roadbrdf-fit");
   EXPECT_EQ(j["best"], "oren-nayar");
   const auto& f = j["fits"][1];
-  for (const char* key : {"stderr", "rmse", "rmse_total", "relative_rmse", "max_relative_error", "r_squared", "aic", "bic",
-                          "iterations", "converged", "status", "at_bounds", "correlation", "covariance_ok",
-                          "aic_total", "bic_total"}) {
+  for (const char* key :
+       {"stderr", "rmse", "rmse_total", "relative_rmse", "max_relative_error", "r_squared", "aic", "bic", "iterations",
+        "converged", "status", "at_bounds", "correlation", "covariance_ok", "aic_total", "bic_total"}) {
     EXPECT_TRUE(f.contains(key)) << key;
   }
   EXPECT_EQ(f["stderr"]["sigma"].size(), 4u);
@@ -112,7 +116,8 @@ TEST(FitFile, CommandLineFitRanksAndWritesFiles) {
   ASSERT_EQ(joint.wavelengths().size(), 3u);
   EXPECT_EQ(joint.parameter_table()[1], joint.parameter_table()[3]);
   // Errors: unknown parameter, bad loss, missing file (exit code 2 = input error).
-  EXPECT_NE(run(cli + " fit " + data_path.string() + " --model oren-nayar --fix roughness=1 -o " + fit_path.string()), 0);
+  EXPECT_NE(run(cli + " fit " + data_path.string() + " --model oren-nayar --fix roughness=1 -o " + fit_path.string()),
+            0);
   EXPECT_NE(run(cli + " fit " + data_path.string() + " --model oren-nayar --loss l1 -o " + fit_path.string()), 0);
   EXPECT_NE(run(cli + " fit " + (dir / "missing.csv").string() + " --model lambert -o " + fit_path.string()), 0);
   fs::remove_all(dir);

@@ -14,8 +14,8 @@
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/models/registry.h"
-#include "synthetic.h"
 #include "support/scratch.h"
+#include "synthetic.h"
 
 namespace roadbrdf {
 namespace {
@@ -37,7 +37,8 @@ SpectralDataset without_geometry(const SpectralDataset& d, std::size_t drop) {
 void expect_same_fit(const WavelengthFit& a, const WavelengthFit& b) {
   ASSERT_EQ(a.parameters.size(), b.parameters.size());
   for (std::size_t k = 0; k < a.parameters.size(); ++k) {
-    EXPECT_NEAR(a.parameters[k], b.parameters[k], 1e-9 * std::max(1.0, std::fabs(b.parameters[k]))) << "parameter " << k;
+    EXPECT_NEAR(a.parameters[k], b.parameters[k], 1e-9 * std::max(1.0, std::fabs(b.parameters[k])))
+        << "parameter " << k;
     if (std::isfinite(b.standard_errors[k])) {
       EXPECT_NEAR(a.standard_errors[k], b.standard_errors[k], 1e-7 * std::fabs(b.standard_errors[k])) << "stderr " << k;
     }

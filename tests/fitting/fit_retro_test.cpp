@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/models/registry.h"
-#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
@@ -38,9 +38,10 @@ TEST_P(RetroTape, RetroModelsConvergeAndBeatLambert) {
     ol.loss = FitLoss::kLog;
     const FitResult fl_log = fit_model(*lambert, data, ol);
     const WavelengthFit& w = f.wavelengths[0];
-    std::printf("%s  %-12s n=%zu rmse %.4g sr^-1 (lambert %.4g)  log-chi2 %.4g (lambert %.4g)  converged %d  at bounds:",
-                GetParam(), name, w.points, w.rmse, fl.wavelengths[0].rmse, w.chi2, fl_log.wavelengths[0].chi2,
-                int(w.converged));
+    std::printf(
+        "%s  %-12s n=%zu rmse %.4g sr^-1 (lambert %.4g)  log-chi2 %.4g (lambert %.4g)  converged %d  at bounds:",
+        GetParam(), name, w.points, w.rmse, fl.wavelengths[0].rmse, w.chi2, fl_log.wavelengths[0].chi2,
+        int(w.converged));
     for (const auto& b : w.at_bounds) std::printf(" %s", b.c_str());
     std::printf("\n  parameters:");
     for (std::size_t k = 0; k < w.parameters.size(); ++k) {

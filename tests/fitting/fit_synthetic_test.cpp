@@ -31,9 +31,9 @@ TEST(FitSynthetic, LambertMatchesClosedFormAndItsStandardError) {
   const auto grid = test_grid();
   const std::size_t N = grid.size();
   const double sigma_abs = 0.002;  // sr^-1
-  const SpectralDataset data = synthetic_dataset(*model, grid, {500.0, 600.0},
-                                                 [](std::size_t w) { return std::vector<double>{w ? 0.6 : 0.2}; },
-                                                 0.0, sigma_abs, 7);
+  const SpectralDataset data = synthetic_dataset(
+      *model, grid, {500.0, 600.0}, [](std::size_t w) { return std::vector<double>{w ? 0.6 : 0.2}; }, 0.0, sigma_abs,
+      7);
   FitOptions o;
   o.start = {{"albedo", 0.95}};
   const FitResult r = fit_model(*model, data, o);
@@ -88,7 +88,11 @@ TEST(FitSynthetic, StandardErrorsAgreeWithScatter) {
   std::vector<double> albedo, sigma, se_albedo, se_sigma;
   for (int d = 0; d < draws; ++d) {
     const SpectralDataset data = synthetic_dataset(
-        *model, grid, {550.0}, [](std::size_t) { return std::vector<double>{0.4, 0.3}; }, 0.02, 0.0, 1000 + d);
+        *model, grid, {550.0},
+        [](std::size_t) {
+          return std::vector<double>{0.4, 0.3};
+        },
+        0.02, 0.0, 1000 + d);
     FitOptions o;
     const FitResult r = fit_model(*model, data, o);
     const auto& f = r.wavelengths[0];
@@ -144,8 +148,11 @@ TEST(FitSynthetic, JointStandardErrorsAgreeWithScatter) {
   std::vector<double> sigma, se_sigma, albedo3, se_albedo3;
   for (int d = 0; d < 30; ++d) {
     const SpectralDataset data = synthetic_dataset(
-        *model, grid, wl, [](std::size_t w) { return std::vector<double>{0.2 + 0.05 * double(w), 0.3}; }, 0.03, 0.0,
-        5000 + d);
+        *model, grid, wl,
+        [](std::size_t w) {
+          return std::vector<double>{0.2 + 0.05 * double(w), 0.3};
+        },
+        0.03, 0.0, 5000 + d);
     FitOptions o;
     o.shared = {"sigma"};
     const FitResult r = fit_model(*model, data, o);
@@ -164,7 +171,10 @@ TEST(FitSynthetic, JointSchurSolversAgree) {
   std::vector<double> wl;
   for (int k = 0; k < 10; ++k) wl.push_back(500.0 + 10.0 * k);
   const SpectralDataset data = synthetic_dataset(
-      *model, test_grid(4, 5, 4), wl, [](std::size_t w) { return std::vector<double>{0.2 + 0.03 * double(w), 0.3}; },
+      *model, test_grid(4, 5, 4), wl,
+      [](std::size_t w) {
+        return std::vector<double>{0.2 + 0.03 * double(w), 0.3};
+      },
       0.02, 0.0, 8);
   std::vector<double> sigma;
   // iterative-schur is left out: on this small problem Ceres 2.1's CG reported "Numerical failure,
@@ -184,7 +194,11 @@ TEST(FitSynthetic, FixedParameterStaysAndHasNoStandardError) {
   auto model = make_model("oren-nayar");
   const auto grid = test_grid();
   const SpectralDataset data = synthetic_dataset(
-      *model, grid, {500.0}, [](std::size_t) { return std::vector<double>{0.4, 0.25}; }, 0.0, 0.0, 1);
+      *model, grid, {500.0},
+      [](std::size_t) {
+        return std::vector<double>{0.4, 0.25};
+      },
+      0.0, 0.0, 1);
   FitOptions o;
   o.fixed = {{"sigma", 0.25}};
   o.start = {{"albedo", 0.9}};
@@ -200,7 +214,11 @@ TEST(FitSynthetic, EveryLossRecoversNoiseFreeParameters) {
   auto model = make_model("oren-nayar");
   const auto grid = test_grid();
   const SpectralDataset data = synthetic_dataset(
-      *model, grid, {500.0}, [](std::size_t) { return std::vector<double>{0.45, 0.4}; }, 0.0, 0.0, 1);
+      *model, grid, {500.0},
+      [](std::size_t) {
+        return std::vector<double>{0.45, 0.4};
+      },
+      0.0, 0.0, 1);
   for (const char* loss : {"plain", "relative", "log", "cosine"}) {
     FitOptions o;
     o.loss = fit_loss_from_string(loss);
@@ -215,7 +233,11 @@ TEST(FitSynthetic, RobustLossResistsOutliers) {
   auto model = make_model("oren-nayar");
   const auto grid = test_grid();
   SpectralDataset data = synthetic_dataset(
-      *model, grid, {500.0}, [](std::size_t) { return std::vector<double>{0.3, 0.3}; }, 0.005, 0.0, 5);
+      *model, grid, {500.0},
+      [](std::size_t) {
+        return std::vector<double>{0.3, 0.3};
+      },
+      0.005, 0.0, 5);
   // 5 % of the points (scattered over the grid) 3x too high (specular glints reaching the detector).
   for (std::size_t g : {3, 17, 42, 58, 77, 91, 118, 133}) data.value(g, 0) *= 3.0;
   FitOptions plain;
@@ -256,7 +278,11 @@ TEST(FitSynthetic, ResultsDoNotDependOnTheThreadCount) {
   std::vector<double> wl;
   for (int k = 0; k < 100; ++k) wl.push_back(400.0 + 5.0 * k);
   const SpectralDataset data = synthetic_dataset(
-      *model, grid, wl, [](std::size_t w) { return std::vector<double>{0.2 + 0.005 * double(w), 0.3}; }, 0.01, 0.0, 3);
+      *model, grid, wl,
+      [](std::size_t w) {
+        return std::vector<double>{0.2 + 0.005 * double(w), 0.3};
+      },
+      0.01, 0.0, 3);
   FitOptions o;
   o.multistart = 3;
   const FitResult one = fit_model(*model, data, o);
@@ -280,7 +306,11 @@ TEST(FitSynthetic, MultistartEscapesABadStart) {
   auto model = make_model("oren-nayar");
   const auto grid = test_grid();
   const SpectralDataset data = synthetic_dataset(
-      *model, grid, {500.0}, [](std::size_t) { return std::vector<double>{0.5, 0.45}; }, 0.0, 0.0, 1);
+      *model, grid, {500.0},
+      [](std::size_t) {
+        return std::vector<double>{0.5, 0.45};
+      },
+      0.0, 0.0, 1);
   FitOptions o;
   o.start = {{"sigma", 0.0}};
   o.multistart = 5;

@@ -13,7 +13,8 @@
 
 namespace roadbrdf::test {
 
-// Incidence 5..60 deg, reflection 5..75 deg (no duplicated direction at the normal), relative azimuth 0..180 deg (retro to forward).
+// Incidence 5..60 deg, reflection 5..75 deg (no duplicated direction at the normal), relative azimuth 0..180 deg (retro
+// to forward).
 inline std::vector<Geometry> test_grid(int n_theta_i = 5, int n_theta_r = 6, int n_phi = 5) {
   std::vector<Geometry> g;
   for (int a = 0; a < n_theta_i; ++a) {

@@ -1,11 +1,11 @@
 // Formulation files: parsing, validation errors naming the file and the key, example F1-F4.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
@@ -109,8 +109,9 @@ TEST_F(FormulationFiles, OtherInconsistencies) {
   EXPECT_NE(error_of(R"({"format": "roadbrdf-formulation", "version": 1, "name": "x", "components": []})")
                 .find("at least one component"),
             std::string::npos);
-  EXPECT_NE(error_of(R"({"format": "roadbrdf-formulation", "version": 2, "name": "x", "components": []})").find("version"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(R"({"format": "roadbrdf-formulation", "version": 2, "name": "x", "components": []})").find("version"),
+      std::string::npos);
   EXPECT_NE(error_of("{ not json").find("not valid JSON"), std::string::npos);
   std::string doc = document();
   doc.replace(doc.find("\"binder\""), 8, "\"glue\"");
@@ -133,12 +134,31 @@ TEST(ExampleFormulations, MatchTable51) {
     std::vector<std::pair<const char*, double>> components;
   };
   const std::vector<Expected> table = {
-      {"F1", {{"Limestone filler", 1.4}, {"Bitumen", 5.2}, {"Garonne 0/2", 31.1}, {"Garonne 2/6", 19.2}, {"Garonne 6/10", 43.1}}},
-      {"F2", {{"Limestone filler", 2.2}, {"Bitumen", 5.3}, {"Soreze limestone 0/2", 28.3}, {"Lazard 2/6", 19.5}, {"Lazard 6/10", 44.7}}},
+      {"F1",
+       {{"Limestone filler", 1.4},
+        {"Bitumen", 5.2},
+        {"Garonne 0/2", 31.1},
+        {"Garonne 2/6", 19.2},
+        {"Garonne 6/10", 43.1}}},
+      {"F2",
+       {{"Limestone filler", 2.2},
+        {"Bitumen", 5.3},
+        {"Soreze limestone 0/2", 28.3},
+        {"Lazard 2/6", 19.5},
+        {"Lazard 6/10", 44.7}}},
       {"F3",
-       {{"Limestone filler", 1.4}, {"TiO2", 0.5}, {"Synthetic binder", 5.4}, {"Soreze limestone 0/2", 27.5},
-        {"Lazard 2/6", 21.0}, {"Lazard 6/10", 44.2}}},
-      {"F4", {{"Limestone filler", 1.9}, {"Bitumen", 5.4}, {"Garonne 0/2", 29.5}, {"Garonne 2/6", 19.8}, {"Gouraudiere 6/10", 43.4}}},
+       {{"Limestone filler", 1.4},
+        {"TiO2", 0.5},
+        {"Synthetic binder", 5.4},
+        {"Soreze limestone 0/2", 27.5},
+        {"Lazard 2/6", 21.0},
+        {"Lazard 6/10", 44.2}}},
+      {"F4",
+       {{"Limestone filler", 1.9},
+        {"Bitumen", 5.4},
+        {"Garonne 0/2", 29.5},
+        {"Garonne 2/6", 19.8},
+        {"Gouraudiere 6/10", 43.4}}},
   };
   for (const Expected& e : table) {
     const std::string path = data_directory() + "/examples/formulations/" + e.name + ".json";

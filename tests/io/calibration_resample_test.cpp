@@ -7,11 +7,11 @@
 #include <numbers>
 #include <sstream>
 
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/io/calibration.h"
-#include "roadbrdf/core/range.h"
-#include "roadbrdf/io/resample.h"
 #include "roadbrdf/core/data_path.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/range.h"
+#include "roadbrdf/io/calibration.h"
+#include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
 namespace {
@@ -32,7 +32,8 @@ SpectralDataset radiances(const std::vector<double>& wavelengths, double scale, 
   d.wavelengths = wavelengths;
   for (int g = 0; g < geometries; ++g) {
     d.geometries.push_back(geometry_from_degrees(10.0 * g, 0.0, 30.0, 180.0));
-    for (std::size_t j = 0; j < wavelengths.size(); ++j) d.brdf.push_back(scale * (1.0 + 0.001 * wavelengths[j]) * (g + 1));
+    for (std::size_t j = 0; j < wavelengths.size(); ++j)
+      d.brdf.push_back(scale * (1.0 + 0.001 * wavelengths[j]) * (g + 1));
   }
   return d;
 }
@@ -124,7 +125,8 @@ TEST(Resample, BandAveragesMatchHandComputedIntegrals) {
   d.geometries = {geometry_from_degrees(0, 0, 30, 180)};
   d.brdf = {1, 3, 2, 2, 6};
   d.sigma = {0.1, 0.1, 0.1, 0.1, 0.1};
-  const SpectralDataset r = resample_dataset(d, bands_from_edges(parse_range_list("400:420:10", "edges", wavelength_rules())));
+  const SpectralDataset r =
+      resample_dataset(d, bands_from_edges(parse_range_list("400:420:10", "edges", wavelength_rules())));
   ASSERT_EQ(r.wavelengths, (std::vector<double>{405, 415}));
   EXPECT_NEAR(r.value(0, 0), 2.25, 1e-14);
   EXPECT_NEAR(r.value(0, 1), 3.0, 1e-14);
@@ -136,7 +138,8 @@ TEST(Resample, BandAveragesMatchHandComputedIntegrals) {
   EXPECT_NEAR(resample_dataset(d, shifted).value(0, 0), 2.37, 1e-14);
   // Not a point pick: the value at the centre 405 nm is 3, the band average 2.25.
   EXPECT_THROW(resample_dataset(d, bands_from_edges({395, 405})), InputError);  // outside: no extrapolation
-  const SpectralDataset dropped = resample_dataset(d, bands_from_edges(parse_range_list("400:420:5", "edges", wavelength_rules())), {{411, 413}});
+  const SpectralDataset dropped =
+      resample_dataset(d, bands_from_edges(parse_range_list("400:420:5", "edges", wavelength_rules())), {{411, 413}});
   EXPECT_EQ(dropped.wavelengths, (std::vector<double>{402.5, 407.5, 417.5}));
   EXPECT_EQ(dropped.metadata.at("dropped_bands"), "410-415");
 }
@@ -146,7 +149,7 @@ TEST(MissingValues, CalibrationKeepsAMissingRadianceMissing) {
   CalibrationInput in;
   in.sample = radiances(wl, 1000.0, 2);
   in.reference = radiances(wl, 2000.0, 1);
-  in.sample.value(1, 2) = std::numeric_limits<double>::quiet_NaN();   // sample not measured
+  in.sample.value(1, 2) = std::numeric_limits<double>::quiet_NaN();     // sample not measured
   in.reference.value(0, 0) = std::numeric_limits<double>::quiet_NaN();  // reference not measured at 500 nm
   in.panel_reflectance = read_spectrum(kSpectralon);
   const SpectralDataset out = calibrate(in);
@@ -165,7 +168,8 @@ TEST(MissingValues, ResampledBandTouchingAMissingSampleIsMissing) {
   d.wavelengths = {400, 405, 410, 415, 420};
   d.geometries = {geometry_from_degrees(0, 0, 30, 180)};
   d.brdf = {1, std::numeric_limits<double>::quiet_NaN(), 2, 2, 6};
-  const SpectralDataset r = resample_dataset(d, bands_from_edges(parse_range_list("400:420:10", "edges", wavelength_rules())));
+  const SpectralDataset r =
+      resample_dataset(d, bands_from_edges(parse_range_list("400:420:10", "edges", wavelength_rules())));
   EXPECT_TRUE(std::isnan(r.value(0, 0)));  // [400, 410] needs 405 nm: not invented
   EXPECT_NEAR(r.value(0, 1), 3.0, 1e-14);  // [410, 420] does not (see the hand integrals above)
 }

@@ -1,7 +1,7 @@
 // End-to-end runs of the measurement sub-commands through build/roadbrdf.
-#include "support/scratch.h"
-#include "support/cli.h"
 #include <gtest/gtest.h>
+#include "support/cli.h"
+#include "support/scratch.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "support/paths.h"
-#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
@@ -29,7 +29,8 @@ TEST(CliIo, SimulateCheckResampleConvert) {
   const std::string grid = tmp("grid.csv");
   std::ofstream(grid) << "theta_i,phi_i,theta_r,phi_r\n0,0,30,180\n30,0,0,0\n30,0,30,180\n30,0,60,90\n60,0,30,90\n";
   const std::string data = tmp("lambert.csv");
-  Result r = run("simulate lambert -p albedo=0.5 --grid " + grid + " --wavelengths 400:700:10 --noise relative=0.01 --seed 4 -o " + data);
+  Result r = run("simulate lambert -p albedo=0.5 --grid " + grid +
+                 " --wavelengths 400:700:10 --noise relative=0.01 --seed 4 -o " + data);
   ASSERT_EQ(r.status, 0) << r.output;
   const SpectralDataset d = read_dataset(data);
   EXPECT_EQ(d.geometry_count(), 5u);

@@ -6,11 +6,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
-#include "roadbrdf/core/data_path.h"
 
 namespace roadbrdf {
 namespace {
@@ -65,9 +65,11 @@ TEST(Curet, GeometryCountAndValuesFromTheFiles) {
     if (neg == 0) continue;
     ++negative_samples;
     warnings.clear();
-    const SpectralDataset d = read_curet(kThird + "curet/abrdf.dat", kThird + "curet/table.txt", static_cast<int>(row[0]), o);
+    const SpectralDataset d =
+        read_curet(kThird + "curet/abrdf.dat", kThird + "curet/table.txt", static_cast<int>(row[0]), o);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_NE(warnings[0].find(std::to_string(neg) + " of 205 BRDF values are negative"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find(std::to_string(neg) + " of 205 BRDF values are negative"), std::string::npos)
+        << warnings[0];
   }
   EXPECT_GT(negative_samples, 0u);
 }

@@ -47,7 +47,8 @@ const std::string kCanonical =
     "60,0,10,90,0.125,1.5e-3,0.005,0.006\n";
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (std::size_t k = s.find(from); k != std::string::npos; k = s.find(from, k + to.size())) s.replace(k, from.size(), to);
+  for (std::size_t k = s.find(from); k != std::string::npos; k = s.find(from, k + to.size()))
+    s.replace(k, from.size(), to);
   return s;
 }
 
@@ -239,10 +240,10 @@ TEST(LongShape, AnAbsentRowIsAMissingCellCountedAndWarned) {
 }
 
 TEST(LongShape, DuplicatesAreReportedAtTheirFirstRepetitionInFileOrder) {
-  const std::string path = write_file(
-      "dup.csv",
-      "theta_i,phi_i,theta_r,phi_r,wavelength,brdf\n0,0,30,0,600,1\n0,0,30,0,500,1\n10,0,30,0,500,1\n"
-      "10,0,30,0,600,1\n10,0,30,0,500,2\n0,0,30,0,600,3\n");
+  const std::string path =
+      write_file("dup.csv",
+                 "theta_i,phi_i,theta_r,phi_r,wavelength,brdf\n0,0,30,0,600,1\n0,0,30,0,500,1\n10,0,30,0,500,1\n"
+                 "10,0,30,0,600,1\n10,0,30,0,500,2\n0,0,30,0,600,3\n");
   const std::string e = error_of(path);
   EXPECT_NE(e.find("dup.csv:6:1: duplicate value: this geometry already has wavelength 500 nm at line 4"),
             std::string::npos)

@@ -1,6 +1,6 @@
 // Wide/long CSV datasets: round trips and every bad-input case with its file:line:column.
-#include "support/scratch.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 
@@ -232,8 +232,7 @@ TEST(DatasetIo, DuplicateGeometries) {
 }
 
 TEST(DatasetIo, DuplicateSigmaAveragedAsMean) {
-  const std::string content =
-      "theta_i,phi_i,theta_r,phi_r,500,sigma_500\n10,0,30,180,1.0,0.3\n10,0,30,180,2.0,0.4\n";
+  const std::string content = "theta_i,phi_i,theta_r,phi_r,500,sigma_500\n10,0,30,180,1.0,0.3\n10,0,30,180,2.0,0.4\n";
   const std::string path = temp_file("dupsigma.csv", content);
   DatasetReadOptions o;
   o.average_duplicates = true;
@@ -245,11 +244,13 @@ TEST(DatasetIo, DuplicateSigmaAveragedAsMean) {
 
 TEST(DatasetIo, DuplicatesAverageTheMeasuredValuesOnly) {
   // Wide and long: a cell missing in one duplicate is the other's value; missing in all, missing.
-  const std::string wide = "theta_i,phi_i,theta_r,phi_r,500,600,sigma_500,sigma_600\n"
-                           "10,0,30,180,1.0,nan,0.3,nan\n10,0,30,180,3.0,nan,0.4,nan\n10,0,30,180,nan,nan,nan,nan\n";
-  const std::string lng = "theta_i,phi_i,theta_r,phi_r,wavelength,brdf,sigma\n"
-                          "10,0,30,180,500,1.0,0.3\n10,0,30,180,500,3.0,0.4\n10,0,30,180,500,nan,nan\n"
-                          "10,0,30,180,600,nan,nan\n10,0,30,180,600,,\n";
+  const std::string wide =
+      "theta_i,phi_i,theta_r,phi_r,500,600,sigma_500,sigma_600\n"
+      "10,0,30,180,1.0,nan,0.3,nan\n10,0,30,180,3.0,nan,0.4,nan\n10,0,30,180,nan,nan,nan,nan\n";
+  const std::string lng =
+      "theta_i,phi_i,theta_r,phi_r,wavelength,brdf,sigma\n"
+      "10,0,30,180,500,1.0,0.3\n10,0,30,180,500,3.0,0.4\n10,0,30,180,500,nan,nan\n"
+      "10,0,30,180,600,nan,nan\n10,0,30,180,600,,\n";
   for (const auto& content : {wide, lng}) {
     const std::string path = temp_file("dupmissing.csv", content);
     Quiet q;
@@ -317,12 +318,14 @@ TEST(DatasetIo, WriteIsAtomicAndRejectsInconsistentData) {
 // Free comment lines are data about the measurement (operator notes, instrument settings): kept in
 // order through a read and a write, never dropped; "key: value" lines are metadata instead.
 TEST(DatasetIo, FreeCommentsAreKeptInOrder) {
-  const std::string path = temp_file("comments.csv", "# measured 2026-03-04 by J.D.\n# sample: concrete\n"
-                                                     "#lamp warmed up 20 min, 12:30 start\n" + kHeader +
-                                                     "0,0,30,180,0.1,0.2\n");
+  const std::string path = temp_file("comments.csv",
+                                     "# measured 2026-03-04 by J.D.\n# sample: concrete\n"
+                                     "#lamp warmed up 20 min, 12:30 start\n" +
+                                         kHeader + "0,0,30,180,0.1,0.2\n");
   Quiet q;
   const SpectralDataset d = read_dataset(path, q.options());
-  EXPECT_EQ(d.comments, (std::vector<std::string>{"measured 2026-03-04 by J.D.", "lamp warmed up 20 min, 12:30 start"}));
+  EXPECT_EQ(d.comments,
+            (std::vector<std::string>{"measured 2026-03-04 by J.D.", "lamp warmed up 20 min, 12:30 start"}));
   EXPECT_EQ(d.metadata.at("sample"), "concrete");
   for (DatasetFormat format : {DatasetFormat::kWide, DatasetFormat::kLong}) {
     const std::string out = roadbrdf::test::scratch_path("io_comments_out.csv");

@@ -38,7 +38,8 @@ bool any_contains(const std::vector<std::string>& lines, const std::string& text
 }
 
 TEST(Implausible, BrdfAboveAThousandIsWarnedAboutAndKept) {
-  const Read r = read_text("large.csv", "theta_i,phi_i,theta_r,phi_r,500,600\n0,0,30,180,0.1,0.2\n10,0,30,180,1500,0.3\n");
+  const Read r =
+      read_text("large.csv", "theta_i,phi_i,theta_r,phi_r,500,600\n0,0,30,180,0.1,0.2\n10,0,30,180,1500,0.3\n");
   EXPECT_EQ(r.stats.implausible_values, 1u);
   EXPECT_EQ(r.data.value(1, 0), 1500.0);
   ASSERT_EQ(r.warnings.size(), 1u);
@@ -62,7 +63,8 @@ TEST(Implausible, RadianAngles) {
   EXPECT_TRUE(any_contains(r.warnings, "every angle is within +-1.6 deg (largest 1.57): they look like radians"));
   // Road angles too; and one angle of 10 deg is enough to be degrees.
   EXPECT_TRUE(read_text("rad_road.csv", "gamma,alpha,beta,delta,500\n0.5,1.5,0,0,0.1\n").stats.radian_angles);
-  EXPECT_FALSE(read_text("deg.csv", "theta_i,phi_i,theta_r,phi_r,500\n0,0,1,0,0.1\n10,0,1,0,0.1\n").stats.radian_angles);
+  EXPECT_FALSE(
+      read_text("deg.csv", "theta_i,phi_i,theta_r,phi_r,500\n0,0,1,0,0.1\n10,0,1,0,0.1\n").stats.radian_angles);
 }
 
 TEST(Implausible, FitThatNeverLeavesItsStartIsWarnedAbout) {

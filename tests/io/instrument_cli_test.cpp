@@ -18,8 +18,8 @@ std::string dir() { return test::instrument_files_dir() + "/"; }
 
 TEST(InstrumentCli, CalibrateManifestEqualsTheLibrary) {
   const std::string out = test::scratch_path("run.brdf.csv");
-  const auto r = test::run_cli("calibrate --manifest " + dir() + "run.csv --panel-reflectance " + dir() +
-                               "rho.txt -o " + out);
+  const auto r =
+      test::run_cli("calibrate --manifest " + dir() + "run.csv --panel-reflectance " + dir() + "rho.txt -o " + out);
   ASSERT_EQ(r.status, 0) << r.output;
   const SpectralDataset cli = read_dataset(out);
   const SpectralDataset lib = calibrate_manifest(read_manifest(dir() + "run.csv"), read_spectrum(dir() + "rho.txt"));
@@ -31,7 +31,8 @@ TEST(InstrumentCli, CalibrateManifestEqualsTheLibrary) {
 
 TEST(InstrumentCli, ConvertSingleFileAndManifest) {
   const std::string one = test::scratch_path("one.csv");
-  auto r = test::run_cli("convert " + dir() + "sed_001.sed --geometry theta_i=0,phi_i=0,theta_r=30,phi_r=180 -o " + one);
+  auto r =
+      test::run_cli("convert " + dir() + "sed_001.sed --geometry theta_i=0,phi_i=0,theta_r=30,phi_r=180 -o " + one);
   ASSERT_EQ(r.status, 0) << r.output;
   DatasetReadOptions any;
   any.any_units = true;

@@ -190,8 +190,9 @@ TEST(SigReader, OverlapRulesKeepOneDetectorAndReport) {
   EXPECT_EQ(up.wavelengths[15], 370.0);
   EXPECT_EQ(up.reference[15], 2000.0 + 370.0);
   EXPECT_EQ(up.reference[14], 1000.0 + 368.0);
-  EXPECT_EQ(up.metadata.at("sig.overlap"), "rule 'upper': join at line 30: 6 channel(s) 370-380 nm of the lower "
-                                           "detector dropped");
+  EXPECT_EQ(up.metadata.at("sig.overlap"),
+            "rule 'upper': join at line 30: 6 channel(s) 370-380 nm of the lower "
+            "detector dropped");
   ASSERT_EQ(up.notes.size(), 1u);
   EXPECT_EQ(up.quantity, "radiance");
   InstrumentReadOptions lower;
@@ -205,8 +206,9 @@ TEST(SigReader, OverlapRulesKeepOneDetectorAndReport) {
   InstrumentReadOptions error;
   error.overlap = OverlapRule::kError;
   EXPECT_EQ(error_of([&] { read_instrument_file(dir() + "sig_overlap.sig", error); }),
-            dir() + "sig_overlap.sig:30:1: detector overlap: wavelength 370 nm follows 380 nm (choose an overlap "
-                    "rule: upper or lower)");
+            dir() +
+                "sig_overlap.sig:30:1: detector overlap: wavelength 370 nm follows 380 nm (choose an overlap "
+                "rule: upper or lower)");
   const InstrumentSpectrum none = read_instrument_file(dir() + "sig_no_overlap.sig", error);
   EXPECT_EQ(none.wavelengths.size(), 21u);
   EXPECT_TRUE(none.notes.empty());
@@ -285,35 +287,40 @@ TEST(Manifest, ErrorsNameTheManifestLineOrTheFile) {
   const std::string role = manifest_with("role.csv", "run_001.asd,panel,0,45,0,0");
   EXPECT_NE(error_of([&] { read_manifest(role); }).find(role + ":2:"), std::string::npos);
   EXPECT_NE(error_of([&] { read_manifest(role); }).find("unknown role 'panel'"), std::string::npos);
-  const std::string two = manifest_with("two.csv", "run_white.asd,white,,,,\nrun_white.asd,white,,,,\n"
-                                                   "run_001.asd,sample,0,45,0,0");
+  const std::string two = manifest_with("two.csv",
+                                        "run_white.asd,white,,,,\nrun_white.asd,white,,,,\n"
+                                        "run_001.asd,sample,0,45,0,0");
   const Manifest m2 = read_manifest(two);
   EXPECT_NE(error_of([&] { manifest_calibration_input(m2); }).find(two + ":3: 2 white reference rows"),
             std::string::npos);
   const std::string missing = manifest_with("missing.csv", "nothere.asd,sample,0,45,0,0");
-  EXPECT_EQ(error_of([&] { manifest_dataset(read_manifest(missing), InstrumentQuantity::kTarget); })
-                .rfind(dir() + "nothere.asd: cannot open file for reading", 0),
+  EXPECT_EQ(error_of([&] {
+              manifest_dataset(read_manifest(missing), InstrumentQuantity::kTarget);
+            }).rfind(dir() + "nothere.asd: cannot open file for reading", 0),
             0u);
   EXPECT_NE(error_of([&] { read_instrument_file(test::test_data_dir()); }).find("is a directory"), std::string::npos);
   const std::string mixed = manifest_with("mixed.csv", "run_001.asd,sample,0,45,0,0\nsed_001.sed,sample,10,45,0,0");
-  EXPECT_NE(error_of([&] { manifest_dataset(read_manifest(mixed), InstrumentQuantity::kTarget); })
-                .find("every file of a run must hold the same quantity"),
+  EXPECT_NE(error_of([&] {
+              manifest_dataset(read_manifest(mixed), InstrumentQuantity::kTarget);
+            }).find("every file of a run must hold the same quantity"),
             std::string::npos);
   const std::string sample_without_angles = manifest_with("noangles.csv", "run_001.asd,sample,,,,");
   EXPECT_NE(error_of([&] { read_manifest(sample_without_angles); }).find(":2:"), std::string::npos);
   const std::string unmatched =
       manifest_with("unmatched.csv", "run_white.asd,white,10,45,0,0\nrun_001.asd,sample,0,45,0,0");
-  EXPECT_NE(error_of([&] { manifest_calibration_input(read_manifest(unmatched)); })
-                .find("no white reference row at the geometry of sample"),
+  EXPECT_NE(error_of([&] {
+              manifest_calibration_input(read_manifest(unmatched));
+            }).find("no white reference row at the geometry of sample"),
             std::string::npos);
 }
 
 TEST(Manifest, RawCountsWithDifferentSettingsAreRefused) {
   const Manifest m = read_manifest(dir() + "run_settings_mismatch.csv");
   EXPECT_EQ(error_of([&] { manifest_calibration_input(m); }),
-            dir() + "run_settings_mismatch.csv:3: sample run_001.asd was measured with integration time [ms] 68, its "
-                    "white reference white_it34.asd with 34: raw counts taken with different settings cannot be "
-                    "divided (roadbrdf applies no DN normalization)");
+            dir() +
+                "run_settings_mismatch.csv:3: sample run_001.asd was measured with integration time [ms] 68, its "
+                "white reference white_it34.asd with 34: raw counts taken with different settings cannot be "
+                "divided (roadbrdf applies no DN normalization)");
 }
 
 }  // namespace

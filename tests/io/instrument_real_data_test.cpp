@@ -24,7 +24,7 @@ std::string folder() {
   return shared.empty() ? "" : shared + "/instrument-files/";
 }
 
-#define REQUIRE_REAL_DATA()                                                                                  \
+#define REQUIRE_REAL_DATA() \
   if (folder().empty()) GTEST_SKIP() << "real third-party data not available (../shared/real-data is absent)"
 
 std::size_t index_of(const InstrumentSpectrum& s, double wavelength) {
@@ -50,7 +50,10 @@ const AsdRow kAsdTable[] = {
     {"asd-pyASD-MIT/v6sample/v6sample00000.asd", "as6", "raw", 68, {0.831, 0.879, 0.835}},
     {"asd-pyASD-MIT/v7sample/v7sample00000.asd", "as7", "radiance", 68, {0.988, 0.992, 1.001}},
     {"asd-pyASD-MIT/v7sample/v7sample00003.asd", "as7", "reflectance", 68, {0.843, 0.893, 0.824}},
-    {"asd-pyASD-MIT/v7sample_field_spectroscopy/44231B009-1-FW300000.asd", "as7", "reflectance", 17,
+    {"asd-pyASD-MIT/v7sample_field_spectroscopy/44231B009-1-FW300000.asd",
+     "as7",
+     "reflectance",
+     17,
      {0.156, 0.384, 0.463}},
     {"asd-pyASD-MIT/v8sample/v8sample00001.asd", "as8", "raw", 68, {0.876, 0.883, 0.822}},
 };
@@ -79,9 +82,12 @@ TEST(InstrumentRealData, AsdHeadersAndRatiosMatchProvenanceTable) {
 
 TEST(InstrumentRealData, EveryAsdFileParsesToTheEnd) {
   REQUIRE_REAL_DATA();
-  const char* files[] = {"asd-pyASD-MIT/v6sample/v6sample00001.asd", "asd-pyASD-MIT/v6sample/v6sample00002.asd",
-                         "asd-pyASD-MIT/v7sample/v7sample00001.asd", "asd-pyASD-MIT/v7sample/v7sample00002.asd",
-                         "asd-pyASD-MIT/v7sample/v7sample00004.asd", "asd-pyASD-MIT/v7sample/v7sample00005.asd",
+  const char* files[] = {"asd-pyASD-MIT/v6sample/v6sample00001.asd",
+                         "asd-pyASD-MIT/v6sample/v6sample00002.asd",
+                         "asd-pyASD-MIT/v7sample/v7sample00001.asd",
+                         "asd-pyASD-MIT/v7sample/v7sample00002.asd",
+                         "asd-pyASD-MIT/v7sample/v7sample00004.asd",
+                         "asd-pyASD-MIT/v7sample/v7sample00005.asd",
                          "asd-pyASD-MIT/v7sample_field_spectroscopy/44231B009-1-FW3R00000.asd",
                          "asd-pyASD-MIT/v7sample_field_spectroscopy/44231B174-1-FF300000.asd",
                          "asd-pyASD-MIT/v8sample/v8sample00002.asd"};

@@ -42,7 +42,9 @@ std::string lambert_fit(const std::string& name, const std::vector<double>& wave
   j["format"] = "roadbrdf-fit";
   j["version"] = 1;
   j["best"] = "lambert";
-  j["fits"] = {{{"model", "lambert"}, {"options", nlohmann::json::object()}, {"wavelengths", wavelengths},
+  j["fits"] = {{{"model", "lambert"},
+                {"options", nlohmann::json::object()},
+                {"wavelengths", wavelengths},
                 {"parameters", {{"albedo", rho}}}}};
   const std::string p = path(name);
   std::ofstream(p) << j.dump(1);
@@ -162,8 +164,8 @@ TEST(SingleBand, MixtureOfSingleBandFits) {
   nlohmann::json file;
   std::ifstream(mix) >> file;
   const auto& weights = file["methods"][0]["weights"];
-  const double expected = weights["a"].get<double>() * rho[0] + weights["b"].get<double>() * rho[1] +
-                          weights["c"].get<double>() * rho[2];
+  const double expected =
+      weights["a"].get<double>() * rho[0] + weights["b"].get<double>() * rho[1] + weights["c"].get<double>() * rho[2];
   const auto e = run_cli("eval " + mix + " --theta-i 30 --phi-i 0 --theta-r 20 --phi-r 180");
   ASSERT_EQ(e.status, 0) << e.output;
   EXPECT_NEAR(std::stod(e.output), expected / kPi, 1e-9);
@@ -205,8 +207,8 @@ TEST(SingleBand, CuretSample45Chain) {
     for (std::size_t b = 0; b < x.size(); ++b) {
       for (std::size_t c = 0; c < x.size(); ++c) {
         const double mu_i = x[a], mu_r = x[b], phi = 2.0 * kPi * x[c];
-        const roadbrdf::Geometry g = roadbrdf::geometry_from_degrees(
-            std::acos(mu_i) * 180.0 / kPi, 0.0, std::acos(mu_r) * 180.0 / kPi, phi * 180.0 / kPi);
+        const roadbrdf::Geometry g = roadbrdf::geometry_from_degrees(std::acos(mu_i) * 180.0 / kPi, 0.0,
+                                                                     std::acos(mu_r) * 180.0 / kPi, phi * 180.0 / kPi);
         // dw = d(mu) d(phi): the integral over phi_i gives 2 pi, over phi_r the rule's 2 pi.
         sum += w[a] * w[b] * w[c] * 2.0 * kPi * model->evaluate(p.data(), g) * mu_i * mu_r * 2.0 * kPi;
       }

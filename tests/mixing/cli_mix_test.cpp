@@ -1,16 +1,16 @@
 // The `roadbrdf mix` command: formulation + fit files + measured mixture -> comparison table and
 // MIX.json, read back as a spectral model.
-#include "support/cli.h"
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "support/cli.h"
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -39,7 +39,9 @@ void write_lambert_fit(const fs::path& path, const std::vector<double>& albedo) 
   j["format"] = "roadbrdf-fit";
   j["version"] = 1;
   j["best"] = "lambert";
-  j["fits"] = {{{"model", "lambert"}, {"options", nlohmann::json::object()}, {"wavelengths", kWavelengths},
+  j["fits"] = {{{"model", "lambert"},
+                {"options", nlohmann::json::object()},
+                {"wavelengths", kWavelengths},
                 {"parameters", {{"albedo", albedo}}}}};
   std::ofstream(path) << j.dump(1);
 }
@@ -204,9 +206,19 @@ TEST_F(CliMix, ResidualFileRmseEqualsTheTable) {
   ASSERT_EQ(r.status, 0) << r.output;
   const auto rows = read_csv_rows(residuals);
   ASSERT_FALSE(rows.empty());
-  const std::vector<std::string> columns = {"method",    "fold",     "theta_i",  "phi_i",    "theta_r",
-                                            "phi_r",     "wavelength", "measured", "sigma",  "predicted",
-                                            "residual", "relative_residual", "normalized_residual"};
+  const std::vector<std::string> columns = {"method",
+                                            "fold",
+                                            "theta_i",
+                                            "phi_i",
+                                            "theta_r",
+                                            "phi_r",
+                                            "wavelength",
+                                            "measured",
+                                            "sigma",
+                                            "predicted",
+                                            "residual",
+                                            "relative_residual",
+                                            "normalized_residual"};
   ASSERT_EQ(rows[0], columns);
   std::map<std::string, double> sse, chi2;
   std::map<std::string, int> count;
@@ -251,12 +263,12 @@ TEST_F(CliMix, ResidualFileRmseEqualsTheTable) {
                            " --method areal --folds 3 --residuals " + residuals.string() + " -o " + out.string());
   ASSERT_EQ(plain.status, 0) << plain.output;
   const auto plain_rows = read_csv_rows(residuals);
-  EXPECT_EQ(plain_rows[0], (std::vector<std::string>{"method", "fold", "theta_i", "phi_i", "theta_r", "phi_r",
-                                                     "wavelength", "measured", "predicted", "residual",
-                                                     "relative_residual"}));
+  EXPECT_EQ(plain_rows[0],
+            (std::vector<std::string>{"method", "fold", "theta_i", "phi_i", "theta_r", "phi_r", "wavelength",
+                                      "measured", "predicted", "residual", "relative_residual"}));
   EXPECT_EQ(plain_rows.size(), 1u + 27 * 4);
-  const Result no_data = run("mix " + (dir_ / "F.json").string() + " --residuals " + residuals.string() + " -o " +
-                             out.string());
+  const Result no_data =
+      run("mix " + (dir_ / "F.json").string() + " --residuals " + residuals.string() + " -o " + out.string());
   EXPECT_EQ(no_data.status, 2) << no_data.output;
   EXPECT_NE(no_data.output.find("--residuals: needs data"), std::string::npos) << no_data.output;
 }
@@ -295,7 +307,8 @@ TEST_F(CliMix, NoSigmaSwitchTurnsWeightingOff) {
     std::ifstream in(out);
     const nlohmann::json j = nlohmann::json::parse(in);
     const auto& m = j.at("methods").at(0);
-    return std::make_pair(m.at("weights").at("gravel").get<double>(), m.at("settings").at("sigma_weighted").get<double>());
+    return std::make_pair(m.at("weights").at("gravel").get<double>(),
+                          m.at("settings").at("sigma_weighted").get<double>());
   };
   const auto weighted = fitted_weights("");
   const auto plain = fitted_weights("--no-sigma");

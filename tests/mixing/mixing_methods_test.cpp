@@ -155,8 +155,8 @@ TEST(ArealMixing, AlbedoIsTheSameMixtureOfComponentAlbedos) {
     const double mixed = midpoint_white_sky_albedo([&](const Geometry& g) { return value_at(*r.model, g, w); });
     double expected = 0.0;
     for (std::size_t k = 0; k < 3; ++k) {
-      expected += r.weights[k] *
-                  midpoint_white_sky_albedo([&](const Geometry& g) { return value_at(*c.inputs.end_members[k].model, g, w); });
+      expected += r.weights[k] * midpoint_white_sky_albedo(
+                                     [&](const Geometry& g) { return value_at(*c.inputs.end_members[k].model, g, w); });
     }
     EXPECT_NEAR(mixed, expected, 1e-12 * std::max(1.0, expected)) << w;
     // The library's quadrature agrees with the independent midpoint rule.
@@ -199,8 +199,7 @@ TEST(Identities, MixingIdenticalComponentsChangesNothing) {
     const MixResult r = mix(in, method, s, &data);
     for (const Geometry& g : test_geometries()) {
       for (double w : {400.0, 650.0}) {
-        EXPECT_NEAR(value_at(*r.model, g, w), value_at(m, g, w), 1e-6 * value_at(m, g, w) + 1e-9)
-            << to_string(method);
+        EXPECT_NEAR(value_at(*r.model, g, w), value_at(m, g, w), 1e-6 * value_at(m, g, w) + 1e-9) << to_string(method);
       }
     }
   }
@@ -252,17 +251,18 @@ TEST(HapkeMixing, InversionRecoversTheSingleScatteringAlbedo) {
   EXPECT_THROW(invert_imsa_white_sky_albedo(-0.1), InputError);
   // The quadrature of the IMSA BRDF agrees with the independent midpoint rule.
   for (double w : {0.2, 0.6, 0.95}) {
-    EXPECT_NEAR(imsa_white_sky_albedo(w), midpoint_white_sky_albedo([&](const Geometry& g) { return imsa(w, g); }, 96, 8),
-                2e-3);
+    EXPECT_NEAR(imsa_white_sky_albedo(w),
+                midpoint_white_sky_albedo([&](const Geometry& g) { return imsa(w, g); }, 96, 8), 2e-3);
   }
 }
 
 TEST(HapkeMixing, MixtureOfImsaComponentsIsImsaOfTheMixedAlbedo) {
   const double w_binder = 0.08, w_fines = 0.75, w_coarse = 0.5;
-  const MixInputs in = load_mix_inputs(
-      three_component_formulation("b", "f", "c", "m"),
-      memory_loader({{"b", imsa_spectral(w_binder, 0.0)}, {"f", imsa_spectral(w_fines, 0.0)},
-                     {"c", imsa_spectral(w_coarse, 0.0)}, {"m", imsa_spectral(0.3, 0.0)}}));
+  const MixInputs in = load_mix_inputs(three_component_formulation("b", "f", "c", "m"),
+                                       memory_loader({{"b", imsa_spectral(w_binder, 0.0)},
+                                                      {"f", imsa_spectral(w_fines, 0.0)},
+                                                      {"c", imsa_spectral(w_coarse, 0.0)},
+                                                      {"m", imsa_spectral(0.3, 0.0)}}));
   const MixResult r = mix(in, Method::kHapke, {});
   // Cross-section weights M/(rho D): binder film 0.01 mm, fines log-mean of (0.063, 2), coarse of (6, 10).
   const double c_b = 6.0 / (1.03 * 0.01);
@@ -351,7 +351,8 @@ TEST(ShadowedMixing, RecoversShadowingAndWeightsWithComponentMatrix) {
                                                          {"fines", *c.inputs.end_members[1].model},
                                                          {"coarse", *c.inputs.end_members[2].model}}));
   const auto& em = in.end_members;
-  const SpectralDataset data = shadowed_data({em[0].model.get(), em[1].model.get()}, *em[2].model, {0.15, 0.35}, 0.5, 0.3);
+  const SpectralDataset data =
+      shadowed_data({em[0].model.get(), em[1].model.get()}, *em[2].model, {0.15, 0.35}, 0.5, 0.3);
   const MixResult r = mix(in, Method::kShadowed, {}, &data);
   ASSERT_EQ(r.end_members, (std::vector<std::string>{"binder", "fines", "coarse"}));
   EXPECT_NEAR(r.settings.at("shadowing"), 0.3, 1e-5);

@@ -86,7 +86,8 @@ Eigen::Vector3d closed_form(const MixInputs& in, const SpectralDataset& d, std::
   std::size_t row = 0;
   for (std::size_t n = 0; n < d.geometry_count(); ++n) {
     for (std::size_t m = m0; m < m1; ++m, ++row) {
-      for (std::size_t k = 0; k < 3; ++k) A(row, k) = value_at(*in.end_members[k].model, d.geometries[n], d.wavelengths[m]);
+      for (std::size_t k = 0; k < 3; ++k)
+        A(row, k) = value_at(*in.end_members[k].model, d.geometries[n], d.wavelengths[m]);
       const bool missing = std::isnan(d.value(n, m));  // a measurement not made: no row
       y(row) = missing ? 0.0 : d.value(n, m);
       const double s = d.sigma[n * d.wavelength_count() + m];
@@ -169,7 +170,8 @@ TEST(SigmaWeighting, NonPositiveSigmaIsAnErrorWhenWeighting) {
     mix(in, Method::kFitted, {}, &d);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("geometry 2"), std::string::npos) << e.what();  // index 5 = geometry 2, 2nd wavelength
+    EXPECT_NE(std::string(e.what()).find("geometry 2"), std::string::npos)
+        << e.what();  // index 5 = geometry 2, 2nd wavelength
     EXPECT_NE(std::string(e.what()).find("500 nm"), std::string::npos) << e.what();
   }
   MixSettings off;

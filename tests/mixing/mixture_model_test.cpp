@@ -80,7 +80,7 @@ TEST(MixtureModel, SingleAnisotropicMemberKeepsItsAlbedo) {
                        std::vector<std::string>{"a"}, std::vector<bool>{false});
   EXPECT_FALSE(m.description().isotropic);
   const std::vector<double> own = {0.3, 0.05, 10.0, 200.0};  // rd, rs, nu, nv
-  std::vector<double> mixed = {1.0};                          // weight of "a", then its parameters
+  std::vector<double> mixed = {1.0};                         // weight of "a", then its parameters
   mixed.insert(mixed.end(), own.begin(), own.end());
   ASSERT_EQ(mixed.size(), m.parameter_count());
   EXPECT_FALSE(roadbrdf::albedo::is_isotropic(m, mixed.data(), 1));
@@ -115,9 +115,11 @@ TEST(MixFile, RoundTripOfEveryPredictionMethod) {
                                                       {"m", oren_nayar_spectral(0.12, 0.02, 0.2)}}));
   MixFileContent content;
   content.inputs = &in;
-  for (Method method : {Method::kAreal, Method::kMastic, Method::kHapke}) content.results.push_back(mix(in, method, {}));
+  for (Method method : {Method::kAreal, Method::kMastic, Method::kHapke})
+    content.results.push_back(mix(in, method, {}));
   const std::string path =
-      (std::filesystem::temp_directory_path() / ("roadbrdf_mix_roundtrip_" + std::to_string(::getpid()) + ".json")).string();
+      (std::filesystem::temp_directory_path() / ("roadbrdf_mix_roundtrip_" + std::to_string(::getpid()) + ".json"))
+          .string();
   write_mix_file(path, content);
   EXPECT_TRUE(is_mix_file(path));
   for (const MixResult& r : content.results) {

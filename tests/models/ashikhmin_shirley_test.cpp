@@ -28,8 +28,7 @@ double diffuse(double rd, double rs, double ci, double cr) {
 
 // Directional albedo int f cos(theta_r) d omega_r by composite Simpson in theta_r and the periodic
 // trapezoid rule in phi_r (independent of any quadrature in the library).
-double directional_albedo(const Model& m, const std::vector<double>& p, double theta_i_deg, int n_theta,
-                          int n_phi) {
+double directional_albedo(const Model& m, const std::vector<double>& p, double theta_i_deg, int n_theta, int n_phi) {
   const double h = (kPi / 2) / n_theta;  // n_theta even
   double sum = 0.0;
   for (int a = 0; a <= n_theta; ++a) {
@@ -63,8 +62,8 @@ TEST(AshikhminShirley, NormalIncidenceNormalView) {
   // F(1) = R_s: f_s = sqrt((nu+1)(nv+1))/(8 pi) R_s. Diffuse: (1 - (1 - 1/2)^5)^2 = (31/32)^2.
   const auto m = make();
   const auto p = params(0.3, 0.05, 20.0, 40.0);
-  const double expected = std::sqrt(21.0 * 41.0) / (8.0 * kPi) * 0.05 +
-                          28.0 * 0.3 / (23.0 * kPi) * 0.95 * (31.0 / 32.0) * (31.0 / 32.0);
+  const double expected =
+      std::sqrt(21.0 * 41.0) / (8.0 * kPi) * 0.05 + 28.0 * 0.3 / (23.0 * kPi) * 0.95 * (31.0 / 32.0) * (31.0 / 32.0);
   EXPECT_NEAR(m->evaluate(p.data(), geometry_from_degrees(0, 0, 0, 0)), expected, 1e-14);
 }
 

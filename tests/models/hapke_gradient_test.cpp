@@ -28,8 +28,8 @@ std::vector<Geometry> test_geometries() {
       for (double dphi : {0.0, 60.0, 180.0}) g.push_back(geometry_from_degrees(ti, 0.0, tr, dphi));
     }
   }
-  g.push_back(geometry_from_degrees(90.0, 0.0, 90.0, 0.0));  // both grazing, g = 0
-  g.push_back(geometry_from_degrees(0.0, 0.0, 0.0, 0.0));    // g = 0 at normal incidence
+  g.push_back(geometry_from_degrees(90.0, 0.0, 90.0, 0.0));    // both grazing, g = 0
+  g.push_back(geometry_from_degrees(0.0, 0.0, 0.0, 0.0));      // g = 0 at normal incidence
   g.push_back(geometry_from_degrees(90.0, 0.0, 90.0, 180.0));  // g -> pi
   return g;
 }
@@ -86,15 +86,15 @@ TEST_P(HapkeGradient, AgreesWithAutomaticDifferentiationAndFiniteDifferences) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    PhaseAndH, HapkeGradient,
-    ::testing::Values(Case{"hg", "exact", {0.62, 0.6, 0.08, -0.25}}, Case{"hg", "hapke2002", {0.3, 0.2, 0.5, 0.4}},
-                      Case{"hg", "hapke1981", {0.95, 0.9, 0.02, -0.6}},
-                      Case{"legendre", "exact", {0.8, 0.4, 0.1, 0.3, 0.2}},
-                      Case{"legendre", "hapke2002", {0.45, 0.1, 1.2, -0.5, 0.6}}),
-    [](const ::testing::TestParamInfo<Case>& info) {
-      return std::string(info.param.phase) + "_" + info.param.h_function;
-    });
+INSTANTIATE_TEST_SUITE_P(PhaseAndH, HapkeGradient,
+                         ::testing::Values(Case{"hg", "exact", {0.62, 0.6, 0.08, -0.25}},
+                                           Case{"hg", "hapke2002", {0.3, 0.2, 0.5, 0.4}},
+                                           Case{"hg", "hapke1981", {0.95, 0.9, 0.02, -0.6}},
+                                           Case{"legendre", "exact", {0.8, 0.4, 0.1, 0.3, 0.2}},
+                                           Case{"legendre", "hapke2002", {0.45, 0.1, 1.2, -0.5, 0.6}}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return std::string(info.param.phase) + "_" + info.param.h_function;
+                         });
 
 TEST(HapkeSharedTerms, DistinctCosines) {
   // Incidence 0, 10, 35, 60, 85, 90 deg and view 0, 10, 35, 70, 89.5, 90 deg: 8 distinct cosines for

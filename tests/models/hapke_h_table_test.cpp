@@ -25,7 +25,7 @@ namespace {
 
 std::vector<double> grid_x() {
   std::vector<double> x;
-  for (int i = 1; i <= 300; ++i) x.push_back((i - 0.3183) / 300.0);          // linear, not at nodes
+  for (int i = 1; i <= 300; ++i) x.push_back((i - 0.3183) / 300.0);                        // linear, not at nodes
   for (int i = 0; i <= 300; ++i) x.push_back(std::pow(10.0, -14.0 * i / 300.0 - 0.0123));  // log
   for (int k = 0; k <= hapke::kHTableOctaves; ++k) {  // both sides of each octave boundary
     const double b = std::ldexp(1.0, -k);
@@ -41,7 +41,7 @@ std::vector<double> grid_w() {
   std::vector<double> w;
   for (int i = 0; i <= 120; ++i) w.push_back((i + 0.2718 * (i % 2)) / 121.0);
   for (int k = 1; k <= 64; ++k) w.push_back(1.0 - std::pow(10.0, -0.25 * k));  // w -> 1
-  for (int j = 0; j <= hapke::kHTableGammaPanels; ++j) {  // gamma panel boundaries
+  for (int j = 0; j <= hapke::kHTableGammaPanels; ++j) {                       // gamma panel boundaries
     const double gamma = double(j) / hapke::kHTableGammaPanels;
     w.push_back(1.0 - gamma * gamma);
     w.push_back(1.0 - sqr(std::nextafter(gamma, 2.0)));
@@ -86,8 +86,7 @@ TEST(HapkeHTable, DerivativeMatchesTheQuadratureAndFiniteDifferences) {
       // dH/dw = (dH/dgamma) / (-2 gamma) grows like 1/sqrt(1 - w), and so does the absolute error of
       // the interpolant's derivative (~1e-13 in dH/dgamma).
       const double gamma = std::sqrt(1.0 - w);
-      EXPECT_NEAR(table.v[1], direct.v[1], 1e-9 * std::fabs(direct.v[1]) + 1e-12 / gamma)
-          << "x=" << x << " w=" << w;
+      EXPECT_NEAR(table.v[1], direct.v[1], 1e-9 * std::fabs(direct.v[1]) + 1e-12 / gamma) << "x=" << x << " w=" << w;
       // Central differences: truncation ~ step^2, rounding ~ 1e-16 H / step.
       const double step = 1e-6 * gamma;
       const double fd = (hapke::h_tabulated(x, w + step) - hapke::h_tabulated(x, w - step)) / (2.0 * step);

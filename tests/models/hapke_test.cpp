@@ -14,9 +14,9 @@
 //   - the closed forms of B(g), the Henyey-Greenstein and Legendre phase functions, and their
 //     normalisation and mean cosine (1/4pi) int p dOmega = 1, <cos Theta> = xi;
 //   - central finite differences for the gradients.
-#include "support/reference_quadrature.h"
 #include "roadbrdf/models/hapke.h"
 #include "roadbrdf/models/hapke_h_table.h"
+#include "support/reference_quadrature.h"
 
 #include <gtest/gtest.h>
 
@@ -295,9 +295,9 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
 
 TEST(Hapke, OppositionTermClosedForm) {
   const double b0 = 0.8, h = 0.06;
-  EXPECT_DOUBLE_EQ(Hapke::opposition(b0, h, 0.0), b0);       // g = 0: full peak
-  EXPECT_NEAR(Hapke::opposition(b0, h, h), 0.5 * b0, 1e-15);  // tan(g/2) = h: half the peak
-  EXPECT_NEAR(Hapke::opposition(b0, h, 1.0), b0 / (1.0 + 1.0 / h), 1e-15);  // g = 90 deg
+  EXPECT_DOUBLE_EQ(Hapke::opposition(b0, h, 0.0), b0);                                // g = 0: full peak
+  EXPECT_NEAR(Hapke::opposition(b0, h, h), 0.5 * b0, 1e-15);                          // tan(g/2) = h: half the peak
+  EXPECT_NEAR(Hapke::opposition(b0, h, 1.0), b0 / (1.0 + 1.0 / h), 1e-15);            // g = 90 deg
   EXPECT_EQ(Hapke::opposition(b0, h, std::numeric_limits<double>::infinity()), 0.0);  // g = 180 deg
   // tan(g/2) from the directions, against the phase angle computed from the angles.
   const Geometry g = geometry_from_degrees(35.0, 20.0, 70.0, 145.0);
@@ -517,8 +517,8 @@ TEST(Hapke, ReciprocalForEveryOption) {
         std::vector<double> p = {u(rng), u(rng), 0.01 + u(rng), 1.8 * u(rng) - 0.9};
         if (phase == "legendre") p = {u(rng), u(rng), 0.01 + u(rng), 2 * u(rng) - 1, u(rng)};
         if (phase == "hg2") p = {u(rng), u(rng), 0.01 + u(rng), 0.95 * u(rng), 2 * u(rng) - 1};
-        const Geometry g = geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)),
-                                                 2 * kPi * u(rng));
+        const Geometry g =
+            geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)), 2 * kPi * u(rng));
         const double a = model->evaluate(p.data(), g);
         const double b = model->evaluate(p.data(), g.swapped());
         EXPECT_NEAR(a, b, 1e-13 * std::fabs(a)) << phase << " " << hf;

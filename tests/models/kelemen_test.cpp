@@ -66,8 +66,7 @@ double directional_albedo(const Model& m, const double* p, double theta_i, doubl
         const double lh = dot(l, h);
         const Vec3 r = 2.0 * lh * h - l;
         if (lh <= 0 || r.z <= 0) return 0.0;
-        const Geometry g =
-            geometry_from_radians(theta_i, 0.0, std::acos(std::fmin(1.0, r.z)), std::atan2(r.y, r.x));
+        const Geometry g = geometry_from_radians(theta_i, 0.0, std::acos(std::fmin(1.0, r.z)), std::atan2(r.y, r.x));
         return m.evaluate(p, g) * r.z * 4.0 * lh;
       });
       return 2.0 * ring * std::sin(th);

@@ -30,7 +30,8 @@ TEST(Lafortune, ParameterNamesAndCounts) {
   const auto aniso2 = make_model("lafortune", {{"lobes", "2"}, {"isotropic", "no"}});
   names.clear();
   for (const auto& p : aniso2->description().parameters) names.push_back(p.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"kd", "rho1", "cx1", "cy1", "cz1", "n1", "rho2", "cx2", "cy2", "cz2", "n2"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"kd", "rho1", "cx1", "cy1", "cz1", "n1", "rho2", "cx2", "cy2", "cz2", "n2"}));
   const auto aniso4 = make_model("lafortune", {{"lobes", "4"}, {"isotropic", "no"}});
   EXPECT_EQ(aniso4->parameter_count(), static_cast<std::size_t>(Lafortune::kMaxParameters));
   EXPECT_EQ(make_model("lafortune", {{"lobes", "4"}})->parameter_count(), 17u);
@@ -136,8 +137,8 @@ TEST(Lafortune, ReciprocalNonNegativeFinite) {
 
 TEST(Lafortune, GradientMatchesFiniteDifferences) {
   const auto m = make_model("lafortune", {{"lobes", "4"}, {"isotropic", "no"}});
-  const std::vector<double> p = {0.2,  0.3, -1.0, -0.8, 1.0, 5.0,  0.2, 1.0, 1.2, 0.9, 12.0,
-                                 0.15, -0.5, -0.6, 0.8, 2.5, 0.05, 0.1, 0.2, 1.1, 1.5};
+  const std::vector<double> p = {0.2,  0.3,  -1.0, -0.8, 1.0, 5.0,  0.2, 1.0, 1.2, 0.9, 12.0,
+                                 0.15, -0.5, -0.6, 0.8,  2.5, 0.05, 0.1, 0.2, 1.1, 1.5};
   ASSERT_EQ(p.size(), m->parameter_count());
   for (const Geometry& g : {geometry_from_degrees(30, 0, 25, 170), geometry_from_degrees(10, 20, 15, 30),
                             geometry_from_degrees(0, 0, 0, 0), geometry_from_degrees(60, 0, 40, 100)}) {

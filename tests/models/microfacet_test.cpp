@@ -27,8 +27,8 @@ double simpson(const std::function<double(double)>& f, double a, double b, int n
 
 // 2 pi int_0^{pi/2} D(theta) cos(theta) sin(theta) dtheta: the projected-area normalisation.
 double cos_weighted_integral(const std::function<double(double)>& d_of_cos) {
-  return 2.0 * kPi * simpson([&](double t) { return d_of_cos(std::cos(t)) * std::cos(t) * std::sin(t); }, 0.0,
-                             kPi / 2, 40000);
+  return 2.0 * kPi *
+         simpson([&](double t) { return d_of_cos(std::cos(t)) * std::cos(t) * std::sin(t); }, 0.0, kPi / 2, 40000);
 }
 // 2 pi int D sin dtheta: the solid-angle normalisation.
 double solid_angle_integral(const std::function<double(double)>& d_of_cos) {
@@ -212,8 +212,8 @@ TEST(Microfacet, RoughnessDerivativesMatchFiniteDifferences) {
   }
   // GTR derivative in gamma through the series branch near gamma = 1 and in alpha near alpha = 1.
   for (double g : {1.0, 1.3, 2.0}) {
-    check([&](J gg) { return microfacet::gtr_d(c, J(0.4), gg); }, [&](double gg) { return microfacet::gtr_d(c, 0.4, gg); },
-          g, "gtr gamma");
+    check([&](J gg) { return microfacet::gtr_d(c, J(0.4), gg); },
+          [&](double gg) { return microfacet::gtr_d(c, 0.4, gg); }, g, "gtr gamma");
   }
   check([&](J a) { return microfacet::gtr_d(c, a, J(1.5)); }, [&](double a) { return microfacet::gtr_d(c, a, 1.5); },
         1.0, "gtr alpha at 1");

@@ -422,8 +422,8 @@ TEST_P(ModelProperties, BatchEqualsSingleEvaluation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllModels, ModelProperties, testing::ValuesIn(all_variants()), test_name);
-INSTANTIATE_TEST_SUITE_P(Declaring, NonNegativeModels, testing::ValuesIn(variants_where(&ModelDescription::non_negative)),
-                         test_name);
+INSTANTIATE_TEST_SUITE_P(Declaring, NonNegativeModels,
+                         testing::ValuesIn(variants_where(&ModelDescription::non_negative)), test_name);
 INSTANTIATE_TEST_SUITE_P(Declaring, EnergyConservingModels,
                          testing::ValuesIn(variants_where(&ModelDescription::energy_conserving)), test_name);
 

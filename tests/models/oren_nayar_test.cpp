@@ -54,8 +54,7 @@ TEST(OrenNayar, FullDirectTermEqualsQualitativeWhereC2C3Vanish) {
   const double rho = 0.5, sigma = 0.5;
   const double s2 = sigma * sigma;
   const double interreflection = 0.17 * rho * rho / kPi * s2 / (s2 + 0.13);  // beta = 0
-  EXPECT_NEAR(eval(*full, {rho, sigma}, 50, 0, 0, 0) - interreflection, eval(*qual, {rho, sigma}, 50, 0, 0, 0),
-              1e-14);
+  EXPECT_NEAR(eval(*full, {rho, sigma}, 50, 0, 0, 0) - interreflection, eval(*qual, {rho, sigma}, 50, 0, 0, 0), 1e-14);
 }
 
 TEST(OrenNayar, BackscatterExceedsForwardScatter) {

@@ -74,8 +74,8 @@ TEST(RetroPhong, ExactRetroAt80Degrees) {
 
 TEST(RetroPhong, ExactMirrorAt80Degrees) {
   // w_r = mirror(w_i): specular lobe 1, retro lobe w_i . w_r = cos 160 < 0 -> 0:
-  // f = k_d/pi + k3 exp(k4 (1 - cos 80)) (n+2)/(2 pi). Set 2 by hand: k_s = 5.58e-5 e^{7.22231} = 5.58e-5 x 1369.66 = 0.076427,
-  // x 26/(2 pi) = 0.316256, + 0.594/pi = 0.189076 -> 0.505332.
+  // f = k_d/pi + k3 exp(k4 (1 - cos 80)) (n+2)/(2 pi). Set 2 by hand: k_s = 5.58e-5 e^{7.22231} = 5.58e-5 x 1369.66 =
+  // 0.076427, x 26/(2 pi) = 0.316256, + 0.594/pi = 0.189076 -> 0.505332.
   const auto m = make();
   const double t = 80.0 * kDegree;
   for (const Marking& mk : kMarkings) {

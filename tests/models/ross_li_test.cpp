@@ -7,8 +7,8 @@
 //   - the published MODIS black-sky polynomial, within its known fit error, and the independent
 //     quadrature values of domain notes section 3;
 //   - closed forms at the nadir and at the hot spot, derived by hand from the kernel formulas.
-#include "support/reference_quadrature.h"
 #include "roadbrdf/models/ross_li.h"
+#include "support/reference_quadrature.h"
 
 #include <gtest/gtest.h>
 
@@ -44,7 +44,7 @@ KernelAlbedo black_sky(const Model& model, double theta_s, int n) {
     for (int j = 0; j < n; ++j) {
       const Geometry g = geometry_from_radians(theta_s, 0.0, theta_v, kPi * x[j]);
       const double weight = w[i] * mu_v * (kPi * w[j]) * 2.0;  // phi in [0, pi], doubled
-      a.vol += weight * model.evaluate(vol_only, g);             // = (1/pi) K_vol
+      a.vol += weight * model.evaluate(vol_only, g);           // = (1/pi) K_vol
       a.geo += weight * model.evaluate(geo_only, g);
     }
   }

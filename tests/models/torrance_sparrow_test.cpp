@@ -23,7 +23,8 @@ std::vector<OptionSet> all_valid_combos() {
   std::vector<OptionSet> out;
   for (std::string fresnel : {"exact-dielectric", "schlick", "exact-conductor", "schlick-conductor", "none"}) {
     for (std::string dist : {"ggx", "beckmann"}) {
-      out.push_back({{"profile", "smith"}, {"masking", "height-correlated"}, {"distribution", dist}, {"fresnel", fresnel}});
+      out.push_back(
+          {{"profile", "smith"}, {"masking", "height-correlated"}, {"distribution", dist}, {"fresnel", fresnel}});
       out.push_back({{"profile", "smith"}, {"masking", "uncorrelated"}, {"distribution", dist}, {"fresnel", fresnel}});
       out.push_back({{"profile", "v-cavity"}, {"distribution", dist}, {"fresnel", fresnel}});
     }
@@ -103,8 +104,8 @@ TEST(TorranceSparrow, VCavityClosedForm) {
   // Cook & Torrance 1982: G = min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(l.h)), Beckmann D (report 3.8).
   auto m = make_model("torrance-sparrow", {{"profile", "v-cavity"}, {"distribution", "beckmann"}, {"fresnel", "none"}});
   const double alpha = 0.4;
-  for (auto angles : std::vector<std::array<double, 4>>{{30, 0, 60, 160}, {70, 0, 80, 200}, {10, 0, 85, 90},
-                                                        {60, 0, 60, 0}}) {
+  for (auto angles :
+       std::vector<std::array<double, 4>>{{30, 0, 60, 160}, {70, 0, 80, 200}, {10, 0, 85, 90}, {60, 0, 60, 0}}) {
     const Geometry g = geometry_from_degrees(angles[0], angles[1], angles[2], angles[3]);
     const Vec3 h = normalize(g.wi + g.wr);
     const double nh = h.z, lh = dot(g.wi, h), vh = dot(g.wr, h);
@@ -119,12 +120,12 @@ TEST(TorranceSparrow, VCavityClosedForm) {
 
 TEST(TorranceSparrow, FiniteAndReciprocalEverywhere) {
   std::vector<Geometry> geometries = {
-      geometry_from_degrees(0, 0, 0, 0),        geometry_from_degrees(89.9, 0, 89.9, 180),
-      geometry_from_degrees(90, 0, 90, 180),    geometry_from_degrees(90, 0, 30, 180),
-      geometry_from_degrees(30, 0, 90, 180),    geometry_from_degrees(90, 0, 90, 0),
-      geometry_from_degrees(90, 0, 90, 90),     geometry_from_degrees(45, 0, 45, 180),
-      geometry_from_degrees(45, 10, 45, 10),    geometry_from_degrees(89.9, 0, 89.9, 0),
-      geometry_from_degrees(60, 0, 1, 33),      geometry_from_degrees(0, 0, 89.9, 0),
+      geometry_from_degrees(0, 0, 0, 0),     geometry_from_degrees(89.9, 0, 89.9, 180),
+      geometry_from_degrees(90, 0, 90, 180), geometry_from_degrees(90, 0, 30, 180),
+      geometry_from_degrees(30, 0, 90, 180), geometry_from_degrees(90, 0, 90, 0),
+      geometry_from_degrees(90, 0, 90, 90),  geometry_from_degrees(45, 0, 45, 180),
+      geometry_from_degrees(45, 10, 45, 10), geometry_from_degrees(89.9, 0, 89.9, 0),
+      geometry_from_degrees(60, 0, 1, 33),   geometry_from_degrees(0, 0, 89.9, 0),
   };
   for (const auto& o : all_valid_combos()) {
     auto m = make_model("torrance-sparrow", o);
@@ -155,24 +156,24 @@ double directional_albedo(const Model& m, const double* p, double theta_i, doubl
   const double t_split = std::fmin(kPi / 2, std::atan(10.0 * alpha));
   double total = 0.0;
   for (auto [t0, t1] : {std::pair{0.0, t_split}, std::pair{t_split, kPi / 2}}) {
-   if (t1 <= t0) continue;
-   double sum = 0.0;
-   for (int a = 0; a < nt; ++a) {
-    const double th = t0 + (a + 0.5) * (t1 - t0) / nt;
-    for (int b = 0; b < np; ++b) {
-      const double ph = (b + 0.5) * kPi / np;  // symmetric in phi: x 2
-      const Vec3 h = spherical_direction(th, ph);
-      const double lh = dot(l, h);
-      if (lh <= 0) continue;
-      const Vec3 r = 2.0 * lh * h - l;
-      if (r.z <= 0) continue;
-      const double tr = std::acos(std::fmin(1.0, r.z));
-      const double pr = std::atan2(r.y, r.x);
-      const Geometry g = geometry_from_radians(theta_i, 0.0, tr, pr);
-      sum += m.evaluate(p, g) * r.z * 4.0 * lh * std::sin(th);
+    if (t1 <= t0) continue;
+    double sum = 0.0;
+    for (int a = 0; a < nt; ++a) {
+      const double th = t0 + (a + 0.5) * (t1 - t0) / nt;
+      for (int b = 0; b < np; ++b) {
+        const double ph = (b + 0.5) * kPi / np;  // symmetric in phi: x 2
+        const Vec3 h = spherical_direction(th, ph);
+        const double lh = dot(l, h);
+        if (lh <= 0) continue;
+        const Vec3 r = 2.0 * lh * h - l;
+        if (r.z <= 0) continue;
+        const double tr = std::acos(std::fmin(1.0, r.z));
+        const double pr = std::atan2(r.y, r.x);
+        const Geometry g = geometry_from_radians(theta_i, 0.0, tr, pr);
+        sum += m.evaluate(p, g) * r.z * 4.0 * lh * std::sin(th);
+      }
     }
-   }
-   total += 2.0 * sum * ((t1 - t0) / nt) * (kPi / np);
+    total += 2.0 * sum * ((t1 - t0) / nt) * (kPi / np);
   }
   return total;
 }
@@ -214,13 +215,15 @@ TEST(TorranceSparrow, VCavityEnergyBounded) {
 }
 
 TEST(TorranceSparrow, GradientMatchesFiniteDifferences) {
-  const std::vector<Geometry> geometries = {geometry_from_degrees(30, 0, 50, 170), geometry_from_degrees(70, 0, 60, 120),
-                                            geometry_from_degrees(10, 0, 80, 20), geometry_from_degrees(89.9, 0, 40, 180)};
+  const std::vector<Geometry> geometries = {geometry_from_degrees(30, 0, 50, 170),
+                                            geometry_from_degrees(70, 0, 60, 120), geometry_from_degrees(10, 0, 80, 20),
+                                            geometry_from_degrees(89.9, 0, 40, 180)};
   for (const auto& o : all_valid_combos()) {
     auto m = make_model("torrance-sparrow", o);
     std::vector<double> p = m->description().default_parameters();
     p[1] = 0.35;
-    if (p.size() > 2 && o.count("fresnel") && (o.at("fresnel") == "exact-conductor" || o.at("fresnel") == "schlick-conductor")) {
+    if (p.size() > 2 && o.count("fresnel") &&
+        (o.at("fresnel") == "exact-conductor" || o.at("fresnel") == "schlick-conductor")) {
       p[2] = 0.8;
       p[3] = 3.0;
     }

@@ -3,8 +3,8 @@
 // illuminant A (CIE 15: S_A(l) = 100 (560/l)^5 (exp(c2/(2848*560e-9)) - 1) / (exp(c2/(2848 l)) - 1),
 // c2 = 1.435e-2 m K), the integral of V(lambda) over 360-830 nm (106.857 nm, CIE 1 nm table),
 // the CIE 1931 5 nm y-bar values at odd 5 nm wavelengths, and closed-form integrals of simple spectra.
-#include "support/scratch.h"
 #include "roadbrdf/spectra/cie.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 
@@ -44,9 +44,9 @@ TEST(Cie, VLambdaPeakIsOneAt555) {
 TEST(Cie, VLambdaBetweenTheTenNanometrePoints) {
   // CIE 1931 y-bar at the odd 5 nm wavelengths (CIE 15 5 nm table), which the bundled 10 nm table lacks:
   // Sprague interpolation reproduces them to 0.0015.
-  const double table[][2] = {{505, 0.40730}, {515, 0.60820}, {525, 0.79320}, {535, 0.91486}, {545, 0.98000},
-                             {565, 0.97860}, {575, 0.91540}, {585, 0.81630}, {595, 0.69490}, {605, 0.56680},
-                             {615, 0.44120}};
+  const double table[][2] = {{505, 0.40730}, {515, 0.60820}, {525, 0.79320}, {535, 0.91486},
+                             {545, 0.98000}, {565, 0.97860}, {575, 0.91540}, {585, 0.81630},
+                             {595, 0.69490}, {605, 0.56680}, {615, 0.44120}};
   for (const auto& row : table) EXPECT_NEAR(v_lambda().value(row[0]), row[1], 1.5e-3) << row[0];
 }
 

@@ -6,8 +6,8 @@
 //  - published S1 of the CIE standard tables (R1 0.25, R2 0.58, R3 1.11, R4 1.55, C1 0.24, C2 0.97) and
 //    the nominal Q0 of their classes (0.10, 0.07, 0.07, 0.08, 0.10, 0.07), van Bommel Table 12.2;
 //  - road-angle definitions (theta_r = 90 - alpha, dphi = 180 - beta).
-#include "support/scratch.h"
 #include <gtest/gtest.h>
+#include "support/scratch.h"
 
 #include <cmath>
 #include <cstdio>
@@ -145,9 +145,7 @@ const Standard kStandards[] = {
     {"c1-table.dat", 0.24, 0.10, "C1", ClassSystem::C}, {"c2-table.dat", 0.97, 0.07, "C2", ClassSystem::C},
 };
 
-RTable standard(const std::string& file) {
-  return read_rtable(data_file("third-party/rtables/" + file)).table;
-}
+RTable standard(const std::string& file) { return read_rtable(data_file("third-party/rtables/" + file)).table; }
 
 TEST(RTableStandard, PublishedS1ClassAndQ0) {
   for (const Standard& s : kStandards) {
@@ -447,9 +445,9 @@ TEST(RTableCli, ExportImportAndCompare) {
 
 TEST(RTableCli, FitFileWithAFlatSpectrumEqualsThePlainModel) {
   if (!std::filesystem::exists(roadbrdf::test::cli_program())) GTEST_SKIP() << "roadbrdf program not built";
-  const std::string fit = temp_file(
-      "flat_fit.json",
-      R"({"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{"model": "oren-nayar",
+  const std::string fit =
+      temp_file("flat_fit.json",
+                R"({"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{"model": "oren-nayar",
           "options": {}, "wavelengths": [360, 500, 600, 830],
           "parameters": {"albedo": [0.35, 0.35, 0.35, 0.35], "sigma": [0.45, 0.45, 0.45, 0.45]}}]})");
   const auto plain = nlohmann::json::parse(run("rtable oren-nayar -p albedo=0.35 -p sigma=0.45 --json"));

@@ -127,8 +127,7 @@ TEST(RTableRequest, CommandLineMapsFieldsToFlags) {
   EXPECT_NE(r.output.find("--band: excludes a single wavelength"), std::string::npos) << r.output;
   r = run_cli("rtable lambert -p albedo=0.3 --wavelength 550");
   EXPECT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("roadbrdf: warning: the model's parameters do not depend on wavelength"),
-            std::string::npos)
+  EXPECT_NE(r.output.find("roadbrdf: warning: the model's parameters do not depend on wavelength"), std::string::npos)
       << r.output;
 }
 

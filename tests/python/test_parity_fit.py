@@ -97,8 +97,19 @@ ERRORS = [
     (["--joint-solver", "dense-shur", "--shared", "auto"], dict(joint_solver="dense-shur", shared="auto"),
      "--joint-solver", "joint_solver"),
     (["--wavelengths", "510:700:40"], dict(wavelengths="510:700:40"), "--wavelengths", "wavelengths"),
-    (["--wavelengths", "515"], dict(wavelengths=[515]), "--wavelengths", "wavelengths"),
+    (["--wavelengths", "3000"], dict(wavelengths=[3000]), "--wavelengths", "wavelengths"),
 ]
+
+
+def test_an_unmeasured_wavelength_is_answered_by_the_nearest_band_in_both(cli, root, tmp_path):
+    out = tmp_path / "f.json"
+    r = cli("fit", root / DATA, "--model", "lambert", "--wavelengths", "515,600", "-o", out)
+    # 600 is halfway between 590 and 610: the shorter band answers.
+    assert "roadbrdf: note: 515 nm: nearest band 510 nm\nroadbrdf: note: 600 nm: nearest band 590 nm" in r.stderr
+    result = roadbrdf.fit(root / DATA, "lambert", wavelengths=[515, 600])
+    assert result.notes == ["515 nm: nearest band 510 nm", "600 nm: nearest band 590 nm"]
+    assert list(result.wavelengths) == [510, 590]
+    assert _without_timing(result.to_dict()) == _without_timing(json.loads(out.read_text()))
 
 
 @pytest.mark.parametrize("flags,kwargs,cli_field,py_field", ERRORS, ids=[e[3] for e in ERRORS])

@@ -42,8 +42,10 @@ class CaseFolder {
     std::vector<std::string> out;
     for (const auto& [name, content] : before_) {
       const auto it = now.find(name);
-      if (it == now.end()) out.push_back("- " + name);
-      else if (it->second != content) out.push_back("~ " + name);
+      if (it == now.end())
+        out.push_back("- " + name);
+      else if (it->second != content)
+        out.push_back("~ " + name);
     }
     for (const auto& [name, content] : now) {
       if (!before_.count(name)) out.push_back("+ " + name);

@@ -7,9 +7,9 @@
 
 namespace roadbrdf::test {
 
-std::string cli_program();     // the roadbrdf program built with the tests
-std::string source_dir();      // the source tree (docs/, examples/)
-std::string test_data_dir();   // tests/data
+std::string cli_program();           // the roadbrdf program built with the tests
+std::string source_dir();            // the source tree (docs/, examples/)
+std::string test_data_dir();         // tests/data
 std::string instrument_files_dir();  // the synthetic instrument files (cmake/SyntheticInstruments.cmake)
 std::string generated_corpus_dir();  // their fuzz seeds, one folder per parser (same module)
 std::string shared_real_data_dir();  // ../shared/real-data next to the source tree ("" when absent)

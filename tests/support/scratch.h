@@ -14,8 +14,7 @@ namespace roadbrdf::test {
 
 class ScratchDirectory {
  public:
-  ScratchDirectory()
-      : path_(std::filesystem::temp_directory_path() / ("roadbrdf-test-" + std::to_string(::getpid()))) {
+  ScratchDirectory() : path_(std::filesystem::temp_directory_path() / ("roadbrdf-test-" + std::to_string(::getpid()))) {
     std::filesystem::create_directories(path_);
   }
   ~ScratchDirectory() {

@@ -1,7 +1,7 @@
 // The roadbrdf program: surface and render sub-commands.
-#include "support/scratch.h"
-#include "support/cli.h"
 #include <gtest/gtest.h>
+#include "support/cli.h"
+#include "support/scratch.h"
 
 #include <array>
 #include <cstdio>
@@ -18,9 +18,7 @@ namespace {
 using Result = roadbrdf::test::CliResult;
 Result run(const std::string& arguments) { return roadbrdf::test::run_cli(arguments); }
 
-std::string temp_path(const std::string& name) {
-  return roadbrdf::test::scratch_path("cli_surface_" + name);
-}
+std::string temp_path(const std::string& name) { return roadbrdf::test::scratch_path("cli_surface_" + name); }
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path);
@@ -35,7 +33,8 @@ TEST(CliSurface, FlatLambertRendersItsAlbedoOverPi) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("MPD 0.000 mm"), std::string::npos) << r.output;
   write_text(grid, "theta_i,phi_i,theta_r,phi_r\n0,0,30,0\n60,0,60,180\n45,10,20,100\n");
-  r = run("render " + surface + " --grid " + grid + " --wavelengths 400:600:100 --samples 64 --acceptance 5 -o " + data);
+  r = run("render " + surface + " --grid " + grid + " --wavelengths 400:600:100 --samples 64 --acceptance 5 -o " +
+          data);
   ASSERT_EQ(r.status, 0) << r.output;
   const roadbrdf::SpectralDataset d = roadbrdf::read_dataset(data);
   ASSERT_EQ(d.geometry_count(), 3u);
@@ -63,7 +62,8 @@ TEST(CliSurface, FormulationSampleWithPreview) {
        "d_max_mm": 4, "fit": "gravel.fit.json"}
     ]})");
   const std::string surface = folder + "/sample.json", png = folder + "/sample.png";
-  const Result r = run("surface " + folder + "/mix.json --size 12mm --cell 0.1 --seed 4 --preview " + png + " -o " + surface);
+  const Result r =
+      run("surface " + folder + "/mix.json --size 12mm --cell 0.1 --seed 4 --preview " + png + " -o " + surface);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("Gravel 2/4"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("does not exist yet"), std::string::npos) << r.output;  // fits are needed only to render
@@ -135,7 +135,8 @@ TEST(CliSurface, RenderAlbedoOfAFlatLambertianSample) {
   while (std::getline(in, line)) {
     ++rows;
     double w, white, white_e, b0, b0_e, b45, b45_e;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &w, &white, &white_e, &b0, &b0_e, &b45, &b45_e), 7)
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &w, &white, &white_e, &b0, &b0_e, &b45, &b45_e),
+              7)
         << line;
     EXPECT_NEAR(white, 0.35, 1e-7);
     EXPECT_NEAR(b0, 0.35, 1e-7);
@@ -152,8 +153,10 @@ TEST(CliSurface, RenderAlbedoOfAFlatLambertianSample) {
 // `render --target-error`: every geometry of a rough sample reaches the target (recorded in the
 // dataset's metadata); --samples and --target-error exclude each other.
 TEST(CliSurface, RenderToATargetError) {
-  const std::string surface = temp_path("rough.json"), grid = temp_path("rough_grid.csv"), data = temp_path("rough.csv");
-  ASSERT_EQ(run("surface oren-nayar -p albedo=0.5 -p sigma=0.3 --gaussian-slopes 0.4 --cells 64 -o " + surface).status, 0);
+  const std::string surface = temp_path("rough.json"), grid = temp_path("rough_grid.csv"),
+                    data = temp_path("rough.csv");
+  ASSERT_EQ(run("surface oren-nayar -p albedo=0.5 -p sigma=0.3 --gaussian-slopes 0.4 --cells 64 -o " + surface).status,
+            0);
   write_text(grid, "theta_i,phi_i,theta_r,phi_r\n0,0,30,0\n60,0,60,180\n");
   Result r = run("render " + surface + " --grid " + grid + " --target-error 0.02 --acceptance 5 -o " + data);
   ASSERT_EQ(r.status, 0) << r.output;

@@ -1,7 +1,7 @@
 // Virtual samples: height field, texture statistics, SURFACE files, exact ray traversal, generator.
+#include <gtest/gtest.h>
 #include "support/materials.h"
 #include "support/scratch.h"
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
@@ -20,11 +20,11 @@ using roadbrdf::Vec3;
 
 namespace {
 
-rs::MaterialSpec lambert(double albedo, const std::string& name = "white") { return roadbrdf::test::lambert(albedo, name); }
-
-std::string temp_path(const std::string& name) {
-  return roadbrdf::test::scratch_path("surface_test_" + name);
+rs::MaterialSpec lambert(double albedo, const std::string& name = "white") {
+  return roadbrdf::test::lambert(albedo, name);
 }
+
+std::string temp_path(const std::string& name) { return roadbrdf::test::scratch_path("surface_test_" + name); }
 
 }  // namespace
 
@@ -38,7 +38,8 @@ TEST(HeightField, MpdOfACosineProfileByHand) {
   rs::HeightField f = rs::make_flat(lambert(0.5), n, 0.25);
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      f.heights[j * n + i] = A * std::cos(2 * kPi * (i - (n - 1) / 2.0) / n) + A * std::cos(2 * kPi * (j - (n - 1) / 2.0) / n);
+      f.heights[j * n + i] =
+          A * std::cos(2 * kPi * (i - (n - 1) / 2.0) / n) + A * std::cos(2 * kPi * (j - (n - 1) / 2.0) / n);
     }
   }
   const rs::TextureStatistics s = rs::texture_statistics(f);

@@ -3,10 +3,10 @@
 // the request within max(0.001, 1 / cells). Every expected value here is counted from the generated
 // material map (cells of material 0: each cell has the same projected area), never read from the
 // generator's report; unreachable requests are errors naming the reachable range.
-#include "support/materials.h"
-#include "support/cli.h"
-#include "support/scratch.h"
 #include <gtest/gtest.h>
+#include "support/cli.h"
+#include "support/materials.h"
+#include "support/scratch.h"
 
 #include <algorithm>
 #include <cmath>

@@ -40,9 +40,8 @@ TEST(OrenNayar, GaussianSlopeLambertianSurfaceMatchesTheModel) {
   rs::RenderSettings st;
   st.samples = 20000;
   st.acceptance_half_angle_deg = 0.0;
-  const double angles[][4] = {{0, 0, 0, 0},    {30, 0, 30, 0},   {60, 0, 60, 0},    {60, 0, 30, 0},
-                              {60, 0, 30, 90}, {60, 0, 30, 180}, {30, 0, 60, 180},  {0, 0, 60, 0},
-                              {45, 0, 45, 180}, {20, 0, 50, 120}};
+  const double angles[][4] = {{0, 0, 0, 0},     {30, 0, 30, 0},   {60, 0, 60, 0}, {60, 0, 30, 0},   {60, 0, 30, 90},
+                              {60, 0, 30, 180}, {30, 0, 60, 180}, {0, 0, 60, 0},  {45, 0, 45, 180}, {20, 0, 50, 120}};
   std::uint64_t stream = 0;
   for (const auto& a : angles) {
     const Geometry g = geometry_from_degrees(a[0], a[1], a[2], a[3]);

@@ -1,7 +1,7 @@
 // Grain packing of the virtual sample (packing.h, generate.h): exact overlap test, non-overlap of the
 // generated grains, achieved vs target volume fractions, class proportions, gradings -> textures.
-#include "support/materials.h"
 #include <gtest/gtest.h>
+#include "support/materials.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,7 +59,8 @@ double min_implicit_over_surface(const rs::Ellipsoid& p, const rs::Ellipsoid& q,
       const double ph = kPi * j / n;
       const double l[3] = {p.a * std::sin(th) * std::cos(ph), p.b * std::sin(th) * std::sin(ph), p.c * std::cos(th)};
       double w[3];
-      for (int r = 0; r < 3; ++r) w[r] = p.rotation[r * 3] * l[0] + p.rotation[r * 3 + 1] * l[1] + p.rotation[r * 3 + 2] * l[2];
+      for (int r = 0; r < 3; ++r)
+        w[r] = p.rotation[r * 3] * l[0] + p.rotation[r * 3 + 1] * l[1] + p.rotation[r * 3 + 2] * l[2];
       best = std::min(best, implicit(q, p.x + sx + w[0], p.y + sy + w[1], p.z + w[2]));
     }
   }

@@ -1,6 +1,6 @@
 // Virtual gonioreflectometer: flat samples, white furnace, reciprocity, standard error.
-#include "support/materials.h"
 #include <gtest/gtest.h>
+#include "support/materials.h"
 
 #include <cmath>
 
@@ -31,7 +31,8 @@ rs::RenderSettings settings(long samples, double acceptance, int threads = 2, st
 
 // Independent reference: the cone average (1/Omega) int_cone f dw of a model by Gauss-Legendre
 // quadrature in cos(alpha) (alpha = angle from the cone axis) and the midpoint rule in azimuth.
-double cone_average(const roadbrdf::Model& model, const std::vector<double>& p, const Geometry& g, double half_angle_deg) {
+double cone_average(const roadbrdf::Model& model, const std::vector<double>& p, const Geometry& g,
+                    double half_angle_deg) {
   static const double x[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
                               0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
   static const double w[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066578778373, 0.3626837833783620,
@@ -119,7 +120,8 @@ TEST(FlatSample, SpecularSpikeOfADeltaPartThroughTheCone) {
   const double half = 5.0, omega = 2 * kPi * (1 - std::cos(roadbrdf::deg_to_rad(half)));
   const double ci = std::cos(roadbrdf::deg_to_rad(30.0)), si = std::sin(roadbrdf::deg_to_rad(30.0));
   const double ct = std::sqrt(1 - si * si / (ior * ior));
-  const double rs_ = std::pow((ci - ior * ct) / (ci + ior * ct), 2), rp = std::pow((ior * ci - ct) / (ior * ci + ct), 2);
+  const double rs_ = std::pow((ci - ior * ct) / (ci + ior * ct), 2),
+               rp = std::pow((ior * ci - ct) / (ior * ci + ct), 2);
   const double R = 0.5 * (rs_ + rp);
   // theta_r = 30 (mirror: spike seen), 33 (mirror 3 deg off the axis: seen), 40 (outside the cone).
   const double cases[][2] = {{30.0, 1.0}, {33.0, 1.0}, {40.0, 0.0}};

@@ -40,8 +40,7 @@ TEST(SurfaceRequest, FormulationSampleFields) {
   EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.cell_mm = 0.25; })), "");
   EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.cell_mm = 0.25, r.size_mm = 60.1; })),
             "size_mm");
-  EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.cell_mm = 0.25, r.size_mm = 1.0; })),
-            "size_mm");
+  EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.cell_mm = 0.25, r.size_mm = 1.0; })), "size_mm");
   // 1000 mm / 0.1 mm = 1e4 cells per side, 1e8 cells: above the 4e7 limit.
   EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.size_mm = 1000.0; })), "size_mm");
   EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.matrix_level = 1.5; })), "matrix_level");
@@ -84,8 +83,7 @@ TEST(SurfaceRequest, CommandLineNamesItsFlags) {
       << r.output;
   r = run_cli("surface lambert -p albedo=0.3 --flat --cell 20 -o /nonexistent/x.json");
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("roadbrdf: error: --cell: must be in [0.005, 10] mm, got 20"), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find("roadbrdf: error: --cell: must be in [0.005, 10] mm, got 20"), std::string::npos) << r.output;
 }
 
 }  // namespace

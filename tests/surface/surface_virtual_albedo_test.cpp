@@ -1,8 +1,8 @@
 // Albedo of a virtual sample (surface/virtual_albedo.h) against the deterministic hemisphere
 // quadrature of albedo/hemisphere.h (an independent code path: adaptive Gauss-Kronrod x Sidi
 // trapezoid over the model, no Monte Carlo) and the white furnace.
-#include "support/materials.h"
 #include <gtest/gtest.h>
+#include "support/materials.h"
 
 #include <cmath>
 #include <utility>
@@ -56,7 +56,8 @@ TEST(VirtualAlbedo, FlatSampleMatchesTheHemisphereQuadrature) {
 // White furnace: a rough sample of a non-absorbing Lambertian material reflects everything, for a
 // collimated sun and for isotropic illumination (white-sky 1 within noise).
 TEST(VirtualAlbedo, WhiteFurnaceGivesOne) {
-  const rs::HeightField f = rs::make_gaussian_slope_surface(model_material("lambert", {{"albedo", 1.0}}), 0.5, 64, 0.1, 4, 256);
+  const rs::HeightField f =
+      rs::make_gaussian_slope_surface(model_material("lambert", {{"albedo", 1.0}}), 0.5, 64, 0.1, 4, 256);
   const rs::VirtualAlbedo v = rs::render_albedo(f, {45.0}, {550.0}, settings(20000), 6);
   EXPECT_NEAR(v.black_sky[0][0], 1.0, 4.0 * v.black_sky_error[0][0] + 1e-9);
   EXPECT_NEAR(v.white_sky[0], 1.0, 4.0 * v.white_sky_error[0] + 1e-9);

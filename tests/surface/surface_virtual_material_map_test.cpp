@@ -3,8 +3,8 @@
 // a grain while one of its nodes is on the grain is the grain's steep flank; labelled mastic, it gave
 // the mastic a large tilted area (26 % of the mastic cells of the virtual F1 at 0.2 mm cells), lit at
 // oblique geometries where the real mastic, lying in the pits, is shadowed (docs/virtual-study.md).
-#include "support/materials.h"
 #include <gtest/gtest.h>
+#include "support/materials.h"
 
 #include <algorithm>
 

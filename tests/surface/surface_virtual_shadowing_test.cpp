@@ -16,8 +16,8 @@
 // single-scattering BRDF of the sample is exactly
 //     f = (rho / pi) * (lit and seen width of the bottom) / (P h).
 // Projected fraction of the bottom: (P - a - 2) / P. Reference: this elementary geometry, not the code.
-#include "support/materials.h"
 #include <gtest/gtest.h>
+#include "support/materials.h"
 
 #include <algorithm>
 #include <cmath>
@@ -95,8 +95,7 @@ TEST(SurfaceVirtualShadowing, RecessedMaterialContributesItsLitAndSeenAreaNotIts
   int strongly_below_projected = 0;
   for (std::size_t k = 0; k < std::size(cases); ++k) {
     const Case& c = cases[k];
-    const roadbrdf::Geometry g =
-        roadbrdf::geometry_from_degrees(c.theta_i, 0.0, c.theta_r, c.forward ? 180.0 : 0.0);
+    const roadbrdf::Geometry g = roadbrdf::geometry_from_degrees(c.theta_i, 0.0, c.theta_r, c.forward ? 180.0 : 0.0);
     const rs::Estimate e = renderer.brdf(g, s, k);
     const double expected = kRho / kPi * lit_and_seen_width(c.theta_i, c.theta_r, c.forward) / period;
     // Binomial standard error of a mean of values rho/pi or 0 (p = expected fraction), floor for p = 0.

@@ -87,16 +87,16 @@ inline void check_finite(const std::vector<double>& values, const Model& model, 
 struct MuNode {
   double mu = 0.0;
   double theta = 0.0;
-  double wk = 0.0;           // Kronrod weight x half-length x mu
-  double wg = 0.0;           // Gauss weight x half-length x mu (0 for Kronrod-only nodes)
-  int n = 4;                 // trapezoid intervals over the azimuth range
-  std::vector<double> t;     // azimuth integral with n intervals, per set
-  std::vector<double> tc;    // with n/2 intervals
-  std::vector<double> err;   // wk |t - tc|: this node's azimuthal error contribution, per set
+  double wk = 0.0;          // Kronrod weight x half-length x mu
+  double wg = 0.0;          // Gauss weight x half-length x mu (0 for Kronrod-only nodes)
+  int n = 4;                // trapezoid intervals over the azimuth range
+  std::vector<double> t;    // azimuth integral with n intervals, per set
+  std::vector<double> tc;   // with n/2 intervals
+  std::vector<double> err;  // wk |t - tc|: this node's azimuthal error contribution, per set
 };
 
 struct Panel {
-  double a = 0.0, b = 1.0;   // mu range
+  double a = 0.0, b = 1.0;  // mu range
   MuNode nodes[15];
   std::vector<double> q, err_mu;  // per set: K15 value and |K15 - G7|
 };
@@ -125,9 +125,15 @@ class BlackSkyIntegrator {
     // plane of incidence, e2 = e3 x e1 (horizontal).
     const double ct = std::cos(theta_s), st = std::sin(theta_s);
     const double cp = std::cos(phi_s + kPi), sp = std::sin(phi_s + kPi);
-    e3_[0] = st * cp; e3_[1] = st * sp; e3_[2] = ct;
-    e1_[0] = -ct * cp; e1_[1] = -ct * sp; e1_[2] = st;
-    e2_[0] = -sp; e2_[1] = cp; e2_[2] = 0.0;
+    e3_[0] = st * cp;
+    e3_[1] = st * sp;
+    e3_[2] = ct;
+    e1_[0] = -ct * cp;
+    e1_[1] = -ct * sp;
+    e1_[2] = st;
+    e2_[0] = -sp;
+    e2_[1] = cp;
+    e2_[2] = 0.0;
   }
 
   // One quadrature point: outer coordinate x of `node` (mu, or the scaled polar angle s) and azimuth
@@ -325,8 +331,7 @@ class BlackSkyIntegrator {
         std::fill(total.begin(), total.end(), 0.0);
         for (const Panel& p : panels) add_panel(p, 1.0);
       }
-      const std::size_t worst =
-          static_cast<std::size_t>(std::max_element(total.begin(), total.end()) - total.begin());
+      const std::size_t worst = static_cast<std::size_t>(std::max_element(total.begin(), total.end()) - total.begin());
       if (total[worst] <= settings.tolerance) break;
       if (acc_.count() >= settings.max_geometries) {
         converged = false;

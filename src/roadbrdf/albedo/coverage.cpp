@@ -86,16 +86,18 @@ nlohmann::json albedo_coverage(const Model& model, const double* params, double 
   j["black_sky_outside_fraction"] = black;
   j["white_sky_outside_fraction"] = ws.fraction;
   j["negative_brdf_samples"] = negative + ws.negative_samples;
-  notes.push_back(fmt::format("coverage: fitted to {} geometries, theta_i {:g}-{:g} deg, theta_r {:g}-{:g} deg, {} "
-                              "azimuth planes; white-sky is {:.0f}% outside them (the model extrapolates)",
-                              coverage.geometries, coverage.theta_i_min_deg, coverage.theta_i_max_deg,
-                              coverage.theta_r_min_deg, coverage.theta_r_max_deg, coverage.azimuth_planes_deg.size(),
-                              100.0 * ws.fraction));
+  notes.push_back(
+      fmt::format("coverage: fitted to {} geometries, theta_i {:g}-{:g} deg, theta_r {:g}-{:g} deg, {} "
+                  "azimuth planes; white-sky is {:.0f}% outside them (the model extrapolates)",
+                  coverage.geometries, coverage.theta_i_min_deg, coverage.theta_i_max_deg, coverage.theta_r_min_deg,
+                  coverage.theta_r_max_deg, coverage.azimuth_planes_deg.size(), 100.0 * ws.fraction));
   if (!mostly.empty()) {
     std::string list;
     for (const auto& m : mostly) list += (list.empty() ? "" : ", ") + m;
-    notes.push_back("WARNING: mostly extrapolation (more than half of the integral lies outside the measured "
-                    "directions): " + list);
+    notes.push_back(
+        "WARNING: mostly extrapolation (more than half of the integral lies outside the measured "
+        "directions): " +
+        list);
   }
   if (negative + ws.negative_samples > 0) {
     notes.push_back(fmt::format("WARNING: non-physical: the BRDF is negative at {} of {} quadrature directions",
@@ -121,12 +123,15 @@ void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vec
   for (std::size_t w = 0; w < white_sky.size(); ++w) {
     if (white_sky[w] > worst) {
       worst = white_sky[w];
-      where = fmt::format("white-sky {:.4g}{}", worst, w < wavelengths.size() ? fmt::format(" at {:g} nm", wavelengths[w]) : "");
+      where = fmt::format("white-sky {:.4g}{}", worst,
+                          w < wavelengths.size() ? fmt::format(" at {:g} nm", wavelengths[w]) : "");
     }
   }
   if (!where.empty()) {
-    notes.push_back("WARNING: non-physical: an albedo above 1 (the model reflects more than it receives; e.g. a "
-                    "lobe amplitude too large): largest " + where);
+    notes.push_back(
+        "WARNING: non-physical: an albedo above 1 (the model reflects more than it receives; e.g. a "
+        "lobe amplitude too large): largest " +
+        where);
   }
 }
 

@@ -19,7 +19,7 @@
 namespace roadbrdf::albedo {
 
 struct OutsideFraction {
-  double fraction = 0.0;            // of the integral outside the coverage, in [0, 1]
+  double fraction = 0.0;             // of the integral outside the coverage, in [0, 1]
   std::size_t negative_samples = 0;  // grid points where the BRDF is negative
   std::size_t samples = 0;
 };

@@ -49,7 +49,6 @@ const KronrodRule& kronrod15() {
 
 using detail::BlackSkyIntegrator;
 
-
 bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) {
   // The model's own claim (ModelDescription::isotropic), at every parameter set.
   for (std::size_t s = 0; s < n_sets; ++s) {
@@ -61,8 +60,8 @@ bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) 
 // Sun zenith from which black_sky() cross-checks the (mu, dphi) rule with the mirror-polar rule.
 constexpr double kGrazingCheck = 70.0 * kDegree;
 
-SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s,
-                           double phi_s, const QuadratureSettings& settings) {
+SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s, double phi_s,
+                           const QuadratureSettings& settings) {
   const bool isotropic = is_isotropic(model, params, n_sets);
   // First the (mu, dphi) rule with a quarter of the budget; if a sharp lobe keeps it from converging,
   // the mirror-polar rule, and the result with the smaller error estimate.
@@ -104,8 +103,8 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
   return std::move(best);
 }
 
-SpectralIntegral black_sky_mirror_polar(const Model& model, const double* params, std::size_t n_sets,
-                                        double theta_s, double phi_s, const QuadratureSettings& settings) {
+SpectralIntegral black_sky_mirror_polar(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                        double phi_s, const QuadratureSettings& settings) {
   BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true);
   return integrator.run(settings);
 }
@@ -122,8 +121,8 @@ SpectralIntegral black_sky_fixed(const Model& model, const double* params, std::
   return integrator.run_fixed(std::max(1, mu_panels), phi_intervals);
 }
 
-SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params, std::size_t n_sets,
-                                        double theta_s, const QuadratureSettings& settings) {
+SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                        const QuadratureSettings& settings) {
   if (is_isotropic(model, params, n_sets)) return black_sky(model, params, n_sets, theta_s, 0.0, settings);
   // Periodic trapezoid in the sun azimuth, doubled until |T_N - T_N/2| + inner errors <= tolerance.
   QuadratureSettings inner = settings;

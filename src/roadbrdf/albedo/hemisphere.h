@@ -50,16 +50,16 @@
 namespace roadbrdf::albedo {
 
 struct QuadratureSettings {
-  double tolerance = 1e-5;                  // absolute, on every parameter set (wavelength)
-  std::size_t max_geometries = 400'000;     // safety stop per black-sky integral (each geometry covers all sets)
+  double tolerance = 1e-5;               // absolute, on every parameter set (wavelength)
+  std::size_t max_geometries = 400'000;  // safety stop per black-sky integral (each geometry covers all sets)
 };
 
 // One integral for n parameter sets (e.g. one per wavelength).
 struct SpectralIntegral {
-  std::vector<double> value;  // per parameter set
-  std::vector<double> error;  // error estimate per parameter set (absolute)
-  bool converged = true;      // false if max_geometries stopped the refinement first
-  std::size_t geometries = 0; // distinct BRDF geometries evaluated (each for all parameter sets)
+  std::vector<double> value;   // per parameter set
+  std::vector<double> error;   // error estimate per parameter set (absolute)
+  bool converged = true;       // false if max_geometries stopped the refinement first
+  std::size_t geometries = 0;  // distinct BRDF geometries evaluated (each for all parameter sets)
   double max_error() const;
 };
 
@@ -74,8 +74,8 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
 
 // Black-sky albedo averaged over the sun azimuth (1/2pi) int alpha_bs(theta_s, phi_s) dphi_s; equal to
 // black_sky() for isotropic models.
-SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params, std::size_t n_sets,
-                                        double theta_s, const QuadratureSettings& settings = {});
+SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                        const QuadratureSettings& settings = {});
 
 // White-sky albedo.
 SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
@@ -93,8 +93,8 @@ SpectralIntegral black_sky_fixed(const Model& model, const double* params, std::
 // same sin^4-transformed trapezoid as dphi. A specular lobe of width ~roughness becomes a smooth,
 // nearly psi-independent peak at s = 0. black_sky() falls back to this rule when the (mu, dphi) rule
 // does not converge within a quarter of max_geometries.
-SpectralIntegral black_sky_mirror_polar(const Model& model, const double* params, std::size_t n_sets,
-                                        double theta_s, double phi_s = 0.0, const QuadratureSettings& settings = {});
+SpectralIntegral black_sky_mirror_polar(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                        double phi_s = 0.0, const QuadratureSettings& settings = {});
 // Non-adaptive version: `s_panels` equal K15 panels inside each graded panel, `psi_intervals` per quarter.
 SpectralIntegral black_sky_mirror_polar_fixed(const Model& model, const double* params, std::size_t n_sets,
                                               double theta_s, double phi_s, int s_panels, int psi_intervals);

@@ -35,16 +35,18 @@ SolarSpectrum read_diffuse_table(const std::string& path) {
 bool luminous_possible(const std::vector<double>& wavelengths, const photometry::TabulatedSpectrum& illuminant,
                        std::vector<std::string>& notes) {
   if (wavelengths.size() < 2) {
-    notes.push_back(fmt::format("single-band fit ({:g} nm): the luminous (V(lambda)-weighted) values need a spectrum "
-                                "and are omitted",
-                                wavelengths.front()));
+    notes.push_back(
+        fmt::format("single-band fit ({:g} nm): the luminous (V(lambda)-weighted) values need a spectrum "
+                    "and are omitted",
+                    wavelengths.front()));
     return false;
   }
   const double coverage = photometry::luminous_coverage(wavelengths.front(), wavelengths.back(), illuminant);
   if (coverage < 0.99) {
-    notes.push_back(fmt::format("the fit's wavelengths ({:g}-{:g} nm) hold {:.1f}% of the luminous integral under {} "
-                                "(99% needed): the luminous values are omitted",
-                                wavelengths.front(), wavelengths.back(), 100.0 * coverage, illuminant.name()));
+    notes.push_back(
+        fmt::format("the fit's wavelengths ({:g}-{:g} nm) hold {:.1f}% of the luminous integral under {} "
+                    "(99% needed): the luminous values are omitted",
+                    wavelengths.front(), wavelengths.back(), 100.0 * coverage, illuminant.name()));
     return false;
   }
   return true;
@@ -97,8 +99,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   settings.tolerance = a.tolerance;
   std::vector<std::string> notes;
   if (!spectral) {
-    notes.push_back("non-spectral model (MODEL -p ...): values are for its constant parameters; the broadband "
-                    "values equal them");
+    notes.push_back(
+        "non-spectral model (MODEL -p ...): values are for its constant parameters; the broadband "
+        "values equal them");
   }
 
   // Black-sky per zenith, white-sky.
@@ -120,11 +123,13 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   progress.add();
   converged = converged && ws.converged;
   if (!isotropic) {
-    notes.push_back(a.azimuth_mean && !a.sun_azimuth_deg ? "anisotropic model: black-sky averaged over the sun azimuth"
-                                                     : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",
-                                                                   a.sun_azimuth_deg.value_or(0.0)));
+    notes.push_back(
+        a.azimuth_mean && !a.sun_azimuth_deg
+            ? "anisotropic model: black-sky averaged over the sun azimuth"
+            : fmt::format("anisotropic model: black-sky at sun azimuth {} deg", a.sun_azimuth_deg.value_or(0.0)));
   }
-  if (!converged) notes.push_back("WARNING: the quadrature stopped before meeting the tolerance; see the error estimates");
+  if (!converged)
+    notes.push_back("WARNING: the quadrature stopped before meeting the tolerance; see the error estimates");
 
   // Diffuse fraction and SPECTRL2 spectra per zenith.
   std::vector<std::vector<double>> diffuse;  // [zenith][set]
@@ -213,9 +218,10 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   } else if (wavelengths.size() < 2) {
     // A single band has no spectrum to weigh: its values are reported per wavelength only.
     broadband_formed = false;
-    notes.push_back(fmt::format("single-band fit ({:g} nm): the broadband (solar-weighted) values need at least two "
-                                "wavelengths and are omitted",
-                                wavelengths.front()));
+    notes.push_back(
+        fmt::format("single-band fit ({:g} nm): the broadband (solar-weighted) values need at least two "
+                    "wavelengths and are omitted",
+                    wavelengths.front()));
   } else {
     std::optional<SolarSpectrum> fixed;
     if (!a.spectrum.empty()) fixed = solar_spectrum_from_name(a.spectrum);
@@ -242,17 +248,18 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
       }
       if (!blue.empty()) {
         const auto u = fixed ? spectral_weighted_mean(wavelengths, blue[z], blue_err[z], e)
-                             : spectral_weighted_mean2(wavelengths, bs[z], bs_err[z], e_dir, ws.value,
-                                                               ws.error, e_dif);
+                             : spectral_weighted_mean2(wavelengths, bs[z], bs_err[z], e_dir, ws.value, ws.error, e_dif);
         bb_blue.push_back(u.value);
         bb_blue_err.push_back(u.error);
       }
     }
-    if (!fixed) notes.push_back("broadband white-sky is weighted by SPECTRL2's global spectrum at the first sun zenith");
+    if (!fixed)
+      notes.push_back("broadband white-sky is weighted by SPECTRL2's global spectrum at the first sun zenith");
     if (outside > 0.5) {
-      notes.push_back(fmt::format("WARNING: the fit's wavelengths ({:g}-{:g} nm) hold only {:.0f}% of the solar energy: "
-                                  "the broadband values weigh that part only",
-                                  wavelengths.front(), wavelengths.back(), 100.0 * (1.0 - outside)));
+      notes.push_back(
+          fmt::format("WARNING: the fit's wavelengths ({:g}-{:g} nm) hold only {:.0f}% of the solar energy: "
+                      "the broadband values weigh that part only",
+                      wavelengths.front(), wavelengths.back(), 100.0 * (1.0 - outside)));
     }
   }
 
@@ -334,8 +341,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                    {"black_sky", rows_with_nulls(u_bs)},
                    {"white_sky", with_nulls(propagate(g_ws, covariance, n_sets, n_params))},
                    {"blue_sky", rows_with_nulls(u_blue)}};
-    notes.push_back("standard uncertainties from the fit's parameter covariance, per wavelength (not propagated to "
-                    "the broadband values)");
+    notes.push_back(
+        "standard uncertainties from the fit's parameter covariance, per wavelength (not propagated to "
+        "the broadband values)");
   } else if (!covariance.empty()) {
     notes.push_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
   }
@@ -364,12 +372,14 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                 {"diffuse_fraction", "1, D = diffuse / global horizontal irradiance, [sun zenith][wavelength]"},
                 {"errors", "absolute error estimates of the same quantities"},
                 {"broadband", "solar-weighted values; null when they cannot be formed (one wavelength; see notes)"},
-                {"coverage", "the fit's measured directions (deg) and the fractions (1) of the black-sky [sun zenith] "
-                             "and white-sky integrals outside them; null when unknown"},
-                {"uncertainty", "standard uncertainties (1) of black_sky, white_sky and blue_sky from the fit's "
-                                "parameter covariance, same shapes; null when unknown (a model, a mixture, "
-                                "--wavelengths), null entries where the covariance is undefined; the table's "
-                                "last columns *_u"}};
+                {"coverage",
+                 "the fit's measured directions (deg) and the fractions (1) of the black-sky [sun zenith] "
+                 "and white-sky integrals outside them; null when unknown"},
+                {"uncertainty",
+                 "standard uncertainties (1) of black_sky, white_sky and blue_sky from the fit's "
+                 "parameter covariance, same shapes; null when unknown (a model, a mixture, "
+                 "--wavelengths), null entries where the covariance is undefined; the table's "
+                 "last columns *_u"}};
   j["sun_zenith_deg"] = zeniths;
   j["wavelengths"] = wavelengths;
   j["tolerance"] = a.tolerance;
@@ -385,13 +395,13 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     j["broadband"] = nullptr;
   } else {
     j["broadband"] = {{"weighting", weighting},
-                    {"black_sky", bb_bs},
-                    {"black_sky_error", bb_bs_err},
-                    {"white_sky", bb_ws},
-                    {"white_sky_error", bb_ws_err},
-                    {"blue_sky", bb_blue.empty() ? nlohmann::json(nullptr) : nlohmann::json(bb_blue)},
-                    {"blue_sky_error", bb_blue.empty() ? nlohmann::json(nullptr) : nlohmann::json(bb_blue_err)},
-                    {"solar_fraction_outside_range", outside}};
+                      {"black_sky", bb_bs},
+                      {"black_sky_error", bb_bs_err},
+                      {"white_sky", bb_ws},
+                      {"white_sky_error", bb_ws_err},
+                      {"blue_sky", bb_blue.empty() ? nlohmann::json(nullptr) : nlohmann::json(bb_blue)},
+                      {"blue_sky_error", bb_blue.empty() ? nlohmann::json(nullptr) : nlohmann::json(bb_blue_err)},
+                      {"solar_fraction_outside_range", outside}};
   }
   j["luminous"] = luminous;
   j["coverage"] = coverage;  // null: no coverage known (a model, a mixture, an older fit file)
@@ -444,40 +454,42 @@ std::string albedo_table(const nlohmann::json& j) {
   }
   // Standard uncertainties (JSON "uncertainty"), as the last columns; "nan" where undefined.
   const auto& uncertainty = j.contains("uncertainty") ? j.at("uncertainty") : nlohmann::json(nullptr);
-  auto u_text = [](const nlohmann::json& v) { return v.is_null() ? std::string("nan") : fmt::format("{:.2e}", v.get<double>()); };
+  auto u_text = [](const nlohmann::json& v) {
+    return v.is_null() ? std::string("nan") : fmt::format("{:.2e}", v.get<double>());
+  };
   std::ostringstream text;
-    text << fmt::format("# albedo of {} ({}); dimensionless reflectances, absolute error estimates (tolerance {:g})\n",
-                        model_name, spectral ? "fit file" : "constant parameters", tolerance);
-    for (const auto& n : j.at("notes").get<std::vector<std::string>>()) text << "# " << n << '\n';
-    text << (spectral ? "wavelength_nm" : "set") << ",white_sky,white_sky_error";
+  text << fmt::format("# albedo of {} ({}); dimensionless reflectances, absolute error estimates (tolerance {:g})\n",
+                      model_name, spectral ? "fit file" : "constant parameters", tolerance);
+  for (const auto& n : j.at("notes").get<std::vector<std::string>>()) text << "# " << n << '\n';
+  text << (spectral ? "wavelength_nm" : "set") << ",white_sky,white_sky_error";
+  for (double z : zeniths) {
+    text << fmt::format(",black_sky_{0:g}deg,black_sky_error_{0:g}deg", z);
+    if (!blue.empty()) text << fmt::format(",diffuse_fraction_{0:g}deg,blue_sky_{0:g}deg,blue_sky_error_{0:g}deg", z);
+  }
+  if (!uncertainty.is_null()) {
+    text << ",white_sky_u";
     for (double z : zeniths) {
-      text << fmt::format(",black_sky_{0:g}deg,black_sky_error_{0:g}deg", z);
-      if (!blue.empty()) text << fmt::format(",diffuse_fraction_{0:g}deg,blue_sky_{0:g}deg,blue_sky_error_{0:g}deg", z);
+      text << fmt::format(",black_sky_u_{:g}deg", z);
+      if (!blue.empty()) text << fmt::format(",blue_sky_u_{:g}deg", z);
+    }
+  }
+  text << '\n';
+  for (std::size_t s = 0; s < n_sets; ++s) {
+    text << (spectral ? fmt::format("{:g}", wavelengths[s]) : std::string("-"));
+    text << fmt::format(",{:.8f},{:.2e}", ws_value[s], ws_error[s]);
+    for (std::size_t z = 0; z < zeniths.size(); ++z) {
+      text << fmt::format(",{:.8f},{:.2e}", bs[z][s], bs_err[z][s]);
+      if (!blue.empty()) text << fmt::format(",{:.6f},{:.8f},{:.2e}", diffuse[z][s], blue[z][s], blue_err[z][s]);
     }
     if (!uncertainty.is_null()) {
-      text << ",white_sky_u";
-      for (double z : zeniths) {
-        text << fmt::format(",black_sky_u_{:g}deg", z);
-        if (!blue.empty()) text << fmt::format(",blue_sky_u_{:g}deg", z);
+      text << ',' << u_text(uncertainty.at("white_sky")[s]);
+      for (std::size_t z = 0; z < zeniths.size(); ++z) {
+        text << ',' << u_text(uncertainty.at("black_sky")[z][s]);
+        if (!blue.empty()) text << ',' << u_text(uncertainty.at("blue_sky")[z][s]);
       }
     }
     text << '\n';
-    for (std::size_t s = 0; s < n_sets; ++s) {
-      text << (spectral ? fmt::format("{:g}", wavelengths[s]) : std::string("-"));
-      text << fmt::format(",{:.8f},{:.2e}", ws_value[s], ws_error[s]);
-      for (std::size_t z = 0; z < zeniths.size(); ++z) {
-        text << fmt::format(",{:.8f},{:.2e}", bs[z][s], bs_err[z][s]);
-        if (!blue.empty()) text << fmt::format(",{:.6f},{:.8f},{:.2e}", diffuse[z][s], blue[z][s], blue_err[z][s]);
-      }
-      if (!uncertainty.is_null()) {
-        text << ',' << u_text(uncertainty.at("white_sky")[s]);
-        for (std::size_t z = 0; z < zeniths.size(); ++z) {
-          text << ',' << u_text(uncertainty.at("black_sky")[z][s]);
-          if (!blue.empty()) text << ',' << u_text(uncertainty.at("blue_sky")[z][s]);
-        }
-      }
-      text << '\n';
-    }
+  }
   if (with_broadband) {
     text << fmt::format("# broadband (weighting: {}; solar energy outside the model's wavelength range: {:.4f})\n",
                         weighting, outside);
@@ -488,11 +500,12 @@ std::string albedo_table(const nlohmann::json& j) {
       text << '\n';
     }
   }
-    if (!lum_bs.empty()) {
-      text << fmt::format("# luminous (V(lambda) x {}): white_sky {:.6f}", illuminant, lum_ws);
-      for (std::size_t z = 0; z < zeniths.size(); ++z) text << fmt::format("  black_sky_{:g}deg {:.6f}", zeniths[z], lum_bs[z]);
-      text << '\n';
-    }
+  if (!lum_bs.empty()) {
+    text << fmt::format("# luminous (V(lambda) x {}): white_sky {:.6f}", illuminant, lum_ws);
+    for (std::size_t z = 0; z < zeniths.size(); ++z)
+      text << fmt::format("  black_sky_{:g}deg {:.6f}", zeniths[z], lum_bs[z]);
+    text << '\n';
+  }
   return text.str();
 }
 

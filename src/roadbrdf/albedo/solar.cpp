@@ -5,15 +5,14 @@
 #include <cmath>
 #include <map>
 
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::albedo {
 
 namespace {
-
 
 // Reads a numeric table. Header rows (every cell text, none a number) may come before the data; the
 // last one gives the column names. A row with any number in it is data, so a typo such as "4OO,1"
@@ -37,23 +36,24 @@ Table read_table(const std::string& path, std::size_t min_columns, bool non_nega
       cells[0].text = cells[0].text.substr(kByteOrderMark.size());
     }
     first_row = false;
-    const bool any_number = std::any_of(cells.begin(), cells.end(), [](const CsvCell& c) { return is_number_text(c.text); });
+    const bool any_number =
+        std::any_of(cells.begin(), cells.end(), [](const CsvCell& c) { return is_number_text(c.text); });
     if (!data_started && !cells.empty() && !any_number) {
       table.names.clear();
       for (const auto& c : cells) table.names.emplace_back(c.text);
       continue;
     }
     if (cells.size() < min_columns) {
-      reader.fail(0, "expected at least " + std::to_string(min_columns) + " columns, found " +
-                         std::to_string(cells.size()));
+      reader.fail(
+          0, "expected at least " + std::to_string(min_columns) + " columns, found " + std::to_string(cells.size()));
     }
     if (!data_started) {
       data_started = true;
       table.columns.resize(cells.size());
     }
     if (cells.size() != table.columns.size()) {
-      reader.fail(0, "expected " + std::to_string(table.columns.size()) + " columns, found " +
-                         std::to_string(cells.size()));
+      reader.fail(
+          0, "expected " + std::to_string(table.columns.size()) + " columns, found " + std::to_string(cells.size()));
     }
     for (std::size_t k = 0; k < cells.size(); ++k) {
       const double v = reader.number(cells[k]);
@@ -127,9 +127,11 @@ Spectrl2Output spectrl2(const Spectrl2Input& in) {
   if (!(in.aod500 >= 0.0 && in.aod500 <= 10.0)) throw InputError("SPECTRL2: aod must be in [0, 10]");
   if (!(in.water_cm >= 0.0 && in.water_cm <= 100.0)) throw InputError("SPECTRL2: water must be in [0, 100] cm");
   if (!(in.ozone_atm_cm >= 0.0 && in.ozone_atm_cm <= 2.0)) throw InputError("SPECTRL2: ozone must be in [0, 2] atm-cm");
-  if (!(in.pressure_pa > 0.0 && in.pressure_pa <= 120000.0)) throw InputError("SPECTRL2: pressure must be in (0, 120000] Pa");
+  if (!(in.pressure_pa > 0.0 && in.pressure_pa <= 120000.0))
+    throw InputError("SPECTRL2: pressure must be in (0, 120000] Pa");
   if (!(in.asymmetry > 0.0 && in.asymmetry < 1.0)) throw InputError("SPECTRL2: asymmetry must be in (0, 1)");
-  if (!(in.ground_albedo >= 0.0 && in.ground_albedo <= 1.0)) throw InputError("SPECTRL2: ground albedo must be in [0, 1]");
+  if (!(in.ground_albedo >= 0.0 && in.ground_albedo <= 1.0))
+    throw InputError("SPECTRL2: ground albedo must be in [0, 1]");
   if (!(in.day_of_year >= 1 && in.day_of_year <= 366)) throw InputError("SPECTRL2: day must be in 1..366");
 
   // Extraterrestrial spectrum and absorption coefficients (Bird & Riordan table, in W m^-2 nm^-1).
@@ -163,17 +165,17 @@ Spectrl2Output spectrl2(const Spectrl2Input& in) {
     const double l = wl[i] / 1000.0;  // um
     const double et = h0[i] * d;
     const double omega = in.omega400 * std::exp(-in.omega_prime * std::pow(std::log(l / 0.4), 2));  // eq. 3-16
-    const double tau = in.aod500 * std::pow(l / 0.5, -in.alpha);                                      // eq. 2-7
+    const double tau = in.aod500 * std::pow(l / 0.5, -in.alpha);                                    // eq. 2-7
     const double rayleigh_depth = 1.0 / (std::pow(l, 4) * (115.6406 - 1.3366 / (l * l)));
-    const double tr = std::exp(-mp * rayleigh_depth);                                     // eq. 2-4
-    const double to = std::exp(-ao[i] * in.ozone_atm_cm * mo);                            // eq. 2-9
+    const double tr = std::exp(-mp * rayleigh_depth);           // eq. 2-4
+    const double to = std::exp(-ao[i] * in.ozone_atm_cm * mo);  // eq. 2-9
     const double aww = aw[i] * in.water_cm * m;
-    const double tw = std::exp(-0.2385 * aww / std::pow(1.0 + 20.07 * aww, 0.45));        // eq. 2-8
+    const double tw = std::exp(-0.2385 * aww / std::pow(1.0 + 20.07 * aww, 0.45));  // eq. 2-8
     const double aum = au[i] * mp;
-    const double tu = std::exp(-1.41 * aum / std::pow(1.0 + 118.3 * aum, 0.45));          // eq. 2-11
-    const double tas = std::exp(-omega * tau * m);                                        // eq. 3-9
-    const double taa = std::exp(-(1.0 - omega) * tau * m);                                // eq. 3-10
-    const double ta = std::exp(-tau * m);                                                 // eq. 2-6
+    const double tu = std::exp(-1.41 * aum / std::pow(1.0 + 118.3 * aum, 0.45));  // eq. 2-11
+    const double tas = std::exp(-omega * tau * m);                                // eq. 3-9
+    const double taa = std::exp(-(1.0 - omega) * tau * m);                        // eq. 3-10
+    const double ta = std::exp(-tau * m);                                         // eq. 2-6
     // Primed transmittances at air mass 1.8 (section 3.1; no pressure correction, as spectrl2_2.c).
     const double trp = std::exp(-1.8 * rayleigh_depth);
     const double aw18 = aw[i] * in.water_cm * 1.8;
@@ -183,15 +185,15 @@ Spectrl2Output spectrl2(const Spectrl2Input& in) {
     const double tasp = std::exp(-omega * tau * 1.8);
     const double taap = std::exp(-(1.0 - omega) * tau * 1.8);
 
-    const double direct = et * tr * ta * tw * to * tu;                                    // eq. 2-1
+    const double direct = et * tr * ta * tw * to * tu;  // eq. 2-1
     const double common = et * cz * to * tw * tu * taa;
-    const double cs = l <= 0.45 ? std::pow(l + 0.55, 1.8) : 1.0;                          // eq. 3-17
+    const double cs = l <= 0.45 ? std::pow(l + 0.55, 1.8) : 1.0;                                    // eq. 3-17
     const double rhoa = tup * twp * taap * (0.5 * (1.0 - trp) + (1.0 - fsp) * trp * (1.0 - tasp));  // eq. 3-8
-    const double ir = common * (1.0 - std::pow(tr, 0.95)) * 0.5;                          // eq. 3-5
-    const double ia = common * std::pow(tr, 1.5) * (1.0 - tas) * fs;                      // eq. 3-6
+    const double ir = common * (1.0 - std::pow(tr, 0.95)) * 0.5;                                    // eq. 3-5
+    const double ia = common * std::pow(tr, 1.5) * (1.0 - tas) * fs;                                // eq. 3-6
     const double rg = in.ground_albedo;
-    const double ig = (direct * cz + ir + ia) * rhoa * rg / (1.0 - rhoa * rg);            // eq. 3-7
-    const double diffuse = (ir + ia + ig) * cs;                                           // eq. 3-1 (Cs once)
+    const double ig = (direct * cz + ir + ia) * rhoa * rg / (1.0 - rhoa * rg);  // eq. 3-7
+    const double diffuse = (ir + ia + ig) * cs;                                 // eq. 3-1 (Cs once)
 
     out.wavelengths.push_back(wl[i]);
     out.extraterrestrial.push_back(et);
@@ -221,13 +223,20 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
     if (!parse_finite_double(text, v)) {
       throw InputError("--atmosphere spectrl2: " + name + " = '" + text + "' is not a number");
     }
-    if (name == "aod") in.aod500 = v;
-    else if (name == "water") in.water_cm = v;
-    else if (name == "ozone") in.ozone_atm_cm = v;
-    else if (name == "pressure") in.pressure_pa = v;
-    else if (name == "alpha") in.alpha = v;
-    else if (name == "asymmetry") in.asymmetry = v;
-    else if (name == "ground") in.ground_albedo = v;
+    if (name == "aod")
+      in.aod500 = v;
+    else if (name == "water")
+      in.water_cm = v;
+    else if (name == "ozone")
+      in.ozone_atm_cm = v;
+    else if (name == "pressure")
+      in.pressure_pa = v;
+    else if (name == "alpha")
+      in.alpha = v;
+    else if (name == "asymmetry")
+      in.asymmetry = v;
+    else if (name == "ground")
+      in.ground_albedo = v;
     else if (name == "day") {
       // Day of year: an integer, checked as a double (casting 1e10 to int is undefined; 81.9 is no day).
       if (!(v >= 1.0 && v <= 366.0) || v != std::floor(v)) {
@@ -263,8 +272,10 @@ namespace {
 
 std::vector<double> union_grid(double lo, double hi, const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> g{lo, hi};
-  for (double x : a) if (x > lo && x < hi) g.push_back(x);
-  for (double x : b) if (x > lo && x < hi) g.push_back(x);
+  for (double x : a)
+    if (x > lo && x < hi) g.push_back(x);
+  for (double x : b)
+    if (x > lo && x < hi) g.push_back(x);
   std::sort(g.begin(), g.end());
   g.erase(std::unique(g.begin(), g.end()), g.end());
   return g;
@@ -276,8 +287,9 @@ double range_integral(const SolarSpectrum& e, double lo, double hi) {
   const std::vector<double> g = union_grid(a, b, e.wavelengths, {});
   double sum = 0.0;
   for (std::size_t k = 1; k < g.size(); ++k) {
-    sum += 0.5 * (interpolate(e.wavelengths, e.irradiance, g[k], e.name) +
-                  interpolate(e.wavelengths, e.irradiance, g[k - 1], e.name)) *
+    sum += 0.5 *
+           (interpolate(e.wavelengths, e.irradiance, g[k], e.name) +
+            interpolate(e.wavelengths, e.irradiance, g[k - 1], e.name)) *
            (g[k] - g[k - 1]);
   }
   return sum;

@@ -38,26 +38,26 @@ double integrate_spectrum(const SolarSpectrum& e);
 // (1989) air mass, primed (air mass 1.8) transmittances without a pressure correction, and the
 // Spencer (1971) Earth-Sun distance factor. Horizontal surface.
 struct Spectrl2Input {
-  double zenith_deg = 30.0;          // apparent solar zenith [deg], < 90
-  double relative_airmass = -1.0;    // < 0: Kasten & Young (1989) from the zenith angle
-  double pressure_pa = 101325.0;     // surface pressure [Pa]
-  double water_cm = 1.42;            // precipitable water [cm]
-  double ozone_atm_cm = 0.344;       // ozone column [atm-cm]
-  double aod500 = 0.1;               // aerosol optical depth at 500 nm (base e)
-  double alpha = 1.14;               // Angstrom exponent (rural aerosol)
-  double asymmetry = 0.65;           // aerosol asymmetry factor
-  double omega400 = 0.945;           // single-scattering albedo at 400 nm
-  double omega_prime = 0.095;        // wavelength variation factor of the single-scattering albedo
-  double ground_albedo = 0.2;        // ground reflectance for the ground-sky multiple reflection
-  int day_of_year = 81;              // 1-366
+  double zenith_deg = 30.0;        // apparent solar zenith [deg], < 90
+  double relative_airmass = -1.0;  // < 0: Kasten & Young (1989) from the zenith angle
+  double pressure_pa = 101325.0;   // surface pressure [Pa]
+  double water_cm = 1.42;          // precipitable water [cm]
+  double ozone_atm_cm = 0.344;     // ozone column [atm-cm]
+  double aod500 = 0.1;             // aerosol optical depth at 500 nm (base e)
+  double alpha = 1.14;             // Angstrom exponent (rural aerosol)
+  double asymmetry = 0.65;         // aerosol asymmetry factor
+  double omega400 = 0.945;         // single-scattering albedo at 400 nm
+  double omega_prime = 0.095;      // wavelength variation factor of the single-scattering albedo
+  double ground_albedo = 0.2;      // ground reflectance for the ground-sky multiple reflection
+  int day_of_year = 81;            // 1-366
 };
 
 struct Spectrl2Output {
-  std::vector<double> wavelengths;    // nm (122 values, 300-4000 nm)
+  std::vector<double> wavelengths;       // nm (122 values, 300-4000 nm)
   std::vector<double> extraterrestrial;  // W m^-2 nm^-1, corrected for the Earth-Sun distance
-  std::vector<double> direct_normal;  // W m^-2 nm^-1
-  std::vector<double> diffuse;        // diffuse horizontal, W m^-2 nm^-1
-  std::vector<double> global;         // global horizontal = direct_normal cos Z + diffuse
+  std::vector<double> direct_normal;     // W m^-2 nm^-1
+  std::vector<double> diffuse;           // diffuse horizontal, W m^-2 nm^-1
+  std::vector<double> global;            // global horizontal = direct_normal cos Z + diffuse
   double cos_zenith = 1.0;
 };
 
@@ -76,8 +76,8 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec);
 double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x, const std::string& what);
 
 struct WeightedValue {
-  double value = 0.0;           // int_{lo}^{hi} E a dl / int_{lo}^{hi} E dl
-  double error = 0.0;           // same weighting of the per-wavelength error estimates
+  double value = 0.0;             // int_{lo}^{hi} E a dl / int_{lo}^{hi} E dl
+  double error = 0.0;             // same weighting of the per-wavelength error estimates
   double fraction_outside = 0.0;  // 1 - int_{lo}^{hi} E dl / int E dl (solar energy outside the BRDF's range)
 };
 

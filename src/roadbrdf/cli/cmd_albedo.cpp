@@ -1,5 +1,6 @@
 // roadbrdf albedo (FIT.json | MODEL -p ...) [--sun-zenith D|LIST|A:B:STEP] [--diffuse-fraction X|FILE |
-//   --atmosphere spectrl2[:aod=...,water=...,ozone=...,pressure=...]] [--spectrum astm-g173-global|astm-g173-direct|FILE]
+//   --atmosphere spectrl2[:aod=...,water=...,ozone=...,pressure=...]] [--spectrum
+//   astm-g173-global|astm-g173-direct|FILE]
 //   [--fit NAME] [--wavelengths LIST|A:B:STEP] [--illuminant A|D65] [--json] [-o FILE]
 // Black-sky, white-sky and blue-sky albedo per wavelength and solar-weighted (report eqs. 2.19-2.22).
 #include <fmt/core.h>
@@ -13,15 +14,15 @@
 #include <sstream>
 
 #include "roadbrdf/albedo/report.h"
-#include "roadbrdf/core/progress.h"
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/range.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/progress.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::cli {
@@ -48,7 +49,9 @@ struct AlbedoArgs {
 };
 
 void run(const AlbedoArgs& a) {
-  check_distinct_files({{"MODEL", a.model}, {"--diffuse-fraction", a.diffuse_fraction}, {"--spectrum", a.spectrum},
+  check_distinct_files({{"MODEL", a.model},
+                        {"--diffuse-fraction", a.diffuse_fraction},
+                        {"--spectrum", a.spectrum},
                         {"--illuminant", a.illuminant}},
                        {{"-o", a.output}});
   const SpectralModel sm = spectral_model_from_command_line(a.model, a.parameters, a.options, a.fit_model);
@@ -59,7 +62,8 @@ void run(const AlbedoArgs& a) {
   request.diffuse_fraction = a.diffuse_fraction;
   request.atmosphere = a.atmosphere;
   request.spectrum = a.spectrum;
-  if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
+  if (!a.wavelengths.empty())
+    request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
   ProgressBar bar("albedo: integrals", stderr, ProgressBar::terminal_enabled(a.quiet));
@@ -104,7 +108,8 @@ void register_albedo_command(CLI::App& app) {
                       "irradiance_W_m2_nm (default with --atmosphere: SPECTRL2 direct + diffuse)");
   command->add_option("--wavelengths", args.wavelengths,
                       "Wavelengths [nm] of a fit file: LIST or START:STOP:STEP (both ends included), increasing");
-  command->add_option("--illuminant", args.illuminant, "Also the luminous (V(lambda)-weighted) albedo: A, D65 or a file");
+  command->add_option("--illuminant", args.illuminant,
+                      "Also the luminous (V(lambda)-weighted) albedo: A, D65 or a file");
   command->add_option("--tolerance", args.tolerance, "Absolute quadrature tolerance per value (default 1e-5)");
   command->add_flag("--json", args.as_json, "JSON output");
   command->add_option("-o,--output", args.output, "Output file (default: standard output)");

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "roadbrdf/cli/commands.h"
-#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/instruments.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
@@ -31,8 +31,12 @@ struct CalibrateArgs {
 };
 
 void run(const CalibrateArgs& a) {
-  check_distinct_files({{"SAMPLE", a.sample}, {"--reference", a.reference}, {"--dark", a.dark},
-                        {"--panel-reflectance", a.panel}, {"--panel-brf", a.panel_brf}, {"--manifest", a.manifest}},
+  check_distinct_files({{"SAMPLE", a.sample},
+                        {"--reference", a.reference},
+                        {"--dark", a.dark},
+                        {"--panel-reflectance", a.panel},
+                        {"--panel-brf", a.panel_brf},
+                        {"--manifest", a.manifest}},
                        {{"-o", a.output}});
   if (!a.manifest.empty()) {
     if (!a.sample.empty() || !a.reference.empty() || !a.dark.empty()) {
@@ -64,8 +68,7 @@ void run(const CalibrateArgs& a) {
 void register_calibrate_command(CLI::App& app) {
   static CalibrateArgs args;
   auto* c = app.add_subcommand(
-      "calibrate",
-      "BRDF from sample and reference-panel radiances: f = (L_s - L_dark)/(L_ref - L_dark) x rho_ref/pi");
+      "calibrate", "BRDF from sample and reference-panel radiances: f = (L_s - L_dark)/(L_ref - L_dark) x rho_ref/pi");
   c->add_option("sample", args.sample, "Sample radiances, dataset CSV (any units; sigma_<nm> columns optional)");
   c->add_option("--reference", args.reference,
                 "Reference-panel radiances: same geometries as the sample, or a single row used for every geometry");

@@ -66,7 +66,8 @@ void register_check_command(CLI::App& app) {
   c->add_option("--snr-threshold", args.options.snr_threshold, "Signal-to-noise ratio below which a band is noisy");
   c->add_option("--noise-window", args.options.noise_window, "Wavelengths on each side pooled in the noise estimate");
   c->add_option("--neighbours", args.options.neighbours, "Angular neighbours compared with each geometry");
-  c->add_option("--outlier-threshold", args.options.outlier_threshold, "Robust score above which a geometry is an outlier");
+  c->add_option("--outlier-threshold", args.options.outlier_threshold,
+                "Robust score above which a geometry is an outlier");
   c->add_option("--outlier-min-ratio", args.options.outlier_min_ratio,
                 "Minimum ratio to the neighbours' median for an outlier");
   c->callback([] { run(args); });

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "roadbrdf/cli/commands.h"
-#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/instruments.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
@@ -49,9 +49,8 @@ void run(const ConvertArgs& a) {
       for (int s : curet_sample_numbers(a.input)) list += fmt::format("{}{}", list.empty() ? "" : " ", s);
       throw InputError("give --sample N for a CUReT file (samples present: " + list + ")");
     }
-    const std::string table = a.curet_table.empty()
-                                  ? (std::filesystem::path(a.input).parent_path() / "table.txt").string()
-                                  : a.curet_table;
+    const std::string table =
+        a.curet_table.empty() ? (std::filesystem::path(a.input).parent_path() / "table.txt").string() : a.curet_table;
     check_distinct_files({{"INPUT", a.input}, {"--curet-table", table}}, {{"-o", a.output}});
     CuretReadOptions o;
     if (a.wavelength) {
@@ -69,7 +68,8 @@ void run(const ConvertArgs& a) {
     o.average_duplicates = a.read.average_duplicates;
     d = read_alta(a.input, o);
   } else {
-    throw InputError("--from: unknown format '" + a.from + "' (auto, wide, long, curet, alta, asd, sed, sig, manifest)");
+    throw InputError("--from: unknown format '" + a.from +
+                     "' (auto, wide, long, curet, alta, asd, sed, sig, manifest)");
   }
   if (a.convention == "road") {
     d.convention = AngleConvention::kRoad;
@@ -85,9 +85,13 @@ void run(const ConvertArgs& a) {
 
 void register_convert_command(CLI::App& app) {
   static ConvertArgs args;
-  auto* c = app.add_subcommand("convert", "Convert a dataset between wide/long CSV, and from CUReT, ALTA, instrument (.asd, .sed, .sig) and manifest files");
+  auto* c = app.add_subcommand("convert",
+                               "Convert a dataset between wide/long CSV, and from CUReT, ALTA, instrument (.asd, .sed, "
+                               ".sig) and manifest files");
   c->add_option("input", args.input, "Input file (for CUReT: abrdf.dat)")->required();
-  c->add_option("--from", args.from, "Input format: auto (wide or long CSV, or an instrument file by its extension), wide, long, curet, alta, asd, sed, "
+  c->add_option("--from", args.from,
+                "Input format: auto (wide or long CSV, or an instrument file by its extension), wide, long, curet, "
+                "alta, asd, sed, "
                 "sig, manifest (a run of instrument files: docs/data.md)");
   c->add_option("--to", args.to, "Output format: wide (default) or long");
   c->add_option("--curet-table", args.curet_table, "CUReT geometry table (default: table.txt next to the input)");

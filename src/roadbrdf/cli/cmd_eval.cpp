@@ -9,8 +9,8 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/geometry_file.h"
 
@@ -81,9 +81,11 @@ void run(const EvalArgs& a) {
 
 void register_eval_command(CLI::App& app) {
   static EvalArgs args;
-  auto* command = app.add_subcommand("eval", "Evaluate a model's BRDF [sr^-1] at one geometry or at every row of a file");
-  command->add_option("model", args.model,
-                      "Model name (e.g. oren-nayar or lambert+torrance-sparrow, with -p), FIT.json or MIX.json")
+  auto* command =
+      app.add_subcommand("eval", "Evaluate a model's BRDF [sr^-1] at one geometry or at every row of a file");
+  command
+      ->add_option("model", args.model,
+                   "Model name (e.g. oren-nayar or lambert+torrance-sparrow, with -p), FIT.json or MIX.json")
       ->required();
   add_model_flags(command, args.parameters, args.options);
   add_fit_flag(command, args.fit_model);

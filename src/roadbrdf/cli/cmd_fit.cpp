@@ -3,22 +3,22 @@
 // ranking table and writes the fit file (fitting/fit_file.h), which every command accepts as a model.
 #include <fmt/core.h>
 
-#include <memory>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <set>
 
 #include "roadbrdf/cli/commands.h"
-#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/progress.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/fitting/fit_request.h"
-#include "roadbrdf/core/range.h"
-#include "roadbrdf/core/csv.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/models/registry.h"
 
@@ -42,6 +42,8 @@ struct FitArgs {
   int multistart = 1;
   unsigned seed = 1;
   std::string wavelengths;
+  std::string where;
+  std::vector<std::string> group_by;
   int threads = 1;
   int max_iterations = 200;
   bool no_covariance = false;
@@ -92,6 +94,8 @@ void run(const FitArgs& a) {
   request.bounds = parse_bounds(a.bounds);
   request.shared = split_commas(a.shared);
   if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths");
+  request.where = a.where;
+  request.group_by = split_commas(a.group_by);
   request.loss = a.loss;
   request.robust = a.robust;
   request.solid_angle_weights = a.solid_angle;
@@ -118,6 +122,7 @@ void run(const FitArgs& a) {
   });
   bar.reset();
   std::FILE* report = report_stream(a.output);
+  for (const auto& note : summary.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
   fmt::print(report, "{}", summary.table());
   for (const auto& w : summary.warnings(a.output)) fmt::print(stderr, "roadbrdf: warning: {}\n", w);
   write_fit_file(a.output, summary.fits);
@@ -125,11 +130,12 @@ void run(const FitArgs& a) {
     std::vector<const Model*> ptrs;
     for (const auto& m : summary.models) ptrs.push_back(m.get());
     AtomicFile out(a.residuals);
+    std::vector<std::string> notes;  // printed above
     const SpectralDataset fitted =
         request.wavelengths.empty()
             ? data
-            : subset_wavelengths(data, select_wavelengths(data.wavelengths, request.wavelengths));
-    write_residuals(out.stream(), fitted, ptrs, summary.fits);
+            : subset_wavelengths(data, select_wavelengths(data.wavelengths, request.wavelengths, &notes));
+    write_residuals(out.stream(), fitted, ptrs, summary.fits, request.where);
     out.commit();
   }
 }
@@ -152,7 +158,8 @@ void register_fit_command(CLI::App& app) {
                 "Parameters shared across wavelengths, comma-separated (joint spectral fit); 'auto' = the "
                 "parameters declared non-spectral")
       ->allow_extra_args(false);
-  c->add_option("--fix", args.fixed, "Hold a parameter NAME=VALUE at every wavelength (repeatable)")->allow_extra_args(false);
+  c->add_option("--fix", args.fixed, "Hold a parameter NAME=VALUE at every wavelength (repeatable)")
+      ->allow_extra_args(false);
   c->add_option("--start", args.start, "Starting value NAME=VALUE (repeatable); model defaults otherwise")
       ->allow_extra_args(false);
   c->add_option("--bound,--bounds", args.bounds,
@@ -174,6 +181,13 @@ void register_fit_command(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--seed", args.seed, "Seed of the multi-start points")->capture_default_str();
   c->add_option("--wavelengths", args.wavelengths, "Wavelengths to fit: START:STOP:STEP or a list, nm");
+  c->add_option("--where", args.where,
+                "Fit only the geometries where every comparison holds: COLUMN OP DEGREES joined by ',' or 'and', "
+                "e.g. 'theta_r<=70'; OP < <= > >= = !=; columns theta_i phi_i theta_r phi_r gamma alpha beta delta");
+  c->add_option("--group-by", args.group_by,
+                "Fit each group of geometries with equal angles separately, e.g. theta_i (one fit per incidence) "
+                "or theta_i,phi_i; the fit file holds every group (select one with --fit MODEL,theta_i=40)")
+      ->allow_extra_args(false);
   c->add_option("--threads", args.threads, "Threads (per-wavelength mode; the results do not depend on it)")
       ->capture_default_str();
   c->add_option("--joint-solver", args.joint_solver,
@@ -186,7 +200,8 @@ void register_fit_command(CLI::App& app) {
               "Start every wavelength from the given start (default: from the previous wavelength's solution)");
   c->add_flag("--no-amplitude-solve", args.no_amplitude_solve,
               "Do not solve the linear amplitudes (parameters flagged linear) before each start");
-  c->add_option("--residuals", args.residuals, "Write measured, fitted and residual values per geometry and wavelength (CSV)");
+  c->add_option("--residuals", args.residuals,
+                "Write measured, fitted and residual values per geometry and wavelength (CSV)");
   c->add_option("-o,--output", args.output, "Fit file to write (JSON)")->required();
   add_quiet_flag(c, args.quiet);
   c->callback([] { run(args); });

@@ -10,11 +10,11 @@
 #include <sstream>
 
 #include "roadbrdf/cli/commands.h"
-#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
-#include "roadbrdf/core/progress.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mix_file.h"
@@ -82,15 +82,18 @@ void run(const MixArgs& a) {
 void register_mix_command(CLI::App& app) {
   static MixArgs args;
   auto* command = app.add_subcommand(
-      "mix", "Predict the BRDF of a road formulation from its components' fits; compare mixing methods with measured data");
-  command->add_option("formulation", args.formulation, "Formulation file (JSON, see data/examples/formulations/README.md)")
+      "mix",
+      "Predict the BRDF of a road formulation from its components' fits; compare mixing methods with measured data");
+  command
+      ->add_option("formulation", args.formulation, "Formulation file (JSON, see data/examples/formulations/README.md)")
       ->required();
   command->add_option("--data", args.data, "Measured BRDF of the mixed sample (CSV): compare the methods on it");
   add_dataset_read_flags(command, args.read);
   command->add_option("--method", args.method, "areal | fitted | mastic | hapke | shadowed | all (default all)");
   command->add_option("--folds", args.folds, "Cross-validation folds over geometries (default 5)");
   command->add_option("--seed", args.seed, "Seed of the geometry shuffle for the folds (default 1)");
-  command->add_flag("--per-wavelength", args.per_wavelength, "fitted: one weight set per wavelength (default: one for all)");
+  command->add_flag("--per-wavelength", args.per_wavelength,
+                    "fitted: one weight set per wavelength (default: one for all)");
   command->add_flag("--sum-to-one", args.sum_to_one, "fitted, shadowed: constrain the weights to sum to one");
   command->add_option("--binder-coverage", args.binder_coverage,
                       "areal: fraction of the surface covered by binder, overriding the formulation");
@@ -103,7 +106,8 @@ void register_mix_command(CLI::App& app) {
                       "see docs/mixing.md)");
   command->add_option("--reference", args.reference,
                       "Fit file of the measured mixture: the albedo difference column compares with it");
-  command->add_option("-o,--output", args.output, "Output MIX.json (format: src/roadbrdf/mixing/mix_file.h)")->required();
+  command->add_option("-o,--output", args.output, "Output MIX.json (format: src/roadbrdf/mixing/mix_file.h)")
+      ->required();
   add_quiet_flag(command, args.quiet);
   command->callback([] { run(args); });
 }

@@ -19,10 +19,10 @@ void run(const std::vector<std::string>& arguments) {
 }  // namespace
 
 void register_plot_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "plot",
-      "Figures: plot spectral|hemisphere|plane|fit|albedo|rtable ... -o FILE.png|svg|pdf "
-      "(see `roadbrdf plot --help` / `roadbrdf plot KIND --help`)");
+  auto* command =
+      app.add_subcommand("plot",
+                         "Figures: plot spectral|hemisphere|plane|fit|albedo|rtable ... -o FILE.png|svg|pdf "
+                         "(see `roadbrdf plot --help` / `roadbrdf plot KIND --help`)");
   command->prefix_command();
   command->set_help_flag();  // --help goes to the Python module
   command->callback([command] {

@@ -4,8 +4,8 @@
 #include <iostream>
 
 #include "roadbrdf/cli/commands.h"
-#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/range.h"
@@ -67,7 +67,8 @@ void register_resample_command(CLI::App& app) {
   c->add_option("--wavelengths", args.wavelengths,
                 "Band edges START:STOP:STEP [nm]: bands [START, START+STEP], ... reported at their centres")
       ->required();
-  c->add_option("--drop", args.drop, "Leave out the bands overlapping FROM:TO [nm] (repeatable)")->allow_extra_args(false);
+  c->add_option("--drop", args.drop, "Leave out the bands overlapping FROM:TO [nm] (repeatable)")
+      ->allow_extra_args(false);
   c->add_flag("--drop-noisy", args.drop_noisy, "Leave out the bands overlapping the noisy bands found by `check`");
   c->add_option("--snr-threshold", args.snr_threshold, "Signal-to-noise threshold of --drop-noisy");
   c->add_option("--format", args.format, "Output format: wide (default) or long");

@@ -69,9 +69,9 @@ void run(const RTableArgs& a) {
   if (from_import == !a.model.empty()) {
     throw InputError("give either a model (or FIT.json) or --import FILE, not both and not neither");
   }
-  check_distinct_files({{"MODEL", a.model}, {"--import", a.import_file}, {"--compare", a.compare_file},
-                        {"--illuminant", a.illuminant}},
-                       {{"-o", a.output}});
+  check_distinct_files(
+      {{"MODEL", a.model}, {"--import", a.import_file}, {"--compare", a.compare_file}, {"--illuminant", a.illuminant}},
+      {{"-o", a.output}});
   const RTableRequest request = request_from(a);
   RTableReport report;
   nlohmann::json source;
@@ -139,9 +139,9 @@ void register_rtable_command(CLI::App& app) {
   add_fit_flag(command, args.fit_model);
   command->add_option("--import", args.import_file,
                       "Read an r-table file instead of computing one (.csv, .rtb, .dat Radiance; 0 = missing cell)");
-  command->add_option("--import-format", args.import_format, "Format of --import when the extension does not tell: csv|rtb|radiance");
-  command->add_option("--scale", args.scale,
-                      "Imported file values are r times this (default 1e4; e.g. 1 for plain r)");
+  command->add_option("--import-format", args.import_format,
+                      "Format of --import when the extension does not tell: csv|rtb|radiance");
+  command->add_option("--scale", args.scale, "Imported file values are r times this (default 1e4; e.g. 1 for plain r)");
   command->add_option("--alpha", args.alpha, "Observation angle above the road plane [deg] (default 1)");
   command->add_option("--illuminant", args.illuminant,
                       "Photometric weighting V(lambda) x S(lambda) of a spectral model: A (default), D65, or a "
@@ -153,10 +153,12 @@ void register_rtable_command(CLI::App& app) {
   command->add_option("-o,--output", args.output, "Write the table here (atomically); default: standard output");
   command->add_flag("--json", args.json,
                     "Print JSON: Q0, S1, S2, Qd, class, beta_deg, tan_gamma, r (plain r in sr^-1, null = missing)");
-  command->add_option("--compare", args.compare_file,
-                      "Compare with another r-table file (reference): max/mean relative difference, Q0 and S1 differences");
-  command->add_option("--q0-region", args.q0_region,
-                      "Q0 averaging region: standard (cells of the CIE standard tables, default) or table (all defined cells)");
+  command->add_option(
+      "--compare", args.compare_file,
+      "Compare with another r-table file (reference): max/mean relative difference, Q0 and S1 differences");
+  command->add_option(
+      "--q0-region", args.q0_region,
+      "Q0 averaging region: standard (cells of the CIE standard tables, default) or table (all defined cells)");
   command->add_option("--class-system", args.class_system, "Class reported as 'class': R (default), N or C");
   command->callback([] { run(args); });
 }

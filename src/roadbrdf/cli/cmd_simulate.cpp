@@ -79,13 +79,11 @@ void run(const SimulateArgs& a) {
 void register_simulate_command(CLI::App& app) {
   static SimulateArgs args;
   auto* c = app.add_subcommand(
-      "simulate",
-      "Virtual gonioreflectometer: sample a model or a fit on an instrument grid, with reproducible noise");
+      "simulate", "Virtual gonioreflectometer: sample a model or a fit on an instrument grid, with reproducible noise");
   c->add_option("model", args.model, "Model name (with -p/--option) or fit file FIT.json")->required();
   add_model_flags(c, args.parameters, args.options);
   add_fit_flag(c, args.fit_model);
-  c->add_option("--grid", args.grid,
-                "Geometry grid CSV: theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta [deg]")
+  c->add_option("--grid", args.grid, "Geometry grid CSV: theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta [deg]")
       ->required();
   c->add_option("--wavelengths", args.wavelengths,
                 "Wavelengths [nm]: START:STOP:STEP (both ends included), a list or a mix, increasing "

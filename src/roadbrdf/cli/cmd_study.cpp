@@ -18,10 +18,10 @@ void run_study(const std::vector<std::string>& arguments) {
 }  // namespace
 
 void register_study_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "study",
-      "Design study: STUDY.json -o RESULTS.csv [--scheduler tcp://HOST:PORT] [--workers N] "
-      "(see `roadbrdf study --help`, docs/studies.md)");
+  auto* command =
+      app.add_subcommand("study",
+                         "Design study: STUDY.json -o RESULTS.csv [--scheduler tcp://HOST:PORT] [--workers N] "
+                         "(see `roadbrdf study --help`, docs/studies.md)");
   command->prefix_command();
   command->set_help_flag();  // --help goes to the Python module
   command->callback([command] {

@@ -21,10 +21,10 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/core/range.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/progress.h"
+#include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -107,9 +107,10 @@ surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
 }
 
 void print_statistics(std::FILE* report, const surface::HeightField& f, const surface::TextureStatistics& s) {
-  fmt::print(report, "surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny, f.cell_size_mm,
-             f.size_x_mm(), f.size_y_mm());
-  fmt::print(report, "MPD {:.3f} mm (ISO 13473-1 style, baseline = sample period), ETD {:.3f} mm, rms height {:.3f} mm, "
+  fmt::print(report, "surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny,
+             f.cell_size_mm, f.size_x_mm(), f.size_y_mm());
+  fmt::print(report,
+             "MPD {:.3f} mm (ISO 13473-1 style, baseline = sample period), ETD {:.3f} mm, rms height {:.3f} mm, "
              "area ratio {:.3f}\n",
              s.mpd_mm, s.etd_mm, s.rms_height_mm, s.surface_area_ratio);
   fmt::print(report, "{:<40} {:>12} {:>12}\n", "material", "area frac.", "true area");
@@ -191,8 +192,8 @@ void run_surface(const SurfaceArgs& a) {
 struct RenderArgs {
   std::string surface;
   std::string grid;
-  std::string albedo;         // sun zenith angles [deg] for the black-sky albedo (instead of --grid)
-  int white_sky_nodes = 8;    // Gauss-Legendre nodes in cos(theta) for the white-sky albedo (0: none)
+  std::string albedo;       // sun zenith angles [deg] for the black-sky albedo (instead of --grid)
+  int white_sky_nodes = 8;  // Gauss-Legendre nodes in cos(theta) for the white-sky albedo (0: none)
   std::string wavelengths;
   std::optional<long> samples;
   std::optional<double> target_error;
@@ -223,8 +224,9 @@ void run_render(const RenderArgs& a) {
   check_distinct_files(inputs, {{"-o", a.output}});
   if (!a.albedo.empty()) return run_render_albedo(a, field);
   const GeometryTable grid = read_geometry_file(a.grid);
-  const std::vector<double> wavelengths =
-      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
+  const std::vector<double> wavelengths = a.wavelengths.empty()
+                                              ? surface::default_wavelengths(field)
+                                              : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   surface::RenderSettings s = render_settings(a);
   ProgressBar bar("render: blocks of paths", stderr, ProgressBar::terminal_enabled(a.quiet));
   s.progress = bar.callback();
@@ -241,10 +243,13 @@ void run_render(const RenderArgs& a) {
     worst.push_back(e.worst_relative_error());
   }
   std::sort(worst.begin(), worst.end());
-  auto quantile = [&](double q) { return worst[static_cast<std::size_t>(q * static_cast<double>(worst.size() - 1) + 0.5)]; };
+  auto quantile = [&](double q) {
+    return worst[static_cast<std::size_t>(q * static_cast<double>(worst.size() - 1) + 0.5)];
+  };
   fmt::print(report, "rendered {}: {} geometries x {} wavelengths, {} sampling, acceptance {} deg, {} paths in total\n",
              a.surface, data.geometry_count(), data.wavelength_count(), a.sampling, a.acceptance, total_paths);
-  fmt::print(report, "per-geometry worst relative standard error over wavelengths: median {:.3g}, 90th percentile {:.3g}, "
+  fmt::print(report,
+             "per-geometry worst relative standard error over wavelengths: median {:.3g}, 90th percentile {:.3g}, "
              "max {:.3g}\n",
              quantile(0.5), quantile(0.9), worst.back());
   if (a.target_error) {
@@ -261,7 +266,8 @@ void run_render(const RenderArgs& a) {
                  g + 1, rad_to_deg(gg.theta_i), rad_to_deg(gg.phi_i), rad_to_deg(gg.theta_r), rad_to_deg(gg.phi_r),
                  a.max_samples, estimates[g].worst_relative_error(), *a.target_error);
     }
-    if (missed > 0) fmt::print(stderr, "roadbrdf: warning: {} of {} geometries did not reach the target\n", missed, estimates.size());
+    if (missed > 0)
+      fmt::print(stderr, "roadbrdf: warning: {} of {} geometries did not reach the target\n", missed, estimates.size());
   }
   fmt::print(report, "wrote {}\n", a.output);
 }
@@ -287,8 +293,9 @@ surface::RenderSettings render_settings(const RenderArgs& a) {
 void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
   std::FILE* report = report_stream(a.output);
   const std::vector<double> zeniths = parse_range_list(a.albedo, "--albedo");
-  const std::vector<double> wavelengths =
-      a.wavelengths.empty() ? surface::default_wavelengths(field) : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
+  const std::vector<double> wavelengths = a.wavelengths.empty()
+                                              ? surface::default_wavelengths(field)
+                                              : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   surface::RenderSettings settings = render_settings(a);
   ProgressBar bar("render: albedo estimates", stderr, ProgressBar::terminal_enabled(a.quiet));
   settings.progress = bar.callback();
@@ -314,11 +321,13 @@ void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
   file.commit();
   std::size_t missed = 0;
   for (bool c : r.converged) missed += c ? 0 : 1;
-  fmt::print(report, "rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n", a.surface,
-             zeniths.size(), r.white_sky_nodes > 0 ? fmt::format(" + white-sky ({} nodes)", r.white_sky_nodes) : "",
-             wavelengths.size(), r.paths);
+  fmt::print(report, "rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n",
+             a.surface, zeniths.size(),
+             r.white_sky_nodes > 0 ? fmt::format(" + white-sky ({} nodes)", r.white_sky_nodes) : "", wavelengths.size(),
+             r.paths);
   if (missed > 0) {
-    fmt::print(stderr, "roadbrdf: warning: {} albedo estimates reached --max-samples before the target error\n", missed);
+    fmt::print(stderr, "roadbrdf: warning: {} albedo estimates reached --max-samples before the target error\n",
+               missed);
   }
   fmt::print(report, "wrote {}\n", a.output);
 }
@@ -388,7 +397,8 @@ void register_surface_command(CLI::App& app) {
   r->add_option("--max-bounces", rargs.max_bounces, "Limit the number of surface interactions (0 = unlimited)");
   r->add_option("--format", rargs.format, "Output CSV layout: wide | long (default wide)")
       ->check(CLI::IsMember({"wide", "long"}));
-  r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")->required();
+  r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")
+      ->required();
   add_quiet_flag(r, rargs.quiet);
   r->callback([] { run_render(rargs); });
 }

@@ -9,6 +9,7 @@ void register_models_command(CLI::App& app);
 void register_eval_command(CLI::App& app);
 void register_rtable_command(CLI::App& app);
 void register_fit_command(CLI::App& app);
+void register_params_command(CLI::App& app);
 void register_simulate_command(CLI::App& app);
 void register_check_command(CLI::App& app);
 void register_resample_command(CLI::App& app);

@@ -1,7 +1,7 @@
 #include "roadbrdf/cli/common.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -95,11 +95,18 @@ double parse_number(const std::string& text, const std::string& what) {
 std::string flag_for_field(const std::string& field) {
   if (field.empty() || field.front() == '-') return field;
   // Request fields whose flag is not the field name with dashes.
-  static const std::map<std::string, std::string> renamed = {
-      {"models", "--model"},      {"options", "--option"}, {"fixed", "--fix"},
-      {"bounds", "--bound"},      {"methods", "--method"}, {"use_sigma", "--no-sigma"},
-      {"fit", "--fit"},           {"acceptance_deg", "--acceptance"}, {"formulation", "FORMULATION"},
-      {"size_mm", "--size"},      {"cell_mm", "--cell"},   {"sigma_rad", "--gaussian-slopes"}};
+  static const std::map<std::string, std::string> renamed = {{"models", "--model"},
+                                                             {"options", "--option"},
+                                                             {"fixed", "--fix"},
+                                                             {"bounds", "--bound"},
+                                                             {"methods", "--method"},
+                                                             {"use_sigma", "--no-sigma"},
+                                                             {"fit", "--fit"},
+                                                             {"acceptance_deg", "--acceptance"},
+                                                             {"formulation", "FORMULATION"},
+                                                             {"size_mm", "--size"},
+                                                             {"cell_mm", "--cell"},
+                                                             {"sigma_rad", "--gaussian-slopes"}};
   const auto dot = field.find('.');
   const std::string head = field.substr(0, dot);
   std::string flag;
@@ -121,16 +128,18 @@ void add_fit_flag(CLI::App* command, std::string& fit) {
                       "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a "
                       "MIX.json (default: the best-ranked)");
   static std::string refused;
-  command->add_option("--fit-model", refused, "")
-      ->group("")
-      ->each([](const std::string&) { throw CLI::ValidationError("--fit-model", "renamed: use --fit NAME"); });
+  command->add_option("--fit-model", refused, "")->group("")->each([](const std::string&) {
+    throw CLI::ValidationError("--fit-model", "renamed: use --fit NAME");
+  });
 }
 
 void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format) {
   write_dataset(data, path.empty() ? std::string("-") : path, dataset_format_from_string(format));
   if (const std::size_t missing = missing_value_count(data); missing > 0) {
-    fmt::print(stderr, "roadbrdf: warning: {}: {} of {} BRDF values are missing (written as nan: not measured, never "
-               "filled in)\n", path.empty() ? std::string("-") : path, missing, data.brdf.size());
+    fmt::print(stderr,
+               "roadbrdf: warning: {}: {} of {} BRDF values are missing (written as nan: not measured, never "
+               "filled in)\n",
+               path.empty() ? std::string("-") : path, missing, data.brdf.size());
   }
 }
 

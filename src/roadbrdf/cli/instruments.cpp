@@ -20,8 +20,9 @@ void warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {
 // "theta_i=0,phi_i=0,theta_r=30,phi_r=180" (or the road angles) -> geometry and convention.
 Geometry parse_geometry(const std::string& text, AngleConvention& convention) {
   if (text.empty()) {
-    throw InputError("an instrument file has no geometry: give --geometry theta_i=D,phi_i=D,theta_r=D,phi_r=D (or "
-                     "gamma=D,alpha=D,beta=D,delta=D), or convert a manifest with --from manifest");
+    throw InputError(
+        "an instrument file has no geometry: give --geometry theta_i=D,phi_i=D,theta_r=D,phi_r=D (or "
+        "gamma=D,alpha=D,beta=D,delta=D), or convert a manifest with --from manifest");
   }
   std::vector<std::string> items;
   std::size_t start = 0;
@@ -69,11 +70,13 @@ bool is_instrument_input(const std::string& from, const std::string& input) {
   return from == "auto" && has_instrument_extension(input);
 }
 
-SpectralDataset convert_instrument_input(const std::string& from, const std::string& input, const InstrumentArgs& args) {
+SpectralDataset convert_instrument_input(const std::string& from, const std::string& input,
+                                         const InstrumentArgs& args) {
   const InstrumentQuantity quantity = instrument_quantity_from_string(args.quantity);
   const ManifestOptions options = manifest_options(args);
   if (from == "manifest") {
-    if (!args.geometry.empty()) throw InputError("--geometry is for a single instrument file: a manifest gives its own");
+    if (!args.geometry.empty())
+      throw InputError("--geometry is for a single instrument file: a manifest gives its own");
     return manifest_dataset(read_manifest(input), quantity, options);
   }
   AngleConvention convention = AngleConvention::kZenithAzimuth;

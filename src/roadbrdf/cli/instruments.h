@@ -11,7 +11,7 @@
 namespace roadbrdf::cli {
 
 struct InstrumentArgs {
-  std::string geometry;            // "theta_i=..,phi_i=..,theta_r=..,phi_r=.." or "gamma=..,alpha=..,beta=..,delta=.."
+  std::string geometry;  // "theta_i=..,phi_i=..,theta_r=..,phi_r=.." or "gamma=..,alpha=..,beta=..,delta=.."
   std::string quantity = "target";
   std::string overlap = "upper";
 };

@@ -5,10 +5,10 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <string>
 #include <string_view>
 #include <system_error>
-#include <exception>
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   roadbrdf::cli::register_eval_command(app);
   roadbrdf::cli::register_rtable_command(app);
   roadbrdf::cli::register_fit_command(app);
+  roadbrdf::cli::register_params_command(app);
   roadbrdf::cli::register_simulate_command(app);
   roadbrdf::cli::register_check_command(app);
   roadbrdf::cli::register_resample_command(app);
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
   try {
     roadbrdf::flush_standard_output();
     if (std::fclose(stdout) != 0) {
-      throw roadbrdf::FileError(roadbrdf::kStandardOutputName, 0, 0, std::string("close failed: ") + std::strerror(errno));
+      throw roadbrdf::FileError(roadbrdf::kStandardOutputName, 0, 0,
+                                std::string("close failed: ") + std::strerror(errno));
     }
   } catch (const roadbrdf::InputError& e) {
     fmt::print(stderr, "roadbrdf: error: {}\n", e.what());

@@ -11,7 +11,6 @@ namespace roadbrdf::cli {
 
 namespace {
 
-
 std::vector<std::string> command_names(CLI::App& app) {
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
@@ -65,8 +64,8 @@ std::string explain_parse_error(CLI::App& app, int argc, char** argv, const CLI:
       current = sub;
     }
   }
-  if (current == &app && app.get_subcommands().empty() && std::string_view(error.what()).find("subcommand") !=
-                                                               std::string_view::npos) {
+  if (current == &app && app.get_subcommands().empty() &&
+      std::string_view(error.what()).find("subcommand") != std::string_view::npos) {
     return "a command is required; see 'roadbrdf --help'";
   }
   std::string message = error.what();

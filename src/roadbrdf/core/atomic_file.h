@@ -48,7 +48,7 @@ class AtomicFile {
   std::string target_;     // file finally replaced (symbolic links followed)
   std::string temporary_;  // "" when written directly
   int fd_ = -1;
-  int slot_ = -1;          // registry slot of the temporary file (-1: none)
+  int slot_ = -1;  // registry slot of the temporary file (-1: none)
   std::unique_ptr<Buffer> buffer_;
   std::unique_ptr<std::ostream> own_stream_;
   std::ostream* out_ = nullptr;

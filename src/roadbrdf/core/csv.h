@@ -1,7 +1,8 @@
 // Minimal streaming CSV tokenizer that remembers where every cell came from, so that every
 // error names file, line and column. Lines starting with '#' are comments; blank lines are
 // skipped; a UTF-8 byte order mark is ignored. Cells are separated by ',' (or set_delimiter;
-// surrounding spaces trimmed); no quoting (not needed by any format roadbrdf reads). "-" reads standard input; read errors are errors (core/input_file.h).
+// surrounding spaces trimmed); no quoting (not needed by any format roadbrdf reads). "-" reads standard input; read
+// errors are errors (core/input_file.h).
 #pragma once
 
 #include <cstddef>

@@ -36,12 +36,12 @@ inline Vec3 mirror_direction(const Vec3& w) { return {-w.x, -w.y, w.z}; }
 // One measurement geometry: the pair of directions plus their angles, computed once so that
 // models never repeat trigonometry in inner loops.
 struct Geometry {
-  Vec3 wi;                // towards the source
-  Vec3 wr;                // towards the viewer
-  double theta_i = 0.0;   // radians
-  double phi_i = 0.0;     // radians
-  double theta_r = 0.0;   // radians
-  double phi_r = 0.0;     // radians
+  Vec3 wi;               // towards the source
+  Vec3 wr;               // towards the viewer
+  double theta_i = 0.0;  // radians
+  double phi_i = 0.0;    // radians
+  double theta_r = 0.0;  // radians
+  double phi_r = 0.0;    // radians
   // cos(phi_r - phi_i); set to 0 when either direction is the normal (azimuth undefined).
   double cos_delta_phi = 0.0;
 

@@ -28,8 +28,7 @@ std::pair<double, double> ModelDescription::physical_range(std::size_t k) const 
   return it != physical_bounds.end() ? it->second : std::pair<double, double>{p.lower, p.upper};
 }
 
-OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo>& declared,
-                          const OptionSet& given) {
+OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo>& declared, const OptionSet& given) {
   OptionSet resolved;
   for (const auto& option : declared) resolved[option.name] = option.default_value;
   for (const auto& entry : given) {

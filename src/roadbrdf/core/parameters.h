@@ -16,9 +16,9 @@ struct ParameterInfo {
   std::string unit;         // "1" for dimensionless, "rad", "sr^-1"...
   std::string description;  // one line, in the field's words
   double default_value = 0.0;
-  double lower = 0.0;       // inclusive bounds
+  double lower = 0.0;  // inclusive bounds
   double upper = 1.0;
-  bool spectral = true;     // may vary with wavelength
+  bool spectral = true;  // may vary with wavelength
   // True for amplitudes the BRDF is linear in (albedo, k_d, k_s...): the fitter may solve them directly.
   bool linear = false;
 };
@@ -35,16 +35,16 @@ struct OptionInfo {
 using OptionSet = std::map<std::string, std::string>;
 
 struct ModelDescription {
-  std::string name;         // CLI spelling, e.g. "oren-nayar"
-  std::string summary;      // one line
-  std::string citation;     // paper and equation the implementation follows
+  std::string name;      // CLI spelling, e.g. "oren-nayar"
+  std::string summary;   // one line
+  std::string citation;  // paper and equation the implementation follows
   std::vector<ParameterInfo> parameters;
   std::vector<OptionInfo> options;
   OptionSet option_values;  // the resolved options (defaults filled in)
   bool reciprocal = true;
   bool energy_conserving = true;
   bool non_negative = true;  // f >= 0 for every geometry and every parameter set inside the bounds
-  bool has_delta = false;   // has an ideal specular part, handled separately from the smooth BRDF
+  bool has_delta = false;    // has an ideal specular part, handled separately from the smooth BRDF
   // Azimuthal isotropy: the BRDF depends on the azimuths only through phi_r - phi_i (turning the
   // sample about its normal changes nothing), for every parameter set. A model anisotropic in general
   // may be isotropic where pairs of its parameters are equal (Ashikhmin-Shirley n_u = n_v, anisotropic
@@ -66,8 +66,7 @@ struct ModelDescription {
 
 // Resolve user options against declared options: fills defaults, rejects unknown names and values.
 // Throws InputError with a message naming the model and the option.
-OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo>& declared,
-                          const OptionSet& given);
+OptionSet resolve_options(const std::string& model, const std::vector<OptionInfo>& declared, const OptionSet& given);
 
 // Read a numeric option (for options declared with empty `values`). Throws InputError.
 int integer_option(const std::string& model, const OptionSet& options, const std::string& name, int lo, int hi);

@@ -18,7 +18,8 @@ std::string seconds_text(double s) {
   if (s < 60.0) {
     std::snprintf(buffer, sizeof buffer, "%.1f s", s);
   } else if (s < 3600.0) {
-    std::snprintf(buffer, sizeof buffer, "%d min %02d s", static_cast<int>(s / 60.0), static_cast<int>(std::fmod(s, 60.0)));
+    std::snprintf(buffer, sizeof buffer, "%d min %02d s", static_cast<int>(s / 60.0),
+                  static_cast<int>(std::fmod(s, 60.0)));
   } else {
     std::snprintf(buffer, sizeof buffer, "%d h %02d min", static_cast<int>(s / 3600.0),
                   static_cast<int>(std::fmod(s, 3600.0) / 60.0));
@@ -28,7 +29,8 @@ std::string seconds_text(double s) {
 
 }  // namespace
 
-ProgressBar::ProgressBar(std::string label, std::FILE* out, bool enabled, Clock clock, double delay, double min_interval)
+ProgressBar::ProgressBar(std::string label, std::FILE* out, bool enabled, Clock clock, double delay,
+                         double min_interval)
     : label_(std::move(label)),
       out_(out),
       enabled_(enabled && out != nullptr),

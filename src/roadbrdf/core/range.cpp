@@ -44,7 +44,8 @@ void append_range(std::string_view item, std::string_view field, const RangeRule
     start = colon + 1;
   }
   if (parts.size() != 3) fail(field, fmt::format("'{}': a range is START:STOP:STEP", item));
-  const double a = number(parts[0], field, item), b = number(parts[1], field, item), step = number(parts[2], field, item);
+  const double a = number(parts[0], field, item), b = number(parts[1], field, item),
+               step = number(parts[2], field, item);
   if (!(step > 0.0)) fail(field, fmt::format("'{}': STEP must be > 0", item));
   if (b < a) fail(field, fmt::format("'{}': STOP is below START (for descending values, list them)", item));
   const double steps = (b - a) / step;  // finite: a, b, step finite and step > 0 (may be +inf if step is tiny)
@@ -55,10 +56,10 @@ void append_range(std::string_view item, std::string_view field, const RangeRule
   const double whole = std::round(steps);
   if (std::fabs(steps - whole) > 1e-9 * std::max(1.0, whole)) {
     const double below = a + std::floor(steps) * step, above = a + std::ceil(steps) * step;
-    fail(field, fmt::format("'{}': STOP - START = {} is not a whole number of STEPs {} (a range includes both ends: "
-                            "write {}:{}:{} or {}:{}:{}, or list the values)",
-                            item, b - a, step, trim(parts[0]), below, trim(parts[2]), trim(parts[0]), above,
-                            trim(parts[2])));
+    fail(field,
+         fmt::format("'{}': STOP - START = {} is not a whole number of STEPs {} (a range includes both ends: "
+                     "write {}:{}:{} or {}:{}:{}, or list the values)",
+                     item, b - a, step, trim(parts[0]), below, trim(parts[2]), trim(parts[0]), above, trim(parts[2])));
   }
   const auto n = static_cast<std::size_t>(whole);
   if (out.size() + n + 1 > rules.max_count) {
@@ -83,7 +84,8 @@ void check_range_values(const std::vector<double>& values, std::string_view fiel
   for (std::size_t k = 0; k < values.size(); ++k) {
     const double v = values[k];
     if (!std::isfinite(v)) fail(field, fmt::format("{} is not a finite number", v));
-    if (rules.positive && !(v > 0.0)) fail(field, fmt::format("{} must be > 0{}", v, rules.unit.empty() ? "" : " " + rules.unit));
+    if (rules.positive && !(v > 0.0))
+      fail(field, fmt::format("{} must be > 0{}", v, rules.unit.empty() ? "" : " " + rules.unit));
     if ((rules.lower && v < *rules.lower) || (rules.upper && v > *rules.upper)) {
       const std::string lo = rules.lower ? fmt::format("{}", *rules.lower) : std::string("-inf");
       const std::string hi = rules.upper ? fmt::format("{}", *rules.upper) : std::string("inf");

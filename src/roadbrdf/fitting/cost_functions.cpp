@@ -62,8 +62,7 @@ bool FreeWavelengthCost::Evaluate(double const* const* parameters, double* resid
 
 JointCost::JointCost(const FitData& d, std::size_t w, const std::vector<int>& block_of,
                      const std::vector<int>& index_in_block, int shared_size, int local_size)
-    : d_(d), w_(w), block_of_(block_of), index_(index_in_block), f_(d.n), j_(d.n * d.p), full_(d.p),
-      r_jac_(d.n * d.p) {
+    : d_(d), w_(w), block_of_(block_of), index_(index_in_block), f_(d.n), j_(d.n * d.p), full_(d.p), r_jac_(d.n * d.p) {
   set_num_residuals(static_cast<int>(d.n));
   mutable_parameter_block_sizes()->push_back(shared_size);
   mutable_parameter_block_sizes()->push_back(local_size);

@@ -46,7 +46,8 @@ void no_covariance(const ParameterLayout& L, WavelengthFit& out, const std::stri
 
 void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size_t w, WavelengthFit& out) {
   if (out.free_parameters == 0) return no_covariance(L, out, "no free parameter");
-  if (out.points <= out.free_parameters) return no_covariance(L, out, "no degrees of freedom (points <= free parameters)");
+  if (out.points <= out.free_parameters)
+    return no_covariance(L, out, "no degrees of freedom (points <= free parameters)");
   std::vector<double> x = out.parameters;
   // Jacobian of the residuals at the solution over the free columns (the fixed ones have no
   // covariance), as Ceres' DENSE_SVD covariance of the same cost function would use it.
@@ -62,7 +63,8 @@ void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size
   const auto n = static_cast<Eigen::Index>(d.n);
   Eigen::MatrixXd Jf(n, nf);
   for (Eigen::Index g = 0; g < n; ++g) {
-    for (Eigen::Index a = 0; a < nf; ++a) Jf(g, a) = J[static_cast<std::size_t>(g) * d.p + free[static_cast<std::size_t>(a)]];
+    for (Eigen::Index a = 0; a < nf; ++a)
+      Jf(g, a) = J[static_cast<std::size_t>(g) * d.p + free[static_cast<std::size_t>(a)]];
   }
   // (J^T J)^-1 = R^-1 R^-T from a Householder QR of J (N x free): the accuracy of an SVD of J (the
   // condition number of J, not its square as inverting J^T J would give), for a few thousand flops
@@ -82,8 +84,8 @@ void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(d.p), static_cast<Eigen::Index>(d.p));
   for (Eigen::Index a = 0; a < nf; ++a) {
     for (Eigen::Index b = 0; b < nf; ++b) {
-      c(static_cast<Eigen::Index>(free[static_cast<std::size_t>(a)]), static_cast<Eigen::Index>(free[static_cast<std::size_t>(b)])) =
-          c_free(a, b);
+      c(static_cast<Eigen::Index>(free[static_cast<std::size_t>(a)]),
+        static_cast<Eigen::Index>(free[static_cast<std::size_t>(b)])) = c_free(a, b);
     }
   }
   const double s2 = out.chi2 / static_cast<double>(out.points - out.free_parameters);
@@ -115,8 +117,10 @@ void joint_covariance(const FitData& d, const ParameterLayout& L, std::vector<Wa
     chi2_total += out.chi2;
     Eigen::MatrixXd Jl(static_cast<Eigen::Index>(d.n), nl), Jsh(static_cast<Eigen::Index>(d.n), ns);
     for (std::size_t g = 0; g < d.n; ++g) {
-      for (Eigen::Index i = 0; i < nl; ++i) Jl(static_cast<Eigen::Index>(g), i) = J[g * p + lf[static_cast<std::size_t>(i)]];
-      for (Eigen::Index i = 0; i < ns; ++i) Jsh(static_cast<Eigen::Index>(g), i) = J[g * p + sf[static_cast<std::size_t>(i)]];
+      for (Eigen::Index i = 0; i < nl; ++i)
+        Jl(static_cast<Eigen::Index>(g), i) = J[g * p + lf[static_cast<std::size_t>(i)]];
+      for (Eigen::Index i = 0; i < ns; ++i)
+        Jsh(static_cast<Eigen::Index>(g), i) = J[g * p + sf[static_cast<std::size_t>(i)]];
     }
     const Eigen::MatrixXd Hll = Jl.transpose() * Jl;
     Hls[w] = Jl.transpose() * Jsh;
@@ -156,8 +160,9 @@ void joint_covariance(const FitData& d, const ParameterLayout& L, std::vector<Wa
   for (std::size_t w = 0; w < M; ++w) {
     WavelengthFit& out = fits[w];
     if (!shared_ok) {
-      no_covariance(L, out, all_ok ? "rank-deficient: shared parameters not identifiable"
-                                   : "rank-deficient Jacobian at some wavelength (parameters not separately identifiable)");
+      no_covariance(L, out,
+                    all_ok ? "rank-deficient: shared parameters not identifiable"
+                           : "rank-deficient Jacobian at some wavelength (parameters not separately identifiable)");
       continue;
     }
     // Blocks of the inverse of [[Hll, Hls], [Hsl, Hss]] (all wavelengths): Css = S^-1,
@@ -168,7 +173,8 @@ void joint_covariance(const FitData& d, const ParameterLayout& L, std::vector<Wa
     Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(p));
     for (Eigen::Index a = 0; a < nl; ++a) {
       const auto ia = static_cast<Eigen::Index>(lf[static_cast<std::size_t>(a)]);
-      for (Eigen::Index b = 0; b < nl; ++b) cov(ia, static_cast<Eigen::Index>(lf[static_cast<std::size_t>(b)])) = Cll(a, b);
+      for (Eigen::Index b = 0; b < nl; ++b)
+        cov(ia, static_cast<Eigen::Index>(lf[static_cast<std::size_t>(b)])) = Cll(a, b);
       for (Eigen::Index b = 0; b < ns; ++b) {
         const auto ib = static_cast<Eigen::Index>(sf[static_cast<std::size_t>(b)]);
         cov(ia, ib) = Cls(a, b);
@@ -177,7 +183,8 @@ void joint_covariance(const FitData& d, const ParameterLayout& L, std::vector<Wa
     }
     for (Eigen::Index a = 0; a < ns; ++a) {
       for (Eigen::Index b = 0; b < ns; ++b) {
-        cov(static_cast<Eigen::Index>(sf[static_cast<std::size_t>(a)]), static_cast<Eigen::Index>(sf[static_cast<std::size_t>(b)])) = Css(a, b);
+        cov(static_cast<Eigen::Index>(sf[static_cast<std::size_t>(a)]),
+            static_cast<Eigen::Index>(sf[static_cast<std::size_t>(b)])) = Css(a, b);
       }
     }
     cov *= s2;

@@ -39,14 +39,16 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   const std::size_t N = data.geometry_count(), M = data.wavelength_count();
   if (N == 0) throw InputError("cannot fit: the dataset has no geometries");
   if (M == 0) throw InputError("cannot fit: the dataset has no wavelengths");
-  if (data.brdf.size() != N * M) throw InputError("cannot fit: dataset BRDF table does not match its geometries x wavelengths");
-  if (data.has_sigma() && data.sigma.size() != N * M) throw InputError("cannot fit: dataset sigma table has the wrong size");
+  if (data.brdf.size() != N * M)
+    throw InputError("cannot fit: dataset BRDF table does not match its geometries x wavelengths");
+  if (data.has_sigma() && data.sigma.size() != N * M)
+    throw InputError("cannot fit: dataset sigma table has the wrong size");
   if (options.multistart < 1) throw FieldError("multistart", "must be at least 1");
   if (options.threads < 1) throw FieldError("threads", "must be at least 1");
   if (options.joint_solver != "dense-schur" && options.joint_solver != "sparse-schur" &&
       options.joint_solver != "iterative-schur") {
-    throw FieldError("joint_solver", "unknown solver '" + options.joint_solver +
-                                         "' (dense-schur, sparse-schur, iterative-schur)");
+    throw FieldError("joint_solver",
+                     "unknown solver '" + options.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)");
   }
   if (options.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
   // NaN is a missing value (masked out at its wavelength); an infinite value is an error.
@@ -73,7 +75,8 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     if (!idx) {
       std::string known;
       for (const auto& q : desc.parameters) known += (known.empty() ? "" : ", ") + q.name;
-      throw InputError(what + ": model '" + desc.name + "' has no parameter '" + name + "' (parameters: " + known + ")");
+      throw InputError(what + ": model '" + desc.name + "' has no parameter '" + name + "' (parameters: " + known +
+                       ")");
     }
     return *idx;
   };
@@ -87,9 +90,10 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || lo < physical_lo || hi > physical_hi) {
       throw FieldError("bounds." + name, "[" + fmt_double(lo) + ", " + fmt_double(hi) +
                                              "] must be an interval lower < upper inside the parameter's physical "
-                                             "range [" + fmt_double(physical_lo) + ", " + fmt_double(physical_hi) +
-                                             "] " + q.unit + " (model metadata; the default fitting range is [" +
-                                             fmt_double(q.lower) + ", " + fmt_double(q.upper) + "])");
+                                             "range [" +
+                                             fmt_double(physical_lo) + ", " + fmt_double(physical_hi) + "] " + q.unit +
+                                             " (model metadata; the default fitting range is [" + fmt_double(q.lower) +
+                                             ", " + fmt_double(q.upper) + "])");
     }
     q.lower = lo;
     q.upper = hi;
@@ -104,8 +108,8 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   for (std::size_t k = 0; k < p; ++k) {
     const ParameterInfo& q = L.info[k];
     if (!std::isfinite(L.start[k]) || L.start[k] < q.lower || L.start[k] > q.upper) {
-      throw InputError(std::string(L.fixed[k] ? "fixed value" : "starting value") + " of '" + q.name + "' = " +
-                       fmt_double(L.start[k]) + " is outside its bounds [" + fmt_double(q.lower) + ", " +
+      throw InputError(std::string(L.fixed[k] ? "fixed value" : "starting value") + " of '" + q.name +
+                       "' = " + fmt_double(L.start[k]) + " is outside its bounds [" + fmt_double(q.lower) + ", " +
                        fmt_double(q.upper) + "] " + q.unit);
     }
   }
@@ -145,8 +149,9 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
     }
   }
   if (joint && (N < local_free || N * M < local_free * M + shared_free)) {
-    throw InputError("cannot fit: " + std::to_string(N) + " geometries per wavelength for " + std::to_string(local_free) +
-                     " free per-wavelength parameters (+" + std::to_string(shared_free) + " shared)");
+    throw InputError("cannot fit: " + std::to_string(N) + " geometries per wavelength for " +
+                     std::to_string(local_free) + " free per-wavelength parameters (+" + std::to_string(shared_free) +
+                     " shared)");
   }
   if (joint && local_free + shared_free == 0) throw InputError("cannot fit: every parameter is fixed");
 
@@ -171,8 +176,8 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   d.measured_count = measured_count;
   d.cos_i.resize(N);
   for (std::size_t g = 0; g < N; ++g) d.cos_i[g] = data.geometries[g].cos_theta_i();
-  const std::vector<double> sa = options.solid_angle_weights ? solid_angle_weights(data.geometries)
-                                                             : std::vector<double>(N, 1.0);
+  const std::vector<double> sa =
+      options.solid_angle_weights ? solid_angle_weights(data.geometries) : std::vector<double>(N, 1.0);
   const bool use_sigma = options.use_sigma && data.has_sigma();
   std::size_t result_missing = 0;
   for (std::size_t w = 0; w < M; ++w) {

@@ -87,7 +87,7 @@ struct FitOptions {
   // "iterative-schur" (conjugate gradients on the Schur complement, Jacobi preconditioner;
   // EXPERIMENTAL: on a small test problem Ceres 2.1 stopped with "Numerical failure, rho = r'z = 0").
   std::string joint_solver = "dense-schur";
-  int threads = 1;           // per-wavelength mode (the results do not depend on it); joint mode: 1
+  int threads = 1;  // per-wavelength mode (the results do not depend on it); joint mode: 1
   int max_iterations = 200;
   double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
@@ -99,27 +99,27 @@ struct FitOptions {
 
 // Result at one wavelength. Vectors are indexed like the model's parameters.
 struct WavelengthFit {
-  double wavelength = 0.0;             // nm
+  double wavelength = 0.0;  // nm
   std::vector<double> parameters;
   std::vector<double> standard_errors;  // NaN for fixed parameters and when the covariance failed
   std::vector<double> correlation;      // p x p row-major (NaN where undefined)
   bool covariance_ok = false;
-  std::string covariance_message;       // why it failed (rank deficiency...)
-  std::size_t points = 0;               // geometries used (measured at this wavelength)
-  std::size_t free_parameters = 0;      // counted in AIC/BIC (joint mode: this wavelength's + shared)
-  double cost = 0.0;                    // Ceres' final cost, 1/2 sum rho(r^2)
-  double chi2 = 0.0;                    // sum r^2 of the loss residuals (no robust function)
-  double rmse = 0.0;                    // sr^-1
-  double relative_rmse = 0.0;           // 1
-  double max_relative_error = 0.0;      // 1
-  double r_squared = 0.0;               // 1 (NaN when the data are constant)
+  std::string covariance_message;   // why it failed (rank deficiency...)
+  std::size_t points = 0;           // geometries used (measured at this wavelength)
+  std::size_t free_parameters = 0;  // counted in AIC/BIC (joint mode: this wavelength's + shared)
+  double cost = 0.0;                // Ceres' final cost, 1/2 sum rho(r^2)
+  double chi2 = 0.0;                // sum r^2 of the loss residuals (no robust function)
+  double rmse = 0.0;                // sr^-1
+  double relative_rmse = 0.0;       // 1
+  double max_relative_error = 0.0;  // 1
+  double r_squared = 0.0;           // 1 (NaN when the data are constant)
   double aic = 0.0;
   double bic = 0.0;
   int iterations = 0;
   bool converged = false;
-  std::string status;                   // Ceres termination message
-  std::vector<std::string> at_bounds;   // free parameters ending on a bound: "name=lower" / "name=upper"
-  int start_index = 0;                  // which multi-start point won (0: the given/warm start)
+  std::string status;                  // Ceres termination message
+  std::vector<std::string> at_bounds;  // free parameters ending on a bound: "name=lower" / "name=upper"
+  int start_index = 0;                 // which multi-start point won (0: the given/warm start)
   // Every free nonlinear parameter ended at its given starting value (to 1e-9): a "converged" fit
   // that never moved, i.e. data that do not constrain those parameters (warned about).
   bool stayed_at_start = false;
@@ -127,6 +127,9 @@ struct WavelengthFit {
 
 struct FitResult {
   std::string model;
+  // The geometry group fitted (`fit --group-by`, io/geometry_selection.h): column -> value [deg];
+  // empty when the fit used every geometry of the dataset (after any `where` selection).
+  std::vector<std::pair<std::string, double>> group;
   OptionSet options;  // resolved model options
   std::vector<std::string> parameter_names;
   std::vector<std::string> parameter_units;
@@ -135,21 +138,21 @@ struct FitResult {
   FitOptions settings;              // as used (progress callback dropped)
   std::vector<WavelengthFit> wavelengths;
   // Totals over all wavelengths and geometries.
-  double rmse_total = 0.0;            // sr^-1, over all points
-  double relative_rmse_total = 0.0;   // rmse_total / mean |y|
+  double rmse_total = 0.0;           // sr^-1, over all points
+  double relative_rmse_total = 0.0;  // rmse_total / mean |y|
   double max_relative_error_total = 0.0;
   double chi2_total = 0.0;
   double aic_total = 0.0;  // n ln(chi2/n) summed per wavelength + 2 k_total (k_total counts shared once)
   double bic_total = 0.0;
-  std::size_t points_total = 0;       // measured values fitted (missing values excluded)
-  std::size_t missing_values = 0;     // NaN values of the dataset, masked out of the fit at their wavelength
+  std::size_t points_total = 0;    // measured values fitted (missing values excluded)
+  std::size_t missing_values = 0;  // NaN values of the dataset, masked out of the fit at their wavelength
   std::size_t free_parameters_total = 0;
   std::size_t converged_count = 0;
-  std::size_t at_bound_count = 0;     // wavelengths with at least one parameter on a bound
+  std::size_t at_bound_count = 0;  // wavelengths with at least one parameter on a bound
   std::size_t covariance_failures = 0;
   std::size_t stayed_at_start_count = 0;  // converged wavelengths with stayed_at_start
   AngularCoverage coverage;               // of the geometries measured at one wavelength at least
-  double seconds = 0.0;      // wall time of fit_model
+  double seconds = 0.0;                   // wall time of fit_model
   double cpu_seconds = 0.0;  // process CPU time during fit_model (all threads; noisy machines: compare this)
   bool joint = false;
   // Joint mode: iterations and status of the single problem.
@@ -169,10 +172,14 @@ std::vector<double> solid_angle_weights(const std::vector<Geometry>& geometries)
 // Model values at the fitted parameters: N x M (geometry-major), like SpectralDataset::brdf.
 std::vector<double> fitted_values(const Model& model, const SpectralDataset& data, const FitResult& fit);
 
-// The indices of the `wanted` wavelengths [nm] in the dataset's (each must exist in it, to 1e-6 nm),
-// in increasing order. Text such as "400:1000:10" is parsed by parse_range_list (core/range.h).
-// Throws FieldError("wavelengths", ...).
-std::vector<std::size_t> select_wavelengths(const std::vector<double>& available, const std::vector<double>& wanted);
+// The indices of the `wanted` wavelengths [nm] in the dataset's, in increasing order. A wanted
+// wavelength is found to 1e-6 nm; with `notes`, one that is not on the grid but within its widest gap
+// of a band is answered by the nearest band, with a note ("600 nm: nearest band 610 nm"; a band is
+// used once however many wavelengths it answers; of two equally near bands, the shorter). Without `notes`, or farther
+// from every band, it is an error. Text such as "400:1000:10" is parsed by parse_range_list (core/range.h). Throws
+// FieldError("wavelengths", ...).
+std::vector<std::size_t> select_wavelengths(const std::vector<double>& available, const std::vector<double>& wanted,
+                                            std::vector<std::string>* notes = nullptr);
 // The dataset restricted to some wavelength indices.
 SpectralDataset subset_wavelengths(const SpectralDataset& data, const std::vector<std::size_t>& indices);
 

@@ -1,7 +1,9 @@
 #include "roadbrdf/fitting/fit_file.h"
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -15,6 +17,9 @@
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/core/number.h"
+#include "roadbrdf/io/geometry_selection.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -107,12 +112,73 @@ std::vector<double> read_covariance(const JsonNode& fit, const ModelDescription&
   return covariance;
 }
 
+// The group of a fit ("group" object; empty without groups) as (column, value) pairs.
+std::vector<std::pair<std::string, double>> fit_group(const JsonNode& fit) {
+  std::vector<std::pair<std::string, double>> g;
+  if (const auto node = fit.find("group")) {
+    for (const auto& [column, value] : node->members()) g.emplace_back(column, value.number());
+  }
+  return g;
+}
+
+std::string group_label(const std::vector<std::pair<std::string, double>>& group) {
+  std::string s;
+  for (const auto& [column, value] : group) s += fmt::format("{}{}={:.10g}", s.empty() ? "" : ",", column, value);
+  return s;
+}
+
+// The fits of `fits` of model `wanted` whose group matches the selector's columns; exactly one, or an
+// error naming the choices.
+std::vector<JsonNode> select_fits(const JsonNode& root, const JsonNode& fits, const std::string& wanted,
+                                  const FitSelector& selector) {
+  std::vector<std::string> models, columns;
+  if (const auto g = root.find("group_by")) columns = g->strings();
+  for (const auto& [column, value] : selector.group) {
+    if (std::find(columns.begin(), columns.end(), column) == columns.end()) {
+      throw FieldError("fit", "'" + column + "': this fit file " +
+                                  (columns.empty() ? std::string("has no groups")
+                                                   : "is grouped by " + fmt::format("{}", fmt::join(columns, ","))) +
+                                  did_you_mean(column, columns));
+    }
+  }
+  std::vector<JsonNode> matching;
+  std::vector<std::string> labels;
+  for (const JsonNode& fit : fits.elements()) {
+    const std::string model = fit.at("model").string();
+    if (std::find(models.begin(), models.end(), model) == models.end()) models.push_back(model);
+    if (model != wanted) continue;
+    const auto group = fit_group(fit);
+    bool ok = true;
+    for (const auto& [column, value] : selector.group) {
+      const auto it = std::find_if(group.begin(), group.end(), [&column](const auto& c) { return c.first == column; });
+      ok = ok && it != group.end() && std::abs(it->second - value) <= 1e-6;
+    }
+    labels.push_back(group_label(group));
+    if (ok) matching.push_back(fit);
+  }
+  if (labels.empty()) fits.fail("no fit of model '" + wanted + "' in this file" + did_you_mean(wanted, models));
+  if (matching.empty()) {
+    throw FieldError("fit", fmt::format("no fit of {} for group {} in {}; its groups: {}", wanted,
+                                        group_label(selector.group), root.file(), fmt::join(labels, " ")));
+  }
+  if (matching.size() > 1) {
+    throw FieldError("fit", fmt::format("{} holds {} fits of {}, one per group ({}): choose one with a selector "
+                                        "such as '{},{}'",
+                                        root.file(), matching.size(), wanted, fmt::join(labels, " "), wanted,
+                                        group_label(fit_group(matching.front()))));
+  }
+  return matching;
+}
 }  // namespace
 
 nlohmann::json fit_to_json(const FitResult& fit) {
   using nlohmann::json;
   json j;
   j["model"] = fit.model;
+  if (!fit.group.empty()) {
+    j["group"] = json::object();
+    for (const auto& [column, value] : fit.group) j["group"][column] = value;
+  }
   j["options"] = json::object();
   for (const auto& [k, v] : fit.options) j["options"][k] = v;
   j["mode"] = fit.joint ? "joint" : "per-wavelength";
@@ -197,20 +263,40 @@ nlohmann::json fit_to_json(const FitResult& fit) {
 
 std::size_t best_fit_index(const std::vector<FitResult>& fits) {
   if (fits.empty()) throw InputError("no fit to rank");
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < fits.size(); ++i) {
-    if (fits[i].bic_total < fits[best].bic_total) best = i;
+  // Groups are independent fits: a model's BIC is the sum over its groups (one term without groups).
+  std::vector<std::string> models;
+  std::vector<double> bic;
+  std::vector<std::size_t> first;
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const auto it = std::find(models.begin(), models.end(), fits[i].model);
+    if (it == models.end()) {
+      models.push_back(fits[i].model);
+      bic.push_back(fits[i].bic_total);
+      first.push_back(i);
+    } else {
+      bic[static_cast<std::size_t>(it - models.begin())] += fits[i].bic_total;
+    }
   }
-  return best;
+  std::size_t best = 0;
+  for (std::size_t m = 1; m < models.size(); ++m) {
+    if (bic[m] < bic[best]) best = m;
+  }
+  return first[best];
 }
 
 nlohmann::json fit_file_json(const std::vector<FitResult>& fits) {
   using nlohmann::json;
   json j;
   j["format"] = "roadbrdf-fit";
-  j["version"] = 1;
+  // Version 2: fits of geometry groups, each with its "group"; the root's "group_by" names the columns.
+  const bool grouped = !fits.empty() && !fits.front().group.empty();
+  j["version"] = grouped ? 2 : 1;
+  if (grouped) {
+    j["group_by"] = json::array();
+    for (const auto& [column, value] : fits.front().group) j["group_by"].push_back(column);
+  }
   j["best"] = fits[best_fit_index(fits)].model;
-  j["best_criterion"] = "bic_total";
+  j["best_criterion"] = grouped ? "bic_total summed over the groups" : "bic_total";
   j["units"] = {
       {"wavelengths", "nm"},
       {"parameters", "see parameter_units"},
@@ -223,6 +309,7 @@ nlohmann::json fit_file_json(const std::vector<FitResult>& fits) {
       {"chi2", "sum of squared loss residuals (weights applied, no robust function)"},
       {"aic", "n ln(chi2/n) + 2k"},
       {"bic", "n ln(chi2/n) + k ln n"},
+      {"group", "deg, the angles shared by the geometries of a group fit (fit --group-by)"},
       {"cost", "Ceres final cost 1/2 sum rho(r^2)"},
       {"seconds", "s, wall time of the fit"},
       {"cpu_seconds", "s, process CPU time of the fit (all threads)"},
@@ -240,19 +327,35 @@ void write_fit_file(const std::string& path, const std::vector<FitResult>& fits)
 }
 
 void write_residuals(std::ostream& out, const SpectralDataset& data, const std::vector<const Model*>& models,
-                     const std::vector<FitResult>& fits) {
+                     const std::vector<FitResult>& fits, const std::string& where) {
   out << "# roadbrdf fit residuals: angles in degrees, wavelength in nm, BRDF in sr^-1; residual = fitted - measured\n";
-  out << "theta_i,phi_i,theta_r,phi_r,wavelength,model,measured,fitted,residual\n";
-  const std::size_t N = data.geometry_count(), M = data.wavelength_count();
+  if (!where.empty()) out << "# geometries where " << where << "\n";
+  const bool grouped = !fits.empty() && !fits.front().group.empty();
+  out << "theta_i,phi_i,theta_r,phi_r,wavelength,model," << (grouped ? "group," : "") << "measured,fitted,residual\n";
+  const GeometrySelection selection = where.empty() ? GeometrySelection{} : parse_geometry_selection(where, "where");
+  const std::size_t M = data.wavelength_count();
   for (std::size_t i = 0; i < fits.size(); ++i) {
-    const std::vector<double> f = fitted_values(*models[i], data, fits[i]);
-    for (std::size_t g = 0; g < N; ++g) {
-      const Geometry& geo = data.geometries[g];
+    // The geometries of this fit: the selection, and its group.
+    GeometryGroup group;
+    group.key = fits[i].group;
+    std::vector<std::size_t> indices;
+    for (std::size_t g = 0; g < data.geometry_count(); ++g) {
+      bool in = selection.matches(data.geometries[g]);
+      for (const auto& [column, value] : group.key) {
+        in = in && std::abs(geometry_column(data.geometries[g], column) - value) <= kAngleTolerance;
+      }
+      if (in) indices.push_back(g);
+    }
+    const SpectralDataset part = subset_geometries(data, indices);
+    const std::vector<double> f = fitted_values(*models[i], part, fits[i]);
+    const std::string label = grouped ? group.label() + "," : "";
+    for (std::size_t g = 0; g < part.geometry_count(); ++g) {
+      const Geometry& geo = part.geometries[g];
       const std::string angles = fmt::format("{:.10g},{:.10g},{:.10g},{:.10g}", rad_to_deg(geo.theta_i),
                                              rad_to_deg(geo.phi_i), rad_to_deg(geo.theta_r), rad_to_deg(geo.phi_r));
       for (std::size_t w = 0; w < M; ++w) {
-        const double y = data.value(g, w), v = f[g * M + w];
-        out << angles << ',' << fmt::format("{:.10g}", data.wavelengths[w]) << ',' << fits[i].model << ','
+        const double y = part.value(g, w), v = f[g * M + w];
+        out << angles << ',' << fmt::format("{:.10g}", part.wavelengths[w]) << ',' << fits[i].model << ',' << label
             << fmt::format("{:.17g},{:.17g},{:.17g}", y, v, v - y) << '\n';
       }
     }
@@ -263,17 +366,50 @@ bool is_fit_file_argument(const std::string& argument) {
   return argument.size() > 5 && argument.compare(argument.size() - 5, 5, ".json") == 0;
 }
 
-SpectralModel read_fit_file(const std::string& path, const std::string& model_name) {
+FitSelector parse_fit_selector(const std::string& text) {
+  FitSelector s;
+  std::string item;
+  auto take = [&s, &text](std::string t) {
+    while (!t.empty() && t.front() == ' ') t.erase(t.begin());
+    while (!t.empty() && t.back() == ' ') t.pop_back();
+    if (t.empty()) return;
+    const auto eq = t.find('=');
+    if (eq == std::string::npos) {
+      if (!s.model.empty()) throw FieldError("fit", "two model names in '" + text + "'");
+      s.model = t;
+      return;
+    }
+    double v = 0.0;
+    const std::string column = t.substr(0, eq);
+    if (!parse_finite_double(t.substr(eq + 1), v)) {
+      throw FieldError("fit", "'" + t + "': expected COLUMN=DEGREES in '" + text + "'");
+    }
+    s.group.emplace_back(column, v);
+  };
+  for (char c : text) {
+    if (c == ',') {
+      take(item);
+      item.clear();
+    } else {
+      item += c;
+    }
+  }
+  take(item);
+  return s;
+}
+
+SpectralModel read_fit_file(const std::string& path, const std::string& selection) {
   const Json document = parse_json_file(path);
   const JsonNode root(document, input_display_name(path));
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
     throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
   }
-  const std::string wanted = model_name.empty() ? root.at("best").string() : model_name;
+  const FitSelector selector = parse_fit_selector(selection);
+  const std::string wanted = selector.model.empty() ? root.at("best").string() : selector.model;
   const JsonNode fits = root.at("fits");
-  for (const JsonNode& fit : fits.elements()) {
+  const std::vector<JsonNode> chosen = select_fits(root, fits, wanted, selector);
+  for (const JsonNode& fit : chosen) {
     const JsonNode model_node = fit.at("model");
-    if (model_node.string() != wanted) continue;
     OptionSet options;
     if (const auto o = fit.find("options")) options = o->string_map();
     std::shared_ptr<const Model> model;
@@ -297,7 +433,7 @@ SpectralModel read_fit_file(const std::string& path, const std::string& model_na
     spectral.set_parameter_covariance(read_covariance(fit, model->description(), wavelengths.size()));
     return spectral;
   }
-  fits.fail("no fit of model '" + wanted + "' in this file");
+  fits.fail("no fit of model '" + wanted + "' in this file");  // select_fits returned none: not reached
 }
 
 }  // namespace roadbrdf

@@ -2,7 +2,8 @@
 //
 // The fit file (read back as a model by read_fit_file):
 // {
-//   "format": "roadbrdf-fit", "version": 1,
+//   "format": "roadbrdf-fit", "version": 1 (2 when grouped: "group_by" [columns] at the top level,
+//   and each fit has "group" {column: deg}),
 //   "best": model name with the lowest total BIC, "best_criterion": "bic_total",
 //   "units": { key: unit/description, ... },
 //   "fits": [ {
@@ -29,6 +30,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "roadbrdf/fitting/fit.h"
@@ -36,9 +38,19 @@
 
 namespace roadbrdf {
 
-// A fit file as a spectral model: the fit named `model_name` (default: the file's "best").
-// Throws FileError / InputError.
-SpectralModel read_fit_file(const std::string& path, const std::string& model_name = "");
+// Which fit of a fit file (`--fit`): comma-separated items, a model name and COLUMN=DEGREES for the
+// columns the file is grouped by ("oren-nayar,theta_i=40", "theta_i=40"). No model: the file's best.
+struct FitSelector {
+  std::string model;
+  std::vector<std::pair<std::string, double>> group;
+};
+// Throws FieldError("fit", ...).
+FitSelector parse_fit_selector(const std::string& text);
+
+// A fit file as a spectral model: the fit chosen by `selection` (parse_fit_selector; default: the
+// file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
+// InputError (FieldError "fit" for a selection matching no fit or several).
+SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
 
 // True if `argument` names a fit file rather than a model (ends in ".json").
 bool is_fit_file_argument(const std::string& argument);
@@ -54,8 +66,9 @@ nlohmann::json fit_file_json(const std::vector<FitResult>& fits);
 // Write the fit file atomically.
 void write_fit_file(const std::string& path, const std::vector<FitResult>& fits);
 
-// Residual table (long CSV): theta_i,phi_i,theta_r,phi_r [deg],wavelength [nm],model,measured,fitted,residual [sr^-1].
+// Residual table (long CSV): theta_i,phi_i,theta_r,phi_r [deg],wavelength [nm],model,[group,]measured,fitted,
+// residual [sr^-1], for the geometries each fit used: those of `where` (io/geometry_selection.h) in its group.
 void write_residuals(std::ostream& out, const SpectralDataset& data, const std::vector<const Model*>& models,
-                     const std::vector<FitResult>& fits);
+                     const std::vector<FitResult>& fits, const std::string& where = "");
 
 }  // namespace roadbrdf

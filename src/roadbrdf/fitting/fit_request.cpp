@@ -1,6 +1,7 @@
 #include "roadbrdf/fitting/fit_request.h"
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,9 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/geometry_selection.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -19,7 +22,8 @@ namespace {
 bool declares_option(const ModelDescription& d, const std::string& key) {
   for (const auto& o : d.options) {
     if (o.name == key) return true;
-    if (o.name.size() > key.size() + 1 && o.name.compare(o.name.size() - key.size() - 1, std::string::npos, "." + key) == 0) {
+    if (o.name.size() > key.size() + 1 &&
+        o.name.compare(o.name.size() - key.size() - 1, std::string::npos, "." + key) == 0) {
       return true;
     }
   }
@@ -62,8 +66,9 @@ FitOptions settings_of(const FitRequest& r) {
   if (r.threads < 1) throw FieldError("threads", "must be at least 1");
   if (r.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
   if (r.joint_solver != "dense-schur" && r.joint_solver != "sparse-schur" && r.joint_solver != "iterative-schur") {
-    throw FieldError("joint_solver", "unknown solver '" + r.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)" +
-                                         did_you_mean(r.joint_solver, {"dense-schur", "sparse-schur", "iterative-schur"}));
+    throw FieldError("joint_solver",
+                     "unknown solver '" + r.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)" +
+                         did_you_mean(r.joint_solver, {"dense-schur", "sparse-schur", "iterative-schur"}));
   }
   o.use_sigma = r.use_sigma;
   o.solid_angle_weights = r.solid_angle_weights;
@@ -93,9 +98,12 @@ std::vector<PlannedFit> plan_fits(const FitRequest& r) {
   check_finite(r.start, "start");
   for (const auto& [name, range] : r.bounds) {
     if (!std::isfinite(range.first) || !std::isfinite(range.second) || !(range.first < range.second)) {
-      throw FieldError("bounds." + name, fmt::format("[{}, {}] is not an interval lower < upper", range.first, range.second));
+      throw FieldError("bounds." + name,
+                       fmt::format("[{}, {}] is not an interval lower < upper", range.first, range.second));
     }
   }
+  if (!r.where.empty()) (void)parse_geometry_selection(r.where, "where");
+  (void)group_geometries({}, r.group_by, "group_by");  // the column names
   std::set<std::string> names_seen;
   for (const auto& name : r.models) {
     if (!names_seen.insert(name).second) throw FieldError("models", "'" + name + "' is given twice");
@@ -178,8 +186,8 @@ std::vector<PlannedFit> plan_fits(const FitRequest& r) {
   const std::vector<std::string> known = parameter_names(probes);
   auto check_used = [&](const std::string& field, const std::string& k) {
     if (!used_parameters.count(field + "." + k)) {
-      throw FieldError(field + "." + k, "no model to fit has this parameter" + did_you_mean(k, known) +
-                                            " (see `roadbrdf models`)");
+      throw FieldError(field + "." + k,
+                       "no model to fit has this parameter" + did_you_mean(k, known) + " (see `roadbrdf models`)");
     }
   };
   for (const auto& [k, v] : r.fixed) check_used("fixed", k);
@@ -200,25 +208,42 @@ std::string FitSummary::table() const {
                      M ? wavelengths.front() : 0.0, M ? wavelengths.back() : 0.0, loss,
                      robust.empty() || robust == "none" ? "" : ", robust " + robust,
                      sigma_weights ? ", weights 1/sigma^2" : "");
+  for (const auto& note : notes) out += "# note: " + note + "\n";
+  if (!where.empty()) {
+    out += fmt::format("# where {}: {} of {} geometries\n", where, geometry_count, dataset_geometries);
+  }
+  if (!group_by.empty()) {
+    out += fmt::format("# grouped by {}: {} groups, each fitted separately; ranks are within a group\n",
+                       fmt::join(group_by, ","), group_count);
+  }
   if (missing_values > 0) {
     out += fmt::format("# {} of {} values missing (masked out of the fit at their wavelength)\n", missing_values,
                        geometry_count * M);
   }
-  out += fmt::format("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank", "model", "k",
-                     "RMSE[sr^-1]", "relRMSE%", "maxrel%", "AIC", "BIC", "converged", "atbound", "time[s]");
+  const bool grouped = !group_by.empty();
+  out += fmt::format("{:<4} {}{:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8}\n", "rank",
+                     grouped ? fmt::format("{:<24} ", "group") : "", "model", "k", "RMSE[sr^-1]", "relRMSE%", "maxrel%",
+                     "AIC", "BIC", "converged", "atbound", "time[s]");
   auto number_or_dash = [](double x, const char* format) {
     return std::isfinite(x) ? fmt::format(fmt::runtime(format), x) : std::string("-");
   };
+  std::size_t rank = 0;
   for (std::size_t r = 0; r < ranking.size(); ++r) {
     const FitResult& f = fits[ranking[r]];
-    out += fmt::format("{:<4} {:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8.2f}\n", r + 1, f.model,
-                       f.free_parameters_total, number_or_dash(f.rmse_total, "{:.4g}"),
-                       number_or_dash(100.0 * f.relative_rmse_total, "{:.3g}"),
+    rank = r > 0 && fits[ranking[r - 1]].group == f.group ? rank + 1 : 1;
+    GeometryGroup group;
+    group.key = f.group;
+    out += fmt::format("{:<4} {}{:<36} {:>6} {:>12} {:>9} {:>9} {:>14} {:>14} {:>9} {:>8} {:>8.2f}\n", rank,
+                       grouped ? fmt::format("{:<24} ", group.label()) : "", f.model, f.free_parameters_total,
+                       number_or_dash(f.rmse_total, "{:.4g}"), number_or_dash(100.0 * f.relative_rmse_total, "{:.3g}"),
                        number_or_dash(100.0 * f.max_relative_error_total, "{:.3g}"),
                        number_or_dash(f.aic_total, "{:.2f}"), number_or_dash(f.bic_total, "{:.2f}"),
                        fmt::format("{}/{}", f.converged_count, M), f.at_bound_count, f.seconds);
   }
-  if (!ranking.empty()) out += fmt::format("best (lowest total BIC): {}\n", best().model);
+  if (!ranking.empty()) {
+    out += grouped ? fmt::format("best (lowest BIC summed over the groups): {}\n", fits[best_fit_index(fits)].model)
+                   : fmt::format("best (lowest total BIC): {}\n", best().model);
+  }
   return out;
 }
 
@@ -226,12 +251,19 @@ std::vector<std::string> FitSummary::warnings(const std::string& where) const {
   std::vector<std::string> out;
   const std::size_t M = wavelengths.size();
   for (const auto& f : fits) {
+    // The model's name, with its group when grouped ("oren-nayar [theta_i=40]").
+    std::string name = f.model;
+    if (!f.group.empty()) {
+      GeometryGroup group;
+      group.key = f.group;
+      name += " [" + group.label() + "]";
+    }
     if (f.converged_count < M) {
-      out.push_back(fmt::format("{}: {} of {} wavelengths did not converge (see 'status' in {})", f.model,
+      out.push_back(fmt::format("{}: {} of {} wavelengths did not converge (see 'status' in {})", name,
                                 M - f.converged_count, M, where));
     }
     if (f.at_bound_count > 0) {
-      out.push_back(fmt::format("{}: parameters on a bound at {} of {} wavelengths (see 'at_bounds')", f.model,
+      out.push_back(fmt::format("{}: parameters on a bound at {} of {} wavelengths (see 'at_bounds')", name,
                                 f.at_bound_count, M));
     }
     if (f.stayed_at_start_count > 0) {
@@ -240,45 +272,100 @@ std::vector<std::string> FitSummary::warnings(const std::string& where) const {
         const bool fixed = std::find(f.fixed.begin(), f.fixed.end(), f.parameter_names[k]) != f.fixed.end();
         if (!fixed) names += (names.empty() ? "" : ", ") + f.parameter_names[k];
       }
-      out.push_back(fmt::format("{}: at {} of {} wavelengths the fit reports convergence but its nonlinear parameters "
-                                "never left their starting values: the data may not constrain them (look at the "
-                                "geometries with `roadbrdf check`, fix them with --fix, or try --start/--multistart; "
-                                "free parameters: {})",
-                                f.model, f.stayed_at_start_count, M, names));
+      out.push_back(
+          fmt::format("{}: at {} of {} wavelengths the fit reports convergence but its nonlinear parameters "
+                      "never left their starting values: the data may not constrain them (look at the "
+                      "geometries with `roadbrdf check`, fix them with --fix, or try --start/--multistart; "
+                      "free parameters: {})",
+                      name, f.stayed_at_start_count, M, names));
     }
     if (f.settings.compute_covariance && f.covariance_failures > 0) {
-      out.push_back(fmt::format("{}: no standard errors at {} of {} wavelengths (see 'covariance_message')", f.model,
+      out.push_back(fmt::format("{}: no standard errors at {} of {} wavelengths (see 'covariance_message')", name,
                                 f.covariance_failures, M));
     }
   }
   return out;
 }
 
+namespace {
+
+// The dataset's geometries selected by `where` and grouped by `group_by` (one group of all without).
+std::vector<GeometryGroup> fit_groups(const FitRequest& request, const SpectralDataset& data) {
+  const GeometrySelection selection =
+      request.where.empty() ? GeometrySelection{} : parse_geometry_selection(request.where, "where");
+  std::vector<std::size_t> selected;
+  std::vector<Geometry> geometries;
+  for (std::size_t g = 0; g < data.geometry_count(); ++g) {
+    if (!selection.matches(data.geometries[g])) continue;
+    selected.push_back(g);
+    geometries.push_back(data.geometries[g]);
+  }
+  if (selected.empty()) {
+    throw FieldError("where",
+                     fmt::format("'{}' selects none of the {} geometries", request.where, data.geometry_count()));
+  }
+  std::vector<GeometryGroup> groups = group_geometries(geometries, request.group_by, "group_by");
+  for (auto& group : groups) {
+    for (auto& index : group.indices) index = selected[index];
+  }
+  return groups;
+}
+
+}  // namespace
+
 FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, const FitProgress& progress) {
   std::vector<PlannedFit> plan = plan_fits(request);
   const SpectralDataset* data = &dataset;
   SpectralDataset subset;
+  std::vector<std::string> notes;
   if (!request.wavelengths.empty()) {
-    subset = subset_wavelengths(dataset, select_wavelengths(dataset.wavelengths, request.wavelengths));
+    subset = subset_wavelengths(dataset, select_wavelengths(dataset.wavelengths, request.wavelengths, &notes));
     data = &subset;
   }
+  const std::vector<GeometryGroup> groups = fit_groups(request, *data);
+  const bool grouped = !request.group_by.empty();
   FitSummary s;
-  s.geometry_count = data->geometry_count();
+  s.dataset_geometries = data->geometry_count();
+  s.notes = notes;
+  s.where = request.where;
+  s.group_by = request.group_by;
+  s.group_count = groups.size();
   s.wavelengths = data->wavelengths;
   s.loss = to_string(plan.front().options.loss);
   s.robust = to_string(plan.front().options.robust);
   s.sigma_weights = data->has_sigma() && request.use_sigma;
-  s.missing_values = missing_value_count(*data);
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    FitOptions o = plan[i].options;
-    if (progress) o.progress = progress(fmt::format("fit {} ({}/{})", plan[i].model->description().name, i + 1, plan.size()));
-    s.fits.push_back(fit_model(*plan[i].model, *data, o));
-    s.models.push_back(plan[i].model);
+  const std::size_t total = groups.size() * plan.size();
+  for (const GeometryGroup& group : groups) {
+    const bool everything = group.indices.size() == data->geometry_count();
+    const SpectralDataset part = everything ? SpectralDataset{} : subset_geometries(*data, group.indices);
+    const SpectralDataset& fitted = everything ? *data : part;
+    s.geometry_count += fitted.geometry_count();
+    s.missing_values += missing_value_count(fitted);
+    const std::size_t first = s.fits.size();
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+      FitOptions o = plan[i].options;
+      if (progress) {
+        o.progress = progress(fmt::format("fit {}{} ({}/{})", plan[i].model->description().name,
+                                          grouped ? " " + group.label() : "", s.fits.size() + 1, total));
+      }
+      try {
+        s.fits.push_back(fit_model(*plan[i].model, fitted, o));
+      } catch (const FieldError&) {
+        throw;
+      } catch (const InputError& e) {
+        if (!grouped) throw;
+        throw FieldError("group_by",
+                         fmt::format("group {} ({} geometries): {}", group.label(), fitted.geometry_count(), e.what()));
+      }
+      s.fits.back().group = group.key;
+      s.models.push_back(plan[i].model);
+    }
+    std::vector<std::size_t> ranks(plan.size());
+    for (std::size_t i = 0; i < ranks.size(); ++i) ranks[i] = first + i;
+    std::stable_sort(ranks.begin(), ranks.end(),
+                     [&](std::size_t x, std::size_t y) { return s.fits[x].bic_total < s.fits[y].bic_total; });
+    s.ranking.insert(s.ranking.end(), ranks.begin(), ranks.end());
   }
-  s.ranking.resize(s.fits.size());
-  for (std::size_t i = 0; i < s.ranking.size(); ++i) s.ranking[i] = i;
-  std::stable_sort(s.ranking.begin(), s.ranking.end(),
-                   [&](std::size_t x, std::size_t y) { return s.fits[x].bic_total < s.fits[y].bic_total; });
   return s;
 }
 

@@ -28,15 +28,21 @@
 namespace roadbrdf {
 
 struct FitRequest {
-  std::vector<std::string> models;                               // model names, e.g. "oren-nayar"
-  OptionSet options;                                             // NAME or component.NAME -> value
-  std::map<std::string, double> fixed;                           // held at a value at every wavelength
-  std::map<std::string, double> start;                           // starting values
-  std::map<std::string, std::pair<double, double>> bounds;       // narrower [lower, upper]
-  std::vector<std::string> shared;                               // names, or "auto"
-  std::vector<double> wavelengths;                               // subset of the dataset's [nm]; empty: all
-  std::string loss = "plain";                                    // plain | relative | log | cosine
-  std::string robust = "none";                                   // none | huber:SCALE | cauchy:SCALE
+  std::vector<std::string> models;                          // model names, e.g. "oren-nayar"
+  OptionSet options;                                        // NAME or component.NAME -> value
+  std::map<std::string, double> fixed;                      // held at a value at every wavelength
+  std::map<std::string, double> start;                      // starting values
+  std::map<std::string, std::pair<double, double>> bounds;  // narrower [lower, upper]
+  std::vector<std::string> shared;                          // names, or "auto"
+  // Subset of the dataset's [nm]; empty: all. One not on the grid is answered by the nearest band,
+  // with a note in FitSummary::notes (select_wavelengths).
+  std::vector<double> wavelengths;
+  // Geometries (io/geometry_selection.h): `where` selects ("theta_r<=70"), `group_by` fits each
+  // group of equal angles separately ({"theta_i"}: one fit per incidence angle).
+  std::string where;
+  std::vector<std::string> group_by;
+  std::string loss = "plain";   // plain | relative | log | cosine
+  std::string robust = "none";  // none | huber:SCALE | cauchy:SCALE
   bool use_sigma = true;
   bool solid_angle_weights = false;
   int multistart = 1;
@@ -62,15 +68,23 @@ struct PlannedFit {
 std::vector<PlannedFit> plan_fits(const FitRequest& request);
 
 struct FitSummary {
-  std::vector<std::shared_ptr<const Model>> models;  // as fitted, in the request's order
-  std::vector<FitResult> fits;                       // aligned with models
-  std::vector<std::size_t> ranking;                  // indices into fits, lowest total BIC first
-  std::size_t geometry_count = 0;
-  std::vector<double> wavelengths;                   // fitted [nm]
-  std::string loss, robust;                          // as requested
-  bool sigma_weights = false;                        // 1/sigma^2 weights were used
-  std::size_t missing_values = 0;                    // missing (NaN) values, masked out at their wavelength
+  // Without groups: one fit per model, in the request's order. With groups: for each group (in
+  // group order), one fit per model; FitResult::group names the group.
+  std::vector<std::shared_ptr<const Model>> models;  // aligned with fits
+  std::vector<FitResult> fits;
+  std::vector<std::size_t> ranking;    // indices into fits: by group, then lowest total BIC first
+  std::size_t geometry_count = 0;      // geometries fitted (after `where`)
+  std::size_t dataset_geometries = 0;  // geometries of the dataset
+  std::string where;                   // as requested
+  std::vector<std::string> notes;      // wavelengths answered by the nearest band (select_wavelengths)
+  std::vector<std::string> group_by;   // as requested
+  std::size_t group_count = 1;
+  std::vector<double> wavelengths;  // fitted [nm]
+  std::string loss, robust;         // as requested
+  bool sigma_weights = false;       // 1/sigma^2 weights were used
+  std::size_t missing_values = 0;   // missing (NaN) values, masked out at their wavelength
 
+  // The best fit (of the first group when grouped).
   const FitResult& best() const { return fits.at(ranking.at(0)); }
   // The ranking table `roadbrdf fit` prints (models, k, RMSE, AIC, BIC, convergence...).
   std::string table() const;

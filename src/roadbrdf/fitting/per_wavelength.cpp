@@ -27,7 +27,8 @@ struct SingleSolve {
   ceres::Solver::Summary summary;
 };
 
-SingleSolve solve_one(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w, std::vector<double> x) {
+SingleSolve solve_one(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w,
+                      std::vector<double> x) {
   if (d.robust != RobustLoss::kNone) {
     // A robust loss is not convex: start it from the plain least-squares solution.
     FitData plain = d;
@@ -127,8 +128,8 @@ void fit_per_wavelength(const FitData& d, const ParameterLayout& L, const FitOpt
   auto run_chain_rest = [&](std::size_t c) {
     std::vector<double> warm = anchor_solution[c];
     for (std::size_t w = c * kChainLength + 1; w < std::min(M, (c + 1) * kChainLength); ++w) {
-      std::vector<double> x = fit_wavelength(d, L, o, w, o.warm_start ? warm : L.start, false, lhs, n_free,
-                                             result.wavelengths[w]);
+      std::vector<double> x =
+          fit_wavelength(d, L, o, w, o.warm_start ? warm : L.start, false, lhs, n_free, result.wavelengths[w]);
       if (o.warm_start) warm = std::move(x);
       count_done();
     }
@@ -141,8 +142,8 @@ void fit_per_wavelength(const FitData& d, const ParameterLayout& L, const FitOpt
       std::vector<double> warm = L.start;
       for (std::size_t c = 0; c < chains; ++c) {
         const std::size_t w = c * kChainLength;
-        anchor_solution[c] = fit_wavelength(d, L, o, w, o.warm_start ? warm : L.start, c == 0, lhs, n_free,
-                                            result.wavelengths[w]);
+        anchor_solution[c] =
+            fit_wavelength(d, L, o, w, o.warm_start ? warm : L.start, c == 0, lhs, n_free, result.wavelengths[w]);
         warm = anchor_solution[c];
         count_done();
         chain_tasks.run([&run_chain_rest, c] { run_chain_rest(c); });

@@ -45,7 +45,8 @@ std::vector<double> solid_angle_weights(const std::vector<Geometry>& geometries)
           dmin = std::min(dmin, d);
         }
       }
-      area[a] = std::isfinite(dmin) ? kPi * 0.25 * dmin * dmin / static_cast<double>(dup) : 1.0 / static_cast<double>(dup);
+      area[a] =
+          std::isfinite(dmin) ? kPi * 0.25 * dmin * dmin / static_cast<double>(dup) : 1.0 / static_cast<double>(dup);
     }
     return area;
   };

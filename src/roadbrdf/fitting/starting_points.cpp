@@ -72,7 +72,8 @@ std::vector<std::vector<double>> latin_hypercube(const ParameterLayout& L, const
   for (std::size_t k : L.free_nonlinear) {
     double lo = L.info[k].lower, hi = L.info[k].upper;
     // Very wide bounds (e.g. 0..1e6 for an exponent): sample up to 10x the start instead.
-    if (hi - lo > 1e3 * std::max(1.0, std::fabs(base[k]))) hi = std::min(hi, lo + std::max(10.0 * std::fabs(base[k]), 1.0));
+    if (hi - lo > 1e3 * std::max(1.0, std::fabs(base[k])))
+      hi = std::min(hi, lo + std::max(10.0 * std::fabs(base[k]), 1.0));
     std::vector<int> perm(static_cast<std::size_t>(count));
     std::iota(perm.begin(), perm.end(), 0);
     std::shuffle(perm.begin(), perm.end(), rng);

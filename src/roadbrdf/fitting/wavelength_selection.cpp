@@ -30,21 +30,41 @@ std::string fmt_double(double x) {
 
 }  // namespace
 
-std::vector<std::size_t> select_wavelengths(const std::vector<double>& available, const std::vector<double>& wanted) {
+std::vector<std::size_t> select_wavelengths(const std::vector<double>& available, const std::vector<double>& wanted,
+                                            std::vector<std::string>* notes) {
   check_range_values(wanted, "wavelengths", wavelength_rules_any_order());
-  std::vector<std::size_t> idx;
+  if (available.empty()) throw FieldError("wavelengths", "the dataset has no wavelengths");
+  // The widest gap of the grid: a wanted wavelength farther than that from every band is outside it.
+  double widest = 1e-6;
+  for (std::size_t w = 1; w < available.size(); ++w) widest = std::max(widest, available[w] - available[w - 1]);
+  std::vector<std::size_t> exact, nearest;
   for (double v : wanted) {
     const auto it = std::min_element(available.begin(), available.end(),
                                      [v](double a, double b) { return std::fabs(a - v) < std::fabs(b - v); });
-    if (it == available.end() || std::fabs(*it - v) > 1e-6) {
-      throw FieldError("wavelengths", fmt_double(v) + " nm is not a wavelength of the dataset (resample first)");
+    const double distance = std::fabs(*it - v);
+    const auto k = static_cast<std::size_t>(it - available.begin());
+    if (distance <= 1e-6) {
+      exact.push_back(k);
+      continue;
     }
-    idx.push_back(static_cast<std::size_t>(it - available.begin()));
+    if (notes == nullptr || distance > widest) {
+      throw FieldError("wavelengths", fmt_double(v) + " nm is not a wavelength of the dataset (" +
+                                          fmt_double(available.front()) + "-" + fmt_double(available.back()) + " nm, " +
+                                          std::to_string(available.size()) + " bands)");
+    }
+    const std::string note = fmt_double(v) + " nm: nearest band " + fmt_double(*it) + " nm";
+    if (std::find(notes->begin(), notes->end(), note) == notes->end()) notes->push_back(note);
+    nearest.push_back(k);
   }
-  std::sort(idx.begin(), idx.end());
-  if (std::adjacent_find(idx.begin(), idx.end()) != idx.end()) {
+  std::sort(exact.begin(), exact.end());
+  if (std::adjacent_find(exact.begin(), exact.end()) != exact.end()) {
     throw FieldError("wavelengths", "two of the values are the same wavelength of the dataset");
   }
+  // A band answering a wavelength that is not on the grid is used once.
+  std::vector<std::size_t> idx = exact;
+  idx.insert(idx.end(), nearest.begin(), nearest.end());
+  std::sort(idx.begin(), idx.end());
+  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
   return idx;
 }
 

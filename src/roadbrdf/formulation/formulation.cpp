@@ -87,10 +87,14 @@ ComponentKind component_kind_from_string(const std::string& text) {
 
 std::string to_string(ComponentKind kind) {
   switch (kind) {
-    case ComponentKind::kBinder: return "binder";
-    case ComponentKind::kAggregate: return "aggregate";
-    case ComponentKind::kFiller: return "filler";
-    case ComponentKind::kPigment: return "pigment";
+    case ComponentKind::kBinder:
+      return "binder";
+    case ComponentKind::kAggregate:
+      return "aggregate";
+    case ComponentKind::kFiller:
+      return "filler";
+    case ComponentKind::kPigment:
+      return "pigment";
   }
   return "?";
 }
@@ -117,7 +121,8 @@ void validate_formulation(const Formulation& f) {
   if (f.name.empty()) fail(path, "name", "must not be empty");
   if (f.components.empty()) fail(path, "components", "at least one component is needed");
   if (!(f.fraction_tolerance_percent >= 0.0 && f.fraction_tolerance_percent <= 10.0)) {
-    fail(path, "fraction_tolerance_percent", "must lie in [0, 10] (got " + number_text(f.fraction_tolerance_percent) + ")");
+    fail(path, "fraction_tolerance_percent",
+         "must lie in [0, 10] (got " + number_text(f.fraction_tolerance_percent) + ")");
   }
   if (!(f.binder_film_thickness_mm > 0.0)) {
     fail(path, "binder_film_thickness_mm", "must be > 0 (got " + number_text(f.binder_film_thickness_mm) + ")");
@@ -144,7 +149,8 @@ void validate_formulation(const Formulation& f) {
     }
     if (!(c.density > 0.0)) fail(path, key + ".density_g_cm3", "must be > 0 (got " + number_text(c.density) + ")");
     if (c.density > 25.0) {
-      fail(path, key + ".density_g_cm3", "implausible density " + number_text(c.density) + " g/cm^3 (unit is g/cm^3, not kg/m^3)");
+      fail(path, key + ".density_g_cm3",
+           "implausible density " + number_text(c.density) + " g/cm^3 (unit is g/cm^3, not kg/m^3)");
     }
     if (c.d_min.has_value() != c.d_max.has_value()) {
       fail(path, key + (c.d_min ? ".d_max_mm" : ".d_min_mm"), "d_min_mm and d_max_mm go together");
@@ -153,7 +159,8 @@ void validate_formulation(const Formulation& f) {
       if (!(*c.d_min >= 0.0)) fail(path, key + ".d_min_mm", "must be >= 0 (got " + number_text(*c.d_min) + ")");
       if (!(*c.d_max > 0.0)) fail(path, key + ".d_max_mm", "must be > 0 (got " + number_text(*c.d_max) + ")");
       if (*c.d_min > *c.d_max) {
-        fail(path, key + ".d_min_mm", "d_min_mm " + number_text(*c.d_min) + " exceeds d_max_mm " + number_text(*c.d_max));
+        fail(path, key + ".d_min_mm",
+             "d_min_mm " + number_text(*c.d_min) + " exceeds d_max_mm " + number_text(*c.d_max));
       }
     } else if ((c.kind == ComponentKind::kAggregate || c.kind == ComponentKind::kFiller) && !c.d_eff) {
       fail(path, key + ".d_max_mm", "an " + to_string(c.kind) + " needs its size class d_min_mm/d_max_mm");
@@ -181,8 +188,8 @@ Formulation parse_formulation(const std::string& text, const std::string& path, 
   try {
     check_keys(j,
                {"format", "version", "name", "description", "source", "assumptions", "fraction_tolerance_percent",
-                "binder_coverage", "mastic_area_fraction", "binder_film_thickness_mm", "coarse_min_size_mm",
-                "mastic", "components"},
+                "binder_coverage", "mastic_area_fraction", "binder_film_thickness_mm", "coarse_min_size_mm", "mastic",
+                "components"},
                path, "");
     if (!j.contains("format") || j.at("format") != "roadbrdf-formulation") {
       fail(path, "format", "must be \"roadbrdf-formulation\"");

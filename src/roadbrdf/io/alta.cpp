@@ -91,13 +91,14 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
         dim_in = dimension(path, n, static_cast<long>(b + 1), cells[1]);
         dim_out = dimension(path, n, static_cast<long>(b + 1), cells[2]);
         if (dim_out != 1) {
-          throw FileError(path, n, static_cast<long>(b + 1) + cells[2].column,
-                          fmt::format("{} output values per line: only single-channel ALTA files are supported",
-                                      cells[2].text));
+          throw FileError(
+              path, n, static_cast<long>(b + 1) + cells[2].column,
+              fmt::format("{} output values per line: only single-channel ALTA files are supported", cells[2].text));
         }
       } else if (key == "VS") {
         if (rest != "0") {
-          throw FileError(path, n, col, fmt::format("'#VS {}': vertical segments are not supported (only #VS 0)", rest));
+          throw FileError(path, n, col,
+                          fmt::format("'#VS {}': vertical segments are not supported (only #VS 0)", rest));
         }
       } else if (key == "PARAM_IN") {
         if (rest == "ISOTROPIC_TL_TV_PROJ_DPHI") {
@@ -113,9 +114,9 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
       } else if (key == "PARAM_OUT") {
         output = parse_output(rest);
         if (output == AltaOutput::kUnknown) {
-          throw FileError(path, n, col,
-                          fmt::format("output unit '{}' is not supported (INV_STERADIAN, INV_STERADIAN_COSINE_FACTOR)",
-                                      rest));
+          throw FileError(
+              path, n, col,
+              fmt::format("output unit '{}' is not supported (INV_STERADIAN, INV_STERADIAN_COSINE_FACTOR)", rest));
         }
       } else if (key == "SAMPLE" || key == "ORIGIN" || key == "URL") {
         std::string k = key;
@@ -129,7 +130,8 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
       if (input == AltaInput::kUnknown) throw FileError(path, n, 0, "data before any #PARAM_IN line");
       const int expected_in = input == AltaInput::kTlTvProjDphi ? 3 : 4;
       if (dim_in >= 0 && dim_in != expected_in) {
-        throw FileError(path, n, 0, fmt::format("#DIM gives {} inputs but the parametrisation has {}", dim_in, expected_in));
+        throw FileError(path, n, 0,
+                        fmt::format("#DIM gives {} inputs but the parametrisation has {}", dim_in, expected_in));
       }
       if (output == AltaOutput::kUnknown) {
         output = parse_output(options.assumed_output);
@@ -144,9 +146,9 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
     const auto cells = split_whitespace(line);
     const std::size_t n_in = input == AltaInput::kTlTvProjDphi ? 3 : 4;
     if (cells.size() != n_in + 1) {
-      throw FileError(path, n, cells.size() > n_in + 1 ? cells[n_in + 1].column : cells.back().column,
-                      fmt::format("expected {} values per line ({} inputs, 1 output), found {}", n_in + 1, n_in,
-                                  cells.size()));
+      throw FileError(
+          path, n, cells.size() > n_in + 1 ? cells[n_in + 1].column : cells.back().column,
+          fmt::format("expected {} values per line ({} inputs, 1 output), found {}", n_in + 1, n_in, cells.size()));
     }
     double v[5];
     for (std::size_t k = 0; k <= n_in; ++k) {
@@ -225,9 +227,10 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
                                       : "INV_STERADIAN (BRDF as stored)";
   if (grazing > 0) {
     d.metadata["alta_grazing_rows_excluded"] = std::to_string(grazing);
-    warn(fmt::format("{}: {} rows at grazing view (cos theta_v < 1e-6) excluded: BRDF x cos theta_v cannot be "
-                     "converted there (first at {})",
-                     path, grazing, first_grazing));
+    warn(
+        fmt::format("{}: {} rows at grazing view (cos theta_v < 1e-6) excluded: BRDF x cos theta_v cannot be "
+                    "converted there (first at {})",
+                    path, grazing, first_grazing));
   }
   if (negative > 0) {
     warn(fmt::format("{}: {} of {} BRDF values are negative (kept: measurement noise; first at {})", path, negative,

@@ -44,7 +44,8 @@ class Bytes {
   std::uint64_t uint(std::size_t offset, std::size_t count, const char* field) const {
     need(offset, count, field);
     std::uint64_t v = 0;
-    for (std::size_t k = 0; k < count; ++k) v |= std::uint64_t(static_cast<unsigned char>(data_[offset + k])) << (8 * k);
+    for (std::size_t k = 0; k < count; ++k)
+      v |= std::uint64_t(static_cast<unsigned char>(data_[offset + k])) << (8 * k);
     return v;
   }
   std::uint8_t u8(std::size_t o, const char* f) const { return static_cast<std::uint8_t>(uint(o, 1, f)); }
@@ -94,24 +95,34 @@ class Bytes {
 
 // Data types, at byte 186 ([SpecDAL] ASD_DATA_TYPES order, [pyASD] DataType_e).
 const char* data_type_name(unsigned type) {
-  static const char* const names[] = {"raw",        "reflectance",   "radiance", "no units",   "irradiance",
-                                      "quality index", "transmittance", "unknown", "absorbance"};
+  static const char* const names[] = {"raw",           "reflectance",   "radiance", "no units",  "irradiance",
+                                      "quality index", "transmittance", "unknown",  "absorbance"};
   return type < std::size(names) ? names[type] : nullptr;
 }
 
 // Instrument types, at byte 431 ([pyASD] InstrumentType_e).
 std::string instrument_type_name(unsigned type) {
   switch (type) {
-    case 0: return "unknown";
-    case 1: return "PSII";
-    case 2: return "LabSpec VNIR";
-    case 3: return "FieldSpec VNIR";
-    case 4: return "FieldSpec full range";
-    case 5: return "FieldSpec NIR";
-    case 6: return "chemistry";
-    case 7: return "LabSpec Pro";
-    case 10: return "HandHeld";
-    default: return "type " + std::to_string(type);
+    case 0:
+      return "unknown";
+    case 1:
+      return "PSII";
+    case 2:
+      return "LabSpec VNIR";
+    case 3:
+      return "FieldSpec VNIR";
+    case 4:
+      return "FieldSpec full range";
+    case 5:
+      return "FieldSpec NIR";
+    case 6:
+      return "chemistry";
+    case 7:
+      return "LabSpec Pro";
+    case 10:
+      return "HandHeld";
+    default:
+      return "type " + std::to_string(type);
   }
 }
 
@@ -137,8 +148,8 @@ std::string version_byte(unsigned v) { return fmt::format("{}.{}", v >> 4, v & 0
 
 struct Grid {
   std::size_t channels = 0;
-  unsigned format = 0;     // 0 float, 1 int32, 2 double ([pyASD] DataFormat_e)
-  std::size_t size = 0;    // bytes per value
+  unsigned format = 0;   // 0 float, 1 int32, 2 double ([pyASD] DataFormat_e)
+  std::size_t size = 0;  // bytes per value
 };
 
 std::vector<double> read_values(const Bytes& b, std::size_t& offset, const Grid& g, const char* field) {
@@ -165,10 +176,10 @@ std::vector<double> read_values(const Bytes& b, std::size_t& offset, const Grid&
 // constituent count; a non-empty list has a 10-byte array header before its items and an empty
 // one 2 bytes after the count ([pyASD]; the 10-byte header is an array descriptor, [files]).
 void read_classifier(const Bytes& b, std::size_t& o, InstrumentSpectrum& s) {
-  static const char* const fields[] = {"title",    "subtitle",   "product_name", "vendor",        "lot_number",
-                                       "sample",   "model_name", "operator",     "date_time",     "instrument",
-                                       "serial_number", "display_mode", "comments", "units",     "filename",
-                                       "username", "reserved1",  "reserved2",    "reserved3",     "reserved4"};
+  static const char* const fields[] = {"title",         "subtitle",     "product_name", "vendor",    "lot_number",
+                                       "sample",        "model_name",   "operator",     "date_time", "instrument",
+                                       "serial_number", "display_mode", "comments",     "units",     "filename",
+                                       "username",      "reserved1",    "reserved2",    "reserved3", "reserved4"};
   b.need(o, 2, "classifier data");
   o += 2;  // y code, y model type
   for (const char* f : fields) {
@@ -261,9 +272,9 @@ InstrumentSpectrum parse_asd(std::string_view data, const std::string& name) {
   s.metadata["asd.version"] = version;
   if (auto c = b.text(3, 157, "comments"); !c.empty()) s.metadata["asd.comments"] = c;  // [pyASD] 157s at 3
   // Saved time at 160: nine int16 of a C struct tm ([pyASD] __parse_ASDFilewhen).
-  s.metadata["asd.saved"] = fmt::format("{:04d}-{:02d}-{:02d} {:02d}:{:02d}:{:02d}", 1900 + b.i16(170, "time"),
-                                        b.i16(168, "time") + 1, b.i16(166, "time"), b.i16(164, "time"),
-                                        b.i16(162, "time"), b.i16(160, "time"));
+  s.metadata["asd.saved"] =
+      fmt::format("{:04d}-{:02d}-{:02d} {:02d}:{:02d}:{:02d}", 1900 + b.i16(170, "time"), b.i16(168, "time") + 1,
+                  b.i16(166, "time"), b.i16(164, "time"), b.i16(162, "time"), b.i16(160, "time"));
   s.metadata["asd.program_version"] = version_byte(b.u8(178, "program version"));  // [pyASD] B at 178
   s.metadata["asd.file_version"] = version_byte(b.u8(179, "file version"));        // [pyASD] B at 179
   const bool dark_corrected = b.u8(181, "dark-corrected flag") != 0;               // [pyASD] b at 181
@@ -285,7 +296,7 @@ InstrumentSpectrum parse_asd(std::string_view data, const std::string& name) {
   for (std::size_t k = 0; k < g.channels; ++k) s.wavelengths.push_back(first + static_cast<double>(k) * step);
   const std::uint32_t it = b.u32(390, "integration time");  // [SpecDAL], [pyASD], [PROV]
   s.metadata["asd.integration_time_ms"] = std::to_string(it);
-  s.metadata["asd.fore_optic_deg"] = std::to_string(b.i16(394, "fore optic"));  // [pyASD] h at 394
+  s.metadata["asd.fore_optic_deg"] = std::to_string(b.i16(394, "fore optic"));            // [pyASD] h at 394
   s.metadata["asd.instrument_number"] = std::to_string(b.u16(400, "instrument number"));  // [pyASD] H at 400
   // Flags at 421..424; the second is saturation/alarm bits ([pyASD] __parseSaturationError).
   const unsigned saturation = b.u8(422, "saturation flags");
@@ -302,7 +313,7 @@ InstrumentSpectrum parse_asd(std::string_view data, const std::string& name) {
   s.metadata["asd.sample_count"] = std::to_string(b.u16(429, "sample count"));
   const unsigned instrument = b.u8(431, "instrument type");  // [pyASD] b at 431, [PROV]
   s.metadata["asd.instrument_type"] = fmt::format("{} ({})", instrument, instrument_type_name(instrument));
-  const unsigned g1 = b.u16(436, "SWIR1 gain"), g2 = b.u16(438, "SWIR2 gain");       // [pyASD] H x 4 at 436
+  const unsigned g1 = b.u16(436, "SWIR1 gain"), g2 = b.u16(438, "SWIR2 gain");  // [pyASD] H x 4 at 436
   const unsigned o1 = b.u16(440, "SWIR1 offset"), o2 = b.u16(442, "SWIR2 offset");
   s.metadata["asd.swir1_gain"] = std::to_string(g1);
   s.metadata["asd.swir2_gain"] = std::to_string(g2);
@@ -311,8 +322,10 @@ InstrumentSpectrum parse_asd(std::string_view data, const std::string& name) {
   s.metadata["asd.splice1_nm"] = fmt::format("{:g}", b.f32(444, "splice 1"));  // [SpecDAL], [pyASD]
   s.metadata["asd.splice2_nm"] = fmt::format("{:g}", b.f32(448, "splice 2"));
   s.metadata["instrument"] = fmt::format("ASD {} #{}", instrument_type_name(instrument), b.u16(400, "instrument"));
-  s.target_settings = {{"integration time [ms]", std::to_string(it)}, {"SWIR1 gain", std::to_string(g1)},
-                       {"SWIR2 gain", std::to_string(g2)},           {"SWIR1 offset", std::to_string(o1)},
+  s.target_settings = {{"integration time [ms]", std::to_string(it)},
+                       {"SWIR1 gain", std::to_string(g1)},
+                       {"SWIR2 gain", std::to_string(g2)},
+                       {"SWIR1 offset", std::to_string(o1)},
                        {"SWIR2 offset", std::to_string(o2)}};
   // The raw counts, whatever the data type ([files]: 15 of 15 real files, raw, reflectance and
   // radiance types alike, hold counts of 10^2..10^4 here).

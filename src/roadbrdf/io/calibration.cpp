@@ -6,10 +6,10 @@
 #include <cmath>
 #include <limits>
 
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/math.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/resample.h"
 
@@ -80,7 +80,8 @@ Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& optio
                                     cells[0].text, s.wavelengths.back()));
       }
       if (columns == 3) {
-        if (v[2] < 0) throw FileError(path, n, cells[2].column, fmt::format("'{}': negative uncertainty", cells[2].text));
+        if (v[2] < 0)
+          throw FileError(path, n, cells[2].column, fmt::format("'{}': negative uncertainty", cells[2].text));
         s.sigma.push_back(v[2]);
       }
     }
@@ -95,7 +96,8 @@ namespace {
 
 // Row index into `other` for each geometry of `sample`: same geometry (by directions), or row 0
 // of a one-row dataset.
-std::vector<std::size_t> match_rows(const SpectralDataset& sample, const SpectralDataset& other, const std::string& what) {
+std::vector<std::size_t> match_rows(const SpectralDataset& sample, const SpectralDataset& other,
+                                    const std::string& what) {
   std::vector<std::size_t> rows(sample.geometries.size(), 0);
   if (other.geometries.size() == 1) return rows;
   auto close = [](const Geometry& a, const Geometry& b) {
@@ -116,10 +118,10 @@ std::vector<std::size_t> match_rows(const SpectralDataset& sample, const Spectra
     }
     if (!found) {
       const Geometry& s = sample.geometries[g];
-      throw InputError(fmt::format("{} has no row for the sample geometry {} (theta_i {:.4g}, phi_i {:.4g}, theta_r "
-                                   "{:.4g}, phi_r {:.4g} deg): give the same geometries, or a single row",
-                                   what, g + 1, rad_to_deg(s.theta_i), rad_to_deg(s.phi_i), rad_to_deg(s.theta_r),
-                                   rad_to_deg(s.phi_r)));
+      throw InputError(fmt::format(
+          "{} has no row for the sample geometry {} (theta_i {:.4g}, phi_i {:.4g}, theta_r "
+          "{:.4g}, phi_r {:.4g} deg): give the same geometries, or a single row",
+          what, g + 1, rad_to_deg(s.theta_i), rad_to_deg(s.phi_i), rad_to_deg(s.theta_r), rad_to_deg(s.phi_r)));
     }
   }
   return rows;
@@ -132,8 +134,8 @@ void same_wavelengths(const SpectralDataset& a, const SpectralDataset& b, const 
   }
   for (std::size_t j = 0; j < a.wavelengths.size(); ++j) {
     if (std::fabs(a.wavelengths[j] - b.wavelengths[j]) > 1e-9 * a.wavelengths[j]) {
-      throw InputError(fmt::format("{} wavelength {} nm differs from the sample's {} nm", what, b.wavelengths[j],
-                                   a.wavelengths[j]));
+      throw InputError(
+          fmt::format("{} wavelength {} nm differs from the sample's {} nm", what, b.wavelengths[j], a.wavelengths[j]));
     }
   }
 }
@@ -176,8 +178,8 @@ SpectralDataset calibrate(const CalibrationInput& in) {
   out.metadata = in.sample.metadata;
   out.metadata["units"] = "sr^-1";
   out.brdf.assign(n * m, 0.0);
-  const bool any_sigma = in.sample.has_sigma() || in.reference.has_sigma() || (in.dark && in.dark->has_sigma()) ||
-                         !panel.sigma.empty();
+  const bool any_sigma =
+      in.sample.has_sigma() || in.reference.has_sigma() || (in.dark && in.dark->has_sigma()) || !panel.sigma.empty();
   if (any_sigma) out.sigma.assign(n * m, 0.0);
   for (std::size_t g = 0; g < n; ++g) {
     for (std::size_t j = 0; j < m; ++j) {
@@ -197,9 +199,10 @@ SpectralDataset calibrate(const CalibrationInput& in) {
         continue;
       }
       if (!(D > 0.0)) {
-        throw InputError(fmt::format("reference radiance {} is not above the dark signal {} at geometry {} and {} nm: "
-                                     "cannot calibrate",
-                                     lr, ld, g + 1, out.wavelengths[j]));
+        throw InputError(
+            fmt::format("reference radiance {} is not above the dark signal {} at geometry {} and {} nm: "
+                        "cannot calibrate",
+                        lr, ld, g + 1, out.wavelengths[j]));
       }
       const double f = N / D * c[j];
       out.brdf[g * m + j] = f;

@@ -41,11 +41,11 @@ std::optional<Spectrum> read_panel_brf(const std::string& path, std::optional<do
                                        std::optional<double> step);
 
 struct CalibrationInput {
-  SpectralDataset sample;            // sample radiances (any unit), N geometries
-  SpectralDataset reference;         // reference-panel radiances: same geometries, or a single row used for all
+  SpectralDataset sample;               // sample radiances (any unit), N geometries
+  SpectralDataset reference;            // reference-panel radiances: same geometries, or a single row used for all
   std::optional<SpectralDataset> dark;  // dark signal: same geometries, or a single row; none = 0
-  Spectrum panel_reflectance;        // rho_ref(lambda), dimensionless (e.g. Spectralon 8deg/h calibration)
-  std::optional<Spectrum> panel_brf; // optional measured BRF of the panel at the measurement geometry
+  Spectrum panel_reflectance;           // rho_ref(lambda), dimensionless (e.g. Spectralon 8deg/h calibration)
+  std::optional<Spectrum> panel_brf;    // optional measured BRF of the panel at the measurement geometry
 };
 
 // The calibrated BRDF [sr^-1] with propagated uncertainties. Throws InputError (mismatched

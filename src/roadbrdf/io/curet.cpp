@@ -75,16 +75,18 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
       }
       const double index = number_or_throw(table_path, n, cells[0], "geometry index");
       if (index != static_cast<double>(d.geometries.size() + 1)) {
-        throw FileError(table_path, n, cells[0].column,
-                        fmt::format("geometry index '{}' out of sequence (expected {})", cells[0].text,
-                                    d.geometries.size() + 1));
+        throw FileError(
+            table_path, n, cells[0].column,
+            fmt::format("geometry index '{}' out of sequence (expected {})", cells[0].text, d.geometries.size() + 1));
       }
       double a[4];
-      for (int k = 0; k < 4; ++k) a[k] = number_or_throw(table_path, n, cells[static_cast<std::size_t>(k + 1)], "angle in radians");
+      for (int k = 0; k < 4; ++k)
+        a[k] = number_or_throw(table_path, n, cells[static_cast<std::size_t>(k + 1)], "angle in radians");
       for (int k : {0, 2}) {
         if (a[k] < 0.0 || a[k] > kPi / 2 + 1e-6) {
-          throw FileError(table_path, n, cells[static_cast<std::size_t>(k + 1)].column,
-                          fmt::format("zenith angle '{}' rad is outside [0, pi/2]", cells[static_cast<std::size_t>(k + 1)].text));
+          throw FileError(
+              table_path, n, cells[static_cast<std::size_t>(k + 1)].column,
+              fmt::format("zenith angle '{}' rad is outside [0, pi/2]", cells[static_cast<std::size_t>(k + 1)].text));
         }
       }
       // theta_i, phi_i, theta_r = theta_v, phi_r = phi_v
@@ -128,9 +130,10 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
       throw InputError(fmt::format("{}: no sample {} (samples present: {})", abrdf_path, sample, list));
     }
     if (negative > 0) {
-      const std::string message = fmt::format("{}: sample {}: {} of {} BRDF values are negative (kept: measurement "
-                                              "noise; first at {})",
-                                              abrdf_path, sample, negative, count, first_negative);
+      const std::string message = fmt::format(
+          "{}: sample {}: {} of {} BRDF values are negative (kept: measurement "
+          "noise; first at {})",
+          abrdf_path, sample, negative, count, first_negative);
       if (options.warn) {
         options.warn(message);
       } else {

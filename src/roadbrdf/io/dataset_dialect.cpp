@@ -136,9 +136,10 @@ char detect_delimiter(std::string_view line, bool (*known)(std::string_view, cha
   if (fitting.size() == 1) return fitting.front();
   std::string list;
   for (char c : present) list += (list.empty() ? "" : " and ") + delimiter_display(c);
-  throw InputError(fmt::format("cannot tell the delimiter of the header line (it holds {}{}): pass --delimiter "
-                               "',' | ';' | tab (and --decimal '.' | ',' for the numbers)",
-                               list, fitting.empty() ? ", and no choice gives known column names" : ""));
+  throw InputError(
+      fmt::format("cannot tell the delimiter of the header line (it holds {}{}): pass --delimiter "
+                  "',' | ';' | tab (and --decimal '.' | ',' for the numbers)",
+                  list, fitting.empty() ? ", and no choice gives known column names" : ""));
 }
 
 NumberParser::NumberParser(char delimiter, char decimal) : delimiter_(delimiter), decimal_(decimal) {
@@ -182,9 +183,10 @@ std::string NumberParser::hint(std::string_view text) const {
   const char other = decimal == '.' ? ',' : '.';
   if (text.find(other) == std::string_view::npos) return "";
   if (decided_line_ > 0) {
-    return fmt::format(" (it uses '{}' as the decimal separator, but line {} column {} used '{}': pass --decimal "
-                       "'.' or --decimal ',' to say which one the file uses)",
-                       other, decided_line_, decided_column_, decimal);
+    return fmt::format(
+        " (it uses '{}' as the decimal separator, but line {} column {} used '{}': pass --decimal "
+        "'.' or --decimal ',' to say which one the file uses)",
+        other, decided_line_, decided_column_, decimal);
   }
   return fmt::format(" (the decimal separator is '{}'{}; see --decimal)", decimal,
                      delimiter_ == ',' ? " in a ','-separated file" : "");

@@ -76,7 +76,7 @@ class NumberParser {
   static bool parse_point(std::string_view text, double& value);
   bool parse_slow(std::string_view text, double& value, long line, long column);
   char delimiter_;
-  char decimal_;  // 0 while undetected
+  char decimal_;                                // 0 while undetected
   long decided_line_ = 0, decided_column_ = 0;  // where the separator was detected
 };
 

@@ -15,9 +15,9 @@
 #include <unordered_map>
 
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf {
 
@@ -82,10 +82,12 @@ void validate_dataset(const SpectralDataset& d) {
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
   if (n == 0 || m == 0) throw InputError("dataset has no geometries or no wavelengths");
   if (d.brdf.size() != n * m) {
-    throw InputError(fmt::format("dataset holds {} BRDF values for {} geometries x {} wavelengths", d.brdf.size(), n, m));
+    throw InputError(
+        fmt::format("dataset holds {} BRDF values for {} geometries x {} wavelengths", d.brdf.size(), n, m));
   }
   if (!d.sigma.empty() && d.sigma.size() != n * m) {
-    throw InputError(fmt::format("dataset holds {} uncertainties for {} geometries x {} wavelengths", d.sigma.size(), n, m));
+    throw InputError(
+        fmt::format("dataset holds {} uncertainties for {} geometries x {} wavelengths", d.sigma.size(), n, m));
   }
   for (std::size_t j = 0; j < m; ++j) {
     if (!(std::isfinite(d.wavelengths[j]) && d.wavelengths[j] > 0.0)) {
@@ -101,7 +103,8 @@ void validate_dataset(const SpectralDataset& d) {
   // NaN is a measurement that was not made; an infinite value is no measurement at all.
   for (std::size_t k = 0; k < n * m; ++k) {
     if (std::isinf(d.brdf[k])) {
-      throw InputError(fmt::format("dataset BRDF is infinite at geometry (row) {}, {} nm", k / m, d.wavelengths[k % m]));
+      throw InputError(
+          fmt::format("dataset BRDF is infinite at geometry (row) {}, {} nm", k / m, d.wavelengths[k % m]));
     }
     if (d.has_sigma() && (std::isinf(d.sigma[k]) || d.sigma[k] < 0.0)) {
       throw InputError(fmt::format("dataset sigma is {} at geometry (row) {}, {} nm: must be finite and >= 0",
@@ -120,8 +123,10 @@ void validate_dataset_for_writing(const SpectralDataset& d) {
   validate_dataset(d);
   for (const auto& [key, value] : d.metadata) {
     if (!is_metadata_key(key)) {
-      throw InputError(fmt::format("metadata key '{}': use letters, digits, '_', '-' and '.' only (it would not "
-                                   "read back)", key));
+      throw InputError(
+          fmt::format("metadata key '{}': use letters, digits, '_', '-' and '.' only (it would not "
+                      "read back)",
+                      key));
     }
     if (value.find_first_of("\r\n") != std::string::npos) {
       throw InputError(fmt::format("metadata '{}': the value must be one line", key));
@@ -132,7 +137,8 @@ void validate_dataset_for_writing(const SpectralDataset& d) {
       throw InputError(fmt::format("dataset comment '{}' must be one line", comment));
     }
     if (is_metadata_comment(comment)) {
-      throw InputError(fmt::format("dataset comment '{}' would read back as metadata: put it in the metadata", comment));
+      throw InputError(
+          fmt::format("dataset comment '{}' would read back as metadata: put it in the metadata", comment));
     }
   }
 }

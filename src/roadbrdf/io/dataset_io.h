@@ -70,7 +70,7 @@ struct DatasetReadStats {
   std::size_t missing_values = 0;  // missing cells written as such (empty, nan, NA)
   std::size_t absent_rows = 0;     // long files: (geometry, wavelength) pairs without a row, also missing
   std::size_t averaged_duplicate_rows = 0;
-  std::size_t implausible_values = 0;  // BRDF values above 1e3 sr^-1
+  std::size_t implausible_values = 0;   // BRDF values above 1e3 sr^-1
   bool micrometre_wavelengths = false;  // every wavelength below 30 "nm": probably micrometres
   bool radian_angles = false;           // every angle within +-1.6 "deg": probably radians
 };
@@ -86,7 +86,8 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
 // Write wide or long CSV atomically (temporary file, then rename). Angles are written in the
 // dataset's convention, values with round-trip precision. Metadata keys become "# key: value"
 // lines ("units: sr^-1" is always written). Throws InputError / FileError.
-void write_dataset(const SpectralDataset& dataset, const std::string& path, DatasetFormat format = DatasetFormat::kWide);
+void write_dataset(const SpectralDataset& dataset, const std::string& path,
+                   DatasetFormat format = DatasetFormat::kWide);
 // Same to a stream (e.g. standard output).
 void write_dataset(const SpectralDataset& dataset, std::ostream& out, DatasetFormat format = DatasetFormat::kWide);
 

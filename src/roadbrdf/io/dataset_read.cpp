@@ -116,7 +116,8 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
   const std::vector<std::size_t> angle_columns = angle_columns_of(r, names, header_line, d.convention);
 
   std::vector<Role> roles(column_count, Role{Role::kValue, 0});
-  for (int k = 0; k < 4; ++k) roles[angle_columns[static_cast<std::size_t>(k)]] = {Role::kAngle, static_cast<std::uint32_t>(k)};
+  for (int k = 0; k < 4; ++k)
+    roles[angle_columns[static_cast<std::size_t>(k)]] = {Role::kAngle, static_cast<std::uint32_t>(k)};
   std::vector<double> sigma_wavelengths;
   std::vector<long> sigma_header_columns;
   std::vector<std::string_view> value_header_texts, sigma_header_texts;
@@ -156,10 +157,10 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
                                           text));
         }
         if (!d.wavelengths.empty() && wl <= d.wavelengths.back()) {
-          reader.fail(column, fmt::format("wavelength '{}' nm is {} the previous column's {} nm: wavelengths must be "
-                                          "strictly increasing (no duplicates)",
-                                          text, wl == d.wavelengths.back() ? "equal to" : "below",
-                                          d.wavelengths.back()));
+          reader.fail(column,
+                      fmt::format("wavelength '{}' nm is {} the previous column's {} nm: wavelengths must be "
+                                  "strictly increasing (no duplicates)",
+                                  text, wl == d.wavelengths.back() ? "equal to" : "below", d.wavelengths.back()));
         }
         roles[k] = {Role::kValue, static_cast<std::uint32_t>(d.wavelengths.size())};
         d.wavelengths.push_back(wl);
@@ -271,7 +272,8 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
       }
     }
   }
-  if (d.geometries.empty()) throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
+  if (d.geometries.empty())
+    throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
   if (r.options.average_duplicates) {
     for (std::size_t n = 0; n < d.geometries.size(); ++n) {
       for (std::size_t j = 0; j < m; ++j) {
@@ -281,7 +283,8 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
         if (with_sigma) d.sigma[n * m + j] = std::sqrt(d.sigma[n * m + j]) / c;
       }
     }
-    if (r.stats.averaged_duplicate_rows) d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
+    if (r.stats.averaged_duplicate_rows)
+      d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
   }
   return d;
 }
@@ -293,7 +296,8 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
   stats = {};
   CsvReader reader(path);
   std::string_view first;
-  if (!reader.next_line(first)) throw FileError(reader.path(), reader.line_number(), 0, "file is empty (no header line)");
+  if (!reader.next_line(first))
+    throw FileError(reader.path(), reader.line_number(), 0, "file is empty (no header line)");
   const std::string header(first);  // the reader reuses its line buffer
   char delimiter = options.delimiter;
   if (delimiter == 0) {

@@ -164,17 +164,15 @@ Geometry parse_geometry(Reading& r, AngleConvention convention, const AngleCells
 void ragged(Reading& r, std::string_view line, std::size_t expected, std::string_view text, long column, bool extra) {
   const std::size_t count = static_cast<std::size_t>(std::count(line.begin(), line.end(), r.delimiter)) + 1;
   if (extra) {
-    r.reader.fail(column, fmt::format("row has {} cells but the header has {} columns (extra cell '{}')", count,
-                                      expected, text));
+    r.reader.fail(
+        column, fmt::format("row has {} cells but the header has {} columns (extra cell '{}')", count, expected, text));
   }
-  r.reader.fail(column + static_cast<long>(text.size()),
-                fmt::format("row has {} cells but the header has {} columns (row ends after '{}')", count, expected,
-                            text));
+  r.reader.fail(
+      column + static_cast<long>(text.size()),
+      fmt::format("row has {} cells but the header has {} columns (row ends after '{}')", count, expected, text));
 }
 
-std::string duplicates_hint() {
-  return "ask for averaging of duplicates, e.g. --average-duplicates, to average them";
-}
+std::string duplicates_hint() { return "ask for averaging of duplicates, e.g. --average-duplicates, to average them"; }
 
 void finish_warnings(Reading& r, const SpectralDataset& d) {
   auto warn = r.options.warn ? r.options.warn : default_warn;
@@ -195,16 +193,18 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
     warn(fmt::format("{}: {} duplicate geometry rows were averaged", r.reader.path(), r.stats.averaged_duplicate_rows));
   }
   if (r.stats.implausible_values > 0) {
-    warn(fmt::format("{}: {} of {} BRDF values are above {:g} sr^-1 (largest {:g}, first at {}): only a mirror or "
-                     "retroreflector peak is that bright; check that the file holds a BRDF in sr^-1 (not a radiance, "
-                     "counts or a reflectance in percent)",
-                     r.reader.path(), r.stats.implausible_values, total, kImplausibleBrdf, r.largest, r.first_large));
+    warn(
+        fmt::format("{}: {} of {} BRDF values are above {:g} sr^-1 (largest {:g}, first at {}): only a mirror or "
+                    "retroreflector peak is that bright; check that the file holds a BRDF in sr^-1 (not a radiance, "
+                    "counts or a reflectance in percent)",
+                    r.reader.path(), r.stats.implausible_values, total, kImplausibleBrdf, r.largest, r.first_large));
   }
   if (!d.wavelengths.empty() && d.wavelengths.back() < kMicrometreLikeWavelength) {
     r.stats.micrometre_wavelengths = true;
-    warn(fmt::format("{}: every wavelength is below {:g} nm ({:g}-{:g}): they look like micrometres; datasets hold "
-                     "nm (multiply the header wavelengths by 1000)",
-                     r.reader.path(), kMicrometreLikeWavelength, d.wavelengths.front(), d.wavelengths.back()));
+    warn(
+        fmt::format("{}: every wavelength is below {:g} nm ({:g}-{:g}): they look like micrometres; datasets hold "
+                    "nm (multiply the header wavelengths by 1000)",
+                    r.reader.path(), kMicrometreLikeWavelength, d.wavelengths.front(), d.wavelengths.back()));
   }
   double largest_angle = 0.0;
   for (const Geometry& g : d.geometries) {
@@ -214,9 +214,10 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
   }
   if (!d.geometries.empty() && largest_angle > 0.0 && largest_angle <= kRadianLikeAngle) {
     r.stats.radian_angles = true;
-    warn(fmt::format("{}: every angle is within +-{:g} deg (largest {:g}): they look like radians; datasets hold "
-                     "degrees (multiply the angles by 180/pi)",
-                     r.reader.path(), kRadianLikeAngle, largest_angle));
+    warn(
+        fmt::format("{}: every angle is within +-{:g} deg (largest {:g}): they look like radians; datasets hold "
+                    "degrees (multiply the angles by 180/pi)",
+                    r.reader.path(), kRadianLikeAngle, largest_angle));
   }
 }
 
@@ -307,8 +308,8 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
   // proportional to the file, whatever geometries x wavelengths would be.
   std::vector<std::uint32_t> wl_index(records.size());
   for (std::size_t k = 0; k < records.size(); ++k) {
-    wl_index[k] = static_cast<std::uint32_t>(std::lower_bound(wls.begin(), wls.end(), records[k].wavelength) -
-                                             wls.begin());
+    wl_index[k] =
+        static_cast<std::uint32_t>(std::lower_bound(wls.begin(), wls.end(), records[k].wavelength) - wls.begin());
   }
   std::vector<std::size_t> order(records.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -398,7 +399,8 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
     d.brdf[idx] /= count[idx];
     if (with_sigma) d.sigma[idx] = std::sqrt(d.sigma[idx]) / count[idx];
   }
-  if (r.stats.averaged_duplicate_rows) d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
+  if (r.stats.averaged_duplicate_rows)
+    d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
   return d;
 }
 

@@ -31,7 +31,7 @@ struct Reading {
   NumberParser numbers;
   std::string first_negative;  // location of the first negative value
   std::string first_missing;
-  std::string first_large;     // location of the first value above kImplausibleBrdf
+  std::string first_large;  // location of the first value above kImplausibleBrdf
   double largest = 0.0;
   std::string first_absent;  // the first (geometry, wavelength) pair of a long file without a row
 };

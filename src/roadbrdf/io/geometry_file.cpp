@@ -4,14 +4,14 @@
 
 #include <algorithm>
 
-#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/io/dataset_dialect.h"
 
 namespace roadbrdf {
 
-std::vector<std::size_t> find_angle_columns(const std::vector<std::string>& header, const std::string& file,
-                                            long line, AngleConvention& convention) {
+std::vector<std::size_t> find_angle_columns(const std::vector<std::string>& header, const std::string& file, long line,
+                                            AngleConvention& convention) {
   // Names in any case, with units or aliases (io/dataset_dialect.h).
   std::vector<std::string> canonical;
   for (const auto& h : header) canonical.push_back(canonical_column_name(h));
@@ -57,8 +57,8 @@ GeometryTable read_geometry_file(const std::string& path) {
       find_angle_columns(table.header, path, reader.line_number(), table.convention);
   while (reader.next_row(cells)) {
     if (cells.size() != table.header.size()) {
-      reader.fail(cells.back().column, fmt::format("row has {} cells but the header has {} columns", cells.size(),
-                                                   table.header.size()));
+      reader.fail(cells.back().column,
+                  fmt::format("row has {} cells but the header has {} columns", cells.size(), table.header.size()));
     }
     double angles[4];
     for (int k = 0; k < 4; ++k) {

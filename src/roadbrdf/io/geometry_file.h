@@ -17,16 +17,16 @@ enum class AngleConvention { kZenithAzimuth, kRoad };
 
 struct GeometryTable {
   AngleConvention convention = AngleConvention::kZenithAzimuth;
-  std::vector<std::string> comments;             // '#' lines, without the '#'
-  std::vector<std::string> header;               // all column names
-  std::vector<std::vector<std::string>> cells;   // all cells of every row, as written
-  std::vector<Geometry> geometries;              // one per row
+  std::vector<std::string> comments;            // '#' lines, without the '#'
+  std::vector<std::string> header;              // all column names
+  std::vector<std::vector<std::string>> cells;  // all cells of every row, as written
+  std::vector<Geometry> geometries;             // one per row
 };
 
 // Index of the four angle columns in `header` (theta_i, phi_i, theta_r, phi_r or gamma, alpha,
 // beta, delta order), and the convention. Throws FileError (line `line`) when neither set is complete.
-std::vector<std::size_t> find_angle_columns(const std::vector<std::string>& header, const std::string& file,
-                                            long line, AngleConvention& convention);
+std::vector<std::size_t> find_angle_columns(const std::vector<std::string>& header, const std::string& file, long line,
+                                            AngleConvention& convention);
 
 // Geometry from the four angle values (degrees) in the given convention; throws InputError.
 Geometry geometry_from_angle_values(AngleConvention convention, const double angles[4]);

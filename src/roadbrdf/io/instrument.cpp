@@ -23,18 +23,24 @@ OverlapRule overlap_rule_from_string(const std::string& name) {
 
 std::string to_string(OverlapRule rule) {
   switch (rule) {
-    case OverlapRule::kUpper: return "upper";
-    case OverlapRule::kLower: return "lower";
-    case OverlapRule::kError: return "error";
+    case OverlapRule::kUpper:
+      return "upper";
+    case OverlapRule::kLower:
+      return "lower";
+    case OverlapRule::kError:
+      return "error";
   }
   return "";
 }
 
 std::string to_string(InstrumentFormat format) {
   switch (format) {
-    case InstrumentFormat::kAsd: return "asd";
-    case InstrumentFormat::kSed: return "sed";
-    case InstrumentFormat::kSig: return "sig";
+    case InstrumentFormat::kAsd:
+      return "asd";
+    case InstrumentFormat::kSed:
+      return "sed";
+    case InstrumentFormat::kSig:
+      return "sig";
   }
   return "";
 }
@@ -43,7 +49,8 @@ namespace {
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -70,9 +77,15 @@ InstrumentSpectrum read_instrument_bytes(std::string_view bytes, const std::stri
                                          const InstrumentReadOptions& options) {
   InstrumentSpectrum s;
   switch (detect_instrument_format(name, bytes.substr(0, 64))) {
-    case InstrumentFormat::kAsd: s = parse_asd(bytes, name); break;
-    case InstrumentFormat::kSed: s = parse_sed(bytes, name); break;
-    case InstrumentFormat::kSig: s = parse_sig(bytes, name, options.overlap); break;
+    case InstrumentFormat::kAsd:
+      s = parse_asd(bytes, name);
+      break;
+    case InstrumentFormat::kSed:
+      s = parse_sed(bytes, name);
+      break;
+    case InstrumentFormat::kSig:
+      s = parse_sig(bytes, name, options.overlap);
+      break;
   }
   s.metadata["instrument_file_format"] = to_string(s.format);
   return s;
@@ -94,9 +107,12 @@ InstrumentQuantity instrument_quantity_from_string(const std::string& name) {
 
 std::string to_string(InstrumentQuantity quantity) {
   switch (quantity) {
-    case InstrumentQuantity::kTarget: return "target";
-    case InstrumentQuantity::kReference: return "reference";
-    case InstrumentQuantity::kReflectance: return "reflectance";
+    case InstrumentQuantity::kTarget:
+      return "target";
+    case InstrumentQuantity::kReference:
+      return "reference";
+    case InstrumentQuantity::kReflectance:
+      return "reflectance";
   }
   return "";
 }
@@ -106,9 +122,9 @@ const std::vector<double>& instrument_signal(const InstrumentSpectrum& s, Instru
                                  : quantity == InstrumentQuantity::kReference ? s.reference
                                                                               : s.reflectance;
   if (v.empty()) {
-    throw InputError(fmt::format("{}: the file has no {} {}", s.path, to_string(quantity),
-                                 quantity == InstrumentQuantity::kReflectance ? "column (nor a reference to form it)"
-                                                                              : "signal"));
+    throw InputError(
+        fmt::format("{}: the file has no {} {}", s.path, to_string(quantity),
+                    quantity == InstrumentQuantity::kReflectance ? "column (nor a reference to form it)" : "signal"));
   }
   return v;
 }

@@ -38,15 +38,16 @@ struct InstrumentSpectrum {
   std::vector<double> wavelengths;  // [nm], strictly increasing
   std::vector<double> target;       // target signal, as stored (see quantity/units)
   std::vector<double> reference;    // reference-panel signal stored with the target; empty when absent
-  std::vector<double> reflectance;  // reflectance factor [1] (file's column / 100, or ASD target/reference); may be empty
-  std::string quantity;             // of target and reference: "DN", "normalized DN", "radiance", "irradiance"
-  std::string units;                // of target and reference, as far as known (e.g. "W/m^2/sr/nm", "DN")
+  std::vector<double>
+      reflectance;       // reflectance factor [1] (file's column / 100, or ASD target/reference); may be empty
+  std::string quantity;  // of target and reference: "DN", "normalized DN", "radiance", "irradiance"
+  std::string units;     // of target and reference, as far as known (e.g. "W/m^2/sr/nm", "DN")
   // Acquisition settings on which a raw signal depends (integration times, gains): a sample and the
   // white reference it is divided by must agree on these when the quantity is a raw "DN".
   std::map<std::string, std::string> target_settings;
   std::map<std::string, std::string> reference_settings;  // of the stored reference (may be empty: unknown)
   std::map<std::string, std::string> metadata;            // header values, keys prefixed by the format ("asd.", ...)
-  std::vector<std::string> notes;                          // things worth a warning (overlap dropped, inconsistencies)
+  std::vector<std::string> notes;                         // things worth a warning (overlap dropped, inconsistencies)
 };
 
 // By the file's first bytes ("as6".."as8" -> ASD; "/*** Spectra Vista" -> SIG; a "Version:" ...

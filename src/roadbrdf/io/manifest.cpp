@@ -18,7 +18,8 @@ namespace {
 
 std::string lower(std::string_view s) {
   std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return out;
 }
 
@@ -78,19 +79,21 @@ class RunFiles {
   void check_compatible(const ManifestEntry& fe, const InstrumentSpectrum& f, const ManifestEntry& e,
                         const InstrumentSpectrum& s) const {
     if (s.quantity != f.quantity || s.units != f.units) {
-      throw InputError(fmt::format("{}: {} holds {} [{}], but {} holds {} [{}]: every file of a run must hold the "
-                                   "same quantity",
-                                   where(e), e.file, s.quantity, s.units, fe.file, f.quantity, f.units));
+      throw InputError(
+          fmt::format("{}: {} holds {} [{}], but {} holds {} [{}]: every file of a run must hold the "
+                      "same quantity",
+                      where(e), e.file, s.quantity, s.units, fe.file, f.quantity, f.units));
     }
     bool same = s.wavelengths.size() == f.wavelengths.size();
     for (std::size_t k = 0; same && k < s.wavelengths.size(); ++k) {
       same = std::fabs(s.wavelengths[k] - f.wavelengths[k]) <= 1e-6 * f.wavelengths[k];
     }
     if (!same) {
-      throw InputError(fmt::format("{}: {} has {} wavelengths {:g}-{:g} nm, {} has {} ({:g}-{:g} nm): every file of "
-                                   "a run must share the wavelengths",
-                                   where(e), e.file, s.wavelengths.size(), s.wavelengths.front(), s.wavelengths.back(),
-                                   fe.file, f.wavelengths.size(), f.wavelengths.front(), f.wavelengths.back()));
+      throw InputError(
+          fmt::format("{}: {} has {} wavelengths {:g}-{:g} nm, {} has {} ({:g}-{:g} nm): every file of "
+                      "a run must share the wavelengths",
+                      where(e), e.file, s.wavelengths.size(), s.wavelengths.front(), s.wavelengths.back(), fe.file,
+                      f.wavelengths.size(), f.wavelengths.front(), f.wavelengths.back()));
     }
   }
   const Manifest& manifest_;
@@ -109,14 +112,16 @@ std::vector<const ManifestEntry*> entries_of(const Manifest& m, ManifestRole rol
 
 // Settings on which a raw count depends must agree between a sample and what it is divided by.
 void check_settings(const RunFiles& run, const ManifestEntry& e, const std::map<std::string, std::string>& a,
-                    const std::string& what_b, const std::map<std::string, std::string>& b, const std::string& quantity) {
+                    const std::string& what_b, const std::map<std::string, std::string>& b,
+                    const std::string& quantity) {
   if (quantity != "DN" || a.empty() || b.empty()) return;
   for (const auto& [key, value] : a) {
     const auto it = b.find(key);
     if (it != b.end() && it->second != value) {
-      throw InputError(fmt::format("{}: sample {} was measured with {} {}, its {} with {}: raw counts taken with "
-                                   "different settings cannot be divided (roadbrdf applies no DN normalization)",
-                                   run.where(e), e.file, key, value, what_b, it->second));
+      throw InputError(
+          fmt::format("{}: sample {} was measured with {} {}, its {} with {}: raw counts taken with "
+                      "different settings cannot be divided (roadbrdf applies no DN normalization)",
+                      run.where(e), e.file, key, value, what_b, it->second));
     }
   }
 }
@@ -185,8 +190,9 @@ Manifest read_manifest(const std::string& path) {
     } else if (header[k] == "role") {
       role_column = static_cast<int>(k);
     } else if (!is_angle && header[k] != "comment") {
-      throw FileError(path, header_line, cells[k].column,
-                      fmt::format("unknown manifest column '{}' (file, role, the four angles, comment)", cells[k].text));
+      throw FileError(
+          path, header_line, cells[k].column,
+          fmt::format("unknown manifest column '{}' (file, role, the four angles, comment)", cells[k].text));
     }
   }
   if (file_column < 0 || role_column < 0) {
@@ -216,7 +222,8 @@ Manifest read_manifest(const std::string& path) {
       e.has_geometry = false;
     } else {
       double a[4];
-      for (int k = 0; k < 4; ++k) a[k] = reader.number(cells[angle_columns[static_cast<std::size_t>(k)]], "angle in degrees");
+      for (int k = 0; k < 4; ++k)
+        a[k] = reader.number(cells[angle_columns[static_cast<std::size_t>(k)]], "angle in degrees");
       try {
         e.geometry = geometry_from_angle_values(m.convention, a);
       } catch (const FileError&) {
@@ -292,8 +299,8 @@ CalibrationInput manifest_calibration_input(const Manifest& m, const ManifestOpt
         if (w->has_geometry && same_geometry(w->geometry, samples[k]->geometry)) white = w;
       }
       if (white->has_geometry && !same_geometry(white->geometry, samples[k]->geometry)) {
-        throw InputError(fmt::format("{}: no white reference row at the geometry of sample {} ({})", run.where(*samples[k]),
-                                     samples[k]->file, geometry_text(samples[k]->geometry)));
+        throw InputError(fmt::format("{}: no white reference row at the geometry of sample {} ({})",
+                                     run.where(*samples[k]), samples[k]->file, geometry_text(samples[k]->geometry)));
       }
       check_settings(run, *samples[k], files[k]->target_settings, "white reference " + white->file,
                      run.get(*white).target_settings, quantity);
@@ -308,8 +315,9 @@ CalibrationInput manifest_calibration_input(const Manifest& m, const ManifestOpt
     for (const auto* f : files) {
       const auto it = f->metadata.find("asd.dark_corrected");
       if (it != f->metadata.end() && it->second == "yes") {
-        run.warn(f->path + ": the ASD header says the spectrum is already dark-corrected, and the manifest lists a "
-                           "dark: it is subtracted again");
+        run.warn(f->path +
+                 ": the ASD header says the spectrum is already dark-corrected, and the manifest lists a "
+                 "dark: it is subtracted again");
         break;
       }
     }

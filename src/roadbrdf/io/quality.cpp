@@ -197,8 +197,8 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
   std::vector<bool> specular(n, false);
   for (std::size_t g = 0; g < n; ++g) {
     coord[g] = angular_coordinates(d.geometries[g]);
-    specular[g] = rad_to_deg(angle_between(d.geometries[g].wr, mirror_direction(d.geometries[g].wi))) <
-                  o.specular_cone_deg;
+    specular[g] =
+        rad_to_deg(angle_between(d.geometries[g].wr, mirror_direction(d.geometries[g].wi))) < o.specular_cone_deg;
     double s = 0.0;
     std::size_t c = 0;
     for (std::size_t j = 0; j < m; ++j) {
@@ -222,8 +222,8 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
     for (std::size_t k = 0; k < n; ++k) {
       if (k == g || !std::isfinite(level[k])) continue;
       if (specular[k] && !specular[g]) continue;  // a physical specular peak would bias the prediction
-      const double dist = std::sqrt(sqr(coord[g][0] - coord[k][0]) + sqr(coord[g][1] - coord[k][1]) +
-                                    sqr(coord[g][2] - coord[k][2]));
+      const double dist =
+          std::sqrt(sqr(coord[g][0] - coord[k][0]) + sqr(coord[g][1] - coord[k][1]) + sqr(coord[g][2] - coord[k][2]));
       if (dist > 1e-9 && dist <= o.neighbour_max_distance_deg) cand.emplace_back(dist, k);
     }
     if (cand.size() < 2) continue;
@@ -239,7 +239,8 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
       std::vector<double> b(terms, 0.0), x;
       for (std::size_t q = 0; q < k; ++q) {
         const auto& c = coord[cand[q].second];
-        const double u0 = (c[0] - coord[g][0]) / 10.0, u1 = (c[1] - coord[g][1]) / 10.0, u2 = (c[2] - coord[g][2]) / 10.0;
+        const double u0 = (c[0] - coord[g][0]) / 10.0, u1 = (c[1] - coord[g][1]) / 10.0,
+                     u2 = (c[2] - coord[g][2]) / 10.0;
         const double row[7] = {1.0, u0, u1, u2, u0 * u0, u1 * u1, u2 * u2};
         for (std::size_t i = 0; i < terms; ++i) {
           for (std::size_t j = 0; j < terms; ++j) A[i][j] += row[i] * row[j];
@@ -283,7 +284,9 @@ void check_panel(const SpectralDataset& d, const Spectrum& rho, QualityReport& r
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
   std::vector<double> expected(m);
   for (std::size_t j = 0; j < m; ++j) {
-    expected[j] = interpolate_linear(rho.wavelengths, rho.values, d.wavelengths[j], "panel reflectance (" + rho.source + ")") / kPi;
+    expected[j] =
+        interpolate_linear(rho.wavelengths, rho.values, d.wavelengths[j], "panel reflectance (" + rho.source + ")") /
+        kPi;
   }
   PanelValidation p;
   double total = 0.0;
@@ -395,8 +398,11 @@ QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
 
 nlohmann::json quality_report_json(const SpectralDataset& d, const QualityReport& r) {
   nlohmann::json j;
-  j["units"] = {{"angles", "deg"}, {"wavelength", "nm"}, {"brdf", "sr^-1"},
-                {"disagreement", "relative: |f_a - f_b| / mean(f_a, f_b)"}, {"snr", "signal / noise, dimensionless"}};
+  j["units"] = {{"angles", "deg"},
+                {"wavelength", "nm"},
+                {"brdf", "sr^-1"},
+                {"disagreement", "relative: |f_a - f_b| / mean(f_a, f_b)"},
+                {"snr", "signal / noise, dimensionless"}};
   j["geometries"] = r.geometry_count;
   j["wavelengths"] = {{"count", r.wavelength_count}, {"min_nm", r.wavelength_min}, {"max_nm", r.wavelength_max}};
   j["coverage"] = {{"incidence_zenith_deg", r.incidence_angles_deg},
@@ -420,13 +426,16 @@ nlohmann::json quality_report_json(const SpectralDataset& d, const QualityReport
     sum += p.disagreement;
     mx = std::max(mx, p.disagreement);
   }
-  j["reciprocity"] = {{"pairs", r.reciprocity.size()},
-                      {"flagged", r.reciprocity_flagged},
-                      {"mean_disagreement", r.reciprocity.empty() ? nlohmann::json(nullptr) : nlohmann::json(sum / static_cast<double>(r.reciprocity.size()))},
-                      {"max_disagreement", mx},
-                      {"list", pairs}};
+  j["reciprocity"] = {
+      {"pairs", r.reciprocity.size()},
+      {"flagged", r.reciprocity_flagged},
+      {"mean_disagreement", r.reciprocity.empty() ? nlohmann::json(nullptr)
+                                                  : nlohmann::json(sum / static_cast<double>(r.reciprocity.size()))},
+      {"max_disagreement", mx},
+      {"list", pairs}};
   nlohmann::json bands = nlohmann::json::array();
-  for (const auto& b : r.noisy_bands) bands.push_back({{"from_nm", b.lower_nm}, {"to_nm", b.upper_nm}, {"min_snr", number_or_null(b.min_snr)}});
+  for (const auto& b : r.noisy_bands)
+    bands.push_back({{"from_nm", b.lower_nm}, {"to_nm", b.upper_nm}, {"min_snr", number_or_null(b.min_snr)}});
   nlohmann::json snr = nlohmann::json::array();
   for (double s : r.snr) snr.push_back(number_or_null(s));
   j["noise"] = {{"noisy_bands", bands}, {"snr_per_wavelength", snr}};
@@ -462,18 +471,19 @@ std::string quality_report_text(const SpectralDataset& d, const QualityReport& r
   s += fmt::format("incidence zenith angles [deg]: {}\n", join(r.incidence_angles_deg));
   s += fmt::format("viewing zenith angles [deg]: {}\n", join(r.viewing_angles_deg));
   s += fmt::format("azimuth planes beta = 180 - |dphi| [deg]: {}\n", join(r.azimuth_planes_deg));
-  s += fmt::format("forward (specular side): {}   backward (retro side): {}   perpendicular: {}   in plane: {}   "
-                   "azimuth undefined (normal direction): {}\n",
-                   r.forward, r.backward, r.perpendicular, r.in_plane, r.normal_or_grazing);
+  s += fmt::format(
+      "forward (specular side): {}   backward (retro side): {}   perpendicular: {}   in plane: {}   "
+      "azimuth undefined (normal direction): {}\n",
+      r.forward, r.backward, r.perpendicular, r.in_plane, r.normal_or_grazing);
   s += fmt::format("negative values: {}   missing values: {}\n", r.negative_values, r.missing_values);
   double mx = 0.0, sum = 0.0;
   for (const auto& p : r.reciprocity) {
     mx = std::max(mx, p.disagreement);
     sum += p.disagreement;
   }
-  s += fmt::format("reciprocity pairs: {}   mean disagreement: {:.3g}   max: {:.3g}   flagged: {}\n", r.reciprocity.size(),
-                   r.reciprocity.empty() ? 0.0 : sum / static_cast<double>(r.reciprocity.size()), mx,
-                   r.reciprocity_flagged);
+  s += fmt::format("reciprocity pairs: {}   mean disagreement: {:.3g}   max: {:.3g}   flagged: {}\n",
+                   r.reciprocity.size(), r.reciprocity.empty() ? 0.0 : sum / static_cast<double>(r.reciprocity.size()),
+                   mx, r.reciprocity_flagged);
   for (const auto& p : r.reciprocity) {
     if (p.flagged) {
       s += fmt::format("  pair {} <-> {}: disagreement {:.3g}\n", geometry_text(d, p.a), geometry_text(d, p.b),
@@ -481,7 +491,8 @@ std::string quality_report_text(const SpectralDataset& d, const QualityReport& r
     }
   }
   s += fmt::format("noisy bands (SNR below threshold): {}\n", r.noisy_bands.size());
-  for (const auto& b : r.noisy_bands) s += fmt::format("  {:g}-{:g} nm (min SNR {:.3g})\n", b.lower_nm, b.upper_nm, b.min_snr);
+  for (const auto& b : r.noisy_bands)
+    s += fmt::format("  {:g}-{:g} nm (min SNR {:.3g})\n", b.lower_nm, b.upper_nm, b.min_snr);
   s += fmt::format("outlier geometries: {}\n", r.outliers.size());
   for (const auto& o : r.outliers) {
     s += fmt::format("  {}: {:.3g} x its neighbours (score {:.3g})\n", geometry_text(d, o.index), o.ratio, o.score);

@@ -39,10 +39,10 @@ namespace roadbrdf {
 
 struct QualityOptions {
   double angle_tolerance_deg = 0.5;
-  bool exact_reciprocity = false;        // match directions, not (theta_i, theta_r, |dphi|)
-  double reciprocity_threshold = 0.10;   // relative disagreement above which a pair is flagged
+  bool exact_reciprocity = false;       // match directions, not (theta_i, theta_r, |dphi|)
+  double reciprocity_threshold = 0.10;  // relative disagreement above which a pair is flagged
   double snr_threshold = 20.0;
-  int noise_window = 2;                  // +- wavelengths pooled in the noise estimate
+  int noise_window = 2;  // +- wavelengths pooled in the noise estimate
   int neighbours = 16;
   double outlier_threshold = 6.0;
   double outlier_min_ratio = 1.6;
@@ -54,15 +54,15 @@ struct QualityOptions {
 };
 
 struct ReciprocityPair {
-  std::size_t a = 0, b = 0;          // geometry indices
-  double disagreement = 0.0;         // spectrally integrated relative difference
-  double max_disagreement = 0.0;     // largest per-wavelength relative difference
+  std::size_t a = 0, b = 0;       // geometry indices
+  double disagreement = 0.0;      // spectrally integrated relative difference
+  double max_disagreement = 0.0;  // largest per-wavelength relative difference
   bool flagged = false;
 };
 
 struct OutlierGeometry {
   std::size_t index = 0;
-  double ratio = 1.0;   // spectral mean / median of the neighbours' spectral means
+  double ratio = 1.0;  // spectral mean / median of the neighbours' spectral means
   double score = 0.0;
 };
 
@@ -81,9 +81,9 @@ struct PanelValidation {
 struct QualityReport {
   std::size_t geometry_count = 0, wavelength_count = 0;
   double wavelength_min = 0.0, wavelength_max = 0.0;
-  std::vector<double> incidence_angles_deg;   // distinct theta_i (0.01 deg)
-  std::vector<double> viewing_angles_deg;     // distinct theta_r
-  std::vector<double> azimuth_planes_deg;     // distinct beta = 180 - |dphi| in [0, 180]
+  std::vector<double> incidence_angles_deg;  // distinct theta_i (0.01 deg)
+  std::vector<double> viewing_angles_deg;    // distinct theta_r
+  std::vector<double> azimuth_planes_deg;    // distinct beta = 180 - |dphi| in [0, 180]
   std::size_t forward = 0, backward = 0, perpendicular = 0, normal_or_grazing = 0, in_plane = 0;
   std::size_t negative_values = 0, missing_values = 0;
   std::vector<ReciprocityPair> reciprocity;

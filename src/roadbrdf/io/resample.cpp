@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 
 namespace roadbrdf {
 
@@ -86,14 +86,16 @@ SpectralDataset resample_dataset(const SpectralDataset& d, const WavelengthBands
       if (d.has_sigma()) out.sigma[g * mb + b] = std::sqrt(var);
     }
   }
-  out.metadata["resampling"] = fmt::format("band averages of the linearly interpolated spectrum over {} bands",
-                                           out.wavelengths.size());
-  out.metadata["band_edges_nm"] = fmt::format("{}:{} (band k reported at its centre)", bands.lower.front(), bands.upper.back());
+  out.metadata["resampling"] =
+      fmt::format("band averages of the linearly interpolated spectrum over {} bands", out.wavelengths.size());
+  out.metadata["band_edges_nm"] =
+      fmt::format("{}:{} (band k reported at its centre)", bands.lower.front(), bands.upper.back());
   if (!dropped.empty()) out.metadata["dropped_bands"] = dropped;
   return out;
 }
 
-double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double xq, const std::string& what) {
+double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double xq,
+                          const std::string& what) {
   if (x.empty()) throw InputError(what + ": empty table");
   const double tol = 1e-9 * std::max(1.0, std::fabs(x.back()));
   if (xq < x.front() - tol || xq > x.back() + tol) {

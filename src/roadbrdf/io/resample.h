@@ -31,6 +31,7 @@ SpectralDataset resample_dataset(const SpectralDataset& dataset, const Wavelengt
 
 // Linear interpolation of (x, y) at xq; throws InputError outside [x_0, x_last] (no
 // extrapolation), naming `what`.
-double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double xq, const std::string& what);
+double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double xq,
+                          const std::string& what);
 
 }  // namespace roadbrdf

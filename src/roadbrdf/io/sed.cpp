@@ -119,8 +119,8 @@ InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
                     "no 'Data:' line: not a Spectral Evolution .sed file, or truncated");
   }
   if (!other_lines.empty()) {
-    s.metadata["sed.unrecognized_header_lines"] = fmt::format("{} (lines {} to {})", other_lines.size(),
-                                                              other_lines.front(), other_lines.back());
+    s.metadata["sed.unrecognized_header_lines"] =
+        fmt::format("{} (lines {} to {})", other_lines.size(), other_lines.front(), other_lines.back());
   }
   // Column names, tab-separated ([SpecDAL] sep='\t').
   ++k;
@@ -138,10 +138,10 @@ InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
                                   instrument_text::printable(cell.text)));
     }
     const int index = static_cast<int>(columns.size());
-    int* slot = c.role == Role::kWavelength  ? &wavelength
-                : c.role == Role::kReference ? &reference
-                : c.role == Role::kTarget    ? &target
-                : c.role == Role::kReflectancePercent ? &percent
+    int* slot = c.role == Role::kWavelength            ? &wavelength
+                : c.role == Role::kReference           ? &reference
+                : c.role == Role::kTarget              ? &target
+                : c.role == Role::kReflectancePercent  ? &percent
                 : c.role == Role::kReflectanceFraction ? &fraction
                                                        : nullptr;
     if (slot) {
@@ -151,10 +151,11 @@ InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
     columns.push_back(c);
   }
   if (wavelength < 0) throw FileError(name, header_line, 0, "no 'Wvl' column");
-  if (target < 0 && percent < 0 && fraction < 0) throw FileError(name, header_line, 0, "no target or reflectance column");
+  if (target < 0 && percent < 0 && fraction < 0)
+    throw FileError(name, header_line, 0, "no target or reflectance column");
   if (percent >= 0 && fraction >= 0) throw FileError(name, header_line, 0, "two reflectance columns");
-  if (reference >= 0 && target >= 0 && columns[static_cast<std::size_t>(reference)].quantity !=
-                                           columns[static_cast<std::size_t>(target)].quantity) {
+  if (reference >= 0 && target >= 0 &&
+      columns[static_cast<std::size_t>(reference)].quantity != columns[static_cast<std::size_t>(target)].quantity) {
     throw FileError(name, header_line, 0, "the reference and target columns hold different quantities");
   }
   const int signal = target >= 0 ? target : reference;
@@ -169,9 +170,9 @@ InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
     if (trim(lines[k].text).empty()) continue;
     const auto cells = split_cells(lines[k].text, '\t');
     if (cells.size() != columns.size()) {
-      throw FileError(name, lines[k].number, cells.back().column,
-                      fmt::format("row has {} values, the column line {} names {}", cells.size(), header_line,
-                                  columns.size()));
+      throw FileError(
+          name, lines[k].number, cells.back().column,
+          fmt::format("row has {} values, the column line {} names {}", cells.size(), header_line, columns.size()));
     }
     std::vector<double> v(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c) {

@@ -67,7 +67,8 @@ std::vector<Row> resolve_overlaps(const std::vector<Row>& rows, OverlapRule rule
       const double end = lower.back().wavelength;
       std::size_t n = 0;
       while (n < upper.size() && upper[n].wavelength <= end) ++n;
-      if (n == upper.size()) throw FileError(name, join_line, 1, "a detector segment lies entirely inside the previous one");
+      if (n == upper.size())
+        throw FileError(name, join_line, 1, "a detector segment lies entirely inside the previous one");
       if (n) {
         from = upper.front().wavelength;
         to = upper[n - 1].wavelength;
@@ -81,10 +82,10 @@ std::vector<Row> resolve_overlaps(const std::vector<Row>& rows, OverlapRule rule
                           rule == OverlapRule::kUpper ? "lower" : "upper");
   }
   s.metadata["sig.overlap"] = fmt::format("rule '{}': {}", to_string(rule), report);
-  s.notes.push_back(fmt::format("{}: detector overlap, rule '{}' kept {} detector's channels ({} channel(s) dropped, "
-                                "none averaged): {}",
-                                name, to_string(rule), rule == OverlapRule::kUpper ? "the next" : "the previous",
-                                dropped_total, report));
+  s.notes.push_back(fmt::format(
+      "{}: detector overlap, rule '{}' kept {} detector's channels ({} channel(s) dropped, "
+      "none averaged): {}",
+      name, to_string(rule), rule == OverlapRule::kUpper ? "the next" : "the previous", dropped_total, report));
   std::vector<Row> out;
   for (const auto& seg : segments) out.insert(out.end(), seg.begin(), seg.end());
   return out;
@@ -121,16 +122,16 @@ InstrumentSpectrum parse_sig(std::string_view text, const std::string& name, Ove
     throw FileError(name, lines.back().number, 0, "no 'data=' line: truncated or not an SVC .sig file");
   }
   if (!other_lines.empty()) {
-    s.metadata["sig.unrecognized_header_lines"] = fmt::format("{} (lines {} to {})", other_lines.size(),
-                                                              other_lines.front(), other_lines.back());
+    s.metadata["sig.unrecognized_header_lines"] =
+        fmt::format("{} (lines {} to {})", other_lines.size(), other_lines.front(), other_lines.back());
   }
   // Units of the reference and target columns ([SpecDAL]).
   std::string unit_name = "Radiance";
   if (auto it = s.metadata.find("sig.units"); it != s.metadata.end()) {
     const auto units = instrument_text::split_list(it->second);
     if (units.size() != 2 || units[0] != units[1]) {
-      throw FileError(name, units_line, 0, fmt::format("units line '{}': expected the same unit twice (reference, target)",
-                                              it->second));
+      throw FileError(name, units_line, 0,
+                      fmt::format("units line '{}': expected the same unit twice (reference, target)", it->second));
     }
     unit_name = units[0];
   }
@@ -156,9 +157,9 @@ InstrumentSpectrum parse_sig(std::string_view text, const std::string& name, Ove
       width = cells.size();
       first_data_line = lines[k].number;
       if (width != 3 && width != 4) {
-        throw FileError(name, lines[k].number, 1,
-                        fmt::format("{} values in a row: expected wavelength, reference, target[, reflectance %]",
-                                    cells.size()));
+        throw FileError(
+            name, lines[k].number, 1,
+            fmt::format("{} values in a row: expected wavelength, reference, target[, reflectance %]", cells.size()));
       }
     }
     if (cells.size() != width) {
@@ -190,7 +191,8 @@ InstrumentSpectrum parse_sig(std::string_view text, const std::string& name, Ove
       s.target_settings["integration times [ms]"] = items[3] + "," + items[4] + "," + items[5];
     }
   }
-  if (auto it = s.metadata.find("sig.instrument"); it != s.metadata.end()) s.metadata["instrument"] = "SVC " + it->second;
+  if (auto it = s.metadata.find("sig.instrument"); it != s.metadata.end())
+    s.metadata["instrument"] = "SVC " + it->second;
   return s;
 }
 

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/core/csv.h"
 #include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
@@ -33,9 +33,10 @@ NoiseModel parse_noise_model(const std::string& spec) {
     const std::string item = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const auto eq = item.find('=');
     if (eq == std::string::npos) {
-      throw InputError(fmt::format("--noise: '{}' is not NAME=VALUE (relative, absolute, edge, edge-width, water, "
-                                   "detector-min, detector-max)",
-                                   item));
+      throw InputError(
+          fmt::format("--noise: '{}' is not NAME=VALUE (relative, absolute, edge, edge-width, water, "
+                      "detector-min, detector-max)",
+                      item));
     }
     const std::string name = item.substr(0, eq), text = item.substr(eq + 1);
     double v = 0.0;
@@ -57,16 +58,16 @@ NoiseModel parse_noise_model(const std::string& spec) {
     } else if (name == "detector-max") {
       n.detector_max_nm = v;
     } else {
-      throw InputError(fmt::format("--noise: unknown name '{}' (relative, absolute, edge, edge-width, water, "
-                                   "detector-min, detector-max)",
-                                   name));
+      throw InputError(
+          fmt::format("--noise: unknown name '{}' (relative, absolute, edge, edge-width, water, "
+                      "detector-min, detector-max)",
+                      name));
     }
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
   return n;
 }
-
 
 double NormalStream::next() {
   if (has_cached_) {
@@ -88,7 +89,8 @@ SpectralDataset simulate_dataset(const SimulationInput& in) {
   if (in.geometries.empty()) throw InputError("simulate: the grid has no geometries");
   if (in.wavelengths.empty()) throw InputError("simulate: no wavelengths");
   for (std::size_t j = 1; j < in.wavelengths.size(); ++j) {
-    if (!(in.wavelengths[j] > in.wavelengths[j - 1])) throw InputError("simulate: wavelengths must be strictly increasing");
+    if (!(in.wavelengths[j] > in.wavelengths[j - 1]))
+      throw InputError("simulate: wavelengths must be strictly increasing");
   }
   const Model& model = in.model->model();
   const ModelDescription& desc = model.description();
@@ -109,8 +111,9 @@ SpectralDataset simulate_dataset(const SimulationInput& in) {
     const double wl = in.wavelengths[j];
     std::vector<double> p = in.model->parameters_at(wl);
     for (const auto& [idx, spectrum] : overrides) {
-      p[idx] = interpolate_linear(spectrum->wavelengths, spectrum->values, wl,
-                                  fmt::format("spectral parameter {} ({})", desc.parameters[idx].name, spectrum->source));
+      p[idx] =
+          interpolate_linear(spectrum->wavelengths, spectrum->values, wl,
+                             fmt::format("spectral parameter {} ({})", desc.parameters[idx].name, spectrum->source));
     }
     try {
       check_parameters(desc, p);
@@ -167,11 +170,11 @@ SpectralDataset simulate_dataset(const SimulationInput& in) {
   if (in.model->is_spectral()) params_text += fmt::format("{}(from a fit, spectral)", params_text.empty() ? "" : " ");
   d.metadata["parameters"] = params_text;
   for (const auto& [name, sp] : in.spectral_parameters) d.metadata["spectrum_" + name] = sp.source;
-  d.metadata["noise"] = noisy ? fmt::format("relative={} absolute={} edge={} edge-width={} water={} detector={}-{} nm",
-                                            in.noise.relative, in.noise.absolute, in.noise.edge_factor,
-                                            in.noise.edge_width_nm, in.noise.water_factor, in.noise.detector_min_nm,
-                                            in.noise.detector_max_nm)
-                              : "none";
+  d.metadata["noise"] =
+      noisy ? fmt::format("relative={} absolute={} edge={} edge-width={} water={} detector={}-{} nm", in.noise.relative,
+                          in.noise.absolute, in.noise.edge_factor, in.noise.edge_width_nm, in.noise.water_factor,
+                          in.noise.detector_min_nm, in.noise.detector_max_nm)
+            : "none";
   d.metadata["seed"] = std::to_string(in.seed);
   if (desc.has_delta) d.metadata["ideal_specular_part"] = "not sampled (a delta peak cannot be measured at a geometry)";
   return d;

@@ -26,11 +26,11 @@
 namespace roadbrdf {
 
 struct NoiseModel {
-  double relative = 0.0;         // dimensionless
-  double absolute = 0.0;         // sr^-1
-  double edge_factor = 1.0;      // noise multiplier at the detector edges
+  double relative = 0.0;     // dimensionless
+  double absolute = 0.0;     // sr^-1
+  double edge_factor = 1.0;  // noise multiplier at the detector edges
   double edge_width_nm = 60.0;
-  double water_factor = 1.0;     // noise multiplier at the centre of the 1400 and 1900 nm water bands
+  double water_factor = 1.0;  // noise multiplier at the centre of the 1400 and 1900 nm water bands
   double detector_min_nm = 350.0;
   double detector_max_nm = 2500.0;
   bool is_zero() const { return relative == 0.0 && absolute == 0.0; }

@@ -24,8 +24,8 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   const std::size_t M = data.wavelength_count();
   if (folds < 2) throw FieldError("folds", "must be at least 2");
   if (N < static_cast<std::size_t>(folds)) {
-    throw FieldError("folds", std::to_string(folds) + " is more than the measured mixture's " + std::to_string(N) +
-                                  " geometries");
+    throw FieldError(
+        "folds", std::to_string(folds) + " is more than the measured mixture's " + std::to_string(N) + " geometries");
   }
   Comparison c;
   c.method = method;

@@ -62,7 +62,8 @@ MixInputs load_mix_inputs(const Formulation& formulation, const FitLoader& loade
     inputs.end_members[e].components.push_back(i);
   }
   if (formulation.mastic) {
-    const std::string path = formulation.mastic->fit_path.empty() ? formulation.mastic->fit : formulation.mastic->fit_path;
+    const std::string path =
+        formulation.mastic->fit_path.empty() ? formulation.mastic->fit : formulation.mastic->fit_path;
     const std::size_t e = find_or_add(path, formulation.mastic->fit_model, "mastic.fit");
     inputs.end_members[e].is_mastic = true;
   }

@@ -29,9 +29,8 @@ void mix_fitted(const MethodCall& call, MixResult& r, std::vector<std::size_t>& 
   }
   r.mixture = make_mixture(MixtureKind::kLinear, inputs, members);
   r.model = std::make_shared<const SpectralModel>(
-      build_table(r.mixture, inputs, members, grid, [&](std::size_t q, double* row) {
-        std::copy(table[q].begin(), table[q].end(), row);
-      }));
+      build_table(r.mixture, inputs, members, grid,
+                  [&](std::size_t q, double* row) { std::copy(table[q].begin(), table[q].end(), row); }));
   r.settings["per_wavelength"] = settings.per_wavelength ? 1.0 : 0.0;
   r.settings["sigma_weighted"] = sys.sigma_weighted ? 1.0 : 0.0;
   r.settings["sum_to_one"] = settings.sum_to_one ? 1.0 : 0.0;

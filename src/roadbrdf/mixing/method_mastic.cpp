@@ -18,9 +18,8 @@ void mix_mastic(const MethodCall& call, MixResult& r, std::vector<std::size_t>& 
   const std::vector<double> grid = output_grid(inputs, members, call.settings, call.data);
   r.mixture = make_mixture(MixtureKind::kLinear, inputs, members);
   r.model = std::make_shared<const SpectralModel>(
-      build_table(r.mixture, inputs, members, grid, [&](std::size_t, double* row) {
-        std::copy(weights.begin(), weights.end(), row);
-      }));
+      build_table(r.mixture, inputs, members, grid,
+                  [&](std::size_t, double* row) { std::copy(weights.begin(), weights.end(), row); }));
   r.weights = weights;
 }
 

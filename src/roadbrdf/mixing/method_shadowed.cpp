@@ -20,8 +20,8 @@ namespace {
 
 // Cost of the shadowed mixture at one geometry: M residuals.
 struct ShadowedResidual {
-  const double* F;  // [k][m] of this geometry
-  const double* y;  // [m]
+  const double* F;              // [k][m] of this geometry
+  const double* y;              // [m]
   const double* inverse_sigma;  // [m], or nullptr (unweighted)
   std::size_t K, M;
   double path_tangent;  // tan theta_i + tan theta_r
@@ -81,8 +81,9 @@ void mix_shadowed(const MethodCall& call, MixResult& r, std::vector<std::size_t>
     coarse.push_back(all_coarse);
   }
   if (std::none_of(coarse.begin(), coarse.end(), [](bool b) { return b; })) {
-    throw InputError("method 'shadowed' needs a coarse aggregate end-member (a fit file used only by aggregates "
-                     "with d_min_mm >= coarse_min_size_mm)");
+    throw InputError(
+        "method 'shadowed' needs a coarse aggregate end-member (a fit file used only by aggregates "
+        "with d_min_mm >= coarse_min_size_mm)");
   }
   if (std::all_of(coarse.begin(), coarse.end(), [](bool b) { return b; })) {
     throw InputError("method 'shadowed' needs a matrix end-member (binder, mastic or fines) besides the coarse ones");
@@ -97,9 +98,13 @@ void mix_shadowed(const MethodCall& call, MixResult& r, std::vector<std::size_t>
     const Geometry& g = data->geometries[sys.rows[row]];
     const double ci = std::max(g.cos_theta_i(), 1e-9), cr = std::max(g.cos_theta_r(), 1e-9);
     const double path = std::sqrt(std::max(0.0, 1.0 - ci * ci)) / ci + std::sqrt(std::max(0.0, 1.0 - cr * cr)) / cr;
-    auto* functor = new ShadowedResidual{sys.F.data() + row * K * sys.M, sys.y.data() + row * sys.M,
+    auto* functor = new ShadowedResidual{sys.F.data() + row * K * sys.M,
+                                         sys.y.data() + row * sys.M,
                                          sys.inverse_sigma.empty() ? nullptr : sys.inverse_sigma.data() + row * sys.M,
-                                         K, sys.M, path, &coarse};
+                                         K,
+                                         sys.M,
+                                         path,
+                                         &coarse};
     auto* cost = new ceres::DynamicAutoDiffCostFunction<ShadowedResidual, 4>(functor);
     cost->AddParameterBlock(static_cast<int>(K));
     cost->AddParameterBlock(1);

@@ -152,17 +152,19 @@ std::vector<double> areal_weights(const MixInputs& inputs, const MixSettings& se
   std::vector<double> weights(members.size(), 0.0);
   for (std::size_t i = 0; i < f.components.size(); ++i) {
     const Component& c = f.components[i];
-    const double a = in_binder_phase(c) ? coverage * volume(c) / binder_volume
-                                        : (1.0 - coverage) * (c.mass_percent / (c.density * effective_diameter_mm(f, c))) /
-                                              granular_area;
+    const double a =
+        in_binder_phase(c)
+            ? coverage * volume(c) / binder_volume
+            : (1.0 - coverage) * (c.mass_percent / (c.density * effective_diameter_mm(f, c))) / granular_area;
     weights[member_position(members, member_of_component(inputs, i))] += a;
   }
   return weights;
 }
 
 // Mastic method: end-members (the mastic, then the coarse classes' fits) and their area weights.
-std::vector<double> mastic_weights(const MixInputs& inputs, const MixSettings& settings, std::vector<std::size_t>& members,
-                                   std::map<std::string, double>& info, std::vector<std::string>& notes) {
+std::vector<double> mastic_weights(const MixInputs& inputs, const MixSettings& settings,
+                                   std::vector<std::size_t>& members, std::map<std::string, double>& info,
+                                   std::vector<std::string>& notes) {
   const Formulation& f = inputs.formulation;
   if (!f.mastic) throw InputError("the formulation has no \"mastic\" (the fit of the measured mastic)");
   std::size_t mastic_member = inputs.end_members.size();
@@ -208,9 +210,9 @@ std::vector<double> mastic_weights(const MixInputs& inputs, const MixSettings& s
   return weights;
 }
 
-LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_t>& members, const SpectralDataset& data,
-                           const std::vector<std::size_t>* training, const std::vector<double>& grid,
-                           bool use_sigma) {
+LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_t>& members,
+                           const SpectralDataset& data, const std::vector<std::size_t>* training,
+                           const std::vector<double>& grid, bool use_sigma) {
   if (grid != data.wavelengths) throw InputError("fitted mixing uses the data's wavelengths (no --wavelengths)");
   LinearSystem s;
   if (training) {
@@ -225,7 +227,8 @@ LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_
   for (std::size_t n : s.rows) geometries.push_back(data.geometries[n]);
   s.F.assign(s.rows.size() * s.K * s.M, 0.0);
   for (std::size_t k = 0; k < s.K; ++k) {
-    const std::vector<double> v = evaluate_spectral(*inputs.end_members[members[k]].model, geometries, data.wavelengths);
+    const std::vector<double> v =
+        evaluate_spectral(*inputs.end_members[members[k]].model, geometries, data.wavelengths);
     for (std::size_t r = 0; r < s.rows.size(); ++r) {
       for (std::size_t m = 0; m < s.M; ++m) s.F[(r * s.K + k) * s.M + m] = v[r * s.M + m];
     }
@@ -252,7 +255,8 @@ LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_
   }
   s.sigma_weighted = use_sigma && data.has_sigma();
   if (s.sigma_weighted) {
-    if (data.sigma.size() != data.brdf.size()) throw InputError("the measured mixture's sigma table has the wrong size");
+    if (data.sigma.size() != data.brdf.size())
+      throw InputError("the measured mixture's sigma table has the wrong size");
     s.inverse_sigma.resize(s.rows.size() * s.M);
     for (std::size_t r = 0; r < s.rows.size(); ++r) {
       for (std::size_t m = 0; m < s.M; ++m) {
@@ -340,6 +344,5 @@ void weight_distance(MixResult& r) {
   }
   r.weight_distance = 0.5 * d;
 }
-
 
 }  // namespace roadbrdf::mixing::detail

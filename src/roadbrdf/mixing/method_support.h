@@ -42,15 +42,16 @@ std::vector<double> areal_weights(const MixInputs& inputs, const MixSettings& se
 
 // Mastic method: sets `members` to the mastic, then the coarse classes' fits, and returns their area
 // weights (mixing.h "mastic"); fills info["mastic_area_fraction"].
-std::vector<double> mastic_weights(const MixInputs& inputs, const MixSettings& settings, std::vector<std::size_t>& members,
-                                   std::map<std::string, double>& info, std::vector<std::string>& notes);
+std::vector<double> mastic_weights(const MixInputs& inputs, const MixSettings& settings,
+                                   std::vector<std::size_t>& members, std::map<std::string, double>& info,
+                                   std::vector<std::string>& notes);
 
 // Weighted least squares setup for linear fits: component values on the training geometries.
 struct LinearSystem {
   std::vector<std::size_t> rows;  // geometry indices
   std::size_t M = 0, K = 0;
-  std::vector<double> F;          // [row][k][m]
-  std::vector<double> y;          // [row][m]
+  std::vector<double> F;  // [row][k][m]
+  std::vector<double> y;  // [row][m]
   // [row][m]: residual multiplier: 1/sigma of each measured value (sigma_weighted), else 1; 0 for a
   // missing value (NaN in the data, y = 0 here: masked out). Empty: unweighted and nothing missing.
   std::vector<double> inverse_sigma;
@@ -61,9 +62,9 @@ struct LinearSystem {
   }
 };
 
-LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_t>& members, const SpectralDataset& data,
-                           const std::vector<std::size_t>* training, const std::vector<double>& grid,
-                           bool use_sigma);
+LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_t>& members,
+                           const SpectralDataset& data, const std::vector<std::size_t>* training,
+                           const std::vector<double>& grid, bool use_sigma);
 
 // The output grid (`grid`) and linear system of a method fitted to the measured mixture, with the check
 // that there are at least as many measured values as weights.

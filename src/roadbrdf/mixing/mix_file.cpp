@@ -34,17 +34,18 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
   ordered j;
   j["format"] = "roadbrdf-mix";
   j["version"] = 1;
-  j["units"] = {{"wavelengths", "nm"},
-                {"weight", "1: area fraction (linear, shadowed) or normalised cross-section weight M/(rho D) (hapke)"},
-                {"ssa", "1: single-scattering albedo (Hapke IMSA, H1)"},
-                {"shadowing", "1: s in exp(-s (tan theta_i + tan theta_r))"},
-                {"rmse", "sr^-1 (BRDF)"},
-                {"relative_rmse", "1: rmse / mean |measured BRDF|"},
-                {"chi2_reduced", "1: mean of ((predicted - measured) / sigma)^2 over the held-out values (null without sigma)"},
-                {"albedo", "1: white-sky (bi-hemispherical) albedo, mean over the wavelengths"},
-                {"d_eff_mm", "mm"},
-                {"density_g_cm3", "g/cm^3"},
-                {"mass_percent", "% of the total mass"}};
+  j["units"] = {
+      {"wavelengths", "nm"},
+      {"weight", "1: area fraction (linear, shadowed) or normalised cross-section weight M/(rho D) (hapke)"},
+      {"ssa", "1: single-scattering albedo (Hapke IMSA, H1)"},
+      {"shadowing", "1: s in exp(-s (tan theta_i + tan theta_r))"},
+      {"rmse", "sr^-1 (BRDF)"},
+      {"relative_rmse", "1: rmse / mean |measured BRDF|"},
+      {"chi2_reduced", "1: mean of ((predicted - measured) / sigma)^2 over the held-out values (null without sigma)"},
+      {"albedo", "1: white-sky (bi-hemispherical) albedo, mean over the wavelengths"},
+      {"d_eff_mm", "mm"},
+      {"density_g_cm3", "g/cm^3"},
+      {"mass_percent", "% of the total mass"}};
   ordered components = ordered::array();
   for (std::size_t i = 0; i < f.components.size(); ++i) {
     const Component& c = f.components[i];

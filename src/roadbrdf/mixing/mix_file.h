@@ -22,7 +22,8 @@
 //       "settings": { "binder_coverage": ..., "shadowing": ..., ... },
 //       "notes": [ "..." ],
 //       "comparison": null | { "folds", "rmse", "relative_rmse", "rmse_in_sample", "relative_rmse_in_sample",
-//                              "chi2_reduced" (held-out; null without sigma), "albedo", "albedo_reference", "albedo_difference" }
+//                              "chi2_reduced" (held-out; null without sigma), "albedo", "albedo_reference",
+//                              "albedo_difference" }
 //   } ]
 // }
 // The "parameters" block has exactly the schema of a fit file's fit (models/spectral_model.h), with the

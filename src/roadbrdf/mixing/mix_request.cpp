@@ -45,10 +45,12 @@ void MixRequest::validate() const {
     }
   }
   if (folds < 2) throw FieldError("folds", "must be at least 2");
-  for (const auto& [name, value] : {std::pair{"binder_coverage", binder_coverage}, std::pair{"mastic_fraction", mastic_fraction}}) {
+  for (const auto& [name, value] :
+       {std::pair{"binder_coverage", binder_coverage}, std::pair{"mastic_fraction", mastic_fraction}}) {
     if (value && !(*value >= 0.0 && *value <= 1.0)) throw FieldError(name, fmt::format("{} is outside [0, 1]", *value));
   }
-  if (residuals && data.empty()) throw FieldError("residuals", "needs data (the held-out residuals of a measured mixture)");
+  if (residuals && data.empty())
+    throw FieldError("residuals", "needs data (the held-out residuals of a measured mixture)");
   if (!reference.empty() && data.empty()) {
     throw FieldError("reference", "needs data (the albedo is compared at the data's wavelengths)");
   }
@@ -61,7 +63,8 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
                const std::function<std::string(const std::string&)>& role) {
   request.validate();
   auto named = [&](const std::string& field) { return role ? role(field) : field; };
-  std::vector<FileArgument> read = {{named("formulation"), request.formulation}, {named("data"), request.data},
+  std::vector<FileArgument> read = {{named("formulation"), request.formulation},
+                                    {named("data"), request.data},
                                     {named("reference"), request.reference}};
   check_distinct_files(read, outputs);
   MixRun run;
@@ -95,7 +98,8 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   ProgressCounter progress(request.progress, mixes);
   for (Method m : methods) {
     if (!run.data && method_needs_data(m)) {
-      run.notes.push_back(fmt::format("method '{}' skipped: it is fitted to a measured mixture (give data)", to_string(m)));
+      run.notes.push_back(
+          fmt::format("method '{}' skipped: it is fitted to a measured mixture (give data)", to_string(m)));
       continue;
     }
     try {
@@ -142,13 +146,12 @@ std::string MixRun::table() const {
     for (std::size_t i = 0; i < content.comparisons.size(); ++i) {
       const Comparison& c = content.comparisons[i];
       if (c.rmse < content.comparisons[best].rmse) best = i;
-      out += fmt::format("{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse,
-                         c.relative_rmse,
-                         std::isfinite(c.chi2_reduced) ? fmt::format("{:.4g}", c.chi2_reduced) : std::string("n/a"),
-                         c.rmse_in_sample, c.albedo,
-                         std::isfinite(c.albedo_difference) ? fmt::format("{:+.4f}", c.albedo_difference)
-                                                            : std::string("n/a"),
-                         weights_text(c.result));
+      out += fmt::format(
+          "{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse, c.relative_rmse,
+          std::isfinite(c.chi2_reduced) ? fmt::format("{:.4g}", c.chi2_reduced) : std::string("n/a"), c.rmse_in_sample,
+          c.albedo,
+          std::isfinite(c.albedo_difference) ? fmt::format("{:+.4f}", c.albedo_difference) : std::string("n/a"),
+          weights_text(c.result));
     }
     out += fmt::format("best method for {}: {} (held-out RMSE {:.5g} sr^-1)\n", in.formulation.name,
                        to_string(content.comparisons[best].method), content.comparisons[best].rmse);

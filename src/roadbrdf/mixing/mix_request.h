@@ -27,20 +27,20 @@
 namespace roadbrdf::mixing {
 
 struct MixRequest {
-  std::string formulation;                 // formulation JSON file
-  std::string data;                        // measured mixture (CSV); "" = none
-  DatasetReadOptions data_read;            // dialect and duplicate rules for `data`
-  std::string method = "all";              // a method name (mixing.h) or "all"
-  int folds = 5;                           // cross-validation folds over the data's geometries
-  unsigned seed = 1;                       // geometry shuffle of the folds
+  std::string formulation;       // formulation JSON file
+  std::string data;              // measured mixture (CSV); "" = none
+  DatasetReadOptions data_read;  // dialect and duplicate rules for `data`
+  std::string method = "all";    // a method name (mixing.h) or "all"
+  int folds = 5;                 // cross-validation folds over the data's geometries
+  unsigned seed = 1;             // geometry shuffle of the folds
   bool per_wavelength = false;
   bool sum_to_one = false;
   bool use_sigma = true;
-  std::optional<double> binder_coverage;   // overrides the formulation (areal), in [0, 1]
-  std::optional<double> mastic_fraction;   // overrides the formulation (mastic), in [0, 1]
-  std::string reference;                   // fit file or MIX.json of the measured mixture; needs data
-  bool residuals = false;                  // held-out residuals will be written: needs data
-  ProgressCallback progress;               // mixes done (every method, every fold); not kept in MixRun
+  std::optional<double> binder_coverage;  // overrides the formulation (areal), in [0, 1]
+  std::optional<double> mastic_fraction;  // overrides the formulation (mastic), in [0, 1]
+  std::string reference;                  // fit file or MIX.json of the measured mixture; needs data
+  bool residuals = false;                 // held-out residuals will be written: needs data
+  ProgressCallback progress;              // mixes done (every method, every fold); not kept in MixRun
 
   // Checks everything that needs no file. Throws FieldError.
   void validate() const;
@@ -48,10 +48,10 @@ struct MixRequest {
 
 struct MixRun {
   MixRequest request;
-  std::unique_ptr<MixInputs> inputs;       // the formulation and its end-members
+  std::unique_ptr<MixInputs> inputs;  // the formulation and its end-members
   std::optional<SpectralDataset> data;
-  MixFileContent content;                  // results (and comparisons with data), as written to MIX.json
-  std::vector<std::string> notes;          // methods skipped, and why
+  MixFileContent content;          // results (and comparisons with data), as written to MIX.json
+  std::vector<std::string> notes;  // methods skipped, and why
 
   // The report `roadbrdf mix` prints: per method the held-out errors and albedo, or the albedo.
   std::string table() const;

@@ -10,8 +10,8 @@ namespace roadbrdf::mixing {
 const std::vector<MethodEntry>& method_table() {
   static const std::vector<MethodEntry> table{
       {Method::kAreal, "areal",
-       "areal mixing, area fractions from the formulation (projected area per mass 3/(2 rho D), binder coverage)", false,
-       &mix_areal},
+       "areal mixing, area fractions from the formulation (projected area per mass 3/(2 rho D), binder coverage)",
+       false, &mix_areal},
       {Method::kFitted, "fitted", "linear mixing, weights fitted to the measured mixture by non-negative least squares",
        true, &mix_fitted},
       {Method::kMastic, "mastic", "measured mastic + coarse aggregate classes, areal mixing", false, &mix_mastic},

@@ -61,9 +61,9 @@
 
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/mixing/albedo_cache.h"
-#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/mixing/mixture_model.h"
 #include "roadbrdf/mixing/nnls.h"
 #include "roadbrdf/mixing/spectral_evaluation.h"
@@ -75,12 +75,12 @@ namespace roadbrdf::mixing {
 using FitLoader = std::function<SpectralModel(const std::string& path, const std::string& fit_model)>;
 
 struct EndMember {
-  std::string name;                      // from the fit file's name
-  std::string fit_path;                  // resolved path
-  std::string fit_model;                 // selected fit ("" = best)
+  std::string name;       // from the fit file's name
+  std::string fit_path;   // resolved path
+  std::string fit_model;  // selected fit ("" = best)
   std::shared_ptr<const SpectralModel> model;
-  std::vector<std::size_t> components;   // indices of the formulation components using it
-  bool is_mastic = false;                // the formulation's "mastic" fit
+  std::vector<std::size_t> components;  // indices of the formulation components using it
+  bool is_mastic = false;               // the formulation's "mastic" fit
 };
 
 struct MixInputs {
@@ -107,7 +107,7 @@ struct MixSettings {
   // fitted, shadowed: when the measured mixture has sigma, each residual f - y is divided by its
   // sigma (weights 1/sigma^2, as `fit` does, fitting/fit.h use_sigma); false: plain least squares.
   bool use_sigma = true;
-  std::vector<double> wavelengths;             // output grid [nm]; empty: automatic (see above)
+  std::vector<double> wavelengths;  // output grid [nm]; empty: automatic (see above)
 };
 
 struct MixResult {
@@ -134,11 +134,11 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
               const SpectralDataset* data = nullptr, const std::vector<std::size_t>* training = nullptr);
 
 // spectral_white_sky_albedo (spectral_evaluation.h) of the mixture of a MixResult, from the
-// end-members' albedos (inputs.albedo_cache) where the quadrature allows it: for the linear and hapke kinds f = sum_k e_k f_k + f_0(mu0, mu) with
-// coefficients e_k that do not depend on the geometry (e_k = a_k; hapke: c_k / sum c), so the same
-// quadrature gives A = sum_k e_k A_k + A(f_0) exactly (to rounding; the delta parts mix with the
-// same e_k, mixture_model.h). f_0 (hapke multiple-scattering correction) is cheap. The shadowed kind,
-// or a table whose end-member parameters are not the end-members' own, uses the full quadrature.
+// end-members' albedos (inputs.albedo_cache) where the quadrature allows it: for the linear and hapke kinds f = sum_k
+// e_k f_k + f_0(mu0, mu) with coefficients e_k that do not depend on the geometry (e_k = a_k; hapke: c_k / sum c), so
+// the same quadrature gives A = sum_k e_k A_k + A(f_0) exactly (to rounding; the delta parts mix with the same e_k,
+// mixture_model.h). f_0 (hapke multiple-scattering correction) is cheap. The shadowed kind, or a table whose end-member
+// parameters are not the end-members' own, uses the full quadrature.
 std::vector<double> mixture_white_sky_albedo(const MixInputs& inputs, const MixResult& result,
                                              const std::vector<double>& wavelengths);
 
@@ -147,9 +147,9 @@ inline constexpr std::size_t kAlbedoWavelengths = 24;
 struct Comparison {
   Method method = Method::kAreal;
   int folds = 0;
-  double rmse = 0.0;                     // held-out (k-fold over geometries) [sr^-1]
-  double relative_rmse = 0.0;            // held-out rmse / mean |measured|
-  double rmse_in_sample = 0.0;           // all geometries used for fitting and evaluation
+  double rmse = 0.0;            // held-out (k-fold over geometries) [sr^-1]
+  double relative_rmse = 0.0;   // held-out rmse / mean |measured|
+  double rmse_in_sample = 0.0;  // all geometries used for fitting and evaluation
   double relative_rmse_in_sample = 0.0;
   // Reduced chi^2 of the held-out residuals, (1 / (N M)) sum ((f - y) / sigma)^2 over every held-out
   // value (no parameter count is subtracted: the held-out values were not used by the fit). NaN
@@ -161,11 +161,11 @@ struct Comparison {
   // fold (1..folds) that held out each geometry (0 for methods without fitted parameters).
   std::vector<double> predicted;
   std::vector<int> fold_of_geometry;
-  double albedo = 0.0;                   // mean of the mixture's white-sky albedo over the data's
-                                         // wavelengths (at most kAlbedoWavelengths, evenly spaced in index)
+  double albedo = 0.0;  // mean of the mixture's white-sky albedo over the data's
+                        // wavelengths (at most kAlbedoWavelengths, evenly spaced in index)
   double albedo_reference = std::numeric_limits<double>::quiet_NaN();   // same for the reference fit
   double albedo_difference = std::numeric_limits<double>::quiet_NaN();  // albedo - albedo_reference
-  MixResult result;                      // fitted on every geometry
+  MixResult result;                                                     // fitted on every geometry
 };
 
 // Compare a method with measured data: k-fold cross-validation over geometries (folds >= 2;

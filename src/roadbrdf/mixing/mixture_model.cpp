@@ -11,9 +11,12 @@ namespace roadbrdf::mixing {
 
 std::string to_string(MixtureKind kind) {
   switch (kind) {
-    case MixtureKind::kLinear: return "linear";
-    case MixtureKind::kHapke: return "hapke";
-    case MixtureKind::kShadowed: return "shadowed";
+    case MixtureKind::kLinear:
+      return "linear";
+    case MixtureKind::kHapke:
+      return "hapke";
+    case MixtureKind::kShadowed:
+      return "shadowed";
   }
   return "?";
 }
@@ -32,23 +35,26 @@ ModelDescription MixtureModel::make_description(MixtureKind kind,
   if (names.size() != components.size()) throw InputError("mixture: one name per end-member is needed");
   ModelDescription d;
   d.name = "mixture-" + to_string(kind);
-  d.citation = kind == MixtureKind::kHapke ? "Hapke 1981 (JGR 86:3039) eq. 17 intimate mixing, IMSA with H1; see mixing/mixture_model.h"
-                                           : "areal mixing; see mixing/mixture_model.h";
+  d.citation = kind == MixtureKind::kHapke
+                   ? "Hapke 1981 (JGR 86:3039) eq. 17 intimate mixing, IMSA with H1; see mixing/mixture_model.h"
+                   : "areal mixing; see mixing/mixture_model.h";
   d.summary = kind == MixtureKind::kLinear  ? "areal (linear) mixture of end-member BRDFs"
               : kind == MixtureKind::kHapke ? "intimate (Hapke) mixture of end-member BRDFs"
                                             : "areal mixture with shadowing of the matrix by coarse aggregates";
   const std::size_t K = components.size();
   for (std::size_t k = 0; k < K; ++k) {
     d.parameters.push_back({"weight." + names[k], "1",
-                            kind == MixtureKind::kHapke ? "cross-section weight M/(rho D) of " + names[k] + " (normalised)"
-                                                        : "area fraction of " + names[k],
+                            kind == MixtureKind::kHapke
+                                ? "cross-section weight M/(rho D) of " + names[k] + " (normalised)"
+                                : "area fraction of " + names[k],
                             1.0 / K, 0.0, 1e3, true, kind == MixtureKind::kLinear});
   }
   if (kind == MixtureKind::kHapke) {
     for (std::size_t k = 0; k < K; ++k) {
-      d.parameters.push_back({"ssa." + names[k], "1", "single-scattering albedo w of " + names[k] +
-                                                          " (inverted from its white-sky albedo, IMSA H1)",
-                              0.5, 0.0, 1.0, true, false});
+      d.parameters.push_back(
+          {"ssa." + names[k], "1",
+           "single-scattering albedo w of " + names[k] + " (inverted from its white-sky albedo, IMSA H1)", 0.5, 0.0,
+           1.0, true, false});
     }
   }
   if (kind == MixtureKind::kShadowed) {
@@ -172,7 +178,8 @@ double MixtureModel::evaluate_with_gradient(const double* params, const Geometry
   std::fill(gradient, gradient + n, 0.0);
   for (std::size_t k = 0; k < K; ++k) {
     f[k] = components_[k]->evaluate_with_gradient(params + offsets_[k], g, component_gradient.data());
-    for (std::size_t q = 0; q < components_[k]->parameter_count(); ++q) gradient[offsets_[k] + q] = component_gradient[q];
+    for (std::size_t q = 0; q < components_[k]->parameter_count(); ++q)
+      gradient[offsets_[k] + q] = component_gradient[q];
   }
   const double value = combine(params, g, f.data(), e.data());
   for (std::size_t k = 0; k < K; ++k) {

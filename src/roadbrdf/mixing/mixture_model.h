@@ -74,7 +74,7 @@ class MixtureModel final : public Model {
 
   std::size_t weight_index(std::size_t k) const { return k; }
   std::size_t ssa_index(std::size_t k) const { return components_.size() + k; }  // hapke only
-  std::size_t shadowing_index() const { return components_.size(); }            // shadowed only
+  std::size_t shadowing_index() const { return components_.size(); }             // shadowed only
   // First parameter of end-member k.
   std::size_t component_offset(std::size_t k) const { return offsets_[k]; }
   // Number of mixture-level parameters (before the first end-member's).
@@ -88,7 +88,8 @@ class MixtureModel final : public Model {
   static double shadowing_factor(double s, const Geometry& g);
 
  private:
-  static ModelDescription make_description(MixtureKind kind, const std::vector<std::shared_ptr<const Model>>& components,
+  static ModelDescription make_description(MixtureKind kind,
+                                           const std::vector<std::shared_ptr<const Model>>& components,
                                            const std::vector<std::string>& names);
   MixtureKind kind_;
   std::vector<std::shared_ptr<const Model>> components_;

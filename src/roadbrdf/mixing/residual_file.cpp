@@ -6,9 +6,9 @@
 #include <limits>
 
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::mixing {
 
@@ -33,7 +33,8 @@ void write_residual_file(const std::string& path, const SpectralDataset& data,
   }
   AtomicFile file(path);
   std::ostream& out = file.stream();
-  out << "# roadbrdf mix: held-out residuals per method, geometry and wavelength (src/roadbrdf/mixing/residual_file.h)\n"
+  out << "# roadbrdf mix: held-out residuals per method, geometry and wavelength "
+         "(src/roadbrdf/mixing/residual_file.h)\n"
       << "# units: angles deg, wavelength nm, measured/sigma/predicted/residual sr^-1, relative_residual and "
          "normalized_residual 1\n"
       << "# residual = predicted - measured; relative_residual = residual / measured; normalized_residual = "

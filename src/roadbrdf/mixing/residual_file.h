@@ -28,6 +28,7 @@
 namespace roadbrdf::mixing {
 
 // Write atomically (io/csv.h AtomicFile). Every comparison must come from `data`. Throws InputError.
-void write_residual_file(const std::string& path, const SpectralDataset& data, const std::vector<Comparison>& comparisons);
+void write_residual_file(const std::string& path, const SpectralDataset& data,
+                         const std::vector<Comparison>& comparisons);
 
 }  // namespace roadbrdf::mixing

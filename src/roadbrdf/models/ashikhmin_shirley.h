@@ -54,22 +54,29 @@ struct AshikhminShirley {
   static ModelDescription describe(const OptionSet&) {
     ModelDescription d;
     d.summary = "Ashikhmin-Shirley anisotropic Phong: Schlick-Fresnel specular lobe + coupled non-Lambertian diffuse";
-    d.citation = "Ashikhmin & Shirley, J. Graphics Tools 5(2) 2000, eqs. 4-5; report eq. 3.18 (no k_d/k_s weights, "
-                 "diffuse factor (1 - R_s) as in the paper)";
+    d.citation =
+        "Ashikhmin & Shirley, J. Graphics Tools 5(2) 2000, eqs. 4-5; report eq. 3.18 (no k_d/k_s weights, "
+        "diffuse factor (1 - R_s) as in the paper)";
     d.parameters = {
-        {"rd", "1", "diffuse reflectance R_d of the substrate (diffuse albedo at normal incidence is "
-                    "R_d (1 - R_s) 31/32)", 0.3, 0.0, 1.0, true, true},
+        {"rd", "1",
+         "diffuse reflectance R_d of the substrate (diffuse albedo at normal incidence is "
+         "R_d (1 - R_s) 31/32)",
+         0.3, 0.0, 1.0, true, true},
         {"rs", "1", "specular reflectance R_s at normal incidence (Schlick F_0; also sets the diffuse factor 1 - R_s)",
          0.05, 0.0, 1.0, true, false},
-        {"nu", "1", "Phong-like exponent n_u of the specular lobe along the surface x axis (tangent u); "
-                    "larger = sharper", 20.0, 0.0, kMaxExponent, false, false},
-        {"nv", "1", "Phong-like exponent n_v of the specular lobe along the surface y axis (tangent v); "
-                    "n_v = n_u is isotropic", 20.0, 0.0, kMaxExponent, false, false},
+        {"nu", "1",
+         "Phong-like exponent n_u of the specular lobe along the surface x axis (tangent u); "
+         "larger = sharper",
+         20.0, 0.0, kMaxExponent, false, false},
+        {"nv", "1",
+         "Phong-like exponent n_v of the specular lobe along the surface y axis (tangent v); "
+         "n_v = n_u is isotropic",
+         20.0, 0.0, kMaxExponent, false, false},
     };
-    d.isotropic = false;  // the lobe's exponent depends on the half vector's azimuth ...
+    d.isotropic = false;                      // the lobe's exponent depends on the half vector's azimuth ...
     d.isotropic_when_equal = {{"nu", "nv"}};  // ... unless n_u = n_v (paper eq. 4)
-    d.reciprocal = true;  // symmetric in k1, k2 (max() and h.k1 = h.k2)
-    d.energy_conserving = true;  // paper's claim; holds numerically (see the header comment)
+    d.reciprocal = true;                      // symmetric in k1, k2 (max() and h.k1 = h.k2)
+    d.energy_conserving = true;               // paper's claim; holds numerically (see the header comment)
     d.non_negative = true;
     return d;
   }
@@ -97,8 +104,8 @@ struct AshikhminShirley {
     const double hk = dot(g.wi, h);
     const double denominator = hk * max_cos;
     if (!(denominator > 0.0) || !(h.z > 0.0)) return diffuse;  // both grazing: no specular power
-    const double sin2_h = h.x * h.x + h.y * h.y;                // 1 - (n.h)^2, from the components
-    T lobe(1.0);                                                // h = n: (n.h)^e = 1 for every e
+    const double sin2_h = h.x * h.x + h.y * h.y;               // 1 - (n.h)^2, from the components
+    T lobe(1.0);                                               // h = n: (n.h)^e = 1 for every e
     if (sin2_h > 0.0) {
       const T exponent = (nu * (h.x * h.x) + nv * (h.y * h.y)) / sin2_h;
       lobe = exp(exponent * std::log(h.z));

@@ -37,8 +37,10 @@ struct Burley {
   enum class Distribution { kBerry, kGgx, kGtr };
 
   static std::vector<OptionInfo> options() {
-    return {{"distribution", "specular normal distribution: berry (GTR gamma=1), ggx (GTR gamma=2), gtr (gamma fitted)",
-             {"ggx", "berry", "gtr"}, "ggx"}};
+    return {{"distribution",
+             "specular normal distribution: berry (GTR gamma=1), ggx (GTR gamma=2), gtr (gamma fitted)",
+             {"ggx", "berry", "gtr"},
+             "ggx"}};
   }
   static Distribution distribution_of(const OptionSet& o) {
     const std::string& d = o.at("distribution");
@@ -52,16 +54,17 @@ struct Burley {
     d.parameters = {
         {"albedo", "1", "diffuse albedo rho (base colour)", 0.5, 0.0, 1.0, true, true},
         {"roughness", "1",
-         "perceptual roughness r in [0, 1]: microfacet alpha = r^2; also drives the diffuse retro-reflection F_D90", 0.5,
-         0.02, 1.0, false, false},
-        {"specular", "1", "weight of the specular lobe (multiplies F D G / (4 cos_i cos_r))", 1.0, 0.0, 1.0, true, true},
+         "perceptual roughness r in [0, 1]: microfacet alpha = r^2; also drives the diffuse retro-reflection F_D90",
+         0.5, 0.02, 1.0, false, false},
+        {"specular", "1", "weight of the specular lobe (multiplies F D G / (4 cos_i cos_r))", 1.0, 0.0, 1.0, true,
+         true},
         {"ior", "1", "relative refractive index n of the facets; Schlick F0 = ((n-1)/(n+1))^2", 1.5, 1.0, 3.0, true,
          false},
     };
     if (dist == Distribution::kGtr) {
-      d.parameters.push_back(
-          {"gtr_gamma", "1", "exponent gamma of the generalised Trowbridge-Reitz distribution (1 = Berry, 2 = GGX)",
-           1.5, 0.5, 4.0, false, false});
+      d.parameters.push_back({"gtr_gamma", "1",
+                              "exponent gamma of the generalised Trowbridge-Reitz distribution (1 = Berry, 2 = GGX)",
+                              1.5, 0.5, 4.0, false, false});
     }
     d.energy_conserving = false;  // Burley's diffuse term is not energy conserving (by design)
     return d;

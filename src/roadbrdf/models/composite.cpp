@@ -24,8 +24,8 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
     d.has_delta = d.has_delta || c.has_delta;
     const std::string& prefix = prefixes[k];
     combine_isotropy(d, c, prefix);
-    d.parameters.push_back({prefix + ".weight", "1", "weight of the " + c.name + " component", 1.0, 0.0, 1.0e6,
-                            true, true});
+    d.parameters.push_back(
+        {prefix + ".weight", "1", "weight of the " + c.name + " component", 1.0, 0.0, 1.0e6, true, true});
     for (ParameterInfo p : c.parameters) {
       p.name = prefix + "." + p.name;
       d.parameters.push_back(p);
@@ -136,8 +136,7 @@ const CompositeModel::Prepared* CompositeModel::own_prepared(const PreparedGeome
 }
 
 // Same arithmetic as evaluate_batch with one parameter set, on the components' prepared geometries.
-void CompositeModel::evaluate_prepared(const PreparedGeometries& prepared, const double* params,
-                                       double* values) const {
+void CompositeModel::evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const {
   const Prepared* own = own_prepared(prepared);
   if (own == nullptr) return Model::evaluate_prepared(prepared, params, values);
   const std::size_t n_geometries = prepared.size();

@@ -10,8 +10,8 @@
 namespace roadbrdf {
 
 // Keys: name, summary, citation, reciprocal, energy_conserving, non_negative, has_delta,
-// isotropic, isotropic_when_equal [[name, name], ...], parameters [{name, unit, description, default, lower, upper, spectral, linear}],
-// options [{name, description, values, default}], option_values {name: value}.
+// isotropic, isotropic_when_equal [[name, name], ...], parameters [{name, unit, description, default, lower, upper,
+// spectral, linear}], options [{name, description, values, default}], option_values {name: value}.
 nlohmann::json description_to_json(const ModelDescription& description);
 
 // "yes", "no" or "where `nu` = `nv`" (for the help texts and docs/models.md).

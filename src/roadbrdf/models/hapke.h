@@ -120,8 +120,8 @@ struct Hapke {
                              : phase == "hg2"    ? "double Henyey-Greenstein"
                                                  : "Henyey-Greenstein";
     ModelDescription d;
-    d.summary = std::string("Hapke IMSA particulate-medium BRDF with shadow-hiding opposition effect, ") +
-                phase_name + " phase function, " + options.at("h_function") + " H function";
+    d.summary = std::string("Hapke IMSA particulate-medium BRDF with shadow-hiding opposition effect, ") + phase_name +
+                " phase function, " + options.at("h_function") + " H function";
     d.citation =
         "Hapke, JGR 86:3039 (1981); Hapke, Icarus 67:264 (1986) for B(g); Hapke, Icarus 157:523 (2002) eq. 13 "
         "for H2; Hapke, Theory of Reflectance and Emittance Spectroscopy, 2nd ed. (2012) eq. 6.7 for hg2; "
@@ -286,7 +286,7 @@ struct Hapke {
   // incidence and 5 view angles for 400 geometries), so H(x, w) and dH/dw are computed once per
   // distinct cosine and parameter set instead of twice per geometry.
   struct SharedTerms {
-    std::vector<double> cosines;                 // distinct values of mu0 and mu, increasing
+    std::vector<double> cosines;                  // distinct values of mu0 and mu, increasing
     std::vector<std::uint32_t> index_i, index_r;  // per geometry: position of its mu0 and mu in `cosines`
   };
 

@@ -16,7 +16,7 @@ constexpr int kBlockCount = kHTableOctaves * kHTableGammaPanels;
 
 struct BlockStore {
   std::array<std::atomic<const double*>, kBlockCount> blocks{};
-  std::mutex mutex;                                  // guards building and `owned`
+  std::mutex mutex;  // guards building and `owned`
   std::vector<std::unique_ptr<double[]>> owned;
 };
 

@@ -31,10 +31,10 @@
 
 namespace roadbrdf::hapke {
 
-inline constexpr int kHTableOctaves = 40;      // x down to 2^-40 ~ 9.1e-13
-inline constexpr int kHTableGammaPanels = 8;   // gamma panels of width 1/8
-inline constexpr int kHTableNodesX = 12;       // Chebyshev degree 11 in t per octave
-inline constexpr int kHTableNodesG = 10;       // Chebyshev degree 9 in s per gamma panel
+inline constexpr int kHTableOctaves = 40;     // x down to 2^-40 ~ 9.1e-13
+inline constexpr int kHTableGammaPanels = 8;  // gamma panels of width 1/8
+inline constexpr int kHTableNodesX = 12;      // Chebyshev degree 11 in t per octave
+inline constexpr int kHTableNodesG = 10;      // Chebyshev degree 9 in s per gamma panel
 
 // Chebyshev coefficients c[a * kHTableNodesG + b] of block (octave, gamma panel):
 // H = sum_a sum_b c[a][b] T_a(t) T_b(s). Built on first use; the pointer stays valid.

@@ -40,7 +40,6 @@
 
 namespace roadbrdf {
 
-
 struct KelemenSzirmayKalos {
   static constexpr const char* kName = "kelemen-szirmay-kalos";
   static constexpr int kMaxParameters = 3;
@@ -55,8 +54,9 @@ struct KelemenSzirmayKalos {
   }
   static ksk::Distribution distribution_of(const OptionSet& o) {
     const std::string& d = o.at("distribution");
-    return d == "ward" ? ksk::Distribution::kWard : d == "phong" ? ksk::Distribution::kPhong
-                                                                 : ksk::Distribution::kBeckmann;
+    return d == "ward"    ? ksk::Distribution::kWard
+           : d == "phong" ? ksk::Distribution::kPhong
+                          : ksk::Distribution::kBeckmann;
   }
   static ModelDescription describe(const OptionSet& options) {
     const ksk::Distribution dist = distribution_of(options);
@@ -68,7 +68,8 @@ struct KelemenSzirmayKalos {
          true},
         {"roughness", "1",
          dist == ksk::Distribution::kPhong
-             ? "alpha: roughness; Phong exponent m = 2/alpha^2 - 2 (Walter 2007 eq. 30 equivalence to Beckmann RMS slope)"
+             ? "alpha: roughness; Phong exponent m = 2/alpha^2 - 2 (Walter 2007 eq. 30 equivalence to Beckmann RMS "
+               "slope)"
              : "alpha: RMS slope of the microfacets (Beckmann/Ward width parameter, dimensionless)",
          0.3, ksk::kAlphaMin, ksk::kAlphaMax, false, false},
         {"ior", "1", "relative refractive index n of the facets; Schlick F0 = ((n-1)/(n+1))^2", 1.5, 1.0, 3.0, true,

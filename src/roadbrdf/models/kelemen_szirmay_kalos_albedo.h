@@ -144,12 +144,12 @@ void specular_albedo_parts(Distribution d, double mu, const T& alpha, T* a_out, 
 // rho_s(mu) = f0 A + B and rho_s_bar = f0 A_bar + B_bar, tabulated per distribution.
 class AlbedoTable {
  public:
-  static constexpr int kMu = 129;     // nodes in mu_variable on [kMuTable, 1]
-  static constexpr int kAlpha = 97;   // nodes in log alpha on [kAlphaMin, kAlphaMax]
-  static constexpr int kGhost = 2;    // extra rows beyond each end (for the central differences)
+  static constexpr int kMu = 129;    // nodes in mu_variable on [kMuTable, 1]
+  static constexpr int kAlpha = 97;  // nodes in log alpha on [kAlphaMin, kAlphaMax]
+  static constexpr int kGhost = 2;   // extra rows beyond each end (for the central differences)
 
   struct Row {
-    std::vector<double> a, b;  // [i_mu]
+    std::vector<double> a, b;         // [i_mu]
     double a_avg = 0.0, b_avg = 0.0;  // 2 int_0^1 A mu dmu, 2 int_0^1 B mu dmu
   };
 

@@ -44,13 +44,13 @@ struct Lafortune {
 
   static std::vector<OptionInfo> options() {
     return {{"lobes", "number of generalised cosine lobes (integer 1..4)", {}, "1"},
-            {"isotropic", "yes: C_y = C_x for every lobe (isotropic); no: separate C_x and C_y (anisotropic)",
-             {"yes", "no"}, "yes"}};
+            {"isotropic",
+             "yes: C_y = C_x for every lobe (isotropic); no: separate C_x and C_y (anisotropic)",
+             {"yes", "no"},
+             "yes"}};
   }
 
-  static int lobe_count(const OptionSet& options) {
-    return integer_option(kName, options, "lobes", 1, kMaxLobes);
-  }
+  static int lobe_count(const OptionSet& options) { return integer_option(kName, options, "lobes", 1, kMaxLobes); }
   static bool is_isotropic(const OptionSet& options) { return options.at("isotropic") == "yes"; }
 
   static ModelDescription describe(const OptionSet& options) {
@@ -60,24 +60,28 @@ struct Lafortune {
     struct LobeDefault {
       double rho, cx, cz, n;
     };
-    const LobeDefault defaults[kMaxLobes] = {{0.3, -1.0, 1.0, 5.0}, {0.1, 1.0, 1.0, 5.0}, {0.1, -1.0, 1.0, 1.0},
-                                             {0.1, 0.0, 1.0, 1.0}};
+    const LobeDefault defaults[kMaxLobes] = {
+        {0.3, -1.0, 1.0, 5.0}, {0.1, 1.0, 1.0, 5.0}, {0.1, -1.0, 1.0, 1.0}, {0.1, 0.0, 1.0, 1.0}};
     ModelDescription d;
-    d.summary = "Lafortune generalised cosine lobes (" + std::to_string(lobes) + (isotropic ? ", isotropic" : ", anisotropic") +
-                ") + Lambertian term";
-    d.citation = "Lafortune et al., SIGGRAPH 1997, eq. 4 (report eq. 3.25-3.26 garbled; per-lobe clamp as in the paper)";
-    d.parameters.push_back({"kd", "1", "diffuse albedo k_d of the Lambertian term (f_d = k_d/pi)", 0.2, 0.0, 1.0, true, true});
+    d.summary = "Lafortune generalised cosine lobes (" + std::to_string(lobes) +
+                (isotropic ? ", isotropic" : ", anisotropic") + ") + Lambertian term";
+    d.citation =
+        "Lafortune et al., SIGGRAPH 1997, eq. 4 (report eq. 3.25-3.26 garbled; per-lobe clamp as in the paper)";
+    d.parameters.push_back(
+        {"kd", "1", "diffuse albedo k_d of the Lambertian term (f_d = k_d/pi)", 0.2, 0.0, 1.0, true, true});
     for (int k = 0; k < lobes; ++k) {
       const std::string s = std::to_string(k + 1);
       const LobeDefault& def = defaults[k];
       d.parameters.push_back({"rho" + s, "sr^-1",
-                              "amplitude of lobe " + s + " (BRDF value where the lobe base is 1, e.g. at the mirror "
-                              "direction for C = (-1,-1,1))",
+                              "amplitude of lobe " + s +
+                                  " (BRDF value where the lobe base is 1, e.g. at the mirror "
+                                  "direction for C = (-1,-1,1))",
                               def.rho, 0.0, kMaxLobeAmplitude, true, true});
-      d.parameters.push_back({"cx" + s, "1",
-                              std::string("coefficient C_x of lobe ") + s +
-                                  (isotropic ? " (also C_y); < 0 forward, > 0 retro" : " (surface x axis); < 0 forward"),
-                              def.cx, -kMaxCoefficient, kMaxCoefficient, false, false});
+      d.parameters.push_back(
+          {"cx" + s, "1",
+           std::string("coefficient C_x of lobe ") + s +
+               (isotropic ? " (also C_y); < 0 forward, > 0 retro" : " (surface x axis); < 0 forward"),
+           def.cx, -kMaxCoefficient, kMaxCoefficient, false, false});
       if (!isotropic) {
         d.isotropic_when_equal.emplace_back("cx" + s, "cy" + s);  // C_x = C_y: a lobe symmetric about the normal
         d.parameters.push_back({"cy" + s, "1", "coefficient C_y of lobe " + s + " (surface y axis); < 0 forward",
@@ -85,8 +89,8 @@ struct Lafortune {
       }
       d.parameters.push_back({"cz" + s, "1", "coefficient C_z of lobe " + s + " (normal component)", def.cz,
                               -kMaxCoefficient, kMaxCoefficient, false, false});
-      d.parameters.push_back({"n" + s, "1", "exponent n of lobe " + s + " (larger = narrower)", def.n, 0.0,
-                              kMaxExponent, false, false});
+      d.parameters.push_back(
+          {"n" + s, "1", "exponent n of lobe " + s + " (larger = narrower)", def.n, 0.0, kMaxExponent, false, false});
     }
     d.isotropic = isotropic;
     d.reciprocal = true;

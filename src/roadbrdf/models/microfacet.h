@@ -261,8 +261,7 @@ T smith_g1_over_cos(double cos_t, const T& cos_lambda) {
 // Returns 0 when both directions are exactly grazing (the height-correlated form diverges there;
 // the point has zero measure and every cosine-weighted quantity vanishes).
 template <typename T>
-T smith_g2_over_cos(double cos_i, double cos_r, const T& cos_lambda_i, const T& cos_lambda_r,
-                    bool height_correlated) {
+T smith_g2_over_cos(double cos_i, double cos_r, const T& cos_lambda_i, const T& cos_lambda_r, bool height_correlated) {
   if (height_correlated) {
     const T denom = cos_i * cos_r + cos_r * cos_lambda_i + cos_i * cos_lambda_r;
     if (scalar_value(denom) <= 0.0) return T(0.0);

@@ -90,8 +90,8 @@ class Model {
                               std::size_t n_sets, double* out) const = 0;
 
   // Batch with Jacobian for one parameter set: values[n] and jacobian[n * parameter_count() + k].
-  virtual void evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries,
-                                            const double* params, double* values, double* jacobian) const = 0;
+  virtual void evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries, const double* params,
+                                            double* values, double* jacobian) const = 0;
 
   // Geometry-only data of `count` geometries for the evaluate_prepared*() calls below (see
   // PreparedGeometries). The default keeps only the geometries.
@@ -106,8 +106,8 @@ class Model {
   }
 
   // evaluate_batch_with_gradient() at prepared geometries (same values and Jacobian).
-  virtual void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params,
-                                               double* values, double* jacobian) const {
+  virtual void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params, double* values,
+                                               double* jacobian) const {
     evaluate_batch_with_gradient(prepared.geometries(), prepared.size(), params, values, jacobian);
   }
 
@@ -133,17 +133,17 @@ concept HasPreparedGeometry = requires(const M& m, const double* p, const Geomet
 
 // A model struct with prepared geometry and parameter-only coefficients (see the top of this file).
 template <class M>
-concept HasCoefficients =
-    HasPreparedGeometry<M> && requires(const M& m, const double* p, const typename M::Prepared& pg) {
-      { m(m.coefficients(p), pg) } -> std::convertible_to<double>;
-    };
+concept HasCoefficients = HasPreparedGeometry<M> &&
+    requires(const M& m, const double* p, const typename M::Prepared& pg) {
+  { m(m.coefficients(p), pg) } -> std::convertible_to<double>;
+};
 
 // A model struct with terms shared by a set of prepared geometries and an analytic gradient (see the
 // top of this file).
 template <class M>
-concept HasSharedTerms = HasPreparedGeometry<M> && requires(const M& m, const typename M::Prepared* g, std::size_t n,
-                                                            const typename M::SharedTerms& s, const double* p,
-                                                            double* out) {
+concept HasSharedTerms = HasPreparedGeometry<M> &&
+    requires(const M& m, const typename M::Prepared* g, std::size_t n, const typename M::SharedTerms& s,
+             const double* p, double* out) {
   { m.share(g, n) } -> std::same_as<typename M::SharedTerms>;
   m.evaluate_shared(s, g, n, p, out, out);
 };
@@ -170,8 +170,7 @@ struct PreparedGeometryOf<M> {
 template <class M>
 class ModelAdapter final : public Model {
  public:
-  explicit ModelAdapter(const OptionSet& given)
-      : ModelAdapter(resolve_options(M::kName, M::options(), given), 0) {}
+  explicit ModelAdapter(const OptionSet& given) : ModelAdapter(resolve_options(M::kName, M::options(), given), 0) {}
 
   double evaluate(const double* params, const Geometry& g) const override { return model_(params, g); }
 
@@ -191,8 +190,8 @@ class ModelAdapter final : public Model {
   }
 
   // Each geometry is prepared once and evaluated for all parameter sets.
-  void evaluate_batch(const Geometry* geometries, std::size_t n_geometries, const double* params,
-                      std::size_t n_sets, double* out) const override {
+  void evaluate_batch(const Geometry* geometries, std::size_t n_geometries, const double* params, std::size_t n_sets,
+                      double* out) const override {
     const std::size_t n_params = parameter_count();
     for (std::size_t n = 0; n < n_geometries; ++n) {
       const auto& g = prepare_one(geometries[n]);

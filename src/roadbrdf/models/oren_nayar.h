@@ -33,8 +33,10 @@ struct OrenNayar {
   static constexpr double kMaxSigmaQualitative = 1.5707963267948966;
 
   static std::vector<OptionInfo> options() {
-    return {{"form", "full: direct + interreflection terms (eq. 30 + 37); qualitative: A/B form (eq. 32)",
-             {"full", "qualitative"}, "full"}};
+    return {{"form",
+             "full: direct + interreflection terms (eq. 30 + 37); qualitative: A/B form (eq. 32)",
+             {"full", "qualitative"},
+             "full"}};
   }
   static ModelDescription describe(const OptionSet& options) {
     const bool full = options.at("form") == "full";
@@ -52,8 +54,9 @@ struct OrenNayar {
     // towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, 1.014 at 89 deg; 1.044 at
     // sigma = 0.3, 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). Checked in oren_nayar_test.
     d.energy_conserving = false;
-    d.summary += "; not energy conserving (fitted closed form: with albedo 1 the black-sky albedo exceeds 1 towards "
-                 "grazing sun, 1.044 at sigma = 0.3 rad and 89 deg)";
+    d.summary +=
+        "; not energy conserving (fitted closed form: with albedo 1 the black-sky albedo exceeds 1 towards "
+        "grazing sun, 1.044 at sigma = 0.3 rad and 89 deg)";
     return d;
   }
   explicit OrenNayar(const OptionSet& options) : full_(options.at("form") == "full") {}
@@ -61,14 +64,14 @@ struct OrenNayar {
   // Geometry-only factors of eqs. 30, 32 and 37 (alpha = max, beta = min of the zenith angles),
   // computed once per geometry (model.h, "prepared geometry").
   struct Prepared {
-    double c = 0.0;                       // cos(dphi)
-    double tan_beta = 0.0;                // qualitative B factor: max(0, cos dphi) sin(alpha) tan(beta)
+    double c = 0.0;         // cos(dphi)
+    double tan_beta = 0.0;  // qualitative B factor: max(0, cos dphi) sin(alpha) tan(beta)
     double qualitative_b = 0.0;
-    double sin_alpha = 0.0;               // C2 factor for cos(dphi) >= 0
-    double sin_alpha_minus_cube = 0.0;    // C2 factor otherwise: sin(alpha) - (2 beta / pi)^3
-    double c3_geometry = 0.0;             // (4 alpha beta / pi^2)^2
-    double c3_weight = 0.0;               // (1 - |cos dphi|) tan((alpha + beta) / 2)
-    double interreflection = 0.0;         // 1 - cos(dphi) (2 beta / pi)^2
+    double sin_alpha = 0.0;             // C2 factor for cos(dphi) >= 0
+    double sin_alpha_minus_cube = 0.0;  // C2 factor otherwise: sin(alpha) - (2 beta / pi)^3
+    double c3_geometry = 0.0;           // (4 alpha beta / pi^2)^2
+    double c3_weight = 0.0;             // (1 - |cos dphi|) tan((alpha + beta) / 2)
+    double interreflection = 0.0;       // 1 - cos(dphi) (2 beta / pi)^2
   };
 
   Prepared prepare(const Geometry& g) const {

@@ -7,17 +7,17 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/models/composite.h"
 // One include per model file (keep in display order).
-#include "roadbrdf/models/lambert.h"
-#include "roadbrdf/models/oren_nayar.h"
 #include "roadbrdf/models/ashikhmin_shirley.h"
-#include "roadbrdf/models/lafortune.h"
-#include "roadbrdf/models/retro_phong.h"
-#include "roadbrdf/models/simonot.h"
-#include "roadbrdf/models/torrance_sparrow.h"
-#include "roadbrdf/models/kelemen_szirmay_kalos.h"
 #include "roadbrdf/models/burley.h"
 #include "roadbrdf/models/hapke.h"
+#include "roadbrdf/models/kelemen_szirmay_kalos.h"
+#include "roadbrdf/models/lafortune.h"
+#include "roadbrdf/models/lambert.h"
+#include "roadbrdf/models/oren_nayar.h"
+#include "roadbrdf/models/retro_phong.h"
 #include "roadbrdf/models/ross_li.h"
+#include "roadbrdf/models/simonot.h"
+#include "roadbrdf/models/torrance_sparrow.h"
 // [model-includes]
 
 namespace roadbrdf {
@@ -36,17 +36,9 @@ Entry entry() {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
-      entry<Lambert>(),
-      entry<OrenNayar>(),
-      entry<AshikhminShirley>(),
-      entry<Simonot>(),
-      entry<Lafortune>(),
-      entry<RetroPhong>(),
-      entry<TorranceSparrow>(),
-      entry<KelemenSzirmayKalos>(),
-      entry<Burley>(),
-      entry<Hapke>(),
-      entry<RossLi>(),
+      entry<Lambert>(),   entry<OrenNayar>(),  entry<AshikhminShirley>(), entry<Simonot>(),
+      entry<Lafortune>(), entry<RetroPhong>(), entry<TorranceSparrow>(),  entry<KelemenSzirmayKalos>(),
+      entry<Burley>(),    entry<Hapke>(),      entry<RossLi>(),
       // [model-entries]
   };
   return table;

@@ -39,8 +39,9 @@ struct RetroPhong {
   static std::vector<OptionInfo> options() { return {}; }
   static ModelDescription describe(const OptionSet&) {
     ModelDescription d;
-    d.summary = "Retro-Phong road-marking BRDF: Lambertian + specular and retro Phong lobes with "
-                "incidence-dependent weights (not reciprocal)";
+    d.summary =
+        "Retro-Phong road-marking BRDF: Lambertian + specular and retro Phong lobes with "
+        "incidence-dependent weights (not reciprocal)";
     d.citation = "Spieringhs et al., JOSA A 40(3):590 (2023); report eq. 3.27 (lobes clamped at 0)";
     // Defaults: the report's fit of SWARCO Limboplast D480 with Megalux 0.6-1.5 KT14.
     d.parameters = {

@@ -99,8 +99,7 @@ struct RossLi {
     const double sec_v = 1.0 / cos_v;
     const double d2 = std::fmax(0.0, tan_s * tan_s + tan_v * tan_v - 2.0 * tan_s * tan_v * cos_phi);
     const double cross = tan_s * tan_v;
-    const double cos_t =
-        std::fmin(1.0, kHeightToWidth * std::sqrt(d2 + cross * cross * sin2_phi) / (sec_s + sec_v));
+    const double cos_t = std::fmin(1.0, kHeightToWidth * std::sqrt(d2 + cross * cross * sin2_phi) / (sec_s + sec_v));
     const double t = std::acos(cos_t);
     const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
     const double overlap = kInvPi * (t - sin_t * cos_t) * (sec_s + sec_v);

@@ -33,8 +33,8 @@
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/core/quadrature.h"
 #include "roadbrdf/core/parameters.h"
+#include "roadbrdf/core/quadrature.h"
 #include "roadbrdf/models/fresnel.h"
 
 namespace roadbrdf {
@@ -71,15 +71,17 @@ struct Simonot {
   static std::vector<OptionInfo> options() { return {}; }
   static ModelDescription describe(const OptionSet&) {
     ModelDescription d;
-    d.summary = "Flat dielectric interface over a Lambertian background (Simonot interfaced Lambertian facet), "
-                "with ideal specular part";
-    d.citation = "Simonot, Appl. Opt. 48(30):5793 (2009), flat interfaced Lambertian facet; report eq. 3.19 "
-                 "(r01 integral with d theta restored)";
+    d.summary =
+        "Flat dielectric interface over a Lambertian background (Simonot interfaced Lambertian facet), "
+        "with ideal specular part";
+    d.citation =
+        "Simonot, Appl. Opt. 48(30):5793 (2009), flat interfaced Lambertian facet; report eq. 3.19 "
+        "(r01 integral with d theta restored)";
     d.parameters = {
         {"albedo", "1", "intrinsic reflectance rho of the Lambertian background under the interface", 0.5, 0.0, 1.0,
          true, false},
-        {"ior", "1", "relative refractive index eta_1/eta_0 of the binder (medium 1) to the upper medium 0",
-         1.5, 1.0, 3.0, true, false},
+        {"ior", "1", "relative refractive index eta_1/eta_0 of the binder (medium 1) to the upper medium 0", 1.5, 1.0,
+         3.0, true, false},
     };
     d.reciprocal = true;
     d.energy_conserving = true;  // albedo = R01 + (1 - R01) rho (1 - r10)/(1 - rho r10) <= 1 for rho <= 1

@@ -43,16 +43,26 @@ struct TorranceSparrow {
 
   static std::vector<OptionInfo> options() {
     return {
-        {"profile", "microfacet profile: v-cavity (Torrance-Sparrow / Cook-Torrance G) or smith (Lambda-based G)",
-         {"smith", "v-cavity"}, "smith"},
-        {"masking", "Smith masking-shadowing: height-correlated 1/(1+L_i+L_r) or uncorrelated G1 G1 (smith only)",
-         {"height-correlated", "uncorrelated"}, "height-correlated"},
-        {"distribution", "normal distribution: gaussian (v-cavity only), beckmann, ggx",
-         {"ggx", "beckmann", "gaussian"}, "ggx"},
-        {"fresnel", "Fresnel term at the local angle theta'_i",
-         {"exact-dielectric", "schlick", "exact-conductor", "schlick-conductor", "none"}, "exact-dielectric"},
-        {"lambda", "Beckmann Smith Lambda: exact erf form or the rational approximation (beckmann+smith only)",
-         {"exact", "rational"}, "exact"},
+        {"profile",
+         "microfacet profile: v-cavity (Torrance-Sparrow / Cook-Torrance G) or smith (Lambda-based G)",
+         {"smith", "v-cavity"},
+         "smith"},
+        {"masking",
+         "Smith masking-shadowing: height-correlated 1/(1+L_i+L_r) or uncorrelated G1 G1 (smith only)",
+         {"height-correlated", "uncorrelated"},
+         "height-correlated"},
+        {"distribution",
+         "normal distribution: gaussian (v-cavity only), beckmann, ggx",
+         {"ggx", "beckmann", "gaussian"},
+         "ggx"},
+        {"fresnel",
+         "Fresnel term at the local angle theta'_i",
+         {"exact-dielectric", "schlick", "exact-conductor", "schlick-conductor", "none"},
+         "exact-dielectric"},
+        {"lambda",
+         "Beckmann Smith Lambda: exact erf form or the rational approximation (beckmann+smith only)",
+         {"exact", "rational"},
+         "exact"},
     };
   }
 
@@ -70,8 +80,9 @@ struct TorranceSparrow {
     r.profile = o.at("profile") == "v-cavity" ? Profile::kVCavity : Profile::kSmith;
     r.height_correlated = o.at("masking") == "height-correlated";
     const std::string& d = o.at("distribution");
-    r.distribution = d == "gaussian" ? Distribution::kGaussian : d == "beckmann" ? Distribution::kBeckmann
-                                                                                : Distribution::kGgx;
+    r.distribution = d == "gaussian"   ? Distribution::kGaussian
+                     : d == "beckmann" ? Distribution::kBeckmann
+                                       : Distribution::kGgx;
     const std::string& f = o.at("fresnel");
     r.fresnel = f == "schlick"             ? Fresnel::kSchlick
                 : f == "exact-conductor"   ? Fresnel::kExactConductor
@@ -102,8 +113,8 @@ struct TorranceSparrow {
     d.citation =
         "Report eq. 3.7; Walter et al., EGSR 2007, eq. 20 (Smith: Heitz, JCGT 3(2) 2014, eqs. 98-99; "
         "v-cavity: Cook & Torrance, ACM TOG 1982)";
-    d.parameters.push_back({"ks", "1", "specular weight k_s multiplying F G D / (4 cos_i cos_r)", 1.0, 0.0, 1.0, true,
-                            true});
+    d.parameters.push_back(
+        {"ks", "1", "specular weight k_s multiplying F G D / (4 cos_i cos_r)", 1.0, 0.0, 1.0, true, true});
     if (r.distribution == Distribution::kGaussian) {
       d.parameters.push_back({"roughness", "rad",
                               "sigma: standard deviation of the facet angle theta_m (Gaussian, report eq. 3.4)", 0.2,
@@ -118,13 +129,14 @@ struct TorranceSparrow {
     if (r.fresnel == Fresnel::kNone) {
       // no optical constants
     } else if (is_conductor(r.fresnel)) {
-      d.parameters.push_back({"ior", "1", "real part n of the complex relative refractive index n + ik", 1.0, 0.02,
-                              10.0, true, false});
-      d.parameters.push_back({"k", "1", "extinction coefficient k of the relative refractive index n + ik", 6.5, 0.0,
-                              20.0, true, false});
+      d.parameters.push_back(
+          {"ior", "1", "real part n of the complex relative refractive index n + ik", 1.0, 0.02, 10.0, true, false});
+      d.parameters.push_back(
+          {"k", "1", "extinction coefficient k of the relative refractive index n + ik", 6.5, 0.0, 20.0, true, false});
     } else {
-      d.parameters.push_back({"ior", "1", "relative refractive index n of the facets (real; e.g. 1.5 for bitumen/glass)",
-                              1.5, 1.0, 3.0, true, false});
+      d.parameters.push_back({"ior", "1",
+                              "relative refractive index n of the facets (real; e.g. 1.5 for bitumen/glass)", 1.5, 1.0,
+                              3.0, true, false});
     }
     d.energy_conserving = true;  // single scattering with normalised D and G <= 1, F <= 1, ks <= 1
     return d;
@@ -182,8 +194,8 @@ struct TorranceSparrow {
   // Geometry-only quantities, computed once per geometry (model.h, "prepared geometry").
   struct Prepared {
     microfacet::HalfVector h;
-    double ci = 0.0;  // cos theta_i
-    double cr = 0.0;  // cos theta_r
+    double ci = 0.0;                             // cos theta_i
+    double cr = 0.0;                             // cos theta_r
     microfacet::GgxLambdaGeometry ggx_i, ggx_r;  // GGX Smith Lambda inputs of w_i and w_r
   };
 

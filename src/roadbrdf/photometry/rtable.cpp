@@ -12,7 +12,7 @@
 namespace roadbrdf::photometry {
 
 const std::array<double, kColumns>& standard_beta_deg() {
-  static const std::array<double, kColumns> beta = {0,  2,  5,  10, 15, 20,  25,  30,  35,  40,
+  static const std::array<double, kColumns> beta = {0,  2,  5,  10, 15,  20,  25,  30,  35,  40,
                                                     45, 60, 75, 90, 105, 120, 135, 150, 165, 180};
   return beta;
 }
@@ -30,9 +30,8 @@ const std::array<double, kRows>& standard_tan_gamma() {
 double gamma_deg(std::size_t row) { return rad_to_deg(std::atan(standard_tan_gamma()[row])); }
 
 const std::array<std::size_t, kRows>& standard_region_columns() {
-  static const std::array<std::size_t, kRows> columns = {20, 20, 20, 20, 20, 20, 20, 20, 20, 20,
-                                                         20, 20, 20, 20, 20, 10, 9,  8,  8,  7,
-                                                         7,  7,  6,  6,  6,  6,  6,  5,  5};
+  static const std::array<std::size_t, kRows> columns = {20, 20, 20, 20, 20, 20, 20, 20, 20, 20, 20, 20, 20, 20, 20,
+                                                         10, 9,  8,  8,  7,  7,  7,  6,  6,  6,  6,  6,  5,  5};
   return columns;
 }
 
@@ -130,10 +129,11 @@ void spectral_grid(const SpectralModel& model, const SpectralWeighting& w, std::
         std::string bands;
         for (std::size_t k = 0; k < wl.size() && k < 12; ++k) bands += fmt::format("{}{:g}", k ? ", " : "", wl[k]);
         if (wl.size() > 12) bands += ", ...";
-        throw InputError(fmt::format("the model's wavelengths ({} nm) hold {:.1f}% of the luminous integral under {} "
-                                     "(99% needed for photometric weighting): choose one band with --wavelength NM "
-                                     "or a range with --band A:B",
-                                     bands, 100.0 * luminous_coverage(lo, hi, illuminant), illuminant.name()));
+        throw InputError(
+            fmt::format("the model's wavelengths ({} nm) hold {:.1f}% of the luminous integral under {} "
+                        "(99% needed for photometric weighting): choose one band with --wavelength NM "
+                        "or a range with --band A:B",
+                        bands, 100.0 * luminous_coverage(lo, hi, illuminant), illuminant.name()));
       }
       grid = photometric_grid(lo, hi);
       if (grid.size() < 2) {
@@ -159,9 +159,10 @@ SpectralWeighting effective_weighting(const SpectralModel& model, const Spectral
   w.kind = SpectralWeighting::Kind::wavelength;
   w.wavelength_nm = model.wavelengths().front();
   if (note) {
-    *note = fmt::format("single-band model ({:g} nm): the r-table is at that wavelength (photometric weighting "
-                        "needs a spectrum)",
-                        w.wavelength_nm);
+    *note = fmt::format(
+        "single-band model ({:g} nm): the r-table is at that wavelength (photometric weighting "
+        "needs a spectrum)",
+        w.wavelength_nm);
   }
   return w;
 }
@@ -300,10 +301,10 @@ RoadClass classify(double s1_value, ClassSystem system) {
     const char* name;
     double lo, hi, q0;
   };
-  static const Row r_rows[] = {{"R1", 0.0, 0.42, 0.10}, {"R2", 0.42, 0.85, 0.07}, {"R3", 0.85, 1.35, 0.07},
-                               {"R4", 1.35, inf, 0.08}};
-  static const Row n_rows[] = {{"N1", 0.0, 0.28, 0.10}, {"N2", 0.28, 0.60, 0.07}, {"N3", 0.60, 1.30, 0.07},
-                               {"N4", 1.30, inf, 0.08}};
+  static const Row r_rows[] = {
+      {"R1", 0.0, 0.42, 0.10}, {"R2", 0.42, 0.85, 0.07}, {"R3", 0.85, 1.35, 0.07}, {"R4", 1.35, inf, 0.08}};
+  static const Row n_rows[] = {
+      {"N1", 0.0, 0.28, 0.10}, {"N2", 0.28, 0.60, 0.07}, {"N3", 0.60, 1.30, 0.07}, {"N4", 1.30, inf, 0.08}};
   static const Row c_rows[] = {{"C1", 0.0, 0.40, 0.10}, {"C2", 0.40, inf, 0.07}};
   const Row* begin = r_rows;
   std::size_t n = 4;

@@ -43,14 +43,12 @@ double gamma_deg(std::size_t row);
 // 5.5, 6, ..., 12: 10, 9, 8, 8, 7, 7, 7, 6, 6, 6, 6, 6, 5, 5 columns (beta up to 40, 35, 30, 30, 25, 25, 25,
 // 20, ..., 20, 15, 15 deg); 396 cells. This is the region over which Q0 is averaged by default.
 const std::array<std::size_t, kRows>& standard_region_columns();
-inline bool in_standard_region(std::size_t row, std::size_t column) {
-  return column < standard_region_columns()[row];
-}
+inline bool in_standard_region(std::size_t row, std::size_t column) { return column < standard_region_columns()[row]; }
 
 struct RTable {
-  std::string name;                 // free text ("CIE R3", model name...)
-  double alpha_deg = 1.0;           // observation angle above the road plane [deg]
-  std::vector<double> scaled;       // R = 1e4 r, kRows x kColumns, row (tan gamma) major; NaN = missing
+  std::string name;            // free text ("CIE R3", model name...)
+  double alpha_deg = 1.0;      // observation angle above the road plane [deg]
+  std::vector<double> scaled;  // R = 1e4 r, kRows x kColumns, row (tan gamma) major; NaN = missing
 
   RTable() : scaled(kRows * kColumns, std::nan("")) {}
   double& at(std::size_t row, std::size_t column) { return scaled[row * kColumns + column]; }
@@ -75,8 +73,8 @@ struct SpectralWeighting {
   // (1 nm trapezoid, parameters interpolated linearly between the fit's wavelengths as
   // SpectralModel::parameters_at does; the range must hold >= 99% of int V S dl).
   std::optional<TabulatedSpectrum> illuminant;  // default: CIE illuminant A
-  double wavelength_nm = 0.0;             // wavelength: the BRDF at that wavelength
-  double band_lo_nm = 0.0, band_hi_nm = 0.0;  // band: unweighted mean over [lo, hi] (1 nm trapezoid)
+  double wavelength_nm = 0.0;                   // wavelength: the BRDF at that wavelength
+  double band_lo_nm = 0.0, band_hi_nm = 0.0;    // band: unweighted mean over [lo, hi] (1 nm trapezoid)
 };
 
 // The weighting that applies to `model`: a model with a single wavelength has no spectrum to weigh
@@ -154,8 +152,8 @@ struct RTableComparison {
   std::size_t max_row = 0, max_column = 0;  // where the maximum is
   std::size_t compared_cells = 0;
   std::size_t only_in_a = 0, only_in_b = 0;  // cells defined in one table only
-  double q0_difference = 0.0;  // Q0(a) - Q0(b) [sr^-1]
-  double s1_difference = 0.0;  // S1(a) - S1(b)
+  double q0_difference = 0.0;                // Q0(a) - Q0(b) [sr^-1]
+  double s1_difference = 0.0;                // S1(a) - S1(b)
 };
 // `b` is the reference. Throws InputError if no cell is defined in both.
 RTableComparison compare(const RTable& a, const RTable& b, Q0Region region = Q0Region::standard);

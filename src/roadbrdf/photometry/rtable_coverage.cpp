@@ -28,14 +28,16 @@ std::vector<std::string> RTableCoverage::notes() const {
   std::vector<std::string> out;
   if (coverage) {
     const AngularCoverage& a = *coverage;
-    out.push_back(fmt::format("coverage: fitted to {} geometries, theta_i {:g}-{:g} deg, theta_r {:g}-{:g} deg; {} of {} "
-                              "r-table cells ({} of {} in the standard region) lie outside them (extrapolated)",
-                              a.geometries, a.theta_i_min_deg, a.theta_i_max_deg, a.theta_r_min_deg, a.theta_r_max_deg,
-                              outside, cells, standard_outside, standard_cells));
+    out.push_back(
+        fmt::format("coverage: fitted to {} geometries, theta_i {:g}-{:g} deg, theta_r {:g}-{:g} deg; {} of {} "
+                    "r-table cells ({} of {} in the standard region) lie outside them (extrapolated)",
+                    a.geometries, a.theta_i_min_deg, a.theta_i_max_deg, a.theta_r_min_deg, a.theta_r_max_deg, outside,
+                    cells, standard_outside, standard_cells));
     if (standard_cells > 0 && 2 * standard_outside > standard_cells) {
-      out.push_back(fmt::format("WARNING: mostly extrapolation: {:.0f}% of the standard-region cells (and so of Q0 and "
-                                "S1) come from directions the fit never saw",
-                                100.0 * static_cast<double>(standard_outside) / static_cast<double>(standard_cells)));
+      out.push_back(
+          fmt::format("WARNING: mostly extrapolation: {:.0f}% of the standard-region cells (and so of Q0 and "
+                      "S1) come from directions the fit never saw",
+                      100.0 * static_cast<double>(standard_outside) / static_cast<double>(standard_cells)));
     }
   }
   if (negative > 0) {

@@ -15,11 +15,11 @@
 namespace roadbrdf::photometry {
 
 struct RTableCoverage {
-  std::optional<AngularCoverage> coverage;  // the fit's; none: unknown (no outside counts)
-  std::size_t cells = 0;                    // defined cells
-  std::size_t outside = 0;                  // defined cells outside the coverage
+  std::optional<AngularCoverage> coverage;               // the fit's; none: unknown (no outside counts)
+  std::size_t cells = 0;                                 // defined cells
+  std::size_t outside = 0;                               // defined cells outside the coverage
   std::size_t standard_cells = 0, standard_outside = 0;  // the same within the CIE standard region
-  std::size_t negative = 0;                 // cells with r < 0 (non-physical)
+  std::size_t negative = 0;                              // cells with r < 0 (non-physical)
 
   double outside_fraction() const { return cells ? static_cast<double>(outside) / static_cast<double>(cells) : 0.0; }
   // One line per finding: the coverage, "WARNING: mostly extrapolation" (> 50 % of the standard

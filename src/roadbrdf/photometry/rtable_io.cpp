@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/error.h"
-#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/math.h"
 
 namespace roadbrdf::photometry {
 
@@ -110,9 +110,7 @@ bool matches_tan(double t_file, std::size_t row) {
   return std::abs(g_file - gamma_deg(row)) <= 0.006;
 }
 bool matches_gamma_deg(double g_file, std::size_t row) { return std::abs(g_file - gamma_deg(row)) <= 0.006; }
-bool matches_beta(double b_file, std::size_t column) {
-  return std::abs(b_file - standard_beta_deg()[column]) <= 0.001;
-}
+bool matches_beta(double b_file, std::size_t column) { return std::abs(b_file - standard_beta_deg()[column]) <= 0.001; }
 
 // File value -> stored R (1e4 r); 0 = missing.
 double stored_value(double file_value, double scale) {
@@ -147,8 +145,9 @@ RTable read_csv(const std::string& path, double scale) {
         for (std::size_t j = 0; j < kColumns; ++j) {
           const double b = reader.number(cells[j + 1], "beta [deg]");
           if (!matches_beta(b, j)) {
-            reader.fail(cells[j + 1].column, "beta = " + std::string(cells[j + 1].text) + " deg; the standard grid has " +
-                                                 number_text(standard_beta_deg()[j]) + " here");
+            reader.fail(cells[j + 1].column, "beta = " + std::string(cells[j + 1].text) +
+                                                 " deg; the standard grid has " + number_text(standard_beta_deg()[j]) +
+                                                 " here");
           }
         }
         continue;
@@ -181,7 +180,8 @@ RTable read_csv(const std::string& path, double scale) {
     }
     ++row;
   }
-  if (row != kRows) throw FileError(path, reader.line_number(), 0, "expected 29 rows of values, got " + std::to_string(row));
+  if (row != kRows)
+    throw FileError(path, reader.line_number(), 0, "expected 29 rows of values, got " + std::to_string(row));
   for (std::size_t k = 0; k < reader.comments().size(); ++k) {
     const std::string c = reader.comments()[k];
     const auto key = c.find("alpha_deg");
@@ -349,8 +349,9 @@ RTable read_radiance(const std::string& path, double alpha_deg, double scale) {
   }
   for (std::size_t j = 0; j < kColumns; ++j) {
     if (!matches_beta(beta[j], j)) {
-      throw FileError(path, beta_token.line, 0,
-                      "beta = " + number_text(beta[j]) + " deg; the standard grid has " + number_text(standard_beta_deg()[j]));
+      throw FileError(
+          path, beta_token.line, 0,
+          "beta = " + number_text(beta[j]) + " deg; the standard grid has " + number_text(standard_beta_deg()[j]));
     }
   }
   std::size_t slice = alpha.size();

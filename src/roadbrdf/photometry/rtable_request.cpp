@@ -37,15 +37,17 @@ void summarize_into(RTableReport& report, const RTableRequest& request,
     }
   }
   if (report.summary.q0 > kImplausibleQ0) {
-    report.warnings.push_back(fmt::format("Q0 = {:.4g} sr^-1 is implausibly large for a road surface: is the table "
-                                          "normalised differently (e.g. to Q0 = 1)? See the scale option of the import",
-                                          report.summary.q0));
+    report.warnings.push_back(
+        fmt::format("Q0 = {:.4g} sr^-1 is implausibly large for a road surface: is the table "
+                    "normalised differently (e.g. to Q0 = 1)? See the scale option of the import",
+                    report.summary.q0));
   }
   const auto& declared = report.declared_q0;
   if (declared && *declared > 0.0 && std::abs(*declared - report.summary.q0) > 0.05 * report.summary.q0) {
-    report.warnings.push_back(fmt::format("the file declares q0 = {:.6g}, but its values (read as 1e4 r) give Q0 = "
-                                          "{:.6g} sr^-1",
-                                          *declared, report.summary.q0));
+    report.warnings.push_back(
+        fmt::format("the file declares q0 = {:.6g}, but its values (read as 1e4 r) give Q0 = "
+                    "{:.6g} sr^-1",
+                    *declared, report.summary.q0));
   }
 }
 
@@ -59,10 +61,9 @@ void RTableRequest::validate() const {
   if (wavelength && !(std::isfinite(*wavelength) && *wavelength > 0.0)) {
     throw FieldError("wavelength", fmt::format("must be a positive wavelength [nm], got {}", *wavelength));
   }
-  if (band && !(std::isfinite(band->first) && std::isfinite(band->second) && band->first > 0.0 &&
-                   band->first < band->second)) {
-    throw FieldError("band", fmt::format("must be A:B with 0 < A < B [nm], got {}:{}", band->first,
-                                            band->second));
+  if (band &&
+      !(std::isfinite(band->first) && std::isfinite(band->second) && band->first > 0.0 && band->first < band->second)) {
+    throw FieldError("band", fmt::format("must be A:B with 0 < A < B [nm], got {}:{}", band->first, band->second));
   }
   if ((wavelength || band) && !illuminant.empty()) {
     throw FieldError("illuminant", "applies to the photometric weighting only, not with a single wavelength or a band");
@@ -121,17 +122,18 @@ RTableReport rtable_report(const SpectralModel& model, const RTableRequest& requ
     w = effective_weighting(model, w, &note);
     if (!note.empty()) {
       report.notes.push_back(note);
-      report.weighting = {{"kind", "wavelength (the model's single band)"}, {"wavelength_nm", w.wavelength_nm},
-                          {"note", note}};
+      report.weighting = {
+          {"kind", "wavelength (the model's single band)"}, {"wavelength_nm", w.wavelength_nm}, {"note", note}};
     }
     report.weighting["model_wavelength_range_nm"] = {lo, hi};
     if (w.kind == SpectralWeighting::Kind::photometric) {
       const double coverage = luminous_coverage(lo, hi, *w.illuminant);
       report.weighting["luminous_coverage"] = coverage;
       if (coverage < 0.999) {
-        report.warnings.push_back(fmt::format("the model's wavelengths ({}-{} nm) hold only {:.2f}% of the luminous "
-                                              "integral; the rest is left out of the weighting",
-                                              lo, hi, 100.0 * coverage));
+        report.warnings.push_back(
+            fmt::format("the model's wavelengths ({}-{} nm) hold only {:.2f}% of the luminous "
+                        "integral; the rest is left out of the weighting",
+                        lo, hi, 100.0 * coverage));
       }
     }
   }
@@ -159,8 +161,12 @@ nlohmann::json RTableReport::to_json() const {
   j["weighting"] = weighting;
   j["alpha_deg"] = table.alpha_deg;
   j["units"] = {{"r", "reduced luminance coefficient r = q cos^3(gamma) [sr^-1], plain (NOT x1e4); null = missing"},
-                {"Q0", "sr^-1"}, {"Qd", "sr^-1"}, {"S1", "1"}, {"S2", "1"},
-                {"beta_deg", "deg, 0 = forward side"}, {"tan_gamma", "1"}};
+                {"Q0", "sr^-1"},
+                {"Qd", "sr^-1"},
+                {"S1", "1"},
+                {"S2", "1"},
+                {"beta_deg", "deg, 0 = forward side"},
+                {"tan_gamma", "1"}};
   j["Q0"] = summary.q0;
   j["q0_region"] = q0_region;
   j["S1"] = summary.s1;
@@ -170,8 +176,8 @@ nlohmann::json RTableReport::to_json() const {
   j["class"] = chosen.name;
   j["class_system"] = class_system;
   j["class_standard_Q0"] = chosen.standard_q0;
-  j["classes"] = {{"R", class_json(summary.r_class)}, {"N", class_json(summary.n_class)},
-                  {"C", class_json(summary.c_class)}};
+  j["classes"] = {
+      {"R", class_json(summary.r_class)}, {"N", class_json(summary.n_class)}, {"C", class_json(summary.c_class)}};
   j["defined_cells"] = summary.defined_cells;
   if (declared_q0) j["declared_q0"] = *declared_q0;
   j["beta_deg"] = standard_beta_deg();
@@ -189,8 +195,9 @@ nlohmann::json RTableReport::to_json() const {
   if (comparison) {
     j["comparison"] = {{"other", compared_with},
                        {"max_relative_difference", comparison->max_relative},
-                       {"max_at", {{"tan_gamma", standard_tan_gamma()[comparison->max_row]},
-                                   {"beta_deg", standard_beta_deg()[comparison->max_column]}}},
+                       {"max_at",
+                        {{"tan_gamma", standard_tan_gamma()[comparison->max_row]},
+                         {"beta_deg", standard_beta_deg()[comparison->max_column]}}},
                        {"mean_relative_difference", comparison->mean_relative},
                        {"compared_cells", comparison->compared_cells},
                        {"cells_only_here", comparison->only_in_a},

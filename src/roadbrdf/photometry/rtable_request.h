@@ -27,11 +27,11 @@ struct RTableRequest {
   // the unweighted mean over a band [lo, hi]. At most one of the three may be given. A
   // wavelength-independent model ignores them (with a note); a single-band model is used at its band.
   std::string illuminant;
-  std::optional<double> wavelength;                 // [nm]
-  std::optional<std::pair<double, double>> band;    // [lo, hi] [nm]
-  double alpha = 1.0;                  // observation angle above the road plane, (0, 90) [deg]
-  std::string q0_region = "standard";  // standard | table (Q0Region)
-  std::string class_system = "R";      // R | N | C: the class reported as "class"
+  std::optional<double> wavelength;               // [nm]
+  std::optional<std::pair<double, double>> band;  // [lo, hi] [nm]
+  double alpha = 1.0;                             // observation angle above the road plane, (0, 90) [deg]
+  std::string q0_region = "standard";             // standard | table (Q0Region)
+  std::string class_system = "R";                 // R | N | C: the class reported as "class"
 
   // Throws FieldError.
   void validate() const;
@@ -44,7 +44,7 @@ struct RTableRequest {
 struct RTableReport {
   RTable table;
   RTableSummary summary;
-  RoadClass chosen;                   // in the request's class system
+  RoadClass chosen;  // in the request's class system
   std::string q0_region, class_system;
   RTableCoverage coverage;            // the fit's coverage (none for an imported table)
   std::optional<double> declared_q0;  // an imported RTB file's own q0 line
@@ -52,7 +52,7 @@ struct RTableReport {
   std::vector<std::string> notes;     // one line each ("the fit has a single band...")
   std::vector<std::string> warnings;  // one line each (mostly extrapolated, implausible Q0...)
   std::optional<RTableComparison> comparison;
-  std::string compared_with;          // the reference's name, when compared
+  std::string compared_with;  // the reference's name, when compared
 
   // Compare with a reference table (`b` of compare()): fills `comparison`.
   void compare_with(const RTable& reference, const std::string& name);

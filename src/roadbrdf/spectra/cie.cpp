@@ -6,9 +6,9 @@
 #include <cmath>
 #include <mutex>
 
+#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/core/csv.h"
 
 namespace roadbrdf::photometry {
 
@@ -86,7 +86,9 @@ double integrate_1nm(double lo, double hi, F g) {
 
 TabulatedSpectrum::TabulatedSpectrum(std::string name, std::vector<double> wavelengths, std::vector<double> values,
                                      bool zero_outside)
-    : name_(std::move(name)), wavelengths_(std::move(wavelengths)), values_(std::move(values)),
+    : name_(std::move(name)),
+      wavelengths_(std::move(wavelengths)),
+      values_(std::move(values)),
       zero_outside_(zero_outside) {
   if (wavelengths_.size() != values_.size()) {
     throw InputError("spectrum '" + name_ + "': " + std::to_string(wavelengths_.size()) + " wavelengths but " +
@@ -131,9 +133,8 @@ double TabulatedSpectrum::value(double wavelength_nm) const {
   if (!std::isfinite(wavelength_nm)) throw InputError("spectrum '" + name_ + "': wavelength is not finite");
   if (!covers(wavelength_nm)) {
     if (zero_outside_) return 0.0;
-    throw InputError("spectrum '" + name_ + "' is not defined at " + std::to_string(wavelength_nm) +
-                     " nm (tabulated " + std::to_string(min_wavelength()) + "-" + std::to_string(max_wavelength()) +
-                     " nm)");
+    throw InputError("spectrum '" + name_ + "' is not defined at " + std::to_string(wavelength_nm) + " nm (tabulated " +
+                     std::to_string(min_wavelength()) + "-" + std::to_string(max_wavelength()) + " nm)");
   }
   const std::size_t n = wavelengths_.size();
   if (sprague_) {
@@ -199,8 +200,9 @@ TabulatedSpectrum read_spectrum_file(const std::string& path) {
   const double inside = integrate_1nm(lo, hi, [](double l) { return v_lambda().value(l); });
   if (inside < 0.99 * total) {
     throw FileError(path, 0, 0,
-                    "the lamp spectrum (" + std::to_string(s.min_wavelength()) + "-" + std::to_string(s.max_wavelength()) +
-                        " nm) covers only " + std::to_string(100.0 * inside / total) +
+                    "the lamp spectrum (" + std::to_string(s.min_wavelength()) + "-" +
+                        std::to_string(s.max_wavelength()) + " nm) covers only " +
+                        std::to_string(100.0 * inside / total) +
                         "% of the V(lambda) integral; at least 99% is needed (e.g. 400-700 nm)");
   }
   double luminous = integrate_1nm(lo, hi, [&](double l) { return v_lambda().value(l) * s.value(l); });
@@ -254,9 +256,10 @@ std::vector<double> photometric_weights(const std::vector<double>& wavelengths, 
   }
   const double coverage = luminous_coverage(wavelengths.front(), wavelengths.back(), illuminant);
   if (coverage < min_coverage) {
-    throw InputError("the wavelengths " + std::to_string(wavelengths.front()) + "-" + std::to_string(wavelengths.back()) +
-                     " nm cover only " + std::to_string(100.0 * coverage) + "% of the luminous integral under '" +
-                     illuminant.name() + "' (at least " + std::to_string(100.0 * min_coverage) + "% needed)");
+    throw InputError("the wavelengths " + std::to_string(wavelengths.front()) + "-" +
+                     std::to_string(wavelengths.back()) + " nm cover only " + std::to_string(100.0 * coverage) +
+                     "% of the luminous integral under '" + illuminant.name() + "' (at least " +
+                     std::to_string(100.0 * min_coverage) + "% needed)");
   }
   std::vector<double> w(n, 0.0);
   double sum = 0.0;

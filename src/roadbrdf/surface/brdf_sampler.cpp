@@ -35,17 +35,20 @@ BrdfSampler::BrdfSampler(const Model& model, const std::vector<double>& paramete
                          const BrdfSamplerSettings& settings)
     : settings_(settings) {
   const int no = settings.theta_o_bins, nu = settings.cos_theta_bins, np = settings.delta_phi_bins;
-  if (no < 1 || nu < 1 || np < 1 || settings.max_wavelengths < 1) throw InputError("BRDF sampler: bin counts must be >= 1");
+  if (no < 1 || nu < 1 || np < 1 || settings.max_wavelengths < 1)
+    throw InputError("BRDF sampler: bin counts must be >= 1");
   const std::size_t pc = model.parameter_count();
   if (wavelength_count == 0 || parameters.size() != wavelength_count * pc) {
     throw InputError("BRDF sampler: parameter table size does not match the wavelength count");
   }
   // Parameter sets of at most max_wavelengths evenly spread wavelengths.
-  const std::size_t n_sets = std::min<std::size_t>(wavelength_count, static_cast<std::size_t>(settings.max_wavelengths));
+  const std::size_t n_sets =
+      std::min<std::size_t>(wavelength_count, static_cast<std::size_t>(settings.max_wavelengths));
   std::vector<double> sets;
   for (std::size_t k = 0; k < n_sets; ++k) {
     const std::size_t w = n_sets == 1 ? wavelength_count / 2 : k * (wavelength_count - 1) / (n_sets - 1);
-    sets.insert(sets.end(), parameters.begin() + static_cast<long>(w * pc), parameters.begin() + static_cast<long>((w + 1) * pc));
+    sets.insert(sets.end(), parameters.begin() + static_cast<long>(w * pc),
+                parameters.begin() + static_cast<long>((w + 1) * pc));
   }
   const std::size_t cells = static_cast<std::size_t>(nu) * np;
   row_cdf_.assign(static_cast<std::size_t>(no) * (nu + 1), 0.0);
@@ -58,7 +61,8 @@ BrdfSampler::BrdfSampler(const Model& model, const std::vector<double>& paramete
     for (int r = 0; r < nu; ++r) {
       const double theta = std::acos((r + 0.5) / nu);
       for (int c = 0; c < np; ++c) {
-        geometries[static_cast<std::size_t>(r) * np + c] = geometry_from_radians(theta, (c + 0.5) * kPi / np, theta_o, 0.0);
+        geometries[static_cast<std::size_t>(r) * np + c] =
+            geometry_from_radians(theta, (c + 0.5) * kPi / np, theta_o, 0.0);
       }
     }
     model.evaluate_batch(geometries.data(), cells, sets.data(), n_sets, values.data());
@@ -66,7 +70,8 @@ BrdfSampler::BrdfSampler(const Model& model, const std::vector<double>& paramete
     for (std::size_t k = 0; k < cells; ++k) {
       double sum = 0.0;
       for (std::size_t s = 0; s < n_sets; ++s) sum += values[k * n_sets + s];
-      if (!std::isfinite(sum)) throw InputError("BRDF sampler: model '" + model.name() + "' returned a non-finite value");
+      if (!std::isfinite(sum))
+        throw InputError("BRDF sampler: model '" + model.name() + "' returned a non-finite value");
       g[k] = std::max(0.0, sum) * geometries[k].wi.z;  // f cos(theta); negative values carry no probability
       total += g[k];
     }

@@ -30,10 +30,10 @@
 namespace roadbrdf::surface {
 
 struct BrdfSamplerSettings {
-  int theta_o_bins = 18;     // bins of theta_o, uniform in angle (5 deg)
-  int cos_theta_bins = 64;   // rows, uniform in cos(theta)
-  int delta_phi_bins = 96;   // columns, uniform in |phi - phi_o| over [0, pi]
-  int max_wavelengths = 4;   // the table averages f over at most this many evenly spread wavelengths
+  int theta_o_bins = 18;    // bins of theta_o, uniform in angle (5 deg)
+  int cos_theta_bins = 64;  // rows, uniform in cos(theta)
+  int delta_phi_bins = 96;  // columns, uniform in |phi - phi_o| over [0, pi]
+  int max_wavelengths = 4;  // the table averages f over at most this many evenly spread wavelengths
 };
 
 class BrdfSampler {

@@ -84,13 +84,13 @@ void validate(const GeneratorSettings& s) {
   const double n = std::round(s.size_mm / s.cell_size_mm);
   if (n < 8) throw FieldError("size_mm", "the sample must span at least 8 cells");
   if (std::fabs(n * s.cell_size_mm - s.size_mm) > 1e-6 * s.size_mm) {
-    throw FieldError("size_mm", fmt::format("must be a whole number of cells of {} mm, got {}", s.cell_size_mm,
-                                            s.size_mm));
+    throw FieldError("size_mm",
+                     fmt::format("must be a whole number of cells of {} mm, got {}", s.cell_size_mm, s.size_mm));
   }
   if (n * n > 4e7) throw FieldError("size_mm", "more than 4e7 cells: use a larger cell_mm or a smaller sample");
   if (!(s.matrix_level >= 0.0 && s.matrix_level <= 1.0)) {
-    throw FieldError("matrix_level", fmt::format("must be in [0, 1] (a fraction of the slab thickness), got {}",
-                                                 s.matrix_level));
+    throw FieldError("matrix_level",
+                     fmt::format("must be in [0, 1] (a fraction of the slab thickness), got {}", s.matrix_level));
   }
   if (s.target_mpd_mm && s.mastic_fraction) {
     throw FieldError("mastic_fraction", "matrix_level, target_mpd and mastic_fraction exclude each other");
@@ -111,7 +111,8 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   const double L = n * s.cell_size_mm;
   double T = 0.0;
   for (const auto& c : recipe.classes) {
-    if (!(c.d_min_mm > 0.0 && c.d_max_mm >= c.d_min_mm)) throw InputError("surface: invalid size class of " + c.material.name);
+    if (!(c.d_min_mm > 0.0 && c.d_max_mm >= c.d_min_mm))
+      throw InputError("surface: invalid size class of " + c.material.name);
     if (!(c.volume_fraction >= 0.0 && c.volume_fraction < 1.0)) throw InputError("surface: invalid volume fraction");
     T = std::max(T, c.d_max_mm);
   }
@@ -126,8 +127,9 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   // Pack all classes together, largest first at equal progress (packing.h).
   std::vector<std::size_t> order(K);
   for (std::size_t k = 0; k < K; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return recipe.classes[a].d_max_mm > recipe.classes[b].d_max_mm; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return recipe.classes[a].d_max_mm > recipe.classes[b].d_max_mm;
+  });
   const double slab_volume = L * L * T;
   std::vector<PackingClass> pack_classes;
   for (std::size_t k : order) {
@@ -190,8 +192,10 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
     const double wx = std::sqrt(A[0]), wy = std::sqrt(A[4]);
     for (int pass = 0; pass < 2; ++pass) {
       const double off = pass == 0 ? 0.0 : 0.5;  // nodes, then cell centres
-      const long i0 = static_cast<long>(std::floor((g.x - wx) / h - off)), i1 = static_cast<long>(std::ceil((g.x + wx) / h - off));
-      const long j0 = static_cast<long>(std::floor((g.y - wy) / h - off)), j1 = static_cast<long>(std::ceil((g.y + wy) / h - off));
+      const long i0 = static_cast<long>(std::floor((g.x - wx) / h - off)),
+                 i1 = static_cast<long>(std::ceil((g.x + wx) / h - off));
+      const long j0 = static_cast<long>(std::floor((g.y - wy) / h - off)),
+                 j1 = static_cast<long>(std::ceil((g.y + wy) / h - off));
       for (long j = j0; j <= j1; ++j) {
         for (long i = i0; i <= i1; ++i) {
           double dz;
@@ -330,9 +334,8 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
     d << " (chosen for an exposed mastic fraction of " << *s.mastic_fraction << ": achieved " << out.mastic_fraction
       << ", tolerance " << out.mastic_fraction_tolerance << ")";
   }
-  d << ", seed " << s.seed
-    << ". Classes (target / achieved volume fraction of the slab" << (out.targets_reached ? "" : "; targets NOT reached, classes scaled down together")
-    << "):";
+  d << ", seed " << s.seed << ". Classes (target / achieved volume fraction of the slab"
+    << (out.targets_reached ? "" : "; targets NOT reached, classes scaled down together") << "):";
   for (std::size_t k = 0; k < K; ++k) {
     d << " " << recipe.classes[k].material.name << " " << out.target_volume_fraction[k] << " / "
       << out.achieved_volume_fraction[k] << " (" << out.grain_count[k] << " grains);";

@@ -50,15 +50,15 @@
 namespace roadbrdf::surface {
 
 struct GrainClass {
-  MaterialSpec material;          // the class's material (its name is the component name)
+  MaterialSpec material;  // the class's material (its name is the component name)
   double d_min_mm = 2.0, d_max_mm = 6.0;
-  double volume_fraction = 0.2;   // phi_k, target fraction of the slab volume
+  double volume_fraction = 0.2;  // phi_k, target fraction of the slab volume
 };
 
 struct SampleRecipe {
   std::string name;
-  MaterialSpec matrix;             // material index 0
-  std::vector<GrainClass> classes; // material indices 1..K
+  MaterialSpec matrix;              // material index 0
+  std::vector<GrainClass> classes;  // material indices 1..K
 };
 
 // Recipe from a formulation (volume fractions as above). Throws InputError when the formulation
@@ -66,19 +66,19 @@ struct SampleRecipe {
 SampleRecipe recipe_from_formulation(const roadbrdf::Formulation& formulation);
 
 struct GeneratorSettings {
-  double size_mm = 60.0;           // period L
-  double cell_size_mm = 0.1;       // grid spacing h
+  double size_mm = 60.0;      // period L
+  double cell_size_mm = 0.1;  // grid spacing h
   std::uint64_t seed = 1;
-  double matrix_level = 0.7;       // z_m / T
-  std::optional<double> target_mpd_mm;  // overrides matrix_level (bisection)
+  double matrix_level = 0.7;              // z_m / T
+  std::optional<double> target_mpd_mm;    // overrides matrix_level (bisection)
   std::optional<double> mastic_fraction;  // exposed (projected) mastic area fraction in (0, 1); overrides
                                           // matrix_level (bisection); excludes target_mpd_mm
-  long max_failures = 2000;        // random sequential addition: positions tried for one grain before jamming
-  long deposition_tries = 128;     // deposition: vertical lines tried per grain (packing.h)
-  long settle_moves = 500;         // deposition: settling moves per grain
+  long max_failures = 2000;               // random sequential addition: positions tried for one grain before jamming
+  long deposition_tries = 128;            // deposition: vertical lines tried per grain (packing.h)
+  long settle_moves = 500;                // deposition: settling moves per grain
   double elongation_min = 0.6, elongation_max = 0.9;  // b/a
   double flatness_min = 0.5, flatness_max = 0.85;     // c/b
-  ProgressCallback progress;       // the packing's (packing.h PackingSettings::progress)
+  ProgressCallback progress;                          // the packing's (packing.h PackingSettings::progress)
 };
 
 struct GeneratedSample {
@@ -91,9 +91,9 @@ struct GeneratedSample {
   std::vector<Ellipsoid> grains;                 // the placed grains (class = index into the recipe's classes)
   double slab_thickness_mm = 0.0;
   double matrix_level_mm = 0.0;
-  double mastic_fraction = 0.0;                  // achieved exposed (projected) area fraction of the mastic
-  double mastic_fraction_tolerance = 0.0;        // with settings.mastic_fraction: max(0.001, 1 / cells); else 0
-  std::vector<std::string> notes;                // jamming etc.
+  double mastic_fraction = 0.0;            // achieved exposed (projected) area fraction of the mastic
+  double mastic_fraction_tolerance = 0.0;  // with settings.mastic_fraction: max(0.001, 1 / cells); else 0
+  std::vector<std::string> notes;          // jamming etc.
 };
 
 // Throws FieldError naming the SurfaceRequest field (surface_request.h): cell_mm, size_mm (at least

@@ -133,8 +133,10 @@ TextureStatistics texture_statistics(const HeightField& f) {
       const double z00 = f.height(i, j), z10 = f.height(i + 1, j), z01 = f.height(i, j + 1),
                    z11 = f.height(i + 1, j + 1);
       // Areas of the two triangles (projected area h^2/2 each) divided by h^2: sqrt(1+|grad|^2)/2.
-      const double a1 = 0.5 * std::sqrt(1.0 + ((z10 - z00) / h) * ((z10 - z00) / h) + ((z11 - z10) / h) * ((z11 - z10) / h));
-      const double a2 = 0.5 * std::sqrt(1.0 + ((z11 - z01) / h) * ((z11 - z01) / h) + ((z01 - z00) / h) * ((z01 - z00) / h));
+      const double a1 =
+          0.5 * std::sqrt(1.0 + ((z10 - z00) / h) * ((z10 - z00) / h) + ((z11 - z10) / h) * ((z11 - z10) / h));
+      const double a2 =
+          0.5 * std::sqrt(1.0 + ((z11 - z01) / h) * ((z11 - z01) / h) + ((z01 - z00) / h) * ((z01 - z00) / h));
       const auto mat = f.material_at(i, j);
       s.exposed_area_fraction[mat] += 1.0;
       s.exposed_true_area_fraction[mat] += a1 + a2;
@@ -314,7 +316,8 @@ void write_preview_png(const HeightField& f, const std::string& path) {
       const double z = 0.25 * (f.height(i, j) + f.height(i + 1, j) + f.height(i, j + 1) + f.height(i + 1, j + 1));
       const double b = 0.25 + 0.75 * (z - lo) / span;
       const double* c = hues[f.material_at(i, j) % 7];
-      for (int k = 0; k < 3; ++k) raw.push_back(static_cast<char>(std::lround(std::clamp(255.0 * b * c[k], 0.0, 255.0))));
+      for (int k = 0; k < 3; ++k)
+        raw.push_back(static_cast<char>(std::lround(std::clamp(255.0 * b * c[k], 0.0, 255.0))));
     }
   }
   // zlib stream with stored (uncompressed) deflate blocks of at most 65535 bytes.

@@ -40,12 +40,12 @@ namespace roadbrdf::surface {
 // A surface material: either a fit file (SpectralModel) or a model with fixed parameters.
 struct MaterialSpec {
   std::string name;
-  std::string fit;        // fit file as written in the SURFACE file ("" when `model` is used)
-  std::string fit_path;   // resolved path (relative to the current directory or absolute)
-  std::string fit_model;  // selected fit inside the file ("" = best)
-  std::string model;      // model name when no fit file
-  std::map<std::string, double> parameters;       // model parameters (defaults for the rest)
-  std::map<std::string, std::string> options;     // model options
+  std::string fit;                             // fit file as written in the SURFACE file ("" when `model` is used)
+  std::string fit_path;                        // resolved path (relative to the current directory or absolute)
+  std::string fit_model;                       // selected fit inside the file ("" = best)
+  std::string model;                           // model name when no fit file
+  std::map<std::string, double> parameters;    // model parameters (defaults for the rest)
+  std::map<std::string, std::string> options;  // model options
 };
 
 struct HeightField {
@@ -53,8 +53,8 @@ struct HeightField {
   std::string description;
   double cell_size_mm = 0.1;
   int nx = 0, ny = 0;
-  std::vector<double> heights;           // nx*ny node heights [mm], index j*nx + i
-  std::vector<std::uint16_t> material;   // nx*ny cell materials, index j*nx + i
+  std::vector<double> heights;          // nx*ny node heights [mm], index j*nx + i
+  std::vector<std::uint16_t> material;  // nx*ny cell materials, index j*nx + i
   std::vector<MaterialSpec> materials;
 
   double size_x_mm() const { return nx * cell_size_mm; }
@@ -88,14 +88,14 @@ struct TextureStatistics {
   double mpd_mm = 0.0;
   // Estimated texture depth ETD = 0.2 mm + 0.8 MPD (ISO 13473-1 relation to the sand-patch MTD).
   double etd_mm = 0.0;
-  double rms_height_mm = 0.0;          // standard deviation of the node heights
+  double rms_height_mm = 0.0;  // standard deviation of the node heights
   double mean_height_mm = 0.0;
   double max_height_mm = 0.0, min_height_mm = 0.0;
   // Fraction of the horizontal (projected) area of each material: count of cells / total.
   std::vector<double> exposed_area_fraction;
   // Fraction of the true (tilted facet) area of each material.
   std::vector<double> exposed_true_area_fraction;
-  double surface_area_ratio = 1.0;     // true area / projected area
+  double surface_area_ratio = 1.0;  // true area / projected area
 };
 TextureStatistics texture_statistics(const HeightField& field);
 

@@ -55,7 +55,8 @@ class MaterialSet {
   void scale_by_delta_reflectance(int material, double cos_theta, double factor, double* beta) const {
     const RenderMaterial& mat = materials_[material];
     const std::size_t np = mat.model->parameter_count();
-    for (std::size_t w = 0; w < m_; ++w) beta[w] *= factor * mat.model->delta_reflectance(mat.parameters.data() + w * np, cos_theta);
+    for (std::size_t w = 0; w < m_; ++w)
+      beta[w] *= factor * mat.model->delta_reflectance(mat.parameters.data() + w * np, cos_theta);
   }
 
  private:

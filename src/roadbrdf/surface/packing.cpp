@@ -46,9 +46,9 @@ Mat3 random_rotation(Uniform& u) {
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
   const double qx = a * std::sin(2 * kPi * u2), qy = a * std::cos(2 * kPi * u2);
   const double qz = b * std::sin(2 * kPi * u3), qw = b * std::cos(2 * kPi * u3);
-  return {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw),
-          2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw),
-          2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)};
+  return {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw),     2 * (qx * qz + qy * qw),
+          2 * (qx * qy + qz * qw),     1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw),
+          2 * (qx * qz - qy * qw),     2 * (qy * qz + qx * qw),     1 - 2 * (qx * qx + qy * qy)};
 }
 
 Mat3 multiply(const Mat3& A, const Mat3& B) {
@@ -66,9 +66,8 @@ Mat3 small_rotation(Uniform& u, double angle) {
   const double cz = 2.0 * u() - 1.0, ph = 2.0 * kPi * u(), sz = std::sqrt(std::max(0.0, 1.0 - cz * cz));
   const double x = sz * std::cos(ph), y = sz * std::sin(ph), z = cz;
   const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
-  return {c + t * x * x,    t * x * y - s * z, t * x * z + s * y,
-          t * x * y + s * z, c + t * y * y,    t * y * z - s * x,
-          t * x * z - s * y, t * y * z + s * x, c + t * z * z};
+  return {c + t * x * x,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, c + t * y * y,
+          t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, c + t * z * z};
 }
 
 double wrap(double x, double L) { return x - L * std::floor(x / L); }
@@ -81,7 +80,8 @@ double pw_function(const Mat3& A1, const Mat3& A2, double rx, double ry, double 
   const double c00 = C[4] * C[8] - C[5] * C[7], c01 = C[2] * C[7] - C[1] * C[8], c02 = C[1] * C[5] - C[2] * C[4];
   const double c11 = C[0] * C[8] - C[2] * C[6], c12 = C[2] * C[3] - C[0] * C[5], c22 = C[0] * C[4] - C[1] * C[3];
   const double det = C[0] * c00 + C[1] * (C[5] * C[6] - C[3] * C[8]) + C[2] * (C[3] * C[7] - C[4] * C[6]);
-  const double q = rx * rx * c00 + ry * ry * c11 + rz * rz * c22 + 2.0 * (rx * ry * c01 + rx * rz * c02 + ry * rz * c12);
+  const double q =
+      rx * rx * c00 + ry * ry * c11 + rz * rz * c22 + 2.0 * (rx * ry * c01 + rx * rz * c02 + ry * rz * c12);
   return lambda * (1.0 - lambda) * q / det;
 }
 

@@ -47,10 +47,10 @@ namespace roadbrdf::surface {
 using Mat3 = std::array<double, 9>;  // row-major
 
 struct Ellipsoid {
-  double x = 0.0, y = 0.0, z = 0.0;            // centre [mm]
-  Mat3 rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};    // columns: unit directions of the semi-axes a, b, c
-  double a = 1.0, b = 1.0, c = 1.0;            // semi-axes [mm]
-  int cls = 0;                                 // class index (the caller's)
+  double x = 0.0, y = 0.0, z = 0.0;          // centre [mm]
+  Mat3 rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // columns: unit directions of the semi-axes a, b, c
+  double a = 1.0, b = 1.0, c = 1.0;          // semi-axes [mm]
+  int cls = 0;                               // class index (the caller's)
 
   Mat3 shape() const;          // R diag(a^2, b^2, c^2) R^T: support function h(u) = sqrt(u^T S u)
   Mat3 inverse_shape() const;  // R diag(1/a^2, 1/b^2, 1/c^2) R^T: surface d^T Q d = 1
@@ -69,14 +69,14 @@ double ellipsoid_volume_below(const Ellipsoid& e, double z0);
 
 struct PackingClass {
   double d_min_mm = 2.0, d_max_mm = 6.0;  // sieve sizes (intermediate diameter 2b)
-  double layer_volume_mm3 = 0.0;           // target grain volume inside the layer [layer_bottom, T]
+  double layer_volume_mm3 = 0.0;          // target grain volume inside the layer [layer_bottom, T]
 };
 
 struct PackingSettings {
-  double period_mm = 60.0;      // L
-  double thickness_mm = 10.0;   // T: z of the roller's plane (the top of the box)
-  double bottom_mm = 0.0;       // z of the floor of the box (< T)
-  double layer_bottom_mm = 0.0; // the targets are grain volumes in the layer layer_bottom <= z <= T
+  double period_mm = 60.0;       // L
+  double thickness_mm = 10.0;    // T: z of the roller's plane (the top of the box)
+  double bottom_mm = 0.0;        // z of the floor of the box (< T)
+  double layer_bottom_mm = 0.0;  // the targets are grain volumes in the layer layer_bottom <= z <= T
   std::uint64_t seed = 1;
   double elongation_min = 0.6, elongation_max = 0.9;  // b/a
   double flatness_min = 0.5, flatness_max = 0.85;     // c/b

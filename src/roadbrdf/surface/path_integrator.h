@@ -22,9 +22,9 @@ struct PathJob {
   bool hemisphere = false;
   Vec3 w_center, t_center, b_center;  // cone axis and two unit vectors across it
   double cos_delta = 1.0;
-  Vec3 wi;                            // towards the source
+  Vec3 wi;  // towards the source
   double inv_cos_i = 1.0;
-  std::uint64_t stream = 0;           // random streams: the geometry's index
+  std::uint64_t stream = 0;  // random streams: the geometry's index
 };
 
 class PathIntegrator {

@@ -103,8 +103,8 @@ double Estimate::worst_relative_error() const {
   double worst = 0.0;
   for (std::size_t w = 0; w < mean.size(); ++w) {
     if (standard_error[w] == 0.0) continue;
-    worst = std::max(worst, mean[w] != 0.0 ? standard_error[w] / std::fabs(mean[w])
-                                           : std::numeric_limits<double>::infinity());
+    worst = std::max(worst,
+                     mean[w] != 0.0 ? standard_error[w] / std::fabs(mean[w]) : std::numeric_limits<double>::infinity());
   }
   return worst;
 }
@@ -131,7 +131,8 @@ SpectralDataset render_dataset(const HeightField& field, const std::vector<Geome
     }
   }
   d.metadata["sample"] = field.name.empty() ? std::string("virtual sample") : field.name;
-  d.metadata["instrument"] = "roadbrdf virtual gonioreflectometer (Monte Carlo path tracing of a periodic height field)";
+  d.metadata["instrument"] =
+      "roadbrdf virtual gonioreflectometer (Monte Carlo path tracing of a periodic height field)";
   d.metadata["quantity"] =
       "BRDF averaged over the detector cone (uniform in solid angle) and the whole sample period; sigma = Monte "
       "Carlo standard error";
@@ -139,9 +140,10 @@ SpectralDataset render_dataset(const HeightField& field, const std::vector<Geome
   a << settings.acceptance_half_angle_deg;
   d.metadata["acceptance_half_angle_deg"] = a.str();
   d.metadata["sampling"] = settings.sampling == Sampling::brdf
-                              ? "brdf (tabulated BRDF sampler mixed with cosine sampling, one-sample MIS, "
-                                "BRDF fraction " + std::to_string(settings.brdf_sampling_fraction) + ")"
-                              : "cosine";
+                               ? "brdf (tabulated BRDF sampler mixed with cosine sampling, one-sample MIS, "
+                                 "BRDF fraction " +
+                                     std::to_string(settings.brdf_sampling_fraction) + ")"
+                               : "cosine";
   if (settings.target_relative_error > 0.0) {
     std::vector<long> paths;
     std::vector<double> worst;

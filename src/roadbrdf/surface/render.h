@@ -100,17 +100,17 @@ struct RenderSettings {
   long samples = 4096;                     // paths per geometry (when target_relative_error == 0)
   double acceptance_half_angle_deg = 1.0;  // detector cone half-angle Delta; 0 = ideal direction
   std::uint64_t seed = 1;
-  int threads = 0;                         // 0 = hardware concurrency
-  int rr_start_bounce = 3;                 // Russian roulette from this vertex on (1-based)
-  int max_bounces = 0;                     // 0 = unlimited; 1 = single scattering (direct light only)
-  long paths_per_block = 256;              // one random stream per (geometry, block)
+  int threads = 0;             // 0 = hardware concurrency
+  int rr_start_bounce = 3;     // Russian roulette from this vertex on (1-based)
+  int max_bounces = 0;         // 0 = unlimited; 1 = single scattering (direct light only)
+  long paths_per_block = 256;  // one random stream per (geometry, block)
   Sampling sampling = Sampling::brdf;
-  double brdf_sampling_fraction = 0.5;     // probability of drawing from the BRDF table (brdf sampling)
+  double brdf_sampling_fraction = 0.5;  // probability of drawing from the BRDF table (brdf sampling)
   // Adaptive sampling (on when target_relative_error > 0): blocks are added until, at every
   // wavelength, standard_error <= max(target_relative_error |mean|, absolute_error_floor), with at
   // least min_blocks blocks and at most max_samples paths.
   double target_relative_error = 0.0;
-  double absolute_error_floor = 1e-5;      // [sr^-1]
+  double absolute_error_floor = 1e-5;  // [sr^-1]
   long max_samples = 1L << 20;
   int min_blocks = 4;
   // Blocks of paths done out of those scheduled so far (adaptive rounds add to the total);
@@ -122,7 +122,7 @@ struct Estimate {
   std::vector<double> mean;            // per wavelength
   std::vector<double> standard_error;  // per wavelength
   long paths = 0;
-  bool converged = true;               // adaptive: the target was reached (false: stopped at max_samples)
+  bool converged = true;  // adaptive: the target was reached (false: stopped at max_samples)
   // Largest standard_error / |mean| over wavelengths (infinity when a mean is 0 with a non-zero error).
   double worst_relative_error() const;
 };

@@ -11,12 +11,14 @@ RenderSettings render_settings(const RenderRequest& r) {
   RenderSettings s;
   if (r.samples && r.target_error) throw FieldError("samples", "excludes target_error: give one of them");
   if (r.samples) {
-    if (*r.samples < 2) throw FieldError("samples", fmt::format("{} is below 2 (a standard error needs 2 paths)", *r.samples));
+    if (*r.samples < 2)
+      throw FieldError("samples", fmt::format("{} is below 2 (a standard error needs 2 paths)", *r.samples));
     s.samples = *r.samples;
   }
   if (r.target_error) {
     if (!(*r.target_error >= 1e-6 && *r.target_error <= 1.0)) {
-      throw FieldError("target_error", fmt::format("{} is outside [1e-6, 1] (a relative standard error)", *r.target_error));
+      throw FieldError("target_error",
+                       fmt::format("{} is outside [1e-6, 1] (a relative standard error)", *r.target_error));
     }
     s.target_relative_error = *r.target_error;
   }
@@ -32,9 +34,11 @@ RenderSettings render_settings(const RenderRequest& r) {
   } else if (r.sampling == "cosine") {
     s.sampling = Sampling::cosine;
   } else {
-    throw FieldError("sampling", "'" + r.sampling + "' is not brdf or cosine" + did_you_mean(r.sampling, {"brdf", "cosine"}));
+    throw FieldError("sampling",
+                     "'" + r.sampling + "' is not brdf or cosine" + did_you_mean(r.sampling, {"brdf", "cosine"}));
   }
-  if (r.threads < 0 || r.threads > 1024) throw FieldError("threads", fmt::format("{} is outside [0, 1024] (0 = all cores)", r.threads));
+  if (r.threads < 0 || r.threads > 1024)
+    throw FieldError("threads", fmt::format("{} is outside [0, 1024] (0 = all cores)", r.threads));
   if (r.max_bounces < 0 || r.max_bounces > 1000) {
     throw FieldError("max_bounces", fmt::format("{} is outside [0, 1000] (0 = unlimited)", r.max_bounces));
   }

@@ -30,7 +30,9 @@ void SurfaceRequest::validate() const {
     throw FieldError("size_mm", "is for samples of a formulation; a flat or Gaussian-slope surface is cells x cell_mm");
   }
   if (matrix_level || target_mpd || mastic_fraction) {
-    throw FieldError(matrix_level ? "matrix_level" : target_mpd ? "target_mpd" : "mastic_fraction",
+    throw FieldError(matrix_level ? "matrix_level"
+                     : target_mpd ? "target_mpd"
+                                  : "mastic_fraction",
                      "is for samples of a formulation");
   }
   if (!(cell_mm >= 0.005 && cell_mm <= 10.0)) {

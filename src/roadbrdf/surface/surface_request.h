@@ -16,16 +16,16 @@ namespace roadbrdf::surface {
 struct SurfaceRequest {
   enum class Kind { formulation, flat, gaussian_slopes };
   Kind kind = Kind::formulation;
-  double cell_mm = 0.1;             // grid spacing [mm], in [0.005, 10]
+  double cell_mm = 0.1;  // grid spacing [mm], in [0.005, 10]
   std::uint64_t seed = 1;
   // A sample of a formulation:
-  std::optional<double> size_mm;    // side of the periodic sample [mm] (default 60), a whole number of cells
+  std::optional<double> size_mm;          // side of the periodic sample [mm] (default 60), a whole number of cells
   std::optional<double> matrix_level;     // mastic level / slab thickness in [0, 1] (default 0.7), or
   std::optional<double> target_mpd;       // the level giving this MPD [mm] (> 0), or
   std::optional<double> mastic_fraction;  // the level exposing this mastic area fraction, in (0, 1)
   // A validation surface:
-  std::optional<int> cells;          // cells per side, [2, 4096] (default 16 flat, 128 Gaussian; >= 32 Gaussian)
-  std::optional<double> sigma_rad;   // Gaussian slopes: facet slope angle sigma [rad] in (0, 1.3)
+  std::optional<int> cells;         // cells per side, [2, 4096] (default 16 flat, 128 Gaussian; >= 32 Gaussian)
+  std::optional<double> sigma_rad;  // Gaussian slopes: facet slope angle sigma [rad] in (0, 1.3)
 
   // Throws FieldError.
   void validate() const;

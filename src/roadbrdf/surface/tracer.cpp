@@ -45,8 +45,10 @@ bool HeightFieldTracer::intersect(const Vec3& o, const Vec3& d, SurfaceHit& hit)
   const double inf = std::numeric_limits<double>::infinity();
   const int step_x = bx > 0 ? 1 : (bx < 0 ? -1 : 0);
   const int step_y = by > 0 ? 1 : (by < 0 ? -1 : 0);
-  double t_max_x = step_x > 0 ? (static_cast<double>(i + 1) - ax) / bx : (step_x < 0 ? (static_cast<double>(i) - ax) / bx : inf);
-  double t_max_y = step_y > 0 ? (static_cast<double>(j + 1) - ay) / by : (step_y < 0 ? (static_cast<double>(j) - ay) / by : inf);
+  double t_max_x =
+      step_x > 0 ? (static_cast<double>(i + 1) - ax) / bx : (step_x < 0 ? (static_cast<double>(i) - ax) / bx : inf);
+  double t_max_y =
+      step_y > 0 ? (static_cast<double>(j + 1) - ay) / by : (step_y < 0 ? (static_cast<double>(j) - ay) / by : inf);
   const double t_delta_x = step_x != 0 ? 1.0 / std::fabs(bx) : inf;
   const double t_delta_y = step_y != 0 ? 1.0 / std::fabs(by) : inf;
   const double dbxy = bx - by;

@@ -25,15 +25,15 @@
 namespace roadbrdf::surface {
 
 struct VirtualAlbedo {
-  std::vector<double> wavelengths;                      // nm
-  std::vector<double> sun_zenith_deg;                   // black-sky angles
-  std::vector<std::vector<double>> black_sky;           // [angle][wavelength]
-  std::vector<std::vector<double>> black_sky_error;     // standard errors, same layout
-  std::vector<double> white_sky;                        // per wavelength (empty unless asked)
-  std::vector<double> white_sky_error;                  // standard error (Monte Carlo part only)
-  int white_sky_nodes = 0;                              // Gauss-Legendre nodes in mu (0: not computed)
-  long paths = 0;                                       // total paths
-  std::vector<bool> converged;                          // per black-sky angle (adaptive runs), then per node
+  std::vector<double> wavelengths;                   // nm
+  std::vector<double> sun_zenith_deg;                // black-sky angles
+  std::vector<std::vector<double>> black_sky;        // [angle][wavelength]
+  std::vector<std::vector<double>> black_sky_error;  // standard errors, same layout
+  std::vector<double> white_sky;                     // per wavelength (empty unless asked)
+  std::vector<double> white_sky_error;               // standard error (Monte Carlo part only)
+  int white_sky_nodes = 0;                           // Gauss-Legendre nodes in mu (0: not computed)
+  long paths = 0;                                    // total paths
+  std::vector<bool> converged;                       // per black-sky angle (adaptive runs), then per node
 };
 
 // Black-sky albedo at the given sun zenith angles [deg, 0 <= theta < 90] and, if white_sky_nodes > 0,

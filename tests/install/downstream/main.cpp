@@ -19,6 +19,7 @@ int main() {
   const double white = roadbrdf::albedo::white_sky(*model, &albedo, 1).value[0];
   const double total = roadbrdf::albedo::integrate_spectrum(roadbrdf::albedo::astm_g173("global"));
   std::printf("brdf %.12g white-sky %.12g astm-global %.1f\n", f, white, total);
-  const bool ok = std::fabs(f - albedo / M_PI) < 1e-12 && std::fabs(white - albedo) < 1e-9 && std::fabs(total - 1000.4) < 1.0;
+  const bool ok =
+      std::fabs(f - albedo / M_PI) < 1e-12 && std::fabs(white - albedo) < 1e-9 && std::fabs(total - 1000.4) < 1.0;
   return ok ? 0 : 1;
 }

@@ -1,0 +1,305 @@
+#include "roadbrdf/fitting/params_table.h"
+
+#include <fmt/core.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/json_input.h"
+#include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/fitting/fit.h"
+
+namespace roadbrdf {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double number_or_nan(const JsonNode& node) { return node.is_null() ? kNaN : node.number(); }
+
+// The value of a per-wavelength array at index w (the array must have `m` elements).
+JsonNode at_wavelength(const JsonNode& fit, const std::string& key, std::size_t w, std::size_t m) {
+  const JsonNode a = fit.at(key);
+  if (a.size() != m) a.fail(fmt::format("expected {} values (one per wavelength), found {}", m, a.size()));
+  return a[w];
+}
+
+// The indices of the fitted wavelengths answering the wanted ones (all when none are wanted): the
+// nearest band, with a note for every answer that is not exact (select_wavelengths, fitting/fit.h).
+std::vector<std::size_t> answer_wavelengths(const std::vector<double>& fitted, const std::vector<double>& wanted,
+                                            std::vector<std::string>& notes) {
+  std::vector<std::size_t> out;
+  if (wanted.empty()) {
+    for (std::size_t w = 0; w < fitted.size(); ++w) out.push_back(w);
+    return out;
+  }
+  std::vector<std::string> mine;
+  out = select_wavelengths(fitted, wanted, &mine);
+  for (const auto& n : mine) {
+    if (std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(n);
+  }
+  return out;
+}
+
+std::string plus_minus(double value, double stderr_value, ParamsFormat format) {
+  if (!std::isfinite(value)) return "";
+  const std::string v = fmt::format("{:.4g}", value);
+  if (!std::isfinite(stderr_value)) return v;
+  const std::string e = fmt::format("{:.2g}", stderr_value);
+  if (format == ParamsFormat::kLatex) return "$" + v + " \\pm " + e + "$";
+  return v + " ± " + e;
+}
+
+std::string cell(double x, const char* spec) {
+  return std::isfinite(x) ? fmt::format(fmt::runtime(spec), x) : std::string("");
+}
+
+std::string csv_text(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string latex_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '_' || c == '%' || c == '&' || c == '#') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+// Rows of display cells (header first) for the text, Markdown and LaTeX formats.
+std::vector<std::vector<std::string>> display_cells(const ParamsTable& t, ParamsFormat format) {
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::string> header = {"model"};
+  for (const auto& c : t.group_columns) header.push_back(c + " [deg]");
+  header.push_back("wavelength [nm]");
+  for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+    header.push_back(t.parameter_names[k] + " [" + t.parameter_units[k] + "]");
+  }
+  for (const char* h : {"RMSE [sr^-1]", "rel. RMSE [%]", "max rel. err. [%]", "AIC", "BIC", "converged", "on bound"}) {
+    header.emplace_back(h);
+  }
+  cells.push_back(header);
+  for (const ParamsRow& r : t.rows) {
+    std::vector<std::string> row = {r.model};
+    for (double g : r.group) row.push_back(fmt::format("{:g}", g));
+    row.push_back(fmt::format("{:g}", r.wavelength));
+    for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+      std::string v = plus_minus(r.values[k], r.standard_errors[k], format);
+      if (r.fixed[k] && !v.empty()) v += " (fixed)";
+      row.push_back(v);
+    }
+    row.push_back(cell(r.rmse, "{:.4g}"));
+    row.push_back(cell(100.0 * r.relative_rmse, "{:.3g}"));
+    row.push_back(cell(100.0 * r.max_relative_error, "{:.3g}"));
+    row.push_back(cell(r.aic, "{:.2f}"));
+    row.push_back(cell(r.bic, "{:.2f}"));
+    row.push_back(r.converged ? "yes" : "no");
+    row.push_back(r.at_bounds.empty() ? "-" : r.at_bounds);
+    if (format == ParamsFormat::kLatex) {
+      for (auto& c : row) {
+        if (c.empty() || c.front() != '$') c = latex_text(c);
+      }
+    }
+    cells.push_back(row);
+  }
+  if (format == ParamsFormat::kLatex) {
+    for (auto& c : cells.front()) c = latex_text(c);
+  }
+  return cells;
+}
+
+// Display width in characters (UTF-8 continuation bytes do not count: "±" is one column).
+std::size_t display_width(const std::string& s) {
+  return static_cast<std::size_t>(
+      std::count_if(s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+}  // namespace
+
+ParamsFormat params_format_from_string(const std::string& name) {
+  if (name == "table") return ParamsFormat::kTable;
+  if (name == "csv") return ParamsFormat::kCsv;
+  if (name == "markdown") return ParamsFormat::kMarkdown;
+  if (name == "latex") return ParamsFormat::kLatex;
+  const std::vector<std::string> names = {"table", "csv", "markdown", "latex"};
+  throw FieldError("format", "'" + name + "' is not one of table, csv, markdown, latex" + did_you_mean(name, names));
+}
+
+void ParamsRequest::validate() const {
+  if (fit_file.empty()) throw FieldError("fit_file", "give the fit file");
+  for (double w : wavelengths) {
+    if (!std::isfinite(w) || w <= 0.0) throw FieldError("wavelengths", fmt::format("{} is not a wavelength", w));
+  }
+}
+
+std::vector<std::string> ParamsTable::csv_columns() const {
+  std::vector<std::string> c = {"model"};
+  for (const auto& g : group_columns) c.push_back(g + "_deg");
+  c.emplace_back("wavelength_nm");
+  for (const auto& p : parameter_names) {
+    c.push_back(p);
+    c.push_back(p + "_stderr");
+  }
+  for (const char* s :
+       {"rmse_per_sr", "relative_rmse_percent", "max_relative_error_percent", "aic", "bic", "converged", "at_bounds"}) {
+    c.emplace_back(s);
+  }
+  return c;
+}
+
+std::string ParamsTable::render(ParamsFormat format) const {
+  std::string out;
+  if (format == ParamsFormat::kCsv) {
+    out += "# roadbrdf params of " + source +
+           ": angles in degrees, wavelength in nm, RMSE in sr^-1, relative errors "
+           "in percent; parameter units:";
+    for (std::size_t k = 0; k < parameter_names.size(); ++k) out += " " + parameter_names[k] + " " + parameter_units[k];
+    out += "\n";
+    for (const auto& n : notes) out += "# note: " + n + "\n";
+    const auto columns = csv_columns();
+    for (std::size_t c = 0; c < columns.size(); ++c) out += (c ? "," : "") + columns[c];
+    out += "\n";
+    for (const ParamsRow& r : rows) {
+      std::vector<std::string> c = {csv_text(r.model)};
+      for (double g : r.group) c.push_back(fmt::format("{:.10g}", g));
+      c.push_back(fmt::format("{:.10g}", r.wavelength));
+      for (std::size_t k = 0; k < parameter_names.size(); ++k) {
+        c.push_back(cell(r.values[k], "{:.10g}"));
+        c.push_back(cell(r.standard_errors[k], "{:.10g}"));
+      }
+      for (double x : {r.rmse, 100.0 * r.relative_rmse, 100.0 * r.max_relative_error, r.aic, r.bic}) {
+        c.push_back(cell(x, "{:.10g}"));
+      }
+      c.emplace_back(r.converged ? "true" : "false");
+      c.push_back(csv_text(r.at_bounds));
+      out += fmt::format("{}\n", fmt::join(c, ","));
+    }
+    return out;
+  }
+  const auto cells = display_cells(*this, format);
+  std::vector<std::size_t> width(cells.front().size(), 0);
+  for (const auto& row : cells) {
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], display_width(row[c]));
+  }
+  auto padded = [&width](const std::string& s, std::size_t c) {
+    return s + std::string(width[c] - display_width(s), ' ');
+  };
+  if (format == ParamsFormat::kLatex) {
+    out += "% roadbrdf params of " + latex_text(source) + "\n";
+    for (const auto& n : notes) out += "% note: " + n + "\n";
+    out += "\\begin{tabular}{" + std::string(width.size(), 'l') + "}\n\\hline\n";
+    for (std::size_t r = 0; r < cells.size(); ++r) {
+      for (std::size_t c = 0; c < cells[r].size(); ++c) out += (c ? " & " : "") + padded(cells[r][c], c);
+      out += " \\\\\n";
+      if (r == 0) out += "\\hline\n";
+    }
+    return out + "\\hline\n\\end{tabular}\n";
+  }
+  if (format == ParamsFormat::kMarkdown) {
+    for (std::size_t r = 0; r < cells.size(); ++r) {
+      out += "|";
+      for (std::size_t c = 0; c < cells[r].size(); ++c) out += fmt::format(" {} |", padded(cells[r][c], c));
+      out += "\n";
+      if (r == 0) {
+        out += "|";
+        for (std::size_t c = 0; c < width.size(); ++c) out += std::string(width[c] + 2, '-') + "|";
+        out += "\n";
+      }
+    }
+    for (const auto& n : notes) out += "\nNote: " + n + "\n";
+    return out;
+  }
+  out += "# " + source + "\n";
+  for (const auto& n : notes) out += "# note: " + n + "\n";
+  for (const auto& row : cells) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c) line += (c ? "  " : "") + padded(row[c], c);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+ParamsTable read_params_table(const ParamsRequest& request) {
+  request.validate();
+  const Json document = parse_json_file(request.fit_file);
+  const JsonNode root(document, input_display_name(request.fit_file));
+  if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
+    throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
+  }
+  ParamsTable t;
+  t.source = root.file();
+  if (const auto g = root.find("group_by")) t.group_columns = g->strings();
+  const std::vector<JsonNode> fits = root.at("fits").elements();
+  std::vector<std::string> models;
+  for (const JsonNode& fit : fits) models.push_back(fit.at("model").string());
+  for (const auto& m : request.models) {
+    if (std::find(models.begin(), models.end(), m) == models.end()) {
+      throw FieldError("models", "no fit of model '" + m + "' in " + t.source + did_you_mean(m, models));
+    }
+  }
+  for (const JsonNode& fit : fits) {
+    const std::string model = fit.at("model").string();
+    if (!request.models.empty() &&
+        std::find(request.models.begin(), request.models.end(), model) == request.models.end()) {
+      continue;
+    }
+    const std::vector<std::string> order = fit.at("parameter_order").strings();
+    const JsonNode units = fit.at("parameter_units");
+    for (const auto& p : order) {
+      if (std::find(t.parameter_names.begin(), t.parameter_names.end(), p) == t.parameter_names.end()) {
+        t.parameter_names.push_back(p);
+        t.parameter_units.push_back(units.at(p).string());
+      }
+    }
+  }
+  for (const JsonNode& fit : fits) {
+    const std::string model = fit.at("model").string();
+    if (!request.models.empty() &&
+        std::find(request.models.begin(), request.models.end(), model) == request.models.end()) {
+      continue;
+    }
+    std::vector<double> group;
+    for (const auto& c : t.group_columns) group.push_back(fit.at("group").at(c).number());
+    const std::vector<double> wavelengths = fit.at("wavelengths").numbers();
+    const std::size_t m = wavelengths.size();
+    if (m == 0) fit.at("wavelengths").fail("no wavelengths");
+    const std::vector<std::string> fixed = fit.at("fixed").strings();
+    for (std::size_t w : answer_wavelengths(wavelengths, request.wavelengths, t.notes)) {
+      ParamsRow r;
+      r.model = model;
+      r.group = group;
+      r.wavelength = wavelengths[w];
+      r.values.assign(t.parameter_names.size(), kNaN);
+      r.standard_errors.assign(t.parameter_names.size(), kNaN);
+      r.fixed.assign(t.parameter_names.size(), false);
+      for (const auto& p : fit.at("parameter_order").strings()) {
+        const auto k = static_cast<std::size_t>(std::find(t.parameter_names.begin(), t.parameter_names.end(), p) -
+                                                t.parameter_names.begin());
+        r.values[k] = number_or_nan(at_wavelength(fit.at("parameters"), p, w, m));
+        r.standard_errors[k] = number_or_nan(at_wavelength(fit.at("stderr"), p, w, m));
+        r.fixed[k] = std::find(fixed.begin(), fixed.end(), p) != fixed.end();
+      }
+      r.rmse = number_or_nan(at_wavelength(fit, "rmse", w, m));
+      r.relative_rmse = number_or_nan(at_wavelength(fit, "relative_rmse", w, m));
+      r.max_relative_error = number_or_nan(at_wavelength(fit, "max_relative_error", w, m));
+      r.aic = number_or_nan(at_wavelength(fit, "aic", w, m));
+      r.bic = number_or_nan(at_wavelength(fit, "bic", w, m));
+      r.converged = at_wavelength(fit, "converged", w, m).boolean();
+      const std::vector<std::string> bounds = at_wavelength(fit, "at_bounds", w, m).strings();
+      for (const auto& b : bounds) r.at_bounds += (r.at_bounds.empty() ? "" : ";") + b;
+      t.rows.push_back(r);
+    }
+  }
+  return t;
+}
+
+}  // namespace roadbrdf

@@ -1,0 +1,64 @@
+// The fitted parameters of a fit file as a table (`roadbrdf params`, roadbrdf.params in Python): one
+// row per fit (model and geometry group) and wavelength, with each parameter and its standard error,
+// RMSE, relative RMSE, maximum relative error, AIC, BIC, convergence and the parameters on a bound.
+// These are the report's tables (chapters 5 and 6: per-incidence fits at 600 nm), ready to paste as
+// text, CSV, Markdown or LaTeX.
+//
+// A wavelength asked for that was not fitted is answered by the nearest fitted one, with a note
+// ("600 nm: nearest band 610 nm"); two wavelengths answered by the same band give one row.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace roadbrdf {
+
+enum class ParamsFormat { kTable, kCsv, kMarkdown, kLatex };
+// "table" | "csv" | "markdown" | "latex"; throws FieldError("format", ...).
+ParamsFormat params_format_from_string(const std::string& name);
+
+struct ParamsRequest {
+  std::string fit_file;
+  std::vector<double> wavelengths;  // [nm]; empty: every fitted wavelength
+  std::vector<std::string> models;  // models to show; empty: all
+  // Throws FieldError ("fit_file", "wavelengths", "models").
+  void validate() const;
+};
+
+struct ParamsRow {
+  std::string model;
+  std::vector<double> group;  // values [deg] of ParamsTable::group_columns
+  double wavelength = 0.0;    // nm
+  // Indexed like ParamsTable::parameter_names; NaN where the model has no such parameter, and
+  // standard errors NaN for fixed parameters or an undefined covariance.
+  std::vector<double> values, standard_errors;
+  std::vector<bool> fixed;
+  double rmse = 0.0;                // sr^-1
+  double relative_rmse = 0.0;       // 1
+  double max_relative_error = 0.0;  // 1
+  double aic = 0.0, bic = 0.0;
+  bool converged = false;
+  std::string at_bounds;  // "name=lower;name=upper" or ""
+};
+
+struct ParamsTable {
+  std::string source;                        // the fit file as named in messages
+  std::vector<std::string> group_columns;    // the file's group_by columns (degrees)
+  std::vector<std::string> parameter_names;  // every model's parameters, in order of first appearance
+  std::vector<std::string> parameter_units;  // aligned with parameter_names
+  std::vector<ParamsRow> rows;
+  std::vector<std::string> notes;  // nearest-wavelength answers
+
+  // The table in a format. Text, Markdown and LaTeX show "value ± stderr" with 4 significant digits;
+  // CSV gives every number to 10 significant digits in separate columns (see csv_columns()).
+  std::string render(ParamsFormat format) const;
+  // The CSV / DataFrame column names: model, <group>_deg..., wavelength_nm, then per parameter NAME and
+  // NAME_stderr, rmse_per_sr, relative_rmse_percent, max_relative_error_percent, aic, bic, converged,
+  // at_bounds.
+  std::vector<std::string> csv_columns() const;
+};
+
+// Reads the fit file and builds the table. Throws FileError (with the JSON key path) / FieldError.
+ParamsTable read_params_table(const ParamsRequest& request);
+
+}  // namespace roadbrdf

@@ -1,0 +1,110 @@
+"""`roadbrdf fit --group-by/--where`, `roadbrdf params` and their Python twins (roadbrdf.fit(group_by=,
+where=), roadbrdf.params): the same numbers and the same errors from both front ends, and tables whose
+numbers are the fit file's."""
+import json
+
+import numpy as np
+import pytest
+
+import roadbrdf
+
+DATA = "data/examples/single/lazard.csv"
+
+
+@pytest.fixture
+def grouped(cli, root, tmp_path):
+    out = tmp_path / "grouped.fit.json"
+    cli("fit", root / DATA, "--model", "oren-nayar", "--model", "lambert", "--group-by", "theta_i",
+        "--where", "theta_r<=70", "--wavelengths", "510:710:100", "-o", out)
+    return out
+
+
+def _number(x):
+    return float("nan") if x is None else x
+
+
+def _without_timing(content):
+    for f in content["fits"]:
+        f.pop("seconds", None)
+        f.pop("cpu_seconds", None)
+    return content
+
+
+def test_grouped_fit_is_the_same_from_python(root, grouped):
+    result = roadbrdf.fit(root / DATA, ["oren-nayar", "lambert"], group_by="theta_i", where="theta_r<=70",
+                          wavelengths="510:710:100")
+    assert _without_timing(result.to_dict()) == _without_timing(json.loads(grouped.read_text()))
+    content = json.loads(grouped.read_text())
+    assert content["version"] == 2 and content["group_by"] == ["theta_i"]
+    incidences = sorted({f["group"]["theta_i"] for f in content["fits"]})
+    assert incidences == [0, 20, 40, 60, 80]
+    fit40 = result.model_fit("oren-nayar", theta_i=40)
+    assert fit40.group == {"theta_i": 40.0}
+    with pytest.raises(roadbrdf.InputError, match="one per group"):
+        result.model_fit("oren-nayar")
+    df = result.to_dataframe()
+    assert list(df.columns[:2]) == ["model", "theta_i"]
+
+
+def test_params_csv_and_dataframe_hold_the_fit_file_numbers(cli, grouped):
+    content = json.loads(grouped.read_text())
+    df = roadbrdf.params(grouped, wavelengths=[610], models="oren-nayar")
+    assert list(df["theta_i_deg"]) == [0, 20, 40, 60, 80]
+    for _, row in df.iterrows():
+        fit = next(f for f in content["fits"] if f["model"] == "oren-nayar" and f["group"]["theta_i"] == row.theta_i_deg)
+        w = fit["wavelengths"].index(610)
+        # null in the file (an undefined standard error at normal incidence, where albedo and sigma are
+        # degenerate) is NaN in the table.
+        np.testing.assert_equal([row.albedo, row.albedo_stderr, row.sigma_stderr, row.rmse_per_sr],
+                                [_number(fit["parameters"]["albedo"][w]), _number(fit["stderr"]["albedo"][w]),
+                                 _number(fit["stderr"]["sigma"][w]), _number(fit["rmse"][w])])
+        assert row.relative_rmse_percent == pytest.approx(100 * fit["relative_rmse"][w], rel=1e-15)
+    assert df.attrs["units"] == {"albedo": "1", "sigma": "rad"}
+    # The command prints the same text as params(format=...).
+    for fmt in ("table", "csv", "markdown", "latex"):
+        printed = cli("params", grouped, "--wavelength", "610", "--model", "oren-nayar", "--format", fmt).stdout
+        assert printed == roadbrdf.params(grouped, wavelengths=[610], models="oren-nayar", format=fmt)
+
+
+def test_params_answers_an_unfitted_wavelength_by_the_nearest_with_a_note(cli, grouped):
+    r = cli("params", grouped, "--wavelength", "640", "--format", "csv")
+    assert "roadbrdf: note: 640 nm: nearest band 610 nm" in r.stderr
+    df = roadbrdf.params(grouped, wavelengths=[640])
+    assert set(df["wavelength_nm"]) == {610.0}
+    assert df.attrs["notes"] == ["640 nm: nearest band 610 nm"]
+
+
+def test_grouped_file_member_is_chosen_with_fit(cli, grouped):
+    r = cli("albedo", grouped, "--sun-zenith", "30", check=False)
+    assert r.returncode == 2 and "--fit:" in r.stderr and "one per group" in r.stderr, r.stderr
+    ok = cli("albedo", grouped, "--fit", "oren-nayar,theta_i=40", "--sun-zenith", "30")
+    assert ok.returncode == 0
+    m = roadbrdf.read_fit(grouped, "oren-nayar,theta_i=40")
+    content = json.loads(grouped.read_text())
+    fit = next(f for f in content["fits"] if f["model"] == "oren-nayar" and f["group"]["theta_i"] == 40)
+    assert m.parameters_at(610.0) == {"albedo": fit["parameters"]["albedo"][1], "sigma": fit["parameters"]["sigma"][1]}
+
+
+@pytest.mark.parametrize("flags, kwargs, message", [
+    (["--where", "thta_r<70"], dict(where="thta_r<70"), "unknown column 'thta_r' (did you mean 'theta_r'?)"),
+    (["--group-by", "theta_x"], dict(group_by="theta_x"), "unknown column 'theta_x'"),
+    (["--where", "theta_r>89"], dict(where="theta_r>89"), "selects none of the"),
+])
+def test_the_same_errors_from_both_front_ends(cli, root, tmp_path, flags, kwargs, message):
+    r = cli("fit", root / DATA, "--model", "lambert", *flags, "-o", tmp_path / "x.json", check=False)
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+    flag = flags[0]
+    assert f"roadbrdf: error: {flag}:" in r.stderr, r.stderr
+    with pytest.raises(roadbrdf.InputError) as e:
+        roadbrdf.fit(root / DATA, "lambert", **kwargs)
+    assert message in str(e.value)
+    assert not (tmp_path / "x.json").exists()
+
+
+def test_params_errors(cli, grouped):
+    r = cli("params", grouped, "--format", "latx", check=False)
+    assert r.returncode == 2 and "--format: 'latx' is not one of table, csv, markdown, latex" in r.stderr, r.stderr
+    r = cli("params", grouped, "--model", "oren-nayr", check=False)
+    assert r.returncode == 2 and "(did you mean 'oren-nayar'?)" in r.stderr, r.stderr
+    with pytest.raises(roadbrdf.InputError, match="did you mean 'oren-nayar'"):
+        roadbrdf.params(grouped, models="oren-nayr")
