@@ -21,11 +21,13 @@
 #include "roadbrdf/albedo/solar.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/fitting/params_table.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
+#include "roadbrdf/io/geometry_selection.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/surface/height_field.h"
@@ -121,9 +123,22 @@ inline int formulation_one_input(const std::uint8_t* data, std::size_t size) {
   return refusing([&] { parse_formulation(std::string(bytes(data, size)), "fuzz.json", false); });
 }
 
+// A fit file read as a model (the best fit, then one group's) and as a parameter table.
 inline int fit_file_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("fit.json", bytes(data, size));
-  return refusing([&] { read_fit_file(file.path()); });
+  refusing([&] { read_fit_file(file.path()); });
+  refusing([&] { read_fit_file(file.path(), "lambert,theta_i=40"); });
+  ParamsRequest request;
+  request.fit_file = file.path();
+  request.wavelengths = {600.0};
+  return refusing([&] { (void)read_params_table(request).render(ParamsFormat::kMarkdown); });
+}
+
+// Text selections: a `where` expression (matched against a geometry) and a `--fit` selector.
+inline int selection_one_input(const std::uint8_t* data, std::size_t size) {
+  const std::string text(bytes(data, size));
+  refusing([&] { (void)parse_geometry_selection(text).matches(geometry_from_degrees(40, 0, 60, 180)); });
+  return refusing([&] { (void)parse_fit_selector(text); });
 }
 
 inline int mix_file_one_input(const std::uint8_t* data, std::size_t size) {
