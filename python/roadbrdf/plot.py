@@ -12,7 +12,8 @@ Kinds:
   points against models;
 * :func:`fit_quality` - measured vs fitted values per geometry with residuals, and RMSE vs wavelength;
 * :func:`albedo` - black-sky albedo vs sun zenith, spectral albedo, blue-sky albedo for several aerosol loads;
-* :func:`rtable` - r-table heat map, and the sample's (S1, Q0) among the standard classes.
+* :func:`rtable` - r-table heat map, and the sample's (S1, Q0) among the standard classes;
+* ``plot_params.params`` - fitted parameters ± standard error against wavelength or a group column.
 
 Angles in degrees, BRDF in sr^-1, wavelengths in nm.
 """
@@ -538,7 +539,9 @@ def main(argv=None):
     p.add_argument("--illuminant", default="", help="fit file: photometric weighting V(lambda) x A (default)|D65|FILE")
     output(p)
     from .plot_study import add_parser as _add_study_parser, run as _run_study  # design studies (plot_study.py)
+    from .plot_params import add_parser as _add_params_parser, run as _run_params  # plot_params.py
     _add_study_parser(sub, output)
+    _add_params_parser(sub, output)
     a = parser.parse_args(argv)
     # As every roadbrdf command: the figure must not replace one of the files it is drawn from.
     inputs = []
@@ -581,6 +584,8 @@ def main(argv=None):
                illuminant=a.illuminant)
     elif a.kind == "study":
         _run_study(a)
+    elif a.kind == "params":
+        _run_params(a)
     print(a.output)
     return 0
 

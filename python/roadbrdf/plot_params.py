@@ -1,0 +1,119 @@
+"""Fitted parameters with their standard errors (``roadbrdf plot params FIT.json -o FIG.png``).
+
+One panel per parameter: against wavelength (a line per fit, the ± one standard error band shaded),
+or, for a fit file of ``fit --group-by``, against a group column at one wavelength (the report's
+per-incidence parameters: a line per model with error bars). The numbers are those of
+:func:`roadbrdf.params` (the fit file's), in ``fig.roadbrdf_data``:
+``{parameter: {label: (x, value, stderr)}}``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .plot import _finish, plt
+
+
+def params(fit_file, parameters=None, models=None, against="wavelength", wavelength=None, ax=None, title=None,
+           output=None):
+    """Plot fitted parameters ± standard error.
+
+    Parameters
+    ----------
+    fit_file : path
+        A fit file of ``roadbrdf fit``.
+    parameters : list of str, optional
+        Parameters to plot (default: every parameter of the fits shown).
+    models : list of str, optional
+        Only these models' fits.
+    against : "wavelength" or a group column of the file (e.g. "theta_i")
+    wavelength : float, optional
+        With a group column: the wavelength [nm] (the nearest fitted band answers; default: the middle one).
+    ax : matplotlib Axes or list of Axes, optional
+        Draw into these (one per parameter) instead of a new figure.
+    """
+    from . import params as _params
+    table = _params(fit_file, models=models or ())
+    units = table.attrs["units"]
+    names = list(parameters) if parameters else [p for p in units if table[p].notna().any()]
+    for p in names:
+        if p not in units:
+            from . import _roadbrdf
+            raise ValueError(f"no parameter '{p}' in {fit_file}{_roadbrdf.did_you_mean(p, list(units))} "
+                             f"(parameters: {', '.join(units)})")
+    groups = [c[:-4] for c in table.columns if c.endswith("_deg")]
+    if against != "wavelength" and against not in groups:
+        choices = ["wavelength"] + groups
+        raise ValueError(f"against: '{against}' is not one of {', '.join(choices)}"
+                         + ("" if groups else " (the fit file has no groups: fit with --group-by)"))
+    note = ""
+    if against != "wavelength":
+        bands = np.unique(table["wavelength_nm"].to_numpy())
+        wanted = float(bands[len(bands) // 2]) if wavelength is None else float(wavelength)
+        band = float(bands[np.argmin(np.abs(bands - wanted))])
+        if abs(band - wanted) > 1e-6:
+            note = f" (nearest band to {wanted:g} nm)"
+        table = table[table["wavelength_nm"] == band]
+    if ax is None:
+        columns = min(len(names), 3)
+        rows = math.ceil(len(names) / columns)
+        fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.4 * rows), squeeze=False)
+        axes = list(axes.ravel())
+        for extra in axes[len(names):]:
+            extra.remove()  # no empty panels
+    else:
+        axes = list(np.atleast_1d(ax))
+        if len(axes) != len(names):
+            raise ValueError(f"ax: {len(axes)} axes given for {len(names)} parameters")
+        fig = axes[0].figure
+    fig.roadbrdf_data = {}
+    others = [g for g in groups if g != against]
+    for axis, p in zip(axes, names):
+        fig.roadbrdf_data[p] = {}
+        keys = ["model", *(g + "_deg" for g in others)]
+        for key, rows in table.groupby(keys if len(keys) > 1 else "model", sort=False):
+            key = key if isinstance(key, tuple) else (key,)
+            label = key[0] + "".join(f", {g}={v:g}" for g, v in zip(others, key[1:]))
+            x = rows["wavelength_nm" if against == "wavelength" else against + "_deg"].to_numpy(float)
+            y = rows[p].to_numpy(float)
+            e = rows[p + "_stderr"].to_numpy(float)
+            if not np.isfinite(y).any():
+                continue
+            fig.roadbrdf_data[p][label] = (x, y, e)
+            if against == "wavelength" and x.size > 1:
+                line, = axis.plot(x, y, label=label)
+                axis.fill_between(x, y - e, y + e, color=line.get_color(), alpha=0.25, linewidth=0)
+            else:
+                axis.errorbar(x, y, yerr=np.where(np.isfinite(e), e, 0.0), marker="o", capsize=3, label=label)
+        axis.set_xlabel("wavelength [nm]" if against == "wavelength" else f"{against} [deg]")
+        axis.set_ylabel(f"{p} [{units[p]}]")
+        axis.grid(True, alpha=0.3)
+        if fig.roadbrdf_data[p]:
+            axis.legend(fontsize="small")
+    if against != "wavelength":
+        fig.roadbrdf_data["wavelength_nm"] = band
+    heading = title or f"{fit_file}: fitted parameters ± 1 standard error"
+    if against != "wavelength":
+        heading += f" at {band:g} nm{note}"
+    fig.suptitle(heading, fontsize="medium")
+    fig.tight_layout()
+    return _finish(fig, output)
+
+
+def add_parser(sub, output):
+    """The ``params`` kind of ``roadbrdf plot`` (its FIT.json argument is named ``fit_file`` so that the plot
+    dispatcher's input/output check covers it)."""
+    p = sub.add_parser("params", help="fitted parameters ± standard error against wavelength or a group column")
+    p.add_argument("fit_file", metavar="FIT.json", help="fit file written by roadbrdf fit")
+    p.add_argument("--parameter", action="append", help="parameter to plot (repeatable; default: all)")
+    p.add_argument("--model", action="append", help="only this model's fits (repeatable; default: all)")
+    p.add_argument("--against", default="wavelength",
+                   help="x axis: wavelength (default) or a group column of a `fit --group-by` file, e.g. theta_i")
+    p.add_argument("--wavelength", type=float, help="with a group column: the wavelength [nm] (default: the middle)")
+    output(p)
+
+
+def run(a):
+    params(a.fit_file, a.parameter, a.model, a.against, a.wavelength, title=a.title, output=a.output)
