@@ -71,35 +71,38 @@ def _label(d: Dataset, fallback: str):
     return d.metadata.get("sample", fallback)
 
 
-def _nearest_geometry(d: Dataset, geometry):
-    """Index of the dataset geometry closest (in direction) to (theta_i, phi_i, theta_r, phi_r)."""
-    def vec(t, p):
-        t, p = np.radians(t), np.radians(p)
-        return np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], axis=-1)
-    ti, pi, tr, pr = geometry
-    a = d.angles
-    score = np.sum(vec(a[:, 0], a[:, 1]) * vec(ti, pi), axis=-1) + np.sum(vec(a[:, 2], a[:, 3]) * vec(tr, pr), axis=-1)
-    return int(np.argmax(score))
-
-
 # ---- 1. spectral BRDF ------------------------------------------------------------------------
 def spectral(samples, geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=None, output=None):
     """BRDF against wavelength at one geometry for several datasets (paths or :class:`Dataset`).
 
-    ``geometry`` = (theta_i, phi_i, theta_r, phi_r) [deg]; each dataset's closest geometry is used
-    and named in the legend. Uncertainty bands (+-1 sigma) are drawn when the data have sigma.
-    Returns the figure; the plotted curves are in ``fig.roadbrdf_data`` (label -> (wavelengths, brdf)).
+    ``geometry`` = (theta_i, phi_i, theta_r, phi_r) [deg] or text (plot_geometry.parse_geometry: also road
+    angles); each dataset's nearest geometry (plot_geometry.nearest_geometry: up to a turn about the
+    normal) is used and named in the legend, with its distance when above 1 deg (also on standard
+    error). Uncertainty bands (+-1 sigma) are drawn when the data have sigma. Returns the figure; the
+    plotted curves are in ``fig.roadbrdf_data`` (label -> (wavelengths, brdf)), the geometries used
+    and their distances in ``fig.roadbrdf_geometries`` (label -> (angles, distance_deg)).
     """
+    import sys
+    from .plot_geometry import TOLERANCE_DEG, nearest_geometry, parse_geometry
+    if isinstance(geometry, str):
+        geometry = parse_geometry(geometry)
     datasets = [_as_dataset(s) for s in samples]
     labels = labels or [_label(d, f"sample {k + 1}") for k, d in enumerate(datasets)]
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    fig.roadbrdf_data = {}
+    fig.roadbrdf_data, fig.roadbrdf_geometries = {}, {}
     for d, label in zip(datasets, labels):
-        k = _nearest_geometry(d, geometry)
+        k, distance = nearest_geometry(d.angles, geometry)
         ti, pi, tr, pr = d.angles[k]
         y = d.brdf[k]
+        far = ""
+        if distance > TOLERANCE_DEG:
+            far = f", {distance:.1f}° from the geometry asked for"
+            print(f"roadbrdf: warning: {label}: the nearest measured geometry ({ti:g}, {pi:g}, {tr:g}, {pr:g}) is "
+                  f"{distance:.1f} deg from the one asked for {tuple(float(x) for x in geometry)}", file=sys.stderr)
+        fig.roadbrdf_geometries[label] = (tuple(float(x) for x in d.angles[k]), distance)
         line, = ax.plot(d.wavelengths, y, lw=1.4,
-                        label=f"{label}  ($\\theta_i$={ti:.0f}°, $\\theta_r$={tr:.0f}°, $\\Delta\\phi$={(pr - pi) % 360:.0f}°)")
+                        label=f"{label}  ($\\theta_i$={ti:.0f}°, $\\theta_r$={tr:.0f}°, "
+                              f"$\\Delta\\phi$={(pr - pi) % 360:.0f}°{far})")
         if d.sigma is not None:
             ax.fill_between(d.wavelengths, y - d.sigma[k], y + d.sigma[k], color=line.get_color(), alpha=0.25, lw=0)
         fig.roadbrdf_data[label] = (d.wavelengths, y)
@@ -494,18 +497,17 @@ def main(argv=None):
                        "MIX.json (default: the best-ranked)")
 
     def geometry(text):
+        from .plot_geometry import parse_geometry
         try:
-            values = [float(x) for x in text.split(",")]
-        except ValueError:
-            values = []
-        if len(values) != 4 or not all(np.isfinite(values)):
-            raise argparse.ArgumentTypeError("geometry is theta_i,phi_i,theta_r,phi_r [deg]")
-        return tuple(values)
+            return parse_geometry(text)
+        except ValueError as e:
+            raise argparse.ArgumentTypeError(str(e)) from None
 
     p = sub.add_parser("spectral", help="BRDF vs wavelength at one geometry for several datasets")
     p.add_argument("data", nargs="+", help="dataset CSV files")
     p.add_argument("--geometry", type=geometry, default=(30.0, 0.0, 30.0, 0.0),
-                   help="theta_i,phi_i,theta_r,phi_r [deg] (the nearest measured geometry; default 30,0,30,0)")
+                   help="theta_i,phi_i,theta_r,phi_r [deg] or gamma=G,alpha=A,beta=B,delta=D (road angles): the "
+                        "nearest measured geometry, up to a turn about the normal (default 30,0,30,0)")
     output(p)
     p = sub.add_parser("hemisphere", help="BRDF over the viewing hemisphere (heat map and lobe)")
     p.add_argument("model", help="model name (with -p/--option) or fit file (with --fit)")
