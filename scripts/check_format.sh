@@ -18,12 +18,16 @@ if [ "$fix" = "--fix" ]; then
   echo "check_format: formatted ${#files[@]} files"
   exit 0
 fi
-differing=()
-for f in "${files[@]}"; do
-  "$formatter" --style=file --dry-run --Werror "$f" > /dev/null 2>&1 || differing+=("$f")
-done
-if [ "${#differing[@]}" -gt 0 ]; then
-  printf 'check_format: %s differs from .clang-format\n' "${differing[@]}" >&2
+# One clang-format run over every file; it names each file that differs ("FILE:LINE:COL: error: code
+# should be clang-formatted").
+report="$("$formatter" --style=file --dry-run --Werror "${files[@]}" 2>&1)" && status=0 || status=$?
+mapfile -t differing < <(printf '%s\n' "$report" | sed -n 's/^\(.*\):[0-9]*:[0-9]*: error: code should be clang-formatted.*/\1/p' | sort -u)
+if [ "$status" -ne 0 ] || [ "${#differing[@]}" -gt 0 ]; then
+  if [ "${#differing[@]}" -gt 0 ]; then
+    printf 'check_format: %s differs from .clang-format\n' "${differing[@]}" >&2
+  else
+    printf '%s\n' "$report" >&2
+  fi
   echo "check_format: ${#differing[@]} of ${#files[@]} files differ; run \`make format\` to apply the style" >&2
   exit 1
 fi

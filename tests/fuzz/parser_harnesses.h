@@ -152,6 +152,16 @@ inline int rtable_one_input(const std::uint8_t* data, std::size_t size, photomet
   return refusing([&] { photometry::read_rtable(file.path(), format); });
 }
 
+inline int rtable_csv_one_input(const std::uint8_t* data, std::size_t size) {
+  return rtable_one_input(data, size, photometry::RTableFormat::csv, "r.csv");
+}
+inline int rtable_radiance_one_input(const std::uint8_t* data, std::size_t size) {
+  return rtable_one_input(data, size, photometry::RTableFormat::radiance, "r.dat");
+}
+inline int rtable_rtb_one_input(const std::uint8_t* data, std::size_t size) {
+  return rtable_one_input(data, size, photometry::RTableFormat::rtb, "r.rtb");
+}
+
 inline int solar_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("solar.csv", bytes(data, size));
   return refusing([&] { albedo::read_solar_spectrum(file.path()); });

@@ -2,5 +2,5 @@
 #include "fuzz/parser_harnesses.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  return roadbrdf::fuzz::rtable_one_input(data, size, roadbrdf::photometry::RTableFormat::csv, "r.csv");
+  return roadbrdf::fuzz::rtable_csv_one_input(data, size);
 }

@@ -1,0 +1,41 @@
+// Every fuzz harness's entry point by name: the replay program of normal builds (replay_main.cpp)
+// runs the corpus of tests/fuzz/corpus/<name>/ through harnesses().at(name). A harness file
+// <name>_fuzz.cpp without its line here fails its ctest test fuzz_corpus.<name> ("unknown harness").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "fuzz/instrument_harnesses.h"
+#include "fuzz/parser_harnesses.h"
+
+namespace roadbrdf::fuzz {
+
+using Harness = int (*)(const std::uint8_t* data, std::size_t size);
+
+inline const std::map<std::string, Harness>& harnesses() {
+  static const std::map<std::string, Harness> table = {
+      {"alta", alta_one_input},
+      {"asd", asd_one_input},
+      {"curet", curet_one_input},
+      {"dataset", dataset_one_input},
+      {"fit_file", fit_file_one_input},
+      {"formulation", formulation_one_input},
+      {"geometry", geometry_one_input},
+      {"manifest", manifest_one_input},
+      {"mix_file", mix_file_one_input},
+      {"rtable_csv", rtable_csv_one_input},
+      {"rtable_radiance", rtable_radiance_one_input},
+      {"rtable_rtb", rtable_rtb_one_input},
+      {"sed", sed_one_input},
+      {"selection", selection_one_input},
+      {"sig", sig_one_input},
+      {"solar", solar_one_input},
+      {"surface", surface_one_input},
+  };
+  return table;
+}
+
+}  // namespace roadbrdf::fuzz
