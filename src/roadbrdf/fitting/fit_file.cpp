@@ -149,9 +149,10 @@ std::vector<JsonNode> select_fits(const JsonNode& root, const JsonNode& fits, co
     if (model != wanted) continue;
     const auto group = fit_group(fit);
     bool ok = true;
-    for (const auto& [column, value] : selector.group) {
-      const auto it = std::find_if(group.begin(), group.end(), [&column](const auto& c) { return c.first == column; });
-      ok = ok && it != group.end() && std::abs(it->second - value) <= 1e-6;
+    for (const auto& wanted_column : selector.group) {
+      const auto it = std::find_if(group.begin(), group.end(),
+                                   [&wanted_column](const auto& c) { return c.first == wanted_column.first; });
+      ok = ok && it != group.end() && std::abs(it->second - wanted_column.second) <= 1e-6;
     }
     labels.push_back(group_label(group));
     if (ok) matching.push_back(fit);
