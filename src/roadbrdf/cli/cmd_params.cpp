@@ -53,7 +53,7 @@ void register_params_command(CLI::App& app) {
   c->add_option("fit", args.fit, "Fit file (JSON) written by `roadbrdf fit`")->required();
   c->add_option("--wavelengths,--wavelength", args.wavelengths,
                 "Wavelengths to show: START:STOP:STEP or a list [nm]; one not fitted is answered by the nearest "
-                "fitted wavelength, with a note (default: every fitted wavelength)");
+                "fitted band, with a note (default: every fitted wavelength)");
   c->add_option("-m,--model", args.models, "Show only this model's fits (repeatable)")->allow_extra_args(false);
   c->add_option("--format", args.format,
                 "table (aligned text) | csv (every number, separate stderr columns) | markdown | latex")

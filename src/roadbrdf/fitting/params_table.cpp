@@ -47,7 +47,7 @@ std::vector<std::size_t> answer_wavelengths(const std::vector<double>& fitted, c
 
 std::string plus_minus(double value, double stderr_value, ParamsFormat format) {
   if (!std::isfinite(value)) return "";
-  const std::string v = fmt::format("{:.4g}", value);
+  std::string v = fmt::format("{:.4g}", value);
   if (!std::isfinite(stderr_value)) return v;
   const std::string e = fmt::format("{:.2g}", stderr_value);
   if (format == ParamsFormat::kLatex) return "$" + v + " \\pm " + e + "$";
@@ -155,77 +155,111 @@ std::vector<std::string> ParamsTable::csv_columns() const {
   return c;
 }
 
-std::string ParamsTable::render(ParamsFormat format) const {
+namespace {
+
+std::string render_csv(const ParamsTable& t) {
+  std::string out = "# roadbrdf params of " + t.source +
+                    ": angles in degrees, wavelength in nm, RMSE in sr^-1, relative errors in percent; "
+                    "parameter units:";
+  for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+    out += fmt::format(" {} {}", t.parameter_names[k], t.parameter_units[k]);
+  }
+  out += "\n";
+  for (const auto& n : t.notes) out += "# note: " + n + "\n";
+  out += fmt::format("{}\n", fmt::join(t.csv_columns(), ","));
+  for (const ParamsRow& r : t.rows) {
+    std::vector<std::string> c = {csv_text(r.model)};
+    c.reserve(r.group.size() + 2 * t.parameter_names.size() + 9);
+    for (double g : r.group) c.push_back(fmt::format("{:.10g}", g));
+    c.push_back(fmt::format("{:.10g}", r.wavelength));
+    for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+      c.push_back(cell(r.values[k], "{:.10g}"));
+      c.push_back(cell(r.standard_errors[k], "{:.10g}"));
+    }
+    for (double x : {r.rmse, 100.0 * r.relative_rmse, 100.0 * r.max_relative_error, r.aic, r.bic}) {
+      c.push_back(cell(x, "{:.10g}"));
+    }
+    c.emplace_back(r.converged ? "true" : "false");
+    c.push_back(csv_text(r.at_bounds));
+    out += fmt::format("{}\n", fmt::join(c, ","));
+  }
+  return out;
+}
+
+// Display cells padded to their column's width (UTF-8 aware).
+struct PaddedCells {
+  std::vector<std::vector<std::string>> cells;  // header first
+  std::vector<std::size_t> width;
+  std::string at(std::size_t r, std::size_t c) const {
+    return cells[r][c] + std::string(width[c] - display_width(cells[r][c]), ' ');
+  }
+};
+
+PaddedCells padded_cells(const ParamsTable& t, ParamsFormat format) {
+  PaddedCells p;
+  p.cells = display_cells(t, format);
+  p.width.assign(p.cells.front().size(), 0);
+  for (const auto& row : p.cells) {
+    for (std::size_t c = 0; c < row.size(); ++c) p.width[c] = std::max(p.width[c], display_width(row[c]));
+  }
+  return p;
+}
+
+std::string render_latex(const ParamsTable& t) {
+  const PaddedCells p = padded_cells(t, ParamsFormat::kLatex);
+  std::string out = "% roadbrdf params of " + latex_text(t.source) + "\n";
+  for (const auto& n : t.notes) out += "% note: " + n + "\n";
+  out += "\\begin{tabular}{" + std::string(p.width.size(), 'l') + "}\n\\hline\n";
+  for (std::size_t r = 0; r < p.cells.size(); ++r) {
+    for (std::size_t c = 0; c < p.cells[r].size(); ++c) out += fmt::format("{}{}", c ? " & " : "", p.at(r, c));
+    out += r == 0 ? " \\\\\n\\hline\n" : " \\\\\n";
+  }
+  return out + "\\hline\n\\end{tabular}\n";
+}
+
+std::string render_markdown(const ParamsTable& t) {
+  const PaddedCells p = padded_cells(t, ParamsFormat::kMarkdown);
   std::string out;
-  if (format == ParamsFormat::kCsv) {
-    out += "# roadbrdf params of " + source +
-           ": angles in degrees, wavelength in nm, RMSE in sr^-1, relative errors "
-           "in percent; parameter units:";
-    for (std::size_t k = 0; k < parameter_names.size(); ++k) out += " " + parameter_names[k] + " " + parameter_units[k];
+  for (std::size_t r = 0; r < p.cells.size(); ++r) {
+    out += "|";
+    for (std::size_t c = 0; c < p.cells[r].size(); ++c) out += fmt::format(" {} |", p.at(r, c));
     out += "\n";
-    for (const auto& n : notes) out += "# note: " + n + "\n";
-    const auto columns = csv_columns();
-    for (std::size_t c = 0; c < columns.size(); ++c) out += (c ? "," : "") + columns[c];
+    if (r > 0) continue;
+    out += "|";
+    for (std::size_t w : p.width) out += std::string(w + 2, '-') + "|";
     out += "\n";
-    for (const ParamsRow& r : rows) {
-      std::vector<std::string> c = {csv_text(r.model)};
-      for (double g : r.group) c.push_back(fmt::format("{:.10g}", g));
-      c.push_back(fmt::format("{:.10g}", r.wavelength));
-      for (std::size_t k = 0; k < parameter_names.size(); ++k) {
-        c.push_back(cell(r.values[k], "{:.10g}"));
-        c.push_back(cell(r.standard_errors[k], "{:.10g}"));
-      }
-      for (double x : {r.rmse, 100.0 * r.relative_rmse, 100.0 * r.max_relative_error, r.aic, r.bic}) {
-        c.push_back(cell(x, "{:.10g}"));
-      }
-      c.emplace_back(r.converged ? "true" : "false");
-      c.push_back(csv_text(r.at_bounds));
-      out += fmt::format("{}\n", fmt::join(c, ","));
-    }
-    return out;
   }
-  const auto cells = display_cells(*this, format);
-  std::vector<std::size_t> width(cells.front().size(), 0);
-  for (const auto& row : cells) {
-    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], display_width(row[c]));
-  }
-  auto padded = [&width](const std::string& s, std::size_t c) {
-    return s + std::string(width[c] - display_width(s), ' ');
-  };
-  if (format == ParamsFormat::kLatex) {
-    out += "% roadbrdf params of " + latex_text(source) + "\n";
-    for (const auto& n : notes) out += "% note: " + n + "\n";
-    out += "\\begin{tabular}{" + std::string(width.size(), 'l') + "}\n\\hline\n";
-    for (std::size_t r = 0; r < cells.size(); ++r) {
-      for (std::size_t c = 0; c < cells[r].size(); ++c) out += (c ? " & " : "") + padded(cells[r][c], c);
-      out += " \\\\\n";
-      if (r == 0) out += "\\hline\n";
-    }
-    return out + "\\hline\n\\end{tabular}\n";
-  }
-  if (format == ParamsFormat::kMarkdown) {
-    for (std::size_t r = 0; r < cells.size(); ++r) {
-      out += "|";
-      for (std::size_t c = 0; c < cells[r].size(); ++c) out += fmt::format(" {} |", padded(cells[r][c], c));
-      out += "\n";
-      if (r == 0) {
-        out += "|";
-        for (std::size_t c = 0; c < width.size(); ++c) out += std::string(width[c] + 2, '-') + "|";
-        out += "\n";
-      }
-    }
-    for (const auto& n : notes) out += "\nNote: " + n + "\n";
-    return out;
-  }
-  out += "# " + source + "\n";
-  for (const auto& n : notes) out += "# note: " + n + "\n";
-  for (const auto& row : cells) {
+  for (const auto& n : t.notes) out += "\nNote: " + n + "\n";
+  return out;
+}
+
+std::string render_text(const ParamsTable& t) {
+  const PaddedCells p = padded_cells(t, ParamsFormat::kTable);
+  std::string out = "# " + t.source + "\n";
+  for (const auto& n : t.notes) out += "# note: " + n + "\n";
+  for (std::size_t r = 0; r < p.cells.size(); ++r) {
     std::string line;
-    for (std::size_t c = 0; c < row.size(); ++c) line += (c ? "  " : "") + padded(row[c], c);
+    for (std::size_t c = 0; c < p.cells[r].size(); ++c) line += fmt::format("{}{}", c ? "  " : "", p.at(r, c));
     while (!line.empty() && line.back() == ' ') line.pop_back();
     out += line + "\n";
   }
   return out;
+}
+
+}  // namespace
+
+std::string ParamsTable::render(ParamsFormat format) const {
+  switch (format) {
+    case ParamsFormat::kCsv:
+      return render_csv(*this);
+    case ParamsFormat::kLatex:
+      return render_latex(*this);
+    case ParamsFormat::kMarkdown:
+      return render_markdown(*this);
+    case ParamsFormat::kTable:
+      break;
+  }
+  return render_text(*this);
 }
 
 ParamsTable read_params_table(const ParamsRequest& request) {
@@ -240,6 +274,7 @@ ParamsTable read_params_table(const ParamsRequest& request) {
   if (const auto g = root.find("group_by")) t.group_columns = g->strings();
   const std::vector<JsonNode> fits = root.at("fits").elements();
   std::vector<std::string> models;
+  models.reserve(fits.size());
   for (const JsonNode& fit : fits) models.push_back(fit.at("model").string());
   for (const auto& m : request.models) {
     if (std::find(models.begin(), models.end(), m) == models.end()) {

@@ -197,6 +197,7 @@ std::vector<GeometryGroup> group_geometries(const std::vector<Geometry>& geometr
   std::vector<GeometryGroup> groups;
   for (std::size_t g = 0; g < geometries.size(); ++g) {
     std::vector<double> values;
+    values.reserve(columns.size());
     for (const auto& c : columns) values.push_back(geometry_column(geometries[g], c));
     auto same = [&values](const GeometryGroup& group) {
       for (std::size_t c = 0; c < values.size(); ++c) {
