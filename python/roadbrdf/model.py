@@ -10,7 +10,7 @@ from typing import List
 
 from .core import ArrayLike, InputError, as_float_array
 
-__all__ = ["Model", "SpectralModel", "models", "model_names"]
+__all__ = ["Model", "SpectralModel", "models", "model_names", "model_aliases"]
 
 
 def model_names() -> List[str]:
@@ -19,6 +19,14 @@ def model_names() -> List[str]:
     Composites are written with ``+``: ``Model('oren-nayar+torrance-sparrow')``.
     """
     return list(_roadbrdf.model_names())
+
+
+def model_aliases() -> List[dict]:
+    """Other names of models with some options fixed, e.g. ``cook-torrance`` (torrance-sparrow with
+    profile=v-cavity, distribution=beckmann, fresnel=exact-dielectric). Each a dict with ``name``,
+    ``model``, ``description``, ``citation`` and ``options`` (the fixed ones). An alias is accepted
+    wherever a model name is, composites included, as by ``roadbrdf models`` on the command line."""
+    return list(_roadbrdf.model_aliases())
 
 
 def models() -> List[dict]:

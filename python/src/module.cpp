@@ -101,6 +101,22 @@ PYBIND11_MODULE(_roadbrdf, m) {
   });
 
   m.def("model_names", &model_names, "Names of the single (non-composite) models.");
+  m.def(
+      "model_aliases",
+      [] {
+        py::list out;
+        for (const auto& a : model_aliases()) {
+          py::dict d;
+          d["name"] = a.name;
+          d["model"] = a.model;
+          d["description"] = a.description;
+          d["citation"] = a.citation;
+          d["options"] = a.options;
+          out.append(d);
+        }
+        return out;
+      },
+      "Other names of models with some options fixed (e.g. cook-torrance).");
   m.def("data_directory", &data_directory, "Folder of the bundled data tables (share/roadbrdf/data).");
   m.attr("__version__") = version();
 

@@ -118,6 +118,51 @@ TEST(TorranceSparrow, VCavityClosedForm) {
   }
 }
 
+TEST(TorranceSparrow, CookTorranceAliasIsThe1982Model) {
+  // Cook & Torrance, ACM TOG 1(1) 1982, written out from the paper: R_s = F D G / (pi (N.L)(N.V)) with
+  // D = exp(-(tan a / m)^2) / (m^2 cos^4 a) (eq. 4, not normalised), G as in eq. 3 and the unpolarised
+  // Fresnel factor F = (g-c)^2/(2 (g+c)^2) [1 + (c(g+c)-1)^2/(c(g-c)+1)^2], c = V.H, g^2 = n^2 + c^2 - 1.
+  // The alias's k_s is 4 s (torrance_sparrow.h), so k_s = 0.4 is the paper's s = 0.1.
+  auto m = make_model("cook-torrance");
+  const auto& d = m->description();
+  EXPECT_EQ(d.name, "cook-torrance");
+  EXPECT_EQ(d.option_values.at("profile"), "v-cavity");
+  EXPECT_EQ(d.option_values.at("distribution"), "beckmann");
+  EXPECT_EQ(d.option_values.at("fresnel"), "exact-dielectric");
+  const double s = 0.1, rms_slope = 0.3, n = 1.6;
+  for (auto angles : std::vector<std::array<double, 4>>{{30, 0, 60, 160}, {50, 0, 50, 180}, {10, 0, 75, 90}}) {
+    const Geometry g = geometry_from_degrees(angles[0], angles[1], angles[2], angles[3]);
+    const Vec3 h = normalize(g.wi + g.wr);
+    const double nh = h.z, nl = g.wi.z, nv = g.wr.z, vh = dot(g.wr, h);
+    const double G = std::fmin(1.0, std::fmin(2 * nh * nv / vh, 2 * nh * nl / vh));
+    const double tan_a = std::sqrt(1 - nh * nh) / nh;
+    const double D = std::exp(-std::pow(tan_a / rms_slope, 2)) / (rms_slope * rms_slope * std::pow(nh, 4));
+    const double c = vh, gg = std::sqrt(n * n + c * c - 1);
+    const double F = 0.5 * std::pow(gg - c, 2) / std::pow(gg + c, 2) *
+                     (1 + std::pow(c * (gg + c) - 1, 2) / std::pow(c * (gg - c) + 1, 2));
+    const double rs = s * F * D * G / (kPi * nl * nv);
+    const double p[] = {4 * s, rms_slope, n};
+    EXPECT_NEAR(m->evaluate(p, g), rs, 1e-12 * rs);
+  }
+  // Its fixed options cannot change under the alias; the error names the model that allows it.
+  try {
+    make_model("cook-torrance", {{"distribution", "ggx"}});
+    FAIL() << "cook-torrance with distribution=ggx accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("use model 'torrance-sparrow'"), std::string::npos) << e.what();
+  }
+  // Options it leaves free, and the same value as fixed (how a fit file reloads it), are accepted.
+  EXPECT_NO_THROW(make_model("cook-torrance", {{"distribution", "beckmann"}, {"lambda", "exact"}}));
+  // In a composite: the component is named after the alias.
+  auto composite = make_model("lambert+cook-torrance");
+  EXPECT_NE(composite->description().parameter_index("cook-torrance.roughness"), std::nullopt);
+  EXPECT_THROW(make_model("lambert+cook-torrance", {{"distribution", "ggx"}}), InputError);
+  bool listed = false;
+  for (const auto& alias : model_aliases())
+    listed = listed || (alias.name == "cook-torrance" && alias.model == "torrance-sparrow");
+  EXPECT_TRUE(listed);
+}
+
 TEST(TorranceSparrow, FiniteAndReciprocalEverywhere) {
   std::vector<Geometry> geometries = {
       geometry_from_degrees(0, 0, 0, 0),     geometry_from_degrees(89.9, 0, 89.9, 180),

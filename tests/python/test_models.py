@@ -61,3 +61,39 @@ def test_road_angle_conversion_matches_core():
     assert float(pr) - float(pi) == pytest.approx(180.0)
     assert roadbrdf._roadbrdf.road_to_zenith_azimuth(35, 12, 45, 20) == pytest.approx(
         tuple(float(x) for x in roadbrdf.road_to_zenith_azimuth(35, 12, 45, 20)))
+
+
+def test_cook_torrance_alias_fits_reloads_and_errors_alike(cli, root, tmp_path):
+    """`cook-torrance` (torrance-sparrow with Cook & Torrance's 1982 choices) works wherever a model
+    name does: the fit file carries the alias, `albedo` reloads it, Python gives the same numbers and
+    changing a fixed option is the same error from both front ends."""
+    aliases = {a["name"]: a for a in roadbrdf.model_aliases()}
+    assert aliases["cook-torrance"]["model"] == "torrance-sparrow"
+    assert aliases["cook-torrance"]["options"] == {"profile": "v-cavity", "distribution": "beckmann",
+                                                   "fresnel": "exact-dielectric"}
+    data = root / "data/examples/single/lazard.csv"
+    out = tmp_path / "ct.fit.json"
+    cli("fit", data, "--model", "lambert+cook-torrance", "--wavelengths", "610", "-o", out)
+    import json
+    content = json.loads(out.read_text())
+    assert content["fits"][0]["model"] == "lambert+cook-torrance"
+    result = roadbrdf.fit(data, "lambert+cook-torrance", wavelengths="610")
+    fit = result.model_fit("lambert+cook-torrance")
+    for name, values in content["fits"][0]["parameters"].items():
+        assert fit.parameter(name)[0] == pytest.approx(values[0], rel=1e-12), name
+    # The alias equals torrance-sparrow with its options written out.
+    ct = roadbrdf.Model("cook-torrance")
+    ts = roadbrdf.Model("torrance-sparrow", options=aliases["cook-torrance"]["options"])
+    p = {"ks": 0.3, "roughness": 0.25, "ior": 1.6}
+    assert ct.evaluate(30, 0, 50, 170, params=p) == ts.evaluate(30, 0, 50, 170, params=p)
+    albedo = cli("albedo", out, "--wavelengths", "610")
+    assert albedo.returncode == 0
+    bad = cli("fit", data, "--model", "cook-torrance", "--option", "distribution=ggx", "-o", tmp_path / "x.json",
+              check=False)
+    assert bad.returncode != 0
+    with pytest.raises(roadbrdf.InputError) as error:
+        roadbrdf.fit(data, "cook-torrance", options={"distribution": "ggx"})
+    assert "use model 'torrance-sparrow'" in str(error.value)
+    # The library names the field (options.distribution), the CLI its flag (--option distribution).
+    assert str(error.value).startswith("options.distribution: model 'cook-torrance' fixes")
+    assert str(error.value).removeprefix("options.") in bad.stderr.replace("--option ", "")

@@ -46,6 +46,20 @@ void print_markdown() {
       }
     }
   }
+  const auto aliases = model_aliases();
+  if (aliases.empty()) return;
+  fmt::print(
+      "\n## Aliases\n\n"
+      "Names the literature uses for a model with some options fixed. An alias is accepted wherever a\n"
+      "model name is (composites too) and is the name written into fit files; its fixed options cannot\n"
+      "be changed under it (use the model's own name for other choices).\n\n"
+      "| alias | model | fixed options | source |\n|---|---|---|---|\n");
+  for (const auto& a : aliases) {
+    std::string fixed;
+    for (const auto& [option, value] : a.options)
+      fixed += (fixed.empty() ? "" : ", ") + ("`" + option + "=" + value + "`");
+    fmt::print("| `{}` | `{}` | {} | {} |\n", a.name, a.model, fixed, a.citation);
+  }
 }
 
 void run(bool as_json) {
@@ -74,6 +88,11 @@ void run(bool as_json) {
       if (values.empty()) values = "integer";
       fmt::print("    --option {}={} (default {})  {}\n", o.name, values, o.default_value, o.description);
     }
+  }
+  for (const auto& a : model_aliases()) {
+    std::string fixed;
+    for (const auto& [option, value] : a.options) fixed += " " + option + "=" + value;
+    fmt::print("{}  alias of {} with{}\n    {}\n", a.name, a.model, fixed, a.citation);
   }
 }
 

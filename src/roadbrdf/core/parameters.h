@@ -34,6 +34,18 @@ struct OptionInfo {
 // Options as given by the user: name -> value.
 using OptionSet = std::map<std::string, std::string>;
 
+// Another name under which the literature knows a model with some of its options fixed, e.g.
+// "cook-torrance" = torrance-sparrow with Cook & Torrance's 1982 choices. Declared by the model
+// (static aliases()); the registry resolves it. The fixed options cannot be changed under the alias
+// (that would no longer be the published model): the model's own name gives every choice.
+struct ModelAlias {
+  std::string name;         // CLI spelling, e.g. "cook-torrance"
+  std::string model;        // the model it selects, e.g. "torrance-sparrow"
+  std::string description;  // one line: what the alias stands for
+  std::string citation;     // where the fixed choices come from
+  OptionSet options;        // the fixed options
+};
+
 struct ModelDescription {
   std::string name;      // CLI spelling, e.g. "oren-nayar"
   std::string summary;   // one line

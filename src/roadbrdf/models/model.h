@@ -170,7 +170,11 @@ struct PreparedGeometryOf<M> {
 template <class M>
 class ModelAdapter final : public Model {
  public:
-  explicit ModelAdapter(const OptionSet& given) : ModelAdapter(resolve_options(M::kName, M::options(), given), 0) {}
+  explicit ModelAdapter(const OptionSet& given) : ModelAdapter(given, M::kName) {}
+  // Under another name (a ModelAlias): the description, and so every file written, carries `name`.
+  ModelAdapter(const OptionSet& given, const std::string& name)
+      : Model(describe_resolved(resolve_options(name, M::options(), given), name)),
+        model_(description().option_values) {}
 
   double evaluate(const double* params, const Geometry& g) const override { return model_(params, g); }
 
@@ -307,11 +311,9 @@ class ModelAdapter final : public Model {
     typename SharedTermsOf<M>::type shared;  // empty unless HasSharedTerms<M>
   };
 
-  ModelAdapter(const OptionSet& resolved, int) : Model(describe_resolved(resolved)), model_(resolved) {}
-
-  static ModelDescription describe_resolved(const OptionSet& resolved) {
+  static ModelDescription describe_resolved(const OptionSet& resolved, const std::string& name) {
     ModelDescription d = M::describe(resolved);
-    d.name = M::kName;
+    d.name = name;
     d.options = M::options();
     d.option_values = resolved;
     d.has_delta = d.has_delta || HasDeltaPart<M>;

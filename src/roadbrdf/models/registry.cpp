@@ -34,6 +34,53 @@ Entry entry() {
   return {M::kName, [](const OptionSet& options) { return std::make_unique<ModelAdapter<M>>(options); }};
 }
 
+template <class M>
+concept HasAliases = requires {
+  M::aliases();
+};
+
+// The alias's fixed options are merged into the given ones; giving one of them another value is an
+// error naming the model that allows it.
+std::unique_ptr<Model> make_alias(
+    const ModelAlias& alias, const OptionSet& given,
+    const std::function<std::unique_ptr<Model>(const OptionSet&, const std::string&)>& make) {
+  OptionSet options = given;
+  for (const auto& [option, value] : alias.options) {
+    const auto it = given.find(option);
+    if (it != given.end() && it->second != value) {
+      throw InputError("model '" + alias.name + "' fixes option '" + option + "' = " + value + " (" +
+                       alias.description + "); for " + option + "=" + it->second + " use model '" + alias.model + "'");
+    }
+    options[option] = value;
+  }
+  return make(options, alias.name);
+}
+
+struct AliasEntry {
+  ModelAlias alias;
+  std::function<std::unique_ptr<Model>(const OptionSet&, const std::string&)> make;
+};
+
+template <class M>
+void add_aliases(std::vector<AliasEntry>& table) {
+  if constexpr (HasAliases<M>) {
+    for (const auto& alias : M::aliases()) {
+      table.push_back({alias, [](const OptionSet& options, const std::string& name) {
+                         return std::make_unique<ModelAdapter<M>>(options, name);
+                       }});
+    }
+  }
+}
+
+const std::vector<AliasEntry>& alias_entries() {
+  static const std::vector<AliasEntry> table = [] {
+    std::vector<AliasEntry> t;
+    add_aliases<TorranceSparrow>(t);
+    return t;
+  }();
+  return table;
+}
+
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       entry<Lambert>(),   entry<OrenNayar>(),  entry<AshikhminShirley>(), entry<Simonot>(),
@@ -48,9 +95,13 @@ std::unique_ptr<Model> make_single(const std::string& name, const OptionSet& opt
   for (const auto& e : entries()) {
     if (e.name == name) return e.make(options);
   }
+  for (const auto& a : alias_entries()) {
+    if (a.alias.name == name) return make_alias(a.alias, options, a.make);
+  }
   std::ostringstream msg;
   msg << "unknown model '" << name << "' (known:";
   for (const auto& e : entries()) msg << ' ' << e.name;
+  for (const auto& a : alias_entries()) msg << ' ' << a.alias.name;
   msg << "; combine with '+', e.g. oren-nayar+torrance-sparrow)";
   throw InputError(msg.str());
 }
@@ -76,6 +127,12 @@ std::vector<std::string> model_names() {
   std::vector<std::string> names;
   for (const auto& e : entries()) names.push_back(e.name);
   return names;
+}
+
+std::vector<ModelAlias> model_aliases() {
+  std::vector<ModelAlias> aliases;
+  for (const auto& a : alias_entries()) aliases.push_back(a.alias);
+  return aliases;
 }
 
 std::unique_ptr<Model> make_model(const std::string& name, const OptionSet& options) {

@@ -13,6 +13,10 @@ namespace roadbrdf {
 // Names of the single (non-composite) models, in display order.
 std::vector<std::string> model_names();
 
+// The other names models are known by (ModelAlias), in display order. make_model accepts them
+// wherever it accepts a model name, composites included.
+std::vector<ModelAlias> model_aliases();
+
 // Create a model from its name. A name with '+' is a composite (see composite.h); its options
 // may be given as "component.option" or, when unambiguous, as plain "option" (applied to every
 // component that declares it). Throws InputError for an unknown model or option.

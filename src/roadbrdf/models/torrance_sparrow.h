@@ -66,6 +66,19 @@ struct TorranceSparrow {
     };
   }
 
+  // Cook & Torrance, ACM TOG 1(1) 1982, eqs. 3-6: the v-cavity G of Torrance-Sparrow, the Beckmann
+  // distribution and the exact unpolarised dielectric Fresnel factor. Their R_s = F D G / (pi (n.l)(n.v))
+  // uses an unnormalised D (no 1/pi); with D normalised (int D cos = 1) it is F D G / ((n.l)(n.v)), i.e.
+  // 4 times the k_s = 1 value of eq. 3.7 here: a Cook-Torrance weight s is k_s = 4 s.
+  static std::vector<ModelAlias> aliases() {
+    return {{"cook-torrance",
+             kName,
+             "Cook-Torrance 1982: torrance-sparrow with profile=v-cavity, distribution=beckmann, "
+             "fresnel=exact-dielectric",
+             "Cook & Torrance, ACM TOG 1(1) 1982, eqs. 3-6",
+             {{"profile", "v-cavity"}, {"distribution", "beckmann"}, {"fresnel", "exact-dielectric"}}}};
+  }
+
   struct Resolved {
     Profile profile = Profile::kSmith;
     bool height_correlated = true;
