@@ -250,7 +250,8 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         max_iterations: int = 200, covariance: bool = True, warm_start: bool = True, solve_amplitudes: bool = True,
         joint_solver: str = "dense-schur", output: PathLike | None = None,
         fix: Mapping[str, float] | None = None, where: str = "",
-        group_by: str | Sequence[str] = ()) -> FitResult:
+        group_by: str | Sequence[str] = (),
+        bands: str | Sequence[float] | Sequence[str | Sequence[float]] | None = None) -> FitResult:
     """Fit one or more models to a dataset, exactly as ``roadbrdf fit`` does.
 
     Parameters
@@ -282,6 +283,9 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
     group_by : str or list of str
         Fit each group of geometries with equal angles separately, e.g. ``"theta_i"`` (``fit --group-by``);
         each :class:`ModelFit` has its ``group``.
+    bands : "LOWER:UPPER", (lower, upper), or a list of those [nm]
+        Fit the mean of the measured spectrum over each band, at the band's centre (``fit --band``;
+        not with ``wavelengths``), e.g. ``bands="590:610"`` on a 20 nm grid.
     output : path, optional
         Also write the fit file (JSON), as ``roadbrdf fit -o``.
 
@@ -313,7 +317,7 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
         [str(s) for s in shared], _numbers(fixed, "fixed"), _numbers(start, "start"), bound_pairs, str(loss),
         str(robust), bool(use_sigma), bool(solid_angle_weights), int(multistart), int(seed), wavelengths,
         int(threads), int(max_iterations), bool(covariance), bool(warm_start), bool(solve_amplitudes),
-        str(joint_solver), str(where), [str(c) for c in group_by])
+        str(joint_solver), str(where), [str(c) for c in group_by], bands)
     result = FitResult(summary)
     if output is not None:
         result.write(output)

@@ -166,13 +166,13 @@ void bind_fitting(py::module_& m) {
              return SpectralModel(s.models.at(i), wavelengths, table);
            })
       .def(
-          "file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits)); },
+          "file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits, s.notes)); },
           "The fit file's content as Python objects (dicts, lists, numbers).")
       .def("table", &FitSummary::table, "The ranking table `roadbrdf fit` prints.")
       .def("warnings", &FitSummary::warnings, py::arg("where"))
       .def(
-          "write", [](const FitSummary& s, const std::string& path) { write_fit_file(path, s.fits); }, py::arg("path"),
-          "Write the fit file (JSON, atomically), as `roadbrdf fit -o` does.");
+          "write", [](const FitSummary& s, const std::string& path) { write_fit_file(path, s.fits, s.notes); },
+          py::arg("path"), "Write the fit file (JSON, atomically), as `roadbrdf fit -o` does.");
 
   m.def(
       "fit",
@@ -184,7 +184,7 @@ void bind_fitting(py::module_& m) {
          const std::string& robust, bool use_sigma, bool solid_angle_weights, int multistart, unsigned seed,
          const py::object& wavelength_selection, int threads, int max_iterations, bool covariance, bool warm_start,
          bool solve_amplitudes, const std::string& joint_solver, const std::string& where,
-         const std::vector<std::string>& group_by) {
+         const std::vector<std::string>& group_by, const py::object& bands) {
         FitRequest request;
         request.models = models;
         request.options = options;
@@ -207,6 +207,7 @@ void bind_fitting(py::module_& m) {
         request.joint_solver = joint_solver;
         request.where = where;
         request.group_by = group_by;
+        request.bands = intervals_argument(bands, "bands");
         request.validate();
         const SpectralDataset data = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
         py::gil_scoped_release release;
@@ -217,7 +218,7 @@ void bind_fitting(py::module_& m) {
       py::arg("start"), py::arg("bounds"), py::arg("loss"), py::arg("robust"), py::arg("use_sigma"),
       py::arg("solid_angle_weights"), py::arg("multistart"), py::arg("seed"), py::arg("wavelength_selection"),
       py::arg("threads"), py::arg("max_iterations"), py::arg("covariance"), py::arg("warm_start"),
-      py::arg("solve_amplitudes"), py::arg("joint_solver"), py::arg("where"), py::arg("group_by"));
+      py::arg("solve_amplitudes"), py::arg("joint_solver"), py::arg("where"), py::arg("group_by"), py::arg("bands"));
   m.def(
       "params_table",
       [](const std::string& fit_file, const py::object& wavelength_selection, const std::vector<std::string>& models,

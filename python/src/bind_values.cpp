@@ -1,5 +1,6 @@
 // Lists of numbers from Python: a string in the grammar of core/range.h ("400:700:10,800"), a
 // number, or a sequence of numbers; the same checks as on the command line.
+#include <fmt/core.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "binding.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/core/range.h"
 
 namespace py = pybind11;
 
@@ -27,6 +29,29 @@ std::vector<double> values_argument(const py::object& value, const std::string& 
   }
   check_range_values(values, field, rules);
   return values;
+}
+
+std::vector<std::pair<double, double>> intervals_argument(const py::object& value, const std::string& field) {
+  std::vector<std::pair<double, double>> out;
+  if (value.is_none()) return out;
+  auto one = [&field](const py::handle& item) -> std::pair<double, double> {
+    if (py::isinstance<py::str>(item)) return parse_interval(item.cast<std::string>(), field);
+    const py::sequence pair = py::reinterpret_borrow<py::sequence>(item);
+    if (!py::isinstance<py::sequence>(item) || py::len(pair) != 2) {
+      throw FieldError(field, "expected 'LOWER:UPPER' or a (lower, upper) pair");
+    }
+    const double lower = pair[0].cast<double>(), upper = pair[1].cast<double>();
+    return parse_interval(fmt::format("{}:{}", lower, upper), field);
+  };
+  if (py::isinstance<py::str>(value)) return {one(value)};
+  if (!py::isinstance<py::sequence>(value)) throw FieldError(field, "expected 'LOWER:UPPER' or a list of those");
+  const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
+  // One (lower, upper) pair of numbers, or a list of intervals.
+  if (py::len(items) == 2 && !py::isinstance<py::str>(items[0]) && !py::isinstance<py::sequence>(items[0])) {
+    return {one(value)};
+  }
+  for (const auto& item : items) out.push_back(one(item));
+  return out;
 }
 
 void bind_values(py::module_& m) {

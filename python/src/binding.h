@@ -67,6 +67,9 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
 // grammar of core/range.h, checked with `rules`; errors name `field` (the Python argument).
 std::vector<double> values_argument(const pybind11::object& value, const std::string& field,
                                     const RangeRules& rules = {});
+// Intervals [lower, upper] from None, "LOWER:UPPER", a (lower, upper) pair, or a list of those
+// (parse_interval, core/range.h: the command line's grammar). Throws FieldError(field).
+std::vector<std::pair<double, double>> intervals_argument(const pybind11::object& value, const std::string& field);
 void bind_values(pybind11::module_& m);  // bind_values.cpp: parse_range, values, did_you_mean
 
 // JSON (e.g. a fit file's content; nlohmann::json or ordered_json) as Python dicts (in the JSON's

@@ -37,6 +37,26 @@ TEST(Range, NumbersListsRangesAndMixes) {
   EXPECT_EQ(parse_range_list("350:2490:20", "x").size(), 108u);  // (2490 - 350) / 20 + 1
 }
 
+TEST(Range, IntervalsAreLowerColonUpper) {
+  EXPECT_EQ(parse_interval("590:610", "--band"), (std::pair<double, double>{590.0, 610.0}));
+  EXPECT_EQ(parse_interval(" -1.5 : 2e1 ", "bounds.x"), (std::pair<double, double>{-1.5, 20.0}));
+  EXPECT_EQ(parse_interval("3:3", "--drop"), (std::pair<double, double>{3.0, 3.0}));
+  auto message = [](const std::string& text) {
+    try {
+      parse_interval(text, "--band");
+    } catch (const FieldError& e) {
+      EXPECT_EQ(e.field(), "--band");
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("600"), "--band: expected LOWER:UPPER, got '600'");
+  EXPECT_EQ(message("1:2:3"), "--band: expected LOWER:UPPER, got '1:2:3'");
+  EXPECT_EQ(message("610:590"), "--band: '610:590': LOWER is above UPPER");
+  EXPECT_EQ(message("a:610"), "--band: 'a' in 'a:610' is not a finite number");
+  EXPECT_EQ(message("590:inf"), "--band: 'inf' in '590:inf' is not a finite number");
+}
+
 TEST(Range, BothEndsIncludedOrAnError) {
   const std::string m = message_of("0:50:30");
   EXPECT_NE(m.find("--sun-zenith: '0:50:30'"), std::string::npos) << m;

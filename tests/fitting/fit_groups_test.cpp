@@ -241,5 +241,44 @@ TEST(FitGroups, GroupedFitFileSelectorsAndParameterTable) {
             "format: 'latx' is not one of table, csv, markdown, latex (did you mean 'latex'?)");
 }
 
+TEST(FitBands, ABandIsTheMeanOfTheLinearSpectrumFittedAtItsCentre) {
+  // Lambert data with an albedo that is not linear in wavelength, on a 20 nm grid. The band 590-610 nm
+  // is the mean of the piecewise-linear spectrum over the band: by the trapezoid rule on the pieces
+  // 590-600 and 600-610, (a(590) + 2 a(600) + a(610)) / 4 with a(590) = (a(580) + a(600)) / 2 and
+  // a(610) = (a(600) + a(620)) / 2, i.e. (a580 + 6 a600 + a620) / 8. Lambert is linear in its albedo,
+  // so the fit recovers that mean exactly.
+  const auto lambert = make_model("lambert");
+  const std::vector<double> wavelengths = {560, 580, 600, 620, 640};
+  auto albedo = [&](std::size_t w) { return 0.05 + 1e-6 * std::pow(wavelengths[w] - 500.0, 2); };
+  const SpectralDataset data = test::synthetic_dataset(
+      *lambert, test::test_grid(3, 3, 3), wavelengths, [&](std::size_t w) { return std::vector<double>{albedo(w)}; },
+      0.0, 0.0, 1);
+  FitRequest request;
+  request.models = {"lambert"};
+  request.bands = {{590.0, 610.0}, {620.0, 640.0}};
+  const FitSummary s = run_fit(request, data);
+  ASSERT_EQ(s.wavelengths, (std::vector<double>{600.0, 630.0}));
+  const double expected = (albedo(1) + 6 * albedo(2) + albedo(3)) / 8;
+  EXPECT_NEAR(s.fits[0].wavelengths[0].parameters[0], expected, 1e-12);
+  // 620-640 holds no interior sample: the plain mean of its two ends.
+  EXPECT_NEAR(s.fits[0].wavelengths[1].parameters[0], (albedo(3) + albedo(4)) / 2, 1e-12);
+  ASSERT_EQ(s.notes.size(), 2u);
+  EXPECT_NE(s.notes[0].find("590-610 nm: the mean over the band"), std::string::npos) << s.notes[0];
+  EXPECT_NE(s.notes[0].find("(3 measured bands, 580-620 nm)"), std::string::npos) << s.notes[0];
+  EXPECT_NE(s.notes[0].find("fitted at 600 nm"), std::string::npos) << s.notes[0];
+  // The residuals file fits the same spectra.
+  EXPECT_EQ(fitted_spectra(request, data).wavelengths, s.wavelengths);
+
+  request.wavelengths = {600};
+  EXPECT_EQ(field_error([&] { request.validate(); }), "bands: give wavelengths or bands, not both");
+  request.wavelengths.clear();
+  request.bands = {{590.0, 610.0}, {600.0, 620.0}};
+  EXPECT_EQ(field_error([&] { request.validate(); }), "bands: 600:620 nm overlaps 590:610 nm");
+  request.bands = {{610.0, 610.0}};
+  EXPECT_EQ(field_error([&] { request.validate(); }), "bands: 610:610 nm is not a band 0 < lower < upper");
+  request.bands = {{620.0, 700.0}};
+  EXPECT_EQ(field_error([&] { run_fit(request, data); }).rfind("bands: ", 0), 0u);
+}
+
 }  // namespace
 }  // namespace roadbrdf

@@ -108,3 +108,39 @@ def test_params_errors(cli, grouped):
     assert r.returncode == 2 and "(did you mean 'oren-nayar'?)" in r.stderr, r.stderr
     with pytest.raises(roadbrdf.InputError, match="did you mean 'oren-nayar'"):
         roadbrdf.params(grouped, models="oren-nayr")
+
+
+def test_band_mean_fit_is_the_same_from_both_front_ends_and_recorded(cli, root, tmp_path):
+    # lazard.csv is on a 20 nm grid: --band 590:610 fits the mean of the measured spectrum over the band
+    # (linear between its two bands: (B590 + B610) / 2) at 600 nm.
+    out = tmp_path / "band.fit.json"
+    r = cli("fit", root / DATA, "--model", "lambert", "--band", "590:610", "-o", out)
+    note = "590-610 nm: the mean over the band of the measured spectrum"
+    assert f"roadbrdf: note: {note}" in r.stderr, r.stderr
+    content = json.loads(out.read_text())
+    assert content["fits"][0]["wavelengths"] == [600.0]
+    assert any(note in n for n in content["notes"])
+    result = roadbrdf.fit(root / DATA, "lambert", bands="590:610")
+    assert _without_timing(result.to_dict()) == _without_timing(content)
+    assert any(note in n for n in result.notes)
+    # Independently, in closed form: the unweighted Lambertian fit of the band mean is albedo = pi * mean.
+    plain = roadbrdf.fit(root / DATA, "lambert", bands="590:610", use_sigma=False)
+    data = roadbrdf.read_dataset(root / DATA)
+    w = list(data.wavelengths)
+    assert 600.0 not in w
+    band_mean = (data.brdf[:, w.index(590.0)] + data.brdf[:, w.index(610.0)]) / 2
+    assert plain.best.parameter("albedo")[0] == pytest.approx(np.pi * band_mean.mean(), rel=1e-8)
+
+@pytest.mark.parametrize("flags, kwargs, message", [
+    (["--band", "590:610", "--wavelengths", "600"], dict(bands="590:610", wavelengths="600"),
+     "give wavelengths or bands, not both"),
+    (["--band", "610:590"], dict(bands="610:590"), "610:590"),
+    (["--band", "590:610", "--band", "600:620"], dict(bands=["590:610", "600:620"]), "overlap"),
+])
+def test_band_errors_are_the_same_from_both_front_ends(cli, root, tmp_path, flags, kwargs, message):
+    r = cli("fit", root / DATA, "--model", "lambert", *flags, "-o", tmp_path / "x.json", check=False)
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+    with pytest.raises(roadbrdf.InputError) as e:
+        roadbrdf.fit(root / DATA, "lambert", **kwargs)
+    assert message in str(e.value)
+    assert not (tmp_path / "x.json").exists()

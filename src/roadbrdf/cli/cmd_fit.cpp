@@ -42,6 +42,7 @@ struct FitArgs {
   int multistart = 1;
   unsigned seed = 1;
   std::string wavelengths;
+  std::vector<std::string> bands;
   std::string where;
   std::vector<std::string> group_by;
   int threads = 1;
@@ -75,10 +76,7 @@ std::vector<std::string> split_commas(const std::vector<std::string>& items) {
 std::map<std::string, std::pair<double, double>> parse_bounds(const std::vector<std::string>& items) {
   std::map<std::string, std::pair<double, double>> out;
   for (const auto& [name, text] : parse_option_assignments(items, "--bound")) {
-    const auto colon = text.find(':');
-    if (colon == std::string::npos) throw InputError("--bound " + name + ": expected LOWER:UPPER, got '" + text + "'");
-    out[name] = {parse_number(text.substr(0, colon), "--bound " + name),
-                 parse_number(text.substr(colon + 1), "--bound " + name)};
+    out[name] = parse_interval(text, "--bound " + name);
   }
   return out;
 }
@@ -94,6 +92,7 @@ void run(const FitArgs& a) {
   request.bounds = parse_bounds(a.bounds);
   request.shared = split_commas(a.shared);
   if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths");
+  for (const auto& band : a.bands) request.bands.push_back(parse_interval(band, "--band"));
   request.where = a.where;
   request.group_by = split_commas(a.group_by);
   request.loss = a.loss;
@@ -125,16 +124,12 @@ void run(const FitArgs& a) {
   for (const auto& note : summary.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
   fmt::print(report, "{}", summary.table());
   for (const auto& w : summary.warnings(a.output)) fmt::print(stderr, "roadbrdf: warning: {}\n", w);
-  write_fit_file(a.output, summary.fits);
+  write_fit_file(a.output, summary.fits, summary.notes);
   if (!a.residuals.empty()) {
     std::vector<const Model*> ptrs;
     for (const auto& m : summary.models) ptrs.push_back(m.get());
     AtomicFile out(a.residuals);
-    std::vector<std::string> notes;  // printed above
-    const SpectralDataset fitted =
-        request.wavelengths.empty()
-            ? data
-            : subset_wavelengths(data, select_wavelengths(data.wavelengths, request.wavelengths, &notes));
+    const SpectralDataset fitted = fitted_spectra(request, data);  // its notes are printed above
     write_residuals(out.stream(), fitted, ptrs, summary.fits, request.where);
     out.commit();
   }
@@ -181,6 +176,10 @@ void register_fit_command(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--seed", args.seed, "Seed of the multi-start points")->capture_default_str();
   c->add_option("--wavelengths", args.wavelengths, "Wavelengths to fit: START:STOP:STEP or a list, nm");
+  c->add_option("--band", args.bands,
+                "Fit the mean of the measured spectrum over LOWER:UPPER nm, at the band's centre (repeatable; "
+                "e.g. --band 590:610 on a 20 nm grid; not with --wavelengths)")
+      ->allow_extra_args(false);
   c->add_option("--where", args.where,
                 "Fit only the geometries where every comparison holds: COLUMN OP DEGREES joined by ',' or 'and', "
                 "e.g. 'theta_r<=70'; OP < <= > >= = !=; columns theta_i phi_i theta_r phi_r gamma alpha beta delta");

@@ -34,11 +34,8 @@ void run(const ResampleArgs& a) {
   const WavelengthBands bands = bands_from_edges(parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules()));
   std::vector<std::pair<double, double>> drop;
   for (const auto& item : a.drop) {
-    const auto colon = item.find(':');
-    if (colon == std::string::npos) throw InputError("--drop expects FROM:TO [nm], got '" + item + "'");
-    const double lo = parse_number(item.substr(0, colon), "--drop " + item);
-    const double hi = parse_number(item.substr(colon + 1), "--drop " + item);
-    if (!(lo > 0.0) || !(hi >= lo)) throw InputError("--drop " + item + ": need 0 < FROM <= TO [nm]");
+    const auto [lo, hi] = parse_interval(item, "--drop");
+    if (!(lo > 0.0)) throw FieldError("--drop", "'" + item + "': need 0 < FROM <= TO [nm]");
     drop.emplace_back(lo, hi);
   }
   std::string noisy_text;

@@ -99,6 +99,7 @@ std::string flag_for_field(const std::string& field) {
                                                              {"options", "--option"},
                                                              {"fixed", "--fix"},
                                                              {"bounds", "--bound"},
+                                                             {"bands", "--band"},
                                                              {"methods", "--method"},
                                                              {"use_sigma", "--no-sigma"},
                                                              {"fit", "--fit"},

@@ -127,4 +127,15 @@ std::vector<double> parse_range_list(std::string_view text, std::string_view fie
   return out;
 }
 
+std::pair<double, double> parse_interval(std::string_view text, std::string_view field) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string_view::npos || text.find(':', colon + 1) != std::string_view::npos) {
+    fail(field, fmt::format("expected LOWER:UPPER, got '{}'", text));
+  }
+  const double lower = number(text.substr(0, colon), field, text);
+  const double upper = number(text.substr(colon + 1), field, text);
+  if (lower > upper) fail(field, fmt::format("'{}': LOWER is above UPPER", text));
+  return {lower, upper};
+}
+
 }  // namespace roadbrdf

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace roadbrdf {
@@ -44,5 +45,9 @@ std::vector<double> parse_range_list(std::string_view text, std::string_view fie
 // The same checks applied to values given directly (e.g. a Python list of numbers): finite,
 // distinct, and the rules above. Throws InputError("FIELD: ...").
 void check_range_values(const std::vector<double>& values, std::string_view field, const RangeRules& rules = {});
+
+// An interval written "LOWER:UPPER" (a wavelength band 590:610, a --drop range, a parameter's
+// bounds): two finite numbers with LOWER <= UPPER. Throws FieldError("FIELD: ...") quoting the text.
+std::pair<double, double> parse_interval(std::string_view text, std::string_view field);
 
 }  // namespace roadbrdf

@@ -285,7 +285,7 @@ std::size_t best_fit_index(const std::vector<FitResult>& fits) {
   return first[best];
 }
 
-nlohmann::json fit_file_json(const std::vector<FitResult>& fits) {
+nlohmann::json fit_file_json(const std::vector<FitResult>& fits, const std::vector<std::string>& notes) {
   using nlohmann::json;
   json j;
   j["format"] = "roadbrdf-fit";
@@ -298,6 +298,7 @@ nlohmann::json fit_file_json(const std::vector<FitResult>& fits) {
   }
   j["best"] = fits[best_fit_index(fits)].model;
   j["best_criterion"] = grouped ? "bic_total summed over the groups" : "bic_total";
+  if (!notes.empty()) j["notes"] = notes;
   j["units"] = {
       {"wavelengths", "nm"},
       {"parameters", "see parameter_units"},
@@ -320,8 +321,9 @@ nlohmann::json fit_file_json(const std::vector<FitResult>& fits) {
   return j;
 }
 
-void write_fit_file(const std::string& path, const std::vector<FitResult>& fits) {
-  const nlohmann::json j = fit_file_json(fits);
+void write_fit_file(const std::string& path, const std::vector<FitResult>& fits,
+                    const std::vector<std::string>& notes) {
+  const nlohmann::json j = fit_file_json(fits, notes);
   AtomicFile out(path);
   out.stream() << dump_json(j, 1) << '\n';
   out.commit();

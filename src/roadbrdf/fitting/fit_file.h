@@ -60,11 +60,14 @@ nlohmann::json fit_to_json(const FitResult& fit);
 // Index of the fit with the lowest total BIC (ties: the first). Throws InputError if empty.
 std::size_t best_fit_index(const std::vector<FitResult>& fits);
 
-// The fit file's content (what write_fit_file writes).
-nlohmann::json fit_file_json(const std::vector<FitResult>& fits);
+// The fit file's content (what write_fit_file writes). `notes` (FitSummary::notes: wavelengths answered by
+// the nearest band, band means) are kept in the file's "notes" so a fit at 600 nm made of the 590-610 nm mean
+// says so wherever the file goes.
+nlohmann::json fit_file_json(const std::vector<FitResult>& fits, const std::vector<std::string>& notes = {});
 
 // Write the fit file atomically.
-void write_fit_file(const std::string& path, const std::vector<FitResult>& fits);
+void write_fit_file(const std::string& path, const std::vector<FitResult>& fits,
+                    const std::vector<std::string>& notes = {});
 
 // Residual table (long CSV): theta_i,phi_i,theta_r,phi_r [deg],wavelength [nm],model,[group,]measured,fitted,
 // residual [sr^-1], for the geometries each fit used: those of `where` (io/geometry_selection.h) in its group.

@@ -102,6 +102,21 @@ std::vector<PlannedFit> plan_fits(const FitRequest& r) {
                        fmt::format("[{}, {}] is not an interval lower < upper", range.first, range.second));
     }
   }
+  if (!r.bands.empty() && !r.wavelengths.empty()) {
+    throw FieldError("bands", "give wavelengths or bands, not both");
+  }
+  for (std::size_t b = 0; b < r.bands.size(); ++b) {
+    const auto [lower, upper] = r.bands[b];
+    if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower > 0.0) || !(lower < upper)) {
+      throw FieldError("bands", fmt::format("{}:{} nm is not a band 0 < lower < upper", lower, upper));
+    }
+    for (std::size_t c = 0; c < b; ++c) {
+      if (lower < r.bands[c].second && r.bands[c].first < upper) {
+        throw FieldError("bands",
+                         fmt::format("{}:{} nm overlaps {}:{} nm", lower, upper, r.bands[c].first, r.bands[c].second));
+      }
+    }
+  }
   if (!r.where.empty()) (void)parse_geometry_selection(r.where, "where");
   (void)group_geometries({}, r.group_by, "group_by");  // the column names
   std::set<std::string> names_seen;
@@ -318,8 +333,8 @@ FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, co
   const SpectralDataset* data = &dataset;
   SpectralDataset subset;
   std::vector<std::string> notes;
-  if (!request.wavelengths.empty()) {
-    subset = subset_wavelengths(dataset, select_wavelengths(dataset.wavelengths, request.wavelengths, &notes));
+  if (!request.wavelengths.empty() || !request.bands.empty()) {
+    subset = fitted_spectra(request, dataset, &notes);
     data = &subset;
   }
   const std::vector<GeometryGroup> groups = fit_groups(request, *data);

@@ -37,6 +37,10 @@ struct FitRequest {
   // Subset of the dataset's [nm]; empty: all. One not on the grid is answered by the nearest band,
   // with a note in FitSummary::notes (select_wavelengths).
   std::vector<double> wavelengths;
+  // Or bands [lower, upper] nm (not with `wavelengths`): each band's spectrum is the mean over the band
+  // of the piecewise-linear measured spectrum (resample_dataset, io/resample.h; sigma propagated),
+  // fitted and reported at the band's centre, with a note naming the measured bands it averages.
+  std::vector<std::pair<double, double>> bands;
   // Geometries (io/geometry_selection.h): `where` selects ("theta_r<=70"), `group_by` fits each
   // group of equal angles separately ({"theta_i"}: one fit per incidence angle).
   std::string where;
@@ -96,6 +100,12 @@ struct FitSummary {
 // Called with a label ("fit MODEL (i/n)") for each model; returns the progress callback of that fit
 // (or an empty function).
 using FitProgress = std::function<std::function<void(std::size_t, std::size_t)>(const std::string& label)>;
+
+// The spectra a request fits: the dataset, its selected wavelengths, or its band means (`bands`), with
+// the notes on nearest bands and band means. run_fit and the residuals file both use it. Throws
+// FieldError ("wavelengths", "bands").
+SpectralDataset fitted_spectra(const FitRequest& request, const SpectralDataset& data,
+                               std::vector<std::string>* notes = nullptr);
 
 // Validate, select the wavelengths, and fit every model. Throws FieldError / InputError.
 FitSummary run_fit(const FitRequest& request, const SpectralDataset& data, const FitProgress& progress = {});

@@ -10,6 +10,8 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
 
@@ -84,6 +86,43 @@ SpectralDataset subset_wavelengths(const SpectralDataset& data, const std::vecto
     }
   }
   return out;
+}
+
+SpectralDataset fitted_spectra(const FitRequest& request, const SpectralDataset& data,
+                               std::vector<std::string>* notes) {
+  if (!request.wavelengths.empty()) {
+    return subset_wavelengths(data, select_wavelengths(data.wavelengths, request.wavelengths, notes));
+  }
+  if (request.bands.empty()) return data;
+  WavelengthBands bands;
+  for (const auto& [lower, upper] : request.bands) {
+    bands.lower.push_back(lower);
+    bands.upper.push_back(upper);
+  }
+  SpectralDataset means;
+  try {
+    means = resample_dataset(data, bands);
+  } catch (const FieldError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw FieldError("bands", e.what());
+  }
+  if (notes == nullptr) return means;
+  for (const auto& [lower, upper] : request.bands) {
+    const auto weights = band_average_weights(data.wavelengths, lower, upper);
+    std::size_t first = data.wavelengths.size(), last = 0, used = 0;
+    for (const auto& [k, weight] : weights) {
+      if (weight == 0.0) continue;
+      ++used;
+      first = std::min(first, k);
+      last = std::max(last, k);
+    }
+    notes->push_back(fmt_double(lower) + "-" + fmt_double(upper) + " nm: the mean over the band of the measured " +
+                     "spectrum, linear between its bands (" + std::to_string(used) + " measured bands, " +
+                     fmt_double(data.wavelengths[first]) + "-" + fmt_double(data.wavelengths[last]) +
+                     " nm), fitted at " + fmt_double(0.5 * (lower + upper)) + " nm");
+  }
+  return means;
 }
 
 }  // namespace roadbrdf
