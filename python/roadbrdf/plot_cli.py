@@ -271,8 +271,15 @@ def main(argv=None):
     return 0
 
 
+def _warning(message, category, filename, lineno, file=None, line=None):
+    print(f"roadbrdf: warning: {message}", file=sys.stderr)
+
+
 def run(argv=None):
-    """:func:`main` with the errors as the program reports them: a message on standard error, status 2."""
+    """:func:`main` with the errors and warnings as the program reports them: ``roadbrdf: warning: ...``, and
+    an error message on standard error with status 2."""
+    import warnings
+    warnings.showwarning = _warning
     try:
         return main(argv)
     except OutputFolderError as e:

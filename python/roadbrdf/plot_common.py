@@ -223,10 +223,11 @@ def measured_at_incidence(d: Dataset, theta_i: float, label: str, tolerance=0.5)
 
 
 def decade_floor(values) -> float:
-    """The power of ten at or below the smallest positive value (the centre of a logarithmic radius)."""
+    """The centre of a logarithmic radius: the power of ten a decade below the smallest positive value (so
+    that the smallest values stay visible away from the centre)."""
     v = np.asarray(values, dtype=float)
     v = v[np.isfinite(v) & (v > 0)]
-    return 10.0 ** math.floor(math.log10(v.min())) if v.size else 1e-3
+    return 10.0 ** (math.floor(math.log10(v.min())) - 1) if v.size else 1e-3
 
 
 def log_radius(values, floor):

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import os
 
+import matplotlib.ticker as mticker
 import numpy as np
 
 from . import read_fit
@@ -38,6 +39,8 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
     measured = d.brdf[:, index]
     rmse = {}
     for f in fits["fits"]:
+        if "rmse" not in f:  # a fit file written by hand
+            continue
         group = "".join(f", {k}={v:g}" for k, v in (f.get("group") or {}).items())
         rmse[f["model"] + group] = (np.asarray(f["wavelengths"], dtype=float), np.asarray(f["rmse"], dtype=float))
     several_bands = any(x.size > 1 for x, _ in rmse.values())
@@ -54,6 +57,8 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
         axis.set_xlim(lo, hi)
         axis.set_ylim(lo, hi)
         axis.set_aspect("equal", adjustable="box")
+        for which in (axis.xaxis, axis.yaxis):
+            which.set_minor_formatter(mticker.NullFormatter())
         axis.legend(fontsize=8)
     axis.set_xlabel("measured " + UNIT)
     axis.set_ylabel("fitted " + UNIT)

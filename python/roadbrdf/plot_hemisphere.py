@@ -97,7 +97,7 @@ def hemisphere(model=None, params=None, theta_i=45.0, wavelength=None, log=False
         lo = float(positive.min()) if positive.size else 1e-6
         norm = mcolors.LogNorm(lo, max(float(np.nanmax(every)), lo * 10))
     else:
-        norm = plt.Normalize(min(0.0, float(np.nanmin(every))), float(np.nanmax(every)))
+        norm = plt.Normalize(float(np.nanmin(every)), float(np.nanmax(every)))
     n = len(angles)
     kinds = ["polar"] * n + (["3d"] * n if lobe else [])
     size = (5.2, 4.4)

@@ -131,8 +131,8 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
             axis.text(0.98, 0.98, "forward\n(specular side)", transform=axis.transAxes, ha="right", va="top",
                       fontsize=8)
         axis.set_title(f"$\\theta_i$ = {t:g}°" + ("" if cartesian else " (angle: $\\theta_r$)"), fontsize=10)
-    axes[0].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12 if cartesian else -0.05),
-                   frameon=False)
+    axes[-1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12 if cartesian else -0.05),
+                    frameon=False)
     fig.suptitle(title or "BRDF in the plane of incidence" + (f", {wavelength:g} nm" if wavelength else ""))
     if n == 1:
         data = dict(per_incidence[0][1])

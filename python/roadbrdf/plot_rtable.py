@@ -4,6 +4,7 @@ the sample's (S1, Q0) among the CIE R classes, the class diagram's range followi
 from __future__ import annotations
 
 import os
+import textwrap
 
 import matplotlib.colors as mcolors
 import numpy as np
@@ -107,6 +108,6 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
     label = name if name and name != model else None
     fig.suptitle(title or "Road r-table: " + (f"{label} ({model})" if label else model or "table"))
     if t.get("note"):
-        fig.text(0.5, 0.005, t["note"], ha="center", va="bottom", fontsize=8, color="gray", wrap=True)
+        fig.supxlabel(textwrap.fill(t["note"], 150), fontsize=8, color="gray")
     t["diagram_range"] = (s1_top, q0_top)
     return finish(fig, output, t, axes, dpi)
