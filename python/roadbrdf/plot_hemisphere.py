@@ -33,7 +33,7 @@ def _equal_box(ax3, x, y, z):
             lo, hi = lo - 0.5, hi + 0.5
         setter(lo, hi)
         spans.append(hi - lo)
-    ax3.set_box_aspect(spans)
+    ax3.set_box_aspect(spans, zoom=0.85)  # room for the axis labels
 
 
 def _lobe_xyz(theta_r, dphi, f):

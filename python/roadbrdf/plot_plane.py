@@ -84,13 +84,14 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
             curves.append((f"{name} measured ({d.wavelengths[band]:g} nm)", (x, y)))
         per_incidence.append((t, curves))
     every = np.concatenate([y for _, curves in per_incidence for _, (_, y) in curves])
-    top = float(np.nanmax(every)) if every.size else 1.0
-    floor = decade_floor(every)
+    floor = decade_floor(every)  # a logarithmic radius is shared by the panels; a linear one is each panel's
     n = len(angles)
-    fig, axes = panels([None if cartesian else "polar"] * n, ax=ax, fig=fig, ncols=min(n, 2 if not cartesian else 4),
+    fig, axes = panels([None if cartesian else "polar"] * n, ax=ax, fig=fig, ncols=min(n, 4) if cartesian else (n if n <= 3 else -(-n // 2)),
                        size=(5.6, 4.6) if not cartesian else (5.0, 4.0), what="incidences")
     measured_labels = {lab for _, curves in per_incidence for lab, _ in curves if " measured (" in lab}
     for axis, (t, curves) in zip(axes, per_incidence):
+        values = np.concatenate([y for _, (_, y) in curves])
+        top = float(np.nanmax(values)) if values.size and np.isfinite(values).any() else 1.0
         for j, (label, (x, y)) in enumerate(curves):
             style = dict(ls="none", marker="o", ms=5) if label in measured_labels else dict(lw=1.5)
             if cartesian:
@@ -131,7 +132,7 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
             axis.text(0.98, 0.98, "forward\n(specular side)", transform=axis.transAxes, ha="right", va="top",
                       fontsize=8)
         axis.set_title(f"$\\theta_i$ = {t:g}°" + ("" if cartesian else " (angle: $\\theta_r$)"), fontsize=10)
-    axes[-1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12 if cartesian else -0.05),
+    axes[-1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2 if cartesian else -0.05),
                     frameon=False)
     fig.suptitle(title or "BRDF in the plane of incidence" + (f", {wavelength:g} nm" if wavelength else ""))
     if n == 1:

@@ -97,7 +97,9 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
     ax.set_ylabel(UNIT)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
-    names = ", ".join(dict.fromkeys(list(labels) + [lab.split(" (")[0] for lab in data if kinds[lab] != "measured"]))
+    measured_stems = {stem(s) for s in sources if isinstance(s, (str, os.PathLike))}
+    others = [lab.split(" (")[0] for lab in data if kinds[lab] != "measured"]
+    names = ", ".join(dict.fromkeys(list(labels) + [o for o in others if o not in measured_stems]))
     ax.set_title(title or f"Spectral BRDF of {names}" + (" (bands: $\\pm1\\sigma$)" if datasets else ""),
                  fontsize=10)
     fig.roadbrdf_geometries = geometries
