@@ -9,15 +9,15 @@ per-incidence parameters: a line per model with error bars). The numbers are tho
 
 from __future__ import annotations
 
-import math
+import os
 
 import numpy as np
 
-from .plot import _finish, plt
+from .plot_common import finish as _finish, panels
 
 
 def params(fit_file, parameters=None, models=None, against="wavelength", wavelength=None, ax=None, title=None,
-           output=None):
+           output=None, *, fig=None, dpi=None):
     """Plot fitted parameters ± standard error.
 
     Parameters
@@ -33,6 +33,10 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
         With a group column: the wavelength [nm] (the nearest fitted band answers; default: the middle one).
     ax : matplotlib Axes or list of Axes, optional
         Draw into these (one per parameter) instead of a new figure.
+    fig : matplotlib Figure or SubFigure, optional
+        Add the panels to this figure.
+    dpi : float, optional
+        Resolution of the raster parts when saving ``output``.
     """
     from . import params as _params
     table = _params(fit_file, models=models or ())
@@ -56,22 +60,12 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
         if abs(band - wanted) > 1e-6:
             note = f" (nearest band to {wanted:g} nm)"
         table = table[table["wavelength_nm"] == band]
-    if ax is None:
-        columns = min(len(names), 3)
-        rows = math.ceil(len(names) / columns)
-        fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.4 * rows), squeeze=False)
-        axes = list(axes.ravel())
-        for extra in axes[len(names):]:
-            extra.remove()  # no empty panels
-    else:
-        axes = list(np.atleast_1d(ax))
-        if len(axes) != len(names):
-            raise ValueError(f"ax: {len(axes)} axes given for {len(names)} parameters")
-        fig = axes[0].figure
-    fig.roadbrdf_data = {}
+    columns = min(len(names), 3)
+    fig, axes = panels([None] * len(names), ax=ax, fig=fig, ncols=columns, size=(4.2, 3.4), what="parameters")
+    data = {}
     others = [g for g in groups if g != against]
     for axis, p in zip(axes, names):
-        fig.roadbrdf_data[p] = {}
+        data[p] = {}
         keys = ["model", *(g + "_deg" for g in others)]
         for key, rows in table.groupby(keys if len(keys) > 1 else "model", sort=False):
             key = key if isinstance(key, tuple) else (key,)
@@ -81,7 +75,7 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
             e = rows[p + "_stderr"].to_numpy(float)
             if not np.isfinite(y).any():
                 continue
-            fig.roadbrdf_data[p][label] = (x, y, e)
+            data[p][label] = (x, y, e)
             if against == "wavelength" and x.size > 1:
                 line, = axis.plot(x, y, label=label)
                 axis.fill_between(x, y - e, y + e, color=line.get_color(), alpha=0.25, linewidth=0)
@@ -90,16 +84,15 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
         axis.set_xlabel("wavelength [nm]" if against == "wavelength" else f"{against} [deg]")
         axis.set_ylabel(f"{p} [{units[p]}]")
         axis.grid(True, alpha=0.3)
-        if fig.roadbrdf_data[p]:
+        if data[p]:
             axis.legend(fontsize="small")
     if against != "wavelength":
-        fig.roadbrdf_data["wavelength_nm"] = band
-    heading = title or f"{fit_file}: fitted parameters ± 1 standard error"
+        data["wavelength_nm"] = band
+    heading = title or f"{os.path.basename(os.fspath(fit_file))}: fitted parameters ± 1 standard error"
     if against != "wavelength":
         heading += f" at {band:g} nm{note}"
     fig.suptitle(heading, fontsize="medium")
-    fig.tight_layout()
-    return _finish(fig, output)
+    return _finish(fig, output, data, axes, dpi)
 
 
 def add_parser(sub, output):
@@ -116,4 +109,4 @@ def add_parser(sub, output):
 
 
 def run(a):
-    params(a.fit_file, a.parameter, a.model, a.against, a.wavelength, title=a.title, output=a.output)
+    params(a.fit_file, a.parameter, a.model, a.against, a.wavelength, title=a.title, output=a.output, dpi=a.dpi)

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from .plot import _finish, plt
+from .plot_common import finish as _finish, panels
 
 _CLASS_COLOURS = {"R1": "tab:blue", "R2": "tab:green", "R3": "tab:orange", "R4": "tab:red"}
 _S1_BANDS = [("R1", 0.0, 0.42), ("R2", 0.42, 0.85), ("R3", 0.85, 1.35), ("R4", 1.35, math.inf)]
@@ -68,8 +68,11 @@ def pareto(x, y, maximise_y=True):
     return sorted(keep, key=lambda i: x[i])
 
 
-def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None):
-    """Solar albedo against Q0 or S1 with the Pareto front and the R-class regions."""
+def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None, *, ax=None, dpi=None):
+    """Solar albedo against Q0 or S1 with the Pareto front and the R-class regions (``ax``: draw into it).
+
+    ``fig.roadbrdf_data``: ``albedo`` and ``lighting`` (N,) with their ``albedo_column``/``lighting_column``,
+    ``classes`` (N,), ``pareto`` (indices of the front, by increasing albedo)."""
     rows, _, header = read_results(results) if isinstance(results, str) else results
     if method is not None:
         rows = [r for r in rows if r.get("method") == method]
@@ -80,7 +83,7 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None)
     x = np.array([r[col] for r in rows], dtype=float)
     y = np.array([r[ycol] for r in rows], dtype=float)
     classes = [r.get("class [R]", "") for r in rows]
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    fig, (ax,) = panels([None], ax=ax, size=(6.4, 4.8))
     if axis == "S1":
         top = max(1.5, float(np.nanmax(y)) * 1.1)
         for name, lo, hi in _S1_BANDS:
@@ -98,11 +101,16 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None)
     ax.set_ylabel("Q0 [sr$^{-1}$]" if axis == "Q0" else "S1")
     ax.legend(fontsize=8)
     ax.set_title(title or f"albedo - {axis} trade-off ({len(rows)} candidates)")
-    return _finish(fig, output)
+    data = {"albedo": x, "lighting": y, "albedo_column": col, "lighting_column": ycol, "classes": classes,
+            "pareto": front}
+    return _finish(fig, output, data, [ax], dpi)
 
 
-def sensitivity(results, outputs=None, method=None, title=None, output=None):
-    """One panel per (output, variable): the output's mean at each value of the variable, min-max band."""
+def sensitivity(results, outputs=None, method=None, title=None, output=None, *, ax=None, fig=None, dpi=None):
+    """One panel per (output, variable): the output's mean at each value of the variable, min-max band
+    (``ax``: one axis per panel, row by row; ``fig``: a Figure / SubFigure to draw into).
+
+    ``fig.roadbrdf_data``: {output: {variable: {"x", "mean", "min", "max"}}}."""
     rows, variables, header = read_results(results) if isinstance(results, str) else results
     if method is not None:
         rows = [r for r in rows if r.get("method") == method]
@@ -112,9 +120,14 @@ def sensitivity(results, outputs=None, method=None, title=None, output=None):
         raise ValueError("the study has no variables")
     outputs = outputs or [_albedo_column(header, None), "Q0 [sr^-1]", "S1 [1]"]
     outputs = [o for o in outputs if o in header]
-    fig, axes = plt.subplots(len(outputs), len(variables), figsize=(3.2 * len(variables), 2.6 * len(outputs)),
-                             squeeze=False)
+    if not outputs:
+        raise ValueError("none of the outputs asked for is a column of the results")
+    fig, flat = panels([None] * (len(outputs) * len(variables)), ax=ax, fig=fig, ncols=len(variables),
+                       size=(3.2, 2.6), what="panels (one per output and variable)")
+    axes = [flat[i * len(variables):(i + 1) * len(variables)] for i in range(len(outputs))]
+    data = {}
     for i, out in enumerate(outputs):
+        data[out] = {}
         for j, var in enumerate(variables):
             ax = axes[i][j]
             values = [r[var] for r in rows]
@@ -134,6 +147,8 @@ def sensitivity(results, outputs=None, method=None, title=None, output=None):
             mean = [float(np.mean(groups[k])) for k in order]
             lo = [float(np.min(groups[k])) for k in order]
             hi = [float(np.max(groups[k])) for k in order]
+            data[out][var] = {"x": list(order) if not numeric else np.asarray(pos, dtype=float),
+                              "mean": np.asarray(mean), "min": np.asarray(lo), "max": np.asarray(hi)}
             ax.fill_between(pos, lo, hi, alpha=0.2)
             ax.plot(pos, mean, "o-")
             if not numeric:
@@ -144,8 +159,7 @@ def sensitivity(results, outputs=None, method=None, title=None, output=None):
             if j == 0:
                 ax.set_ylabel(out.replace(" [1]", ""))
     fig.suptitle(title or "sensitivity: mean (line) and range (band) over the other variables")
-    fig.tight_layout()
-    return _finish(fig, output)
+    return _finish(fig, output, data, flat, dpi)
 
 
 def add_parser(sub, output):
@@ -162,12 +176,12 @@ def add_parser(sub, output):
 
 
 def run(a):
-    draw(a.result, a.figure, a.axis, a.albedo, a.method, a.title, a.output)
+    draw(a.result, a.figure, a.axis, a.albedo, a.method, a.title, a.output, dpi=a.dpi)
 
 
-def draw(results, kind="plane", axis="Q0", albedo=None, method=None, title=None, output=None):
+def draw(results, kind="plane", axis="Q0", albedo=None, method=None, title=None, output=None, *, dpi=None):
     """``roadbrdf plot study``: the trade-off plane (``kind="plane"``) or the sensitivity panels."""
     data = read_results(results)
     if kind == "plane":
-        return plane(data, axis, albedo, method, title, output)
-    return sensitivity(data, None, method, title, output)
+        return plane(data, axis, albedo, method, title, output, dpi=dpi)
+    return sensitivity(data, None, method, title, output, dpi=dpi)

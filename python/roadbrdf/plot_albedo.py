@@ -1,0 +1,149 @@
+"""Albedo figure (``roadbrdf plot albedo``): black-sky albedo against sun zenith with the white-sky value and
+the blue-sky albedo of each atmosphere given, and the spectral albedo when there are several bands.
+
+The input is what ``roadbrdf albedo --json`` writes (one result per atmosphere, or several files), or a fit
+file / MIX.json / model from which the albedo is computed for each atmosphere (``atmospheres``, e.g.
+``spectrl2:aod=0.05`` and ``spectrl2:aod=0.4``)."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+
+from . import Model, SpectralModel, read_fit
+from .albedos import albedo as compute_albedo
+from .plot_common import finish, panels, stem
+
+__all__ = ["albedo"]
+
+
+def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
+    items = result if isinstance(result, (list, tuple)) else [result]
+    out = []
+    for k, item in enumerate(items):
+        name = stem(item) if isinstance(item, (str, os.PathLike)) else f"result {k + 1}"
+        if isinstance(item, (str, os.PathLike)):
+            with open(item, encoding="utf-8") as fh:
+                content = json.load(fh)
+            if "black_sky" in content:
+                item = content
+            else:
+                item = read_fit(item, fit)
+        if isinstance(item, dict):
+            if atmospheres:
+                raise ValueError(f"atmospheres apply to a fit file or a model, not to an albedo result ('{name}')")
+            out.append((name, item))
+            continue
+        if not isinstance(item, (SpectralModel, Model)):
+            raise ValueError(f"albedo: expected an albedo result, a fit file, a mixture or a model, got {item!r}")
+        for atmosphere in atmospheres or [None]:
+            r = compute_albedo(item, params if isinstance(item, Model) else None, sun_zenith=sun_zenith,
+                               atmosphere=atmosphere, wavelengths=wavelengths)
+            out.append((f"{name}, {atmosphere}" if atmosphere else name, r))
+    labels = list(labels or [])
+    return [(labels[k] if k < len(labels) else name, r) for k, (name, r) in enumerate(out)]
+
+
+def _versus_zenith(r):
+    """Black-, blue- and white-sky values against sun zenith: solar-weighted, else at the single band."""
+    zen = np.atleast_1d(np.asarray(r["sun_zenith_deg"], dtype=float))
+    bb = r.get("broadband")
+    if bb is not None:
+        black = np.atleast_1d(np.asarray(bb["black_sky"], dtype=float))
+        blue = None if bb.get("blue_sky") is None else np.atleast_1d(np.asarray(bb["blue_sky"], dtype=float))
+        white = float(np.atleast_1d(bb["white_sky"])[0])
+        how = "solar-weighted"
+    else:
+        wl = np.atleast_1d(np.asarray(r["wavelengths"], dtype=float))
+        j = int(np.argmin(np.abs(wl - 550.0)))
+        black = np.asarray(r["black_sky"], dtype=float).reshape(zen.size, -1)[:, j]
+        blue = None if r.get("blue_sky") is None else np.asarray(r["blue_sky"], dtype=float).reshape(zen.size, -1)[:, j]
+        white = float(np.atleast_1d(r["white_sky"])[j])
+        how = f"at {wl[j]:g} nm"
+    return {"sun_zenith_deg": zen, "black_sky": black, "blue_sky": blue, "white_sky": white, "weighting": how}
+
+
+def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, sun_zenith="0:80:10",
+           wavelengths=None, fit=None, params=None, ax=None, fig=None, dpi=None):
+    """Albedo figure: black-sky against sun zenith (solar-weighted, or at the single band) with white-sky and
+    the blue-sky albedo of every atmosphere, and the spectral black-, white- and blue-sky albedo when there are
+    several bands (a single sun zenith and a single band: the values as bars).
+
+    ``result``: the dict or JSON file of ``roadbrdf albedo --json``, a list of them (one per atmosphere,
+    ``labels`` naming them, default the file stems), or a fit / MIX.json file, :class:`SpectralModel` or
+    :class:`Model` (with ``params``), whose albedo is computed at ``sun_zenith`` [deg] and ``wavelengths``
+    for each of ``atmospheres`` (e.g. ``["spectrl2:aod=0.05", "spectrl2:aod=0.4"]``; ``fit``: which fit of
+    the file). ``ax``: the panels' axes, or ``fig``.
+
+    ``fig.roadbrdf_data``: the first result's keys, and ``zenith_panel`` = {label: {sun_zenith_deg,
+    black_sky, blue_sky, white_sky, weighting}}, ``spectral_panel`` = {wavelengths, black_sky {zenith: (M,)},
+    white_sky, blue_sky {label: (M,)}, blue_sky_zenith_deg} (None without several bands), ``results``.
+    """
+    results = _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params)
+    if not results:
+        raise ValueError("albedo: nothing to draw")
+    first = results[0][1]
+    wl = np.atleast_1d(np.asarray(first["wavelengths"], dtype=float))
+    zen = np.atleast_1d(np.asarray(first["sun_zenith_deg"], dtype=float))
+    curves = {label: _versus_zenith(r) for label, r in results}
+    several_zeniths = any(c["sun_zenith_deg"].size > 1 for c in curves.values())
+    kinds = (["zenith"] if several_zeniths else []) + (["spectral"] if wl.size > 1 else [])
+    kinds = kinds or ["values"]
+    fig, axes = panels([None] * len(kinds), ax=ax, fig=fig, size=(6.0, 4.4), what=f"panels ({', '.join(kinds)})")
+    spectral_panel = None
+    for axis, kind in zip(axes, kinds):
+        if kind == "zenith":
+            for k, (label, c) in enumerate(curves.items()):
+                colour = f"C{k}"
+                axis.plot(c["sun_zenith_deg"], c["black_sky"], "o-", color=colour, ms=3,
+                          label=f"black-sky ({c['weighting']}), {label}")
+                if c["blue_sky"] is not None:
+                    axis.plot(c["sun_zenith_deg"], c["blue_sky"], "s--", color=colour, ms=3,
+                              label=f"blue-sky, {label}")
+                axis.axhline(c["white_sky"], color=colour, ls=":", lw=1.4, label=f"white-sky, {label}")
+            axis.set_xlabel("sun zenith angle [deg]")
+            axis.set_ylabel("albedo [1]")
+            axis.set_title("albedo vs sun zenith", fontsize=10)
+        elif kind == "spectral":
+            black = np.asarray(first["black_sky"], dtype=float).reshape(zen.size, -1)
+            shown = sorted(set(np.linspace(0, zen.size - 1, min(zen.size, 4)).round().astype(int)))
+            for j in shown:
+                axis.plot(wl, black[j], lw=1.2, label=f"black-sky, sun zenith {zen[j]:g}°")
+            white = np.asarray(first["white_sky"], dtype=float)
+            axis.plot(wl, white, "k", lw=1.6, label="white-sky")
+            blues = {}
+            for k, (label, r) in enumerate(results):
+                if r.get("blue_sky") is not None:
+                    blue = np.asarray(r["blue_sky"], dtype=float).reshape(len(r["sun_zenith_deg"]), -1)[0]
+                    blues[label] = blue
+                    axis.plot(r["wavelengths"], blue, "--", lw=1.3, color=f"C{k + len(shown)}",
+                              label=f"blue-sky, sun zenith {r['sun_zenith_deg'][0]:g}°, {label}")
+            spectral_panel = {"wavelengths": wl, "black_sky": {float(zen[j]): black[j] for j in shown},
+                              "white_sky": white, "blue_sky": blues, "blue_sky_zenith_deg": float(zen[0])}
+            axis.set_xlabel("wavelength [nm]")
+            axis.set_ylabel("albedo [1]")
+            axis.set_title("spectral albedo", fontsize=10)
+        else:
+            names, values = [], []
+            for label, c in curves.items():
+                for what in ("black_sky", "blue_sky", "white_sky"):
+                    if c[what] is not None:
+                        names.append(f"{what.replace('_', '-')}\n{label}")
+                        values.append(float(np.atleast_1d(c[what])[0]))
+            axis.bar(range(len(values)), values, color=["C0", "C2", "k"] * len(curves))
+            axis.set_xticks(range(len(values)))
+            axis.set_xticklabels(names, fontsize=7)
+            axis.set_ylabel("albedo [1]")
+            c = next(iter(curves.values()))
+            axis.set_title(f"albedo {c['weighting']}, sun zenith {c['sun_zenith_deg'][0]:g}°", fontsize=10)
+        axis.grid(alpha=0.3)
+        if kind != "values":
+            axis.legend(fontsize=7)
+    model = first.get("model")
+    names = ", ".join(dict.fromkeys(label.split(",")[0] for label, _ in results))
+    fig.suptitle(title or f"Albedo of {names}" + (f" ({model})" if model and model not in names else ""))
+    data = dict(first)
+    data.update(zenith_panel=curves, spectral_panel=spectral_panel, results=dict(results))
+    return finish(fig, output, data, axes, dpi)

@@ -1,0 +1,245 @@
+"""What every roadbrdf figure shares: the matplotlib set-up, saving (atomic, normal permissions), the panels
+a figure draws into (``ax=`` / ``fig=``), the data behind a figure (``fig.roadbrdf_data``), labels and the
+evaluation of a model, fit file or mixture at a wavelength."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+
+import numpy as np
+
+import matplotlib
+
+if os.environ.get("MPLBACKEND") is None and not os.environ.get("DISPLAY"):
+    matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
+
+__all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
+
+#: The BRDF axis label.
+UNIT = "BRDF [sr$^{-1}$]"
+#: Resolution of the raster parts of a figure [dots per inch] when none is asked for.
+DEFAULT_DPI = 150
+
+
+class OutputFolderError(ValueError):
+    """The folder of a figure file does not exist (``roadbrdf plot`` exits with status 2)."""
+
+
+def check_output_folder(output) -> None:
+    """Raise :class:`OutputFolderError` when the folder ``output`` would be written into does not exist."""
+    output = os.fspath(output)
+    folder = os.path.dirname(output)
+    if folder and not os.path.isdir(folder):
+        raise OutputFolderError(f"output folder '{folder}' does not exist")
+
+
+def _umask() -> int:
+    """The process's umask, read without changing it where /proc tells it."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    old = os.umask(0o022)
+    os.umask(old)
+    return old
+
+
+def save(fig, output, dpi=None):
+    """Save a figure as PNG, SVG or PDF (from the extension) atomically: a temporary file in the same folder,
+    given the mode of the file it replaces (a new file: 0666 & ~umask, as any program's output), then renamed
+    over it. A symbolic link is followed and kept. ``dpi``: resolution of the raster parts (default 150).
+    Returns the path."""
+    output = os.fspath(output)
+    check_output_folder(output)
+    target = os.path.realpath(output)
+    folder = os.path.dirname(target)
+    try:
+        mode = os.stat(target).st_mode & 0o7777
+    except FileNotFoundError:
+        mode = 0o666 & ~_umask()
+    fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-plot-", suffix=os.path.splitext(output)[1], dir=folder)
+    os.close(fd)
+    try:
+        root = fig.figure  # a SubFigure saves its whole figure
+        root.savefig(tmp, dpi=dpi or DEFAULT_DPI, bbox_inches="tight")
+        os.chmod(tmp, mode)
+        os.replace(tmp, target)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    return output
+
+
+def finish(fig, output, data=None, axes=(), dpi=None):
+    """Attach ``data`` as ``fig.roadbrdf_data`` (and to each axis drawn, for figures composed of several
+    calls), save when ``output`` is given, return the figure."""
+    if data is not None:
+        fig.roadbrdf_data = data
+        for a in axes:
+            a.roadbrdf_data = data
+    if output is not None:
+        save(fig, output, dpi)
+    return fig
+
+
+_finish = finish  # the name plot_params and plot_study used before the split
+
+
+def panels(projections, ax=None, fig=None, ncols=None, size=(5.0, 4.2), what="panels"):
+    """The axes a figure draws into: ``projections`` lists each panel's projection (None, "polar", "3d").
+
+    ``ax``: the caller's axes (one, or a sequence with one per panel, of the right projections);
+    ``fig``: a Figure or SubFigure to add the panels to; neither: a new figure with constrained layout
+    (labels and legends are not clipped). Returns (figure, list of axes)."""
+    n = len(projections)
+    if ax is not None:
+        axes = list(np.ravel(np.array(ax, dtype=object)))
+        if len(axes) != n:
+            raise ValueError(f"ax: {len(axes)} axes given for {n} {what}")
+        for a, p in zip(axes, projections):
+            want = p or "rectilinear"
+            if a.name != want:
+                raise ValueError(f"ax: this figure needs {want} axes (projection='{want}'), got {a.name}")
+        return axes[0].figure, axes
+    ncols = min(ncols or n, n)
+    nrows = math.ceil(n / ncols)
+    if fig is None:
+        fig = plt.figure(figsize=(size[0] * ncols, size[1] * nrows), layout="constrained")
+    axes = [fig.add_subplot(nrows, ncols, k + 1, projection=p) for k, p in enumerate(projections)]
+    return fig, axes
+
+
+def as_dataset(x):
+    return x if isinstance(x, Dataset) else read_dataset(x)
+
+
+def stem(path) -> str:
+    """A file's name without its folder and its .csv/.json/.fit.json/.mix.json ending."""
+    name = os.path.basename(os.fspath(path))
+    for ending in (".fit.json", ".mix.json", ".albedo.json", ".json", ".csv"):
+        if name.endswith(ending) and len(name) > len(ending):
+            return name[: -len(ending)]
+    return name
+
+
+def sample_label(d: Dataset, source=None, fallback="sample") -> str:
+    """The sample's name: its metadata, else the file's stem."""
+    return d.metadata.get("sample") or (stem(source) if isinstance(source, (str, os.PathLike)) else fallback)
+
+
+def wavelength_index(wavelengths, wavelength):
+    """(index, note) of the band nearest to ``wavelength`` [nm] (default 550, else the middle band);
+    ``note`` says when the band is not the one asked for."""
+    wavelengths = np.asarray(wavelengths, dtype=float)
+    asked = wavelength
+    if wavelength is None:
+        wavelength = 550.0 if wavelengths[0] <= 550.0 <= wavelengths[-1] else wavelengths[wavelengths.size // 2]
+    k = int(np.argmin(np.abs(wavelengths - wavelength)))
+    note = ""
+    if asked is not None and abs(wavelengths[k] - asked) > 1e-9:
+        note = f"nearest band to {asked:g} nm"
+    return k, note
+
+
+def is_model_file(x) -> bool:
+    return isinstance(x, (str, os.PathLike)) and os.fspath(x).endswith(".json")
+
+
+def model_file(path, member=None):
+    """A fit file or MIX.json: (SpectralModel, label, kind) with kind "fit" or "mix"; ``member``: the
+    fit (model name) or mixing method, default the file's best."""
+    path = os.fspath(path)
+    with open(path, encoding="utf-8") as fh:
+        content = json.load(fh)
+    kind = "mix" if content.get("format") == "roadbrdf-mix" else "fit"
+    chosen = member or content.get("best")
+    if not chosen and kind == "mix" and content.get("methods"):
+        chosen = content["methods"][0]["method"]
+    spectral = read_fit(path, member)
+    what = f"{chosen} mixing prediction" if kind == "mix" else f"{chosen or spectral.model.name} fit"
+    return spectral, f"{stem(path)} ({what})", kind
+
+
+def model_name(model) -> str:
+    if isinstance(model, SpectralModel):
+        return model.model.name
+    if isinstance(model, Model):
+        return model.name
+    return os.path.basename(os.fspath(model)) if isinstance(model, os.PathLike) else str(model)
+
+
+def evaluate(model, params, wavelength, ti, pi, tr, pr):
+    """BRDF [sr^-1] of a :class:`Model` (with ``params``), a model name, a :class:`SpectralModel` or a fit /
+    MIX.json file (at ``wavelength`` [nm], default 550 nm or the middle of its range). Returns
+    (values, wavelength or None, label)."""
+    label = None
+    if is_model_file(model):
+        model, label, _ = model_file(model)
+    if isinstance(model, SpectralModel):
+        if wavelength is None:
+            wavelength = float(model.wavelengths[wavelength_index(model.wavelengths, None)[0]])
+        return model.evaluate(ti, pi, tr, pr, wavelength), wavelength, label or model.model.name
+    if isinstance(model, str):
+        model = Model(model)
+    return model.evaluate(ti, pi, tr, pr, params=params or {}), None, label or model.name
+
+
+def incidences(theta_i) -> list:
+    """One incidence or several: ``40``, ``[0, 20, 40]`` or ``"0,20,40"`` as a list of floats [deg]."""
+    if isinstance(theta_i, str):
+        items = [t.strip() for t in theta_i.split(",") if t.strip()]
+        try:
+            values = [float(t) for t in items]
+        except ValueError:
+            raise ValueError(f"theta_i: expected a number or a comma-separated list in degrees, got '{theta_i}'") \
+                from None
+    else:
+        values = [float(t) for t in np.atleast_1d(theta_i)]
+    if not values:
+        raise ValueError("theta_i: no incidence angle given")
+    for t in values:
+        if not (np.isfinite(t) and 0.0 <= t < 90.0):
+            raise ValueError(f"theta_i: {t:g} deg is outside [0, 90)")
+    return values
+
+
+def measured_at_incidence(d: Dataset, theta_i: float, label: str, tolerance=0.5):
+    """Boolean mask of the rows of ``d`` measured at the incidence ``theta_i`` [deg] (within ``tolerance``);
+    none is an error naming the incidences the file has."""
+    rows = np.abs(d.angles[:, 0] - theta_i) <= tolerance
+    if not rows.any():
+        have = ", ".join(f"{t:g}" for t in np.unique(np.round(d.angles[:, 0], 3)))
+        raise ValueError(f"{label}: no measured geometry at theta_i = {theta_i:g} deg (measured incidences: {have})")
+    return rows
+
+
+def decade_floor(values) -> float:
+    """The centre of a logarithmic radius: the power of ten a decade below the smallest positive value (so
+    that the smallest values stay visible away from the centre)."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v) & (v > 0)]
+    return 10.0 ** (math.floor(math.log10(v.min())) - 1) if v.size else 1e-3
+
+
+def log_radius(values, floor):
+    """Radius of a logarithmic polar axis: decades above ``floor`` (0 at the centre, values below it at 0)."""
+    v = np.asarray(values, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.maximum(np.log10(np.where(v > 0, v, floor) / floor), 0.0)
+
+
+def label_log_radius(ax, floor, top):
+    """Decade ticks of a logarithmic radius, labelled with the BRDF they stand for; the centre is ``floor``."""
+    decades = np.arange(0, math.ceil(top) + 1)
+    ax.set_rlim(0, max(float(decades[-1]), 1.0))
+    ax.set_yticks(decades)
+    ax.set_yticklabels([f"{floor * 10.0 ** k:g}" for k in decades], fontsize=7)
