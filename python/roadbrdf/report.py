@@ -136,7 +136,12 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     from . import albedo as albedo_of, rtable as rtable_of
     models = list(dict.fromkeys(models or DEFAULT_MODELS))
     for m in models:
-        Model(m)  # an unknown name is an InputError naming the known ones
+        try:
+            Model(m)  # an unknown name is an InputError naming the known ones
+        except InputError as e:
+            known = _roadbrdf.model_names()
+            unknown = [c for c in m.split("+") if c not in known]
+            raise InputError(f"--model: {e}{_roadbrdf.did_you_mean(unknown[0], known) if unknown else ''}") from None
     zeniths = _roadbrdf.values(sun_zenith, "--sun-zenith")
     if formulation is not None and not os.path.isfile(formulation):
         raise InputError(f"--formulation: '{formulation}': no such file")
@@ -162,6 +167,13 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
             r.fit_all.write(r.fit_all_path)
         r.warnings["fit-all"].extend(r.fit_all.warnings("the fit of all configurations"))
         r.best = r.fit_all.best
+        if formulation is not None:  # early: a formulation whose component fits are missing fails at once
+            import json
+            with open(formulation, encoding="utf-8") as fh:
+                r.formulation = json.load(fh)
+            r.formulation_name = os.path.basename(formulation)
+            with steps.step("mix", f"mixing predictions of {r.formulation_name}"), _collect(r, "mix"):
+                r.mix = mix(formulation, data=r.path, method="all", folds=r.folds, reference=r.fit_all_path)
         band_index = int(np.argmin(np.abs(d.wavelengths - r.wavelength_asked)))
         r.band = float(d.wavelengths[band_index])
         r.all_params = params(r.fit_all_path, wavelengths=[r.band])
@@ -176,13 +188,6 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
             r.albedo = albedo_of(best_model, sun_zenith=zeniths, atmosphere=atmosphere or None)
         with steps.step("rtable", f"r-table of {r.best.model}"), _collect(r, "rtable"):
             r.rtable = rtable_of(best_model, illuminant=illuminant)
-        if formulation is not None:
-            import json
-            with open(formulation, encoding="utf-8") as fh:
-                r.formulation = json.load(fh)
-            r.formulation_name = os.path.basename(formulation)
-            with steps.step("mix", f"mixing predictions of {r.formulation_name}"), _collect(r, "mix"):
-                r.mix = mix(formulation, data=r.path, method="all", folds=r.folds, reference=r.fit_all_path)
         r.all_caveats = list(dict.fromkeys(
             [n[len("WARNING: "):] if n.startswith("WARNING: ") else n for n in r.albedo.get("notes", [])
              if n.startswith(("WARNING", "coverage"))] + list(r.rtable.get("warnings") or []) +
