@@ -48,7 +48,7 @@ def summary(r) -> str:
     items = [("sample", esc(r.sample), None), ("best model (BIC, all configurations)", esc(r.best.model), None)]
     bb = (r.albedo or {}).get("broadband") if r.albedo else None
     if bb:
-        items.append(("white-sky albedo (solar)", number(bb["white_sky"], 3), "summary.white_sky"))
+        items.append(("white-sky albedo (solar)", number(bb["white_sky"], 3), ("summary.white_sky", bb["white_sky"])))
         z = r.albedo["sun_zenith_deg"]
         if bb.get("blue_sky") is not None:
             items.append((f"blue-sky albedo, sun at {z[0]:g}°", number(bb["blue_sky"][0], 3), None))
@@ -61,7 +61,7 @@ def summary(r) -> str:
     items.append(("quality flags (outliers, reciprocity, noisy bands)", str(flags), None))
     out = ['<div class="summary-grid">']
     for label, value, key in items:
-        attr = f' data-key="{key}"' if key else ""
+        attr = f' data-key="{key[0]}" data-value="{float(key[1])!r}"' if key else ""
         out.append(f'<div><span class="label">{esc(label)}</span><span class="value"{attr}>{value}</span></div>')
     out.append("</div>")
     extrapolated = [n for n in r.all_caveats if n.lower().startswith("mostly extrapolation")]
