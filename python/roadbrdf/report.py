@@ -370,6 +370,11 @@ def _run() -> int:
         text = str(e) if not isinstance(e, OSError) or not e.filename else f"{e.filename}: {e.strerror}"
         print(f"roadbrdf report: error: {text}", file=sys.stderr)
         return 2
+    except Exception as e:  # noqa: BLE001 - a bug: its traceback, and the program's status for internal errors
+        import traceback
+        traceback.print_exc()
+        print(f"roadbrdf report: internal error: {type(e).__name__}: {e}", file=sys.stderr)
+        return 3
     except KeyboardInterrupt:
         print("roadbrdf report: interrupted", file=sys.stderr)
         return 130

@@ -105,7 +105,10 @@ def provenance(r) -> Section:
 
 # ---- 2. quality ---------------------------------------------------------------------------------
 def _geometry_text(g):
-    return f"#{g['index']}: γ {g['gamma']:g}, α {g['alpha']:g}, β {g['beta']:g}, δ {g['delta']:g}°"
+    """A geometry of the check's JSON, in the file's angles (road or zenith/azimuth), numbered from 1."""
+    names = ([("γ", "gamma"), ("α", "alpha"), ("β", "beta"), ("δ", "delta")] if "gamma" in g else
+             [("θ_i", "theta_i"), ("φ_i", "phi_i"), ("θ_r", "theta_r"), ("φ_r", "phi_r")])
+    return f"#{g['index']}: " + ", ".join(f"{label} {g[key]:g}" for label, key in names) + "°"
 
 
 def quality(r) -> Section:
@@ -364,8 +367,11 @@ def rtable(r) -> Section:
     if t is None:
         return Section("rtable", "8. Road r-table", caveats([r.rtable_note]))
     w = t.get("weighting") or {}
+    kind = str(w.get("kind", "photometric"))
+    if kind.startswith("photometric"):
+        kind += f", illuminant {w.get('illuminant', r.illuminant)}"
     html = (f"<p>The standard r-table (29 tan γ × 20 β, observation angle α = {t['alpha_deg']:g}°) of the "
-            f"best-ranked fit ({esc(r.best.model)}), {esc(w.get('kind', 'photometric'))}, illuminant {esc(w.get('illuminant', r.illuminant))} "
+            f"best-ranked fit ({esc(r.best.model)}), {esc(kind)} "
             "(<code>roadbrdf rtable</code> / <code>roadbrdf.rtable</code>).</p>")
     cls = t["classes"]
     items = [("Q0 (average luminance coefficient) [sr⁻¹]", cell(t["Q0"], "rtable.Q0", 4)),

@@ -141,6 +141,17 @@ def test_provenance_from_the_file(report):
     assert d.metadata["sample"] in report["text"]
 
 
+def test_python_check_is_the_command_lines(tmp_path):
+    """roadbrdf.check (new for the report) gives what `roadbrdf check --json` prints, plus its text."""
+    import json
+    printed = subprocess.run([_exe(), "check", str(DATA), "--json"], capture_output=True, text=True, check=True)
+    cli_json = json.loads(printed.stdout)
+    text = subprocess.run([_exe(), "check", str(DATA)], capture_output=True, text=True, check=True).stdout
+    python = roadbrdf.check(DATA)
+    assert python.pop("text") == text.split("\n", 1)[1]  # the command line prints the file name first
+    assert json.loads(json.dumps(python)) == cli_json
+
+
 def test_quality_check_numbers(report):
     page, c = report["page"], roadbrdf.check(DATA)
     assert _value(page, "check.negative_values")[0] == c["negative_values"]
@@ -237,6 +248,38 @@ def test_albedo_and_rtable_equal_the_api(tmp_path, report):
     # The coverage caveats are on the page (here: F1 is measured to theta_r = 80 deg, the r-table's alpha = 1 deg
     # is theta_r = 89 deg: every standard cell is extrapolated).
     assert t["warnings"][0] in report["text"]
+
+
+def test_single_band_and_an_incidence_too_small_to_fit(tmp_path):
+    """One band (no broadband albedo, no parameter-against-wavelength figure) and a model with more free
+    parameters (6: lambert+torrance-sparrow with free weights) than theta_i = 0 has geometries (5): that
+    incidence is left out of the per-incidence fits, named on the page, and the others equal the fit here."""
+    d = roadbrdf.read_dataset(DATA)
+    k = int(np.flatnonzero(d.wavelengths == 550.0)[0])
+    one = roadbrdf.Dataset(d.angles, d.wavelengths[k:k + 1], d.brdf[:, k:k + 1], d.sigma[:, k:k + 1], d.metadata)
+    data = tmp_path / "F1-550.csv"
+    one.write(data)
+    out = tmp_path / "r.html"
+    result = _run(data, "--model", "lambert+torrance-sparrow", "--free-weights", "--quiet", "-o", out)
+    assert result.returncode == 0, result.stderr
+    text = out.read_text(encoding="utf-8")
+    page = _Page(text)
+    assert "figure not drawn" not in text
+    assert "params-by-wavelength" not in page.figures and "albedo.broadband.white_sky" not in page.values
+    assert "θ_i = 0° not fitted per incidence: 5 values for up to 6 free parameters" in text
+    fits = roadbrdf.fit(data, ["lambert+torrance-sparrow"], multistart=8, group_by="theta_i", where="theta_i!=0")
+    assert sorted(f.group["theta_i"] for f in fits.fits) == [20, 40, 60, 80]
+    assert not any(key.startswith("group.lambert+torrance-sparrow.theta_i=0.") for key in page.values)
+    for f in fits.fits:
+        for j, name in enumerate(f.parameter_names):
+            _same(page, f"group.{f.model}.theta_i={f.group['theta_i']:g}.{name}", f.parameters[j, 0])
+    fit_file = tmp_path / "one.fit.json"
+    roadbrdf.fit(data, ["lambert+torrance-sparrow"], multistart=8, output=fit_file)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = roadbrdf.albedo(fit_file, sun_zenith="0:60:30", atmosphere="spectrl2")
+    assert a["broadband"] is None
+    _same(page, "albedo.band.white_sky", a["white_sky"][0])
 
 
 # ---- mixing --------------------------------------------------------------------------------------------
