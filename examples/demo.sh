@@ -146,4 +146,9 @@ section "8. Figures"
 "$rb" plot albedo "$out/F1-albedo.json" -o "$out/fig-albedo-F1.png"
 "$rb" plot rtable "$out/F1.rtb" -o "$out/fig-rtable-F1.png"
 
+section "9. The report of one sample (F1, with its mixing prediction): $out/F1-report.html"
+"$rb" report data/examples/mixed/F1.csv --model oren-nayar --formulation "$out/formulations/F1.json" --quiet \
+    -o "$out/F1-report.html"
+echo "one self-contained HTML page (docs/report.md): open $out/F1-report.html in a browser"
+
 section "Done: outputs in $out"

@@ -24,7 +24,7 @@ from __future__ import annotations
 from . import _roadbrdf
 from .core import InputError, data_directory, road_to_zenith_azimuth
 from .model import Model, SpectralModel, model_aliases, model_names, models
-from .io import Dataset, read_alta, read_curet, read_dataset, write_dataset
+from .io import Dataset, check, read_alta, read_curet, read_dataset, write_dataset
 from .fitting import FitResult, ModelFit, fit, params, read_fit, spectral_model_from_fit
 from .photometry import RTable, read_rtable, rtable
 from .mixing import mix
@@ -37,8 +37,9 @@ from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dat
 from .studies import study
 
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "FitResult", "ModelFit", "models",
-           "model_names", "model_aliases", "read_fit", "read_dataset", "write_dataset", "read_curet", "read_alta", "rtable",
-           "read_rtable", "fit", "params", "spectral_model_from_fit", "mix", "albedo", "road_to_zenith_azimuth",
+           "model_names", "model_aliases", "read_fit", "read_dataset", "write_dataset", "read_curet", "read_alta",
+           "rtable", "read_rtable", "check", "fit", "params", "spectral_model_from_fit", "mix", "albedo",
+           "road_to_zenith_azimuth",
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
            "read_manifest", "calibrate_manifest", "study"]

@@ -12,7 +12,7 @@ from .core import as_float_array
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-__all__ = ["Dataset", "read_dataset", "write_dataset", "read_curet", "read_alta"]
+__all__ = ["Dataset", "read_dataset", "write_dataset", "read_curet", "read_alta", "check"]
 
 
 class Dataset:
@@ -114,3 +114,13 @@ def read_alta(path: PathLike, wavelength: float, assumed_output: str = "", exclu
     """An ALTA text-format BRDF file (BRDF x cos theta_v output is divided by cos theta_v).
     ``wavelength`` [nm] is required (ALTA files carry none)."""
     return Dataset._from_dict(_roadbrdf.read_alta(str(path), float(wavelength), assumed_output, exclude_grazing))
+
+
+def check(path: PathLike, average_duplicates: bool = False, delimiter: str = "auto", decimal: str = "auto") -> dict:
+    """The quality report of a dataset file, as ``roadbrdf check DATA.csv --json`` gives it (default
+    thresholds): ``geometries``, ``wavelengths`` (count, min_nm, max_nm), ``coverage`` (incidence and
+    viewing zenith angles, azimuth planes, forward/backward/perpendicular/in-plane counts),
+    ``negative_values``, ``missing_values``, ``reciprocity``, ``noise`` (noisy bands, SNR per wavelength),
+    ``outliers``, ``specular_peaks_not_counted_as_outliers``, ``units``, ``file``, and ``text``: the report
+    ``roadbrdf check`` prints. Missing values are counted, not an error."""
+    return _roadbrdf.check_dataset(str(path), bool(average_duplicates), str(delimiter), str(decimal))

@@ -18,6 +18,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
+#include "roadbrdf/io/quality.h"
 
 namespace py = pybind11;
 
@@ -182,6 +183,27 @@ void bind_io(py::module_& m) {
       },
       py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = true,
       py::arg("delimiter") = "auto", py::arg("decimal") = "auto");
+  // The quality report of `roadbrdf check` (io/quality.h) with its default thresholds: the JSON of
+  // `check --json` as a dict, plus its text under "text".
+  m.def(
+      "check_dataset",
+      [](const std::string& path, bool average_duplicates, const std::string& delimiter, const std::string& decimal) {
+        DatasetReadOptions options;
+        options.average_duplicates = average_duplicates;
+        options.allow_missing = true;  // counted in the report, as `check` does
+        options.delimiter = delimiter_from_name(delimiter, "delimiter");
+        options.decimal = decimal_from_name(decimal, "decimal");
+        validate_read_options(options);
+        options.warn = python_warning();
+        const SpectralDataset d = read_dataset(path, options);
+        const QualityReport r = check_dataset(d);
+        nlohmann::json j = quality_report_json(d, r);
+        j["file"] = path;
+        j["text"] = quality_report_text(d, r);
+        return json_to_python(j);
+      },
+      py::arg("path"), py::arg("average_duplicates") = false, py::arg("delimiter") = "auto",
+      py::arg("decimal") = "auto");
   m.def("write_dataset",
         [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
            const std::map<std::string, std::string>& metadata, const std::string& convention,
