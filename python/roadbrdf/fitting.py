@@ -32,7 +32,7 @@ def read_fit(path: str, model: str | None = None) -> SpectralModel:
 
 
 def params(fit_file: PathLike, wavelengths: str | Sequence[float] | None = None,
-           models: str | Sequence[str] = (), format: str | None = None):
+           models: str | Sequence[str] = (), format: str | None = None, group_by: str | Sequence[str] = ()):
     """The fitted parameters of a fit file, as ``roadbrdf params`` prints them.
 
     One row per fit (model, and group in a grouped file) and wavelength: ``model``, the group columns
@@ -42,11 +42,16 @@ def params(fit_file: PathLike, wavelengths: str | Sequence[float] | None = None,
     saying so are in ``df.attrs["notes"]``, the parameter units in ``df.attrs["units"]``.
 
     With ``format`` ("table", "csv", "markdown", "latex") the table's text is returned instead, byte for
-    byte what the command prints.
+    byte what the command prints. ``group_by`` (``"theta_i"``, ``"model,wavelength"`` or a list; the
+    columns ``model``, ``wavelength`` and the file's group columns) makes one table per value, headed
+    ``theta_i = 40 deg``, as ``params --group-by``; the DataFrame stays one table, its rows in that order.
     """
     if isinstance(models, str):
         models = [models]
-    t = _roadbrdf.params_table(os.fspath(fit_file), wavelengths, [str(m) for m in models], format or "")
+    if isinstance(group_by, str):
+        group_by = [c.strip() for c in group_by.split(",") if c.strip()]
+    t = _roadbrdf.params_table(os.fspath(fit_file), wavelengths, [str(m) for m in models],
+                               [str(c) for c in group_by], format or "")
     if format:
         return t["text"]
     import pandas as pd

@@ -222,11 +222,12 @@ void bind_fitting(py::module_& m) {
   m.def(
       "params_table",
       [](const std::string& fit_file, const py::object& wavelength_selection, const std::vector<std::string>& models,
-         const std::string& format) {
+         const std::vector<std::string>& group_by, const std::string& format) {
         ParamsRequest request;
         request.fit_file = fit_file;
         request.wavelengths = values_argument(wavelength_selection, "wavelengths");
         request.models = models;
+        request.group_by = group_by;
         const ParamsTable t = read_params_table(request);
         py::dict out;
         out["notes"] = t.notes;
@@ -266,7 +267,7 @@ void bind_fitting(py::module_& m) {
         out["data"] = data;
         return out;
       },
-      py::arg("fit_file"), py::arg("wavelengths"), py::arg("models"), py::arg("format"));
+      py::arg("fit_file"), py::arg("wavelengths"), py::arg("models"), py::arg("group_by"), py::arg("format"));
 }
 
 }  // namespace roadbrdf::python

@@ -144,3 +144,35 @@ def test_band_errors_are_the_same_from_both_front_ends(cli, root, tmp_path, flag
         roadbrdf.fit(root / DATA, "lambert", **kwargs)
     assert message in str(e.value)
     assert not (tmp_path / "x.json").exists()
+
+
+def test_params_group_by_makes_one_table_per_value_from_both_front_ends(cli, grouped):
+    flat = roadbrdf.params(grouped, wavelengths=[610])
+    for fmt, heading in (("table", "## theta_i = {} deg"), ("markdown", "**theta_i = {} deg**"),
+                         ("latex", "\\par\\textbf{theta\\_i = {} deg}")):
+        text = cli("params", grouped, "--wavelength", "610", "--group-by", "theta_i", "--format", fmt).stdout
+        assert text == roadbrdf.params(grouped, wavelengths=[610], group_by="theta_i", format=fmt)
+        positions = [text.index(heading.replace("{}", str(t))) for t in (0, 20, 40, 60, 80)]
+        assert positions == sorted(positions)
+    # In the text table, the section of theta_i = 40 holds the flat table's rows of that group, without
+    # the theta_i column, and no other rows.
+    text = roadbrdf.params(grouped, wavelengths=[610], group_by="theta_i", format="table")
+    section = text.split("## theta_i = 40 deg\n")[1].split("\n\n")[0].splitlines()
+    assert "theta_i" not in section[0]
+    body = [line.split() for line in section[1:]]
+    expected = flat[flat["theta_i_deg"] == 40]
+    assert [row[0] for row in body] == list(expected["model"])
+    assert [float(row[1]) for row in body] == list(expected["wavelength_nm"])
+    # The DataFrame stays one table, its rows in section order (model, then wavelength).
+    df = roadbrdf.params(grouped, group_by=["model", "wavelength"])
+    assert list(df["model"]) == sorted(df["model"], key=list(dict.fromkeys(df["model"])).index)
+    for _, part in df.groupby("model", sort=False):
+        assert list(part["wavelength_nm"]) == sorted(part["wavelength_nm"], key=list(dict.fromkeys(
+            part["wavelength_nm"])).index)
+    assert len(df) == len(roadbrdf.params(grouped))
+    message = "unknown column 'thta_i' (did you mean 'theta_i'?)"
+    r = cli("params", grouped, "--group-by", "thta_i", check=False)
+    assert r.returncode == 2 and f"roadbrdf: error: --group-by: {message}" in r.stderr, r.stderr
+    with pytest.raises(roadbrdf.InputError, match=r"did you mean 'theta_i'\?\); the columns of .* are model, "
+                                                  r"theta_i, wavelength"):
+        roadbrdf.params(grouped, group_by="thta_i")

@@ -56,22 +56,6 @@ struct FitArgs {
   bool quiet = false;
 };
 
-std::vector<std::string> split_commas(const std::vector<std::string>& items) {
-  std::vector<std::string> out;
-  for (const auto& item : items) {
-    std::string cur;
-    for (char c : item + ",") {
-      if (c == ',') {
-        if (!cur.empty()) out.push_back(cur);
-        cur.clear();
-      } else if (c != ' ') {
-        cur += c;
-      }
-    }
-  }
-  return out;
-}
-
 // "NAME=LOWER:UPPER" items of --bound.
 std::map<std::string, std::pair<double, double>> parse_bounds(const std::vector<std::string>& items) {
   std::map<std::string, std::pair<double, double>> out;

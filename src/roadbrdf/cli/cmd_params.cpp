@@ -1,4 +1,5 @@
-// roadbrdf params FIT.json [--wavelengths 600] [--model M ...] [--format table|csv|markdown|latex] [-o OUT]
+// roadbrdf params FIT.json [--wavelengths 600] [--model M ...] [--group-by COLS] [--format table|csv|markdown|latex]
+//                 [-o OUT]
 // The fitted parameters with standard errors and fit statistics, one row per fit and wavelength
 // (fitting/params_table.h): the report's parameter tables, ready to paste.
 #include <fmt/core.h>
@@ -19,6 +20,7 @@ struct ParamsArgs {
   std::string fit;
   std::string wavelengths;
   std::vector<std::string> models;
+  std::vector<std::string> group_by;
   std::string format = "table";
   std::string output;
 };
@@ -28,6 +30,7 @@ void run(const ParamsArgs& a) {
   request.fit_file = a.fit;
   if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths");
   request.models = a.models;
+  request.group_by = split_commas(a.group_by);
   const ParamsFormat format = params_format_from_string(a.format);
   request.validate();
   check_distinct_files({{"FIT", a.fit}}, {{"-o", a.output}});
@@ -55,6 +58,11 @@ void register_params_command(CLI::App& app) {
                 "Wavelengths to show: START:STOP:STEP or a list [nm]; one not fitted is answered by the nearest "
                 "fitted band, with a note (default: every fitted wavelength)");
   c->add_option("-m,--model", args.models, "Show only this model's fits (repeatable)")->allow_extra_args(false);
+  c->add_option("--group-by", args.group_by,
+                "One table per value of these columns (comma-separated: model, wavelength, or a group column of "
+                "the fit file such as theta_i), each headed e.g. 'theta_i = 40 deg'; CSV stays one table in that "
+                "order")
+      ->allow_extra_args(false);
   c->add_option("--format", args.format,
                 "table (aligned text) | csv (every number, separate stderr columns) | markdown | latex")
       ->capture_default_str();

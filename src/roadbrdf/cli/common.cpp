@@ -92,6 +92,22 @@ double parse_number(const std::string& text, const std::string& what) {
   return v;
 }
 
+std::vector<std::string> split_commas(const std::vector<std::string>& items) {
+  std::vector<std::string> out;
+  for (const auto& item : items) {
+    std::string cur;
+    for (char c : item + ",") {
+      if (c == ',') {
+        if (!cur.empty()) out.push_back(cur);
+        cur.clear();
+      } else if (c != ' ') {
+        cur += c;
+      }
+    }
+  }
+  return out;
+}
+
 std::string flag_for_field(const std::string& field) {
   if (field.empty() || field.front() == '-') return field;
   // Request fields whose flag is not the field name with dashes.

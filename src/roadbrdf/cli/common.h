@@ -46,6 +46,9 @@ std::FILE* report_stream(const std::string& output);
 
 // A finite number; `what` names the flag in errors. Throws InputError.
 double parse_number(const std::string& text, const std::string& what);
+
+// Names from repeatable, comma-separated options ("--group-by theta_i,phi_i" or given twice), spaces dropped.
+std::vector<std::string> split_commas(const std::vector<std::string>& items);
 // Lists of numbers ("D", "D1,D2,...", "A:B:STEP" and mixes) are parsed by parse_range_list
 // (core/range.h), the one grammar of every command and of Python.
 

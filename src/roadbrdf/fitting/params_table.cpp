@@ -74,8 +74,10 @@ std::string latex_text(const std::string& s) {
   return out;
 }
 
-// Rows of display cells (header first) for the text, Markdown and LaTeX formats.
-std::vector<std::vector<std::string>> display_cells(const ParamsTable& t, ParamsFormat format) {
+// Rows of display cells (header first) for the text, Markdown and LaTeX formats: the rows [begin, end)
+// of the table, without its section columns.
+std::vector<std::vector<std::string>> display_cells(const ParamsTable& t, ParamsFormat format, std::size_t begin,
+                                                    std::size_t end) {
   std::vector<std::vector<std::string>> cells;
   std::vector<std::string> header = {"model"};
   for (const auto& c : t.group_columns) header.push_back(c + " [deg]");
@@ -87,7 +89,8 @@ std::vector<std::vector<std::string>> display_cells(const ParamsTable& t, Params
     header.emplace_back(h);
   }
   cells.push_back(header);
-  for (const ParamsRow& r : t.rows) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const ParamsRow& r = t.rows[i];
     std::vector<std::string> row = {r.model};
     for (double g : r.group) row.push_back(fmt::format("{:g}", g));
     row.push_back(fmt::format("{:g}", r.wavelength));
@@ -113,7 +116,48 @@ std::vector<std::vector<std::string>> display_cells(const ParamsTable& t, Params
   if (format == ParamsFormat::kLatex) {
     for (auto& c : cells.front()) c = latex_text(c);
   }
+  std::vector<std::size_t> hidden = t.section_columns;
+  std::sort(hidden.rbegin(), hidden.rend());
+  for (auto& row : cells) {
+    for (std::size_t c : hidden) row.erase(row.begin() + static_cast<std::ptrdiff_t>(c));
+  }
   return cells;
+}
+
+// The value of display column `column` (see ParamsTable::section_columns) of a row, for sections.
+std::string section_value(const ParamsTable& t, const ParamsRow& r, std::size_t column) {
+  if (column == 0) return r.model;
+  if (column <= t.group_columns.size()) return fmt::format("{:g}", r.group[column - 1]);
+  return fmt::format("{:g}", r.wavelength);
+}
+
+// "theta_i = 40 deg, model = lambert": the heading of the section holding row `r`.
+std::string section_heading(const ParamsTable& t, const ParamsRow& r) {
+  std::vector<std::string> parts;
+  parts.reserve(t.section_columns.size());
+  for (std::size_t c : t.section_columns) {
+    if (c == 0) {
+      parts.push_back("model = " + r.model);
+    } else if (c <= t.group_columns.size()) {
+      parts.push_back(t.group_columns[c - 1] + " = " + section_value(t, r, c) + " deg");
+    } else {
+      parts.push_back("wavelength = " + section_value(t, r, c) + " nm");
+    }
+  }
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// The sections as row ranges [begin, end) (one range of every row without section columns).
+std::vector<std::pair<std::size_t, std::size_t>> section_ranges(const ParamsTable& t) {
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    if (ranges.empty() || section_heading(t, t.rows[i]) != section_heading(t, t.rows[ranges.back().first])) {
+      ranges.emplace_back(i, i + 1);
+    } else {
+      ranges.back().second = i + 1;
+    }
+  }
+  return ranges;
 }
 
 // Display width in characters (UTF-8 continuation bytes do not count: "±" is one column).
@@ -135,6 +179,12 @@ ParamsFormat params_format_from_string(const std::string& name) {
 
 void ParamsRequest::validate() const {
   if (fit_file.empty()) throw FieldError("fit_file", "give the fit file");
+  for (std::size_t i = 0; i < group_by.size(); ++i) {
+    if (std::find(group_by.begin(), group_by.begin() + static_cast<std::ptrdiff_t>(i), group_by[i]) !=
+        group_by.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw FieldError("group_by", "column '" + group_by[i] + "' is given twice");
+    }
+  }
   for (double w : wavelengths) {
     if (!std::isfinite(w) || w <= 0.0) throw FieldError("wavelengths", fmt::format("{} is not a wavelength", w));
   }
@@ -195,9 +245,9 @@ struct PaddedCells {
   }
 };
 
-PaddedCells padded_cells(const ParamsTable& t, ParamsFormat format) {
+PaddedCells padded_cells(const ParamsTable& t, ParamsFormat format, std::size_t begin, std::size_t end) {
   PaddedCells p;
-  p.cells = display_cells(t, format);
+  p.cells = display_cells(t, format, begin, end);
   p.width.assign(p.cells.front().size(), 0);
   for (const auto& row : p.cells) {
     for (std::size_t c = 0; c < row.size(); ++c) p.width[c] = std::max(p.width[c], display_width(row[c]));
@@ -205,11 +255,9 @@ PaddedCells padded_cells(const ParamsTable& t, ParamsFormat format) {
   return p;
 }
 
-std::string render_latex(const ParamsTable& t) {
-  const PaddedCells p = padded_cells(t, ParamsFormat::kLatex);
-  std::string out = "% roadbrdf params of " + latex_text(t.source) + "\n";
-  for (const auto& n : t.notes) out += "% note: " + n + "\n";
-  out += "\\begin{tabular}{" + std::string(p.width.size(), 'l') + "}\n\\hline\n";
+std::string latex_tabular(const ParamsTable& t, std::size_t begin, std::size_t end) {
+  const PaddedCells p = padded_cells(t, ParamsFormat::kLatex, begin, end);
+  std::string out = "\\begin{tabular}{" + std::string(p.width.size(), 'l') + "}\n\\hline\n";
   for (std::size_t r = 0; r < p.cells.size(); ++r) {
     for (std::size_t c = 0; c < p.cells[r].size(); ++c) out += fmt::format("{}{}", c ? " & " : "", p.at(r, c));
     out += r == 0 ? " \\\\\n\\hline\n" : " \\\\\n";
@@ -217,8 +265,8 @@ std::string render_latex(const ParamsTable& t) {
   return out + "\\hline\n\\end{tabular}\n";
 }
 
-std::string render_markdown(const ParamsTable& t) {
-  const PaddedCells p = padded_cells(t, ParamsFormat::kMarkdown);
+std::string markdown_table(const ParamsTable& t, std::size_t begin, std::size_t end) {
+  const PaddedCells p = padded_cells(t, ParamsFormat::kMarkdown, begin, end);
   std::string out;
   for (std::size_t r = 0; r < p.cells.size(); ++r) {
     out += "|";
@@ -229,14 +277,12 @@ std::string render_markdown(const ParamsTable& t) {
     for (std::size_t w : p.width) out += std::string(w + 2, '-') + "|";
     out += "\n";
   }
-  for (const auto& n : t.notes) out += "\nNote: " + n + "\n";
   return out;
 }
 
-std::string render_text(const ParamsTable& t) {
-  const PaddedCells p = padded_cells(t, ParamsFormat::kTable);
-  std::string out = "# " + t.source + "\n";
-  for (const auto& n : t.notes) out += "# note: " + n + "\n";
+std::string text_table(const ParamsTable& t, std::size_t begin, std::size_t end) {
+  const PaddedCells p = padded_cells(t, ParamsFormat::kTable, begin, end);
+  std::string out;
   for (std::size_t r = 0; r < p.cells.size(); ++r) {
     std::string line;
     for (std::size_t c = 0; c < p.cells[r].size(); ++c) line += fmt::format("{}{}", c ? "  " : "", p.at(r, c));
@@ -246,20 +292,52 @@ std::string render_text(const ParamsTable& t) {
   return out;
 }
 
+// One table per section, each under its heading (none without sections).
+std::string render_sections(const ParamsTable& t, ParamsFormat format) {
+  std::string out;
+  for (const auto& [begin, end] : section_ranges(t)) {
+    const std::string heading = t.section_columns.empty() ? "" : section_heading(t, t.rows[begin]);
+    if (!out.empty()) out += "\n";
+    switch (format) {
+      case ParamsFormat::kLatex:
+        if (!heading.empty()) out += "\\par\\textbf{" + latex_text(heading) + "}\n\n";
+        out += latex_tabular(t, begin, end);
+        break;
+      case ParamsFormat::kMarkdown:
+        if (!heading.empty()) out += "**" + heading + "**\n\n";
+        out += markdown_table(t, begin, end);
+        break;
+      default:
+        if (!heading.empty()) out += "## " + heading + "\n";
+        out += text_table(t, begin, end);
+        break;
+    }
+  }
+  if (t.rows.empty())
+    out = format == ParamsFormat::kLatex      ? latex_tabular(t, 0, 0)
+          : format == ParamsFormat::kMarkdown ? markdown_table(t, 0, 0)
+                                              : text_table(t, 0, 0);
+  return out;
+}
+
 }  // namespace
 
 std::string ParamsTable::render(ParamsFormat format) const {
+  std::string notes_text;
   switch (format) {
     case ParamsFormat::kCsv:
       return render_csv(*this);
     case ParamsFormat::kLatex:
-      return render_latex(*this);
+      for (const auto& n : notes) notes_text += "% note: " + n + "\n";
+      return "% roadbrdf params of " + latex_text(source) + "\n" + notes_text + render_sections(*this, format);
     case ParamsFormat::kMarkdown:
-      return render_markdown(*this);
+      for (const auto& n : notes) notes_text += "\nNote: " + n + "\n";
+      return render_sections(*this, format) + notes_text;
     case ParamsFormat::kTable:
       break;
   }
-  return render_text(*this);
+  for (const auto& n : notes) notes_text += "# note: " + n + "\n";
+  return "# " + source + "\n" + notes_text + render_sections(*this, format);
 }
 
 ParamsTable read_params_table(const ParamsRequest& request) {
@@ -272,6 +350,17 @@ ParamsTable read_params_table(const ParamsRequest& request) {
   ParamsTable t;
   t.source = root.file();
   if (const auto g = root.find("group_by")) t.group_columns = g->strings();
+  std::vector<std::string> columns = {"model"};
+  columns.insert(columns.end(), t.group_columns.begin(), t.group_columns.end());
+  columns.emplace_back("wavelength");
+  for (const auto& c : request.group_by) {
+    const auto k = std::find(columns.begin(), columns.end(), c);
+    if (k == columns.end()) {
+      throw FieldError("group_by", fmt::format("unknown column '{}'{}; the columns of {} are {}", c,
+                                               did_you_mean(c, columns), t.source, fmt::join(columns, ", ")));
+    }
+    t.section_columns.push_back(static_cast<std::size_t>(k - columns.begin()));
+  }
   const std::vector<JsonNode> fits = root.at("fits").elements();
   std::vector<std::string> models;
   models.reserve(fits.size());
@@ -334,6 +423,16 @@ ParamsTable read_params_table(const ParamsRequest& request) {
       t.rows.push_back(r);
     }
   }
+  // Rows in section order: stable, the sections in order of first appearance.
+  std::vector<std::string> order;
+  for (const ParamsRow& r : t.rows) {
+    const std::string h = section_heading(t, r);
+    if (std::find(order.begin(), order.end(), h) == order.end()) order.push_back(h);
+  }
+  std::stable_sort(t.rows.begin(), t.rows.end(), [&](const ParamsRow& a, const ParamsRow& b) {
+    return std::find(order.begin(), order.end(), section_heading(t, a)) <
+           std::find(order.begin(), order.end(), section_heading(t, b));
+  });
   return t;
 }
 

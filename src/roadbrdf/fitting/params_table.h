@@ -21,7 +21,11 @@ struct ParamsRequest {
   std::string fit_file;
   std::vector<double> wavelengths;  // [nm]; empty: every fitted wavelength
   std::vector<std::string> models;  // models to show; empty: all
-  // Throws FieldError ("fit_file", "wavelengths", "models").
+  // Sections: one table per value of these columns ("model", "wavelength" or a group_by column of the
+  // file, e.g. "theta_i"), headed "theta_i = 40 deg"; the columns leave the tables' bodies. CSV (and the
+  // DataFrame) stay one table, its rows in section order. Checked against the file by read_params_table.
+  std::vector<std::string> group_by;
+  // Throws FieldError ("fit_file", "wavelengths", "models", "group_by").
   void validate() const;
 };
 
@@ -48,6 +52,9 @@ struct ParamsTable {
   std::vector<std::string> parameter_units;  // aligned with parameter_names
   std::vector<ParamsRow> rows;
   std::vector<std::string> notes;  // nearest-wavelength answers
+  // The section columns (ParamsRequest::group_by) as display-column indices: 0 the model, 1..G the
+  // group columns, G+1 the wavelength. The rows are in section order (first appearance).
+  std::vector<std::size_t> section_columns;
 
   // The table in a format. Text, Markdown and LaTeX show "value ± stderr" with 4 significant digits;
   // CSV gives every number to 10 significant digits in separate columns (see csv_columns()).
