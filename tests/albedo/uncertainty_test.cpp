@@ -88,6 +88,64 @@ TEST(AlbedoUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
   EXPECT_GT(u_black, 0.5 * s_a);  // the albedo term alone would give about s_a x (black-sky at albedo 1)
 }
 
+TEST(AlbedoUncertainty, BroadbandOfLambertUnderAFlatSpectrumIsTheTrapezoidRuleOfTheBandUncertainties) {
+  // A flat spectrum over 400-600 nm with bands at 400, 500, 600 nm: the broadband value is the
+  // trapezoid mean (A400 + 2 A500 + A600) / 4, so u^2 = (u400^2 + 4 u500^2 + u600^2) / 16 for
+  // independent bands and u = (u400 + 2 u500 + u600) / 4 fully correlated (Lambert: A = albedo).
+  const test::ScratchDirectory scratch;
+  const std::string flat = (scratch.path() / "flat.csv").string();
+  std::ofstream(flat) << "wavelength_nm,irradiance\n300,1\n700,1\n";
+  SpectralModel sm(make_model("lambert"), {400.0, 500.0, 600.0}, {0.3, 0.4, 0.5});
+  sm.set_parameter_covariance({1e-4, 4e-4, 9e-4});  // u = 0.01, 0.02, 0.03
+  albedo::AlbedoRequest request;
+  request.sun_zenith_deg = {20.0};
+  request.diffuse_fraction = "0.3";
+  request.spectrum = flat;
+  const nlohmann::json j = albedo::compute_albedo(sm, request);
+  EXPECT_NEAR(j["broadband"]["white_sky"].get<double>(), (0.3 + 0.8 + 0.5) / 4, 1e-12);
+  const auto& bb = j.at("uncertainty").at("broadband");
+  const double independent = std::sqrt(1e-4 + 4.0 * 4e-4 + 9e-4) / 4.0, correlated = (0.01 + 0.04 + 0.03) / 4.0;
+  for (const nlohmann::json& u : {bb["white_sky"], bb["black_sky"][0], bb["blue_sky"][0]}) {
+    EXPECT_NEAR(u["independent"].get<double>(), independent, 1e-9);
+    EXPECT_NEAR(u["correlated"].get<double>(), correlated, 1e-9);
+  }
+  EXPECT_NE(albedo::albedo_table(j).find("u 1.27e-02 (correlated 2.00e-02)"), std::string::npos)
+      << albedo::albedo_table(j);
+}
+
+TEST(AlbedoUncertainty, BroadbandBlueSkyOfSpectrl2IsTheDerivativeOfTheBroadbandValue) {
+  // SPECTRL2 blue-sky weighs black-sky by the direct and white-sky by the diffuse spectrum. For
+  // Lambert the broadband value is linear in the band albedos; its derivatives are taken here from
+  // the broadband values themselves (finite differences of compute_albedo), independently of the
+  // coefficients, and u^2 = sum_k (dB/dA_k)^2 u_k^2.
+  const std::vector<double> wavelengths = {400.0, 550.0, 700.0, 900.0};
+  const std::vector<double> albedos = {0.2, 0.3, 0.35, 0.4};
+  const std::vector<double> u = {0.01, 0.02, 0.015, 0.03};
+  albedo::AlbedoRequest request;
+  request.sun_zenith_deg = {40.0};
+  request.atmosphere = "spectrl2";
+  auto broadband_blue = [&](const std::vector<double>& a) {
+    return albedo::compute_albedo(SpectralModel(make_model("lambert"), wavelengths, a),
+                                  request)["broadband"]["blue_sky"][0]
+        .get<double>();
+  };
+  double sum = 0.0, bound = 0.0;
+  for (std::size_t k = 0; k < albedos.size(); ++k) {
+    std::vector<double> up = albedos, down = albedos;
+    up[k] += 0.01;
+    down[k] -= 0.01;
+    const double derivative = (broadband_blue(up) - broadband_blue(down)) / 0.02;
+    sum += derivative * derivative * u[k] * u[k];
+    bound += std::abs(derivative) * u[k];
+  }
+  SpectralModel sm(make_model("lambert"), wavelengths, albedos);
+  sm.set_parameter_covariance({u[0] * u[0], u[1] * u[1], u[2] * u[2], u[3] * u[3]});
+  const nlohmann::json j = albedo::compute_albedo(sm, request);
+  const auto& bb = j.at("uncertainty").at("broadband").at("blue_sky")[0];
+  EXPECT_NEAR(bb["independent"].get<double>(), std::sqrt(sum), 1e-9);
+  EXPECT_NEAR(bb["correlated"].get<double>(), bound, 1e-9);
+}
+
 TEST(AlbedoUncertainty, CovarianceIsReadFromTheFitFile) {
   const test::ScratchDirectory scratch;
   const std::string path = (scratch.path() / "f.fit.json").string();

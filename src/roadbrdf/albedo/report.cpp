@@ -21,6 +21,11 @@ namespace roadbrdf::albedo {
 
 namespace {
 
+// A standard uncertainty in the table: "nan" where undefined (JSON null).
+std::string u_text_of(const nlohmann::json& v) {
+  return v.is_null() ? std::string("nan") : fmt::format("{:.2e}", v.get<double>());
+}
+
 // Diffuse-fraction table: CSV wavelength_nm, diffuse_fraction.
 SolarSpectrum read_diffuse_table(const std::string& path) {
   SolarSpectrum t = read_solar_spectrum(path);  // same two-column format and checks
@@ -199,6 +204,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   std::vector<double> bb_bs, bb_bs_err, bb_blue, bb_blue_err;
   double bb_ws = ws.value[0], bb_ws_err = ws.error[0], outside = 0.0;
   std::string weighting;
+  // The broadband means' coefficients (WeightedValue::first/second), for their uncertainties.
+  std::vector<WeightedValue> bb_bs_mean, bb_blue_mean;
+  WeightedValue bb_ws_mean;
   if (!a.spectrum.empty() && (!spectral || wavelengths.size() < 2)) {
     // Nothing to weigh, but a spectrum that was asked for is still read and checked, never ignored.
     (void)solar_spectrum_from_name(a.spectrum);
@@ -240,17 +248,19 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
       const auto b = spectral_weighted_mean(wavelengths, bs[z], bs_err[z], e);
       bb_bs.push_back(b.value);
       bb_bs_err.push_back(b.error);
+      bb_bs_mean.push_back(b);
       outside = b.fraction_outside;
       if (z == 0) {
-        const auto w = spectral_weighted_mean(wavelengths, ws.value, ws.error, e);
-        bb_ws = w.value;
-        bb_ws_err = w.error;
+        bb_ws_mean = spectral_weighted_mean(wavelengths, ws.value, ws.error, e);
+        bb_ws = bb_ws_mean.value;
+        bb_ws_err = bb_ws_mean.error;
       }
       if (!blue.empty()) {
         const auto u = fixed ? spectral_weighted_mean(wavelengths, blue[z], blue_err[z], e)
                              : spectral_weighted_mean2(wavelengths, bs[z], bs_err[z], e_dir, ws.value, ws.error, e_dif);
         bb_blue.push_back(u.value);
         bb_blue_err.push_back(u.error);
+        bb_blue_mean.push_back(u);
       }
     }
     if (!fixed)
@@ -302,6 +312,12 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     };
     const std::vector<double> g_ws = albedo_gradient(model, params, n_sets, covariance, white);
     progress.add();
+    const bool with_broadband = broadband_formed && !bb_bs_mean.empty();
+    nlohmann::json bb_u_bs = nlohmann::json::array(), bb_u_blue = nlohmann::json::array();
+    auto bb_json = [](const BroadbandUncertainty& b) {
+      auto number = [](double x) { return std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x); };
+      return nlohmann::json{{"independent", number(b.independent)}, {"correlated", number(b.correlated)}};
+    };
     const bool mean_azimuth = !isotropic && a.azimuth_mean && !a.sun_azimuth_deg;
     const double phi_s = a.sun_azimuth_deg.value_or(0.0) * kDegree;
     std::vector<std::vector<double>> u_bs, u_blue;
@@ -314,6 +330,10 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
       };
       const std::vector<double> g_bs = albedo_gradient(model, params, n_sets, covariance, black);
       u_bs.push_back(propagate(g_bs, covariance, n_sets, n_params));
+      if (with_broadband) {
+        bb_u_bs.push_back(
+            bb_json(broadband_uncertainty({&g_bs}, {&bb_bs_mean[z].first}, covariance, n_sets, n_params)));
+      }
       if (!diffuse.empty()) {
         // blue = (1 - D) black + D white: its gradient is the same combination of theirs.
         std::vector<double> g_blue(g_bs.size());
@@ -322,6 +342,14 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
           g_blue[k] = (1.0 - d) * g_bs[k] + d * g_ws[k];
         }
         u_blue.push_back(propagate(g_blue, covariance, n_sets, n_params));
+        if (with_broadband && !bb_blue_mean.empty()) {
+          const WeightedValue& m = bb_blue_mean[z];
+          // SPECTRL2: direct-weighted black-sky plus diffuse-weighted white-sky; else one weight on blue.
+          bb_u_blue.push_back(bb_json(
+              m.second.empty()
+                  ? broadband_uncertainty({&g_blue}, {&m.first}, covariance, n_sets, n_params)
+                  : broadband_uncertainty({&g_bs, &g_ws}, {&m.first, &m.second}, covariance, n_sets, n_params)));
+        }
       }
       progress.add();
     }
@@ -340,10 +368,18 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
     uncertainty = {{"method", "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength"},
                    {"black_sky", rows_with_nulls(u_bs)},
                    {"white_sky", with_nulls(propagate(g_ws, covariance, n_sets, n_params))},
-                   {"blue_sky", rows_with_nulls(u_blue)}};
+                   {"blue_sky", rows_with_nulls(u_blue)},
+                   {"broadband", nullptr}};
+    if (with_broadband) {
+      uncertainty["broadband"] = {
+          {"black_sky", bb_u_bs},
+          {"white_sky", bb_json(broadband_uncertainty({&g_ws}, {&bb_ws_mean.first}, covariance, n_sets, n_params))},
+          {"blue_sky", bb_u_blue.empty() ? nlohmann::json(nullptr) : bb_u_blue}};
+    }
     notes.push_back(
-        "standard uncertainties from the fit's parameter covariance, per wavelength (not propagated to "
-        "the broadband values)");
+        "standard uncertainties from the fit's parameter covariance, per wavelength; the broadband ones "
+        "treat the wavelengths as independent ('independent') and give the bound for errors correlated "
+        "across wavelengths ('correlated')");
   } else if (!covariance.empty()) {
     notes.push_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
   }
@@ -379,7 +415,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
                  "standard uncertainties (1) of black_sky, white_sky and blue_sky from the fit's "
                  "parameter covariance, same shapes; null when unknown (a model, a mixture, "
                  "--wavelengths), null entries where the covariance is undefined; the table's "
-                 "last columns *_u"}};
+                 "last columns *_u; broadband: {independent, correlated} per value (albedo/uncertainty.h)"}};
   j["sun_zenith_deg"] = zeniths;
   j["wavelengths"] = wavelengths;
   j["tolerance"] = a.tolerance;
@@ -454,9 +490,7 @@ std::string albedo_table(const nlohmann::json& j) {
   }
   // Standard uncertainties (JSON "uncertainty"), as the last columns; "nan" where undefined.
   const auto& uncertainty = j.contains("uncertainty") ? j.at("uncertainty") : nlohmann::json(nullptr);
-  auto u_text = [](const nlohmann::json& v) {
-    return v.is_null() ? std::string("nan") : fmt::format("{:.2e}", v.get<double>());
-  };
+  const auto& u_text = u_text_of;
   std::ostringstream text;
   text << fmt::format("# albedo of {} ({}); dimensionless reflectances, absolute error estimates (tolerance {:g})\n",
                       model_name, spectral ? "fit file" : "constant parameters", tolerance);
@@ -493,10 +527,23 @@ std::string albedo_table(const nlohmann::json& j) {
   if (with_broadband) {
     text << fmt::format("# broadband (weighting: {}; solar energy outside the model's wavelength range: {:.4f})\n",
                         weighting, outside);
-    text << fmt::format("# white_sky {:.6f} +- {:.1e}\n", bb_ws, bb_ws_err);
+    // "u ..." after a value: its standard uncertainty (independent wavelengths; the correlated bound).
+    const nlohmann::json bb_u = uncertainty.is_null() || !uncertainty.contains("broadband") ? nlohmann::json(nullptr)
+                                                                                            : uncertainty["broadband"];
+    auto bb_u_text = [](const nlohmann::json& u) {
+      return u.is_null()
+                 ? std::string()
+                 : fmt::format(" u {} (correlated {})", u_text_of(u.at("independent")), u_text_of(u.at("correlated")));
+    };
+    text << fmt::format("# white_sky {:.6f} +- {:.1e}{}\n", bb_ws, bb_ws_err,
+                        bb_u.is_null() ? "" : bb_u_text(bb_u.at("white_sky")));
     for (std::size_t z = 0; z < zeniths.size(); ++z) {
-      text << fmt::format("# sun zenith {:g} deg: black_sky {:.6f} +- {:.1e}", zeniths[z], bb_bs[z], bb_bs_err[z]);
-      if (!bb_blue.empty()) text << fmt::format("  blue_sky {:.6f} +- {:.1e}", bb_blue[z], bb_blue_err[z]);
+      text << fmt::format("# sun zenith {:g} deg: black_sky {:.6f} +- {:.1e}{}", zeniths[z], bb_bs[z], bb_bs_err[z],
+                          bb_u.is_null() ? "" : bb_u_text(bb_u.at("black_sky")[z]));
+      if (!bb_blue.empty()) {
+        text << fmt::format("  blue_sky {:.6f} +- {:.1e}{}", bb_blue[z], bb_blue_err[z],
+                            bb_u.is_null() || bb_u.at("blue_sky").is_null() ? "" : bb_u_text(bb_u.at("blue_sky")[z]));
+      }
       text << '\n';
     }
   }

@@ -311,6 +311,23 @@ WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, co
   std::vector<double> g = union_grid(lo, hi, wavelengths, weight1.wavelengths);
   if (&weight1 != &weight2) g = union_grid(lo, hi, g, weight2.wavelengths);
   const bool two = !values2.empty();
+  WeightedValue result;
+  result.first.assign(wavelengths.size(), 0.0);
+  if (two) result.second.assign(wavelengths.size(), 0.0);
+  // d(value * den)/da[k]: a(x) = (1 - t) a[j] + t a[j+1] between the bands j, j+1 around x, so the
+  // trapezoid weight `h` of the point x goes to those two bands.
+  auto spread = [&](double x, double h1, double h2) {
+    const auto upper = std::upper_bound(wavelengths.begin(), wavelengths.end(), x);
+    const std::size_t j = std::min(
+        static_cast<std::size_t>(std::max<std::ptrdiff_t>(upper - wavelengths.begin() - 1, 0)), wavelengths.size() - 2);
+    const double t = std::clamp((x - wavelengths[j]) / (wavelengths[j + 1] - wavelengths[j]), 0.0, 1.0);
+    result.first[j] += (1.0 - t) * h1;
+    result.first[j + 1] += t * h1;
+    if (two) {
+      result.second[j] += (1.0 - t) * h2;
+      result.second[j + 1] += t * h2;
+    }
+  };
   double num = 0.0, den = 0.0, err = 0.0;
   auto at = [&](double x, double& n, double& dd, double& e) {
     const double w1 = interpolate(weight1.wavelengths, weight1.irradiance, x, weight1.name);
@@ -332,6 +349,11 @@ WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, co
     double n1 = 0.0, d1 = 0.0, e1 = 0.0;
     at(g[k], n1, d1, e1);
     const double dx = g[k] - g[k - 1];
+    for (const double x : {g[k - 1], g[k]}) {
+      const double w1 = interpolate(weight1.wavelengths, weight1.irradiance, x, weight1.name);
+      const double w2 = two ? interpolate(weight2.wavelengths, weight2.irradiance, x, weight2.name) : 0.0;
+      spread(x, 0.5 * dx * w1, 0.5 * dx * w2);
+    }
     num += 0.5 * (n0 + n1) * dx;
     den += 0.5 * (d0 + d1) * dx;
     err += 0.5 * (e0 + e1) * dx;
@@ -346,7 +368,8 @@ WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, co
     total += integrate_spectrum(weight2);
     inside += range_integral(weight2, wavelengths.front(), wavelengths.back());
   }
-  WeightedValue result;
+  for (double& c : result.first) c /= den;
+  for (double& c : result.second) c /= den;
   result.value = num / den;
   result.error = err / den;
   result.fraction_outside = total > 0.0 ? std::max(0.0, 1.0 - inside / total) : 0.0;

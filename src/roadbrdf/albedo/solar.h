@@ -79,6 +79,9 @@ struct WeightedValue {
   double value = 0.0;             // int_{lo}^{hi} E a dl / int_{lo}^{hi} E dl
   double error = 0.0;             // same weighting of the per-wavelength error estimates
   double fraction_outside = 0.0;  // 1 - int_{lo}^{hi} E dl / int E dl (solar energy outside the BRDF's range)
+  // The mean is linear in the tabulated values: value = sum_k first[k] a1[k] + second[k] a2[k]
+  // (second empty with one weight). Used to propagate per-wavelength uncertainties.
+  std::vector<double> first, second;
 };
 
 // Weighted mean of a(l) (tabulated on `wavelengths`, strictly increasing, >= 2 values) with the
