@@ -80,13 +80,11 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
             fmt::format("geometry index '{}' out of sequence (expected {})", cells[0].text, d.geometries.size() + 1));
       }
       double a[4];
-      for (int k = 0; k < 4; ++k)
-        a[k] = number_or_throw(table_path, n, cells[static_cast<std::size_t>(k + 1)], "angle in radians");
-      for (int k : {0, 2}) {
+      for (std::size_t k = 0; k < 4; ++k) a[k] = number_or_throw(table_path, n, cells[k + 1], "angle in radians");
+      for (std::size_t k : {0u, 2u}) {
         if (a[k] < 0.0 || a[k] > kPi / 2 + 1e-6) {
-          throw FileError(
-              table_path, n, cells[static_cast<std::size_t>(k + 1)].column,
-              fmt::format("zenith angle '{}' rad is outside [0, pi/2]", cells[static_cast<std::size_t>(k + 1)].text));
+          throw FileError(table_path, n, cells[k + 1].column,
+                          fmt::format("zenith angle '{}' rad is outside [0, pi/2]", cells[k + 1].text));
         }
       }
       // theta_i, phi_i, theta_r = theta_v, phi_r = phi_v

@@ -96,7 +96,7 @@ struct AshikhminShirley {
     // Diffuse term, paper eq. 5 (the cosine is halved inside the fifth power).
     const double di = 1.0 - ipow(1.0 - 0.5 * ci, 5);
     const double dr = 1.0 - ipow(1.0 - 0.5 * cr, 5);
-    const T diffuse = (28.0 / (23.0 * kPi)) * rd * (1.0 - rs) * (di * dr);
+    T diffuse = (28.0 / (23.0 * kPi)) * rd * (1.0 - rs) * (di * dr);
 
     // Specular term, paper eq. 4.
     const double max_cos = std::fmax(ci, cr);

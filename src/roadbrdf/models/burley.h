@@ -85,7 +85,7 @@ struct Burley {
     const double mi = 1.0 - ci, mr = 1.0 - cr;
     const double mi5 = (mi * mi) * (mi * mi) * mi;
     const double mr5 = (mr * mr) * (mr * mr) * mr;
-    const T diffuse = p[kAlbedo] * kInvPi * (1.0 + (fd90 - 1.0) * mi5) * (1.0 + (fd90 - 1.0) * mr5);
+    T diffuse = p[kAlbedo] * kInvPi * (1.0 + (fd90 - 1.0) * mi5) * (1.0 + (fd90 - 1.0) * mr5);
     if (!h.valid) return diffuse;
 
     // Specular.

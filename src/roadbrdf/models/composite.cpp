@@ -41,7 +41,7 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
   return d;
 }
 
-CompositeModel::CompositeModel(std::vector<std::unique_ptr<Model>> components, std::vector<std::string> prefixes)
+CompositeModel::CompositeModel(std::vector<std::unique_ptr<Model>> components, const std::vector<std::string>& prefixes)
     : Model(make_description(components, prefixes)), components_(std::move(components)) {
   std::size_t offset = 0;
   for (const auto& c : components_) {

@@ -18,7 +18,7 @@ namespace roadbrdf {
 class CompositeModel final : public Model {
  public:
   // `prefixes[k]` names component k in parameter and option names.
-  CompositeModel(std::vector<std::unique_ptr<Model>> components, std::vector<std::string> prefixes);
+  CompositeModel(std::vector<std::unique_ptr<Model>> components, const std::vector<std::string>& prefixes);
 
   double evaluate(const double* params, const Geometry& g) const override;
   double evaluate_with_gradient(const double* params, const Geometry& g, double* gradient) const override;

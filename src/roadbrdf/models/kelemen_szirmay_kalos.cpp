@@ -32,7 +32,8 @@ AlbedoTable::AlbedoTable(Distribution d)
       once_(new std::once_flag[kAlpha + 2 * kGhost]) {}
 
 const AlbedoTable::Row& AlbedoTable::row(int i) const {
-  const std::size_t slot = static_cast<std::size_t>(i + kGhost);
+  const int index = i + kGhost;  // ghost rows below 0 are slots 0..kGhost-1
+  const auto slot = static_cast<std::size_t>(index);
   std::call_once(once_[slot], [&] {
     auto r = std::make_unique<Row>();
     // Ghost rows lie beyond the roughness range; the quadrature is smooth in alpha there too (for

@@ -206,9 +206,10 @@ int mu_weights(const AlbedoTable& table, double mu, double w[4]);
 // A and B of one row at mu >= kMuTable.
 inline void row_parts(const AlbedoTable::Row& row, int j0, const double w[4], double* a, double* b) {
   double sa = 0.0, sb = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    sa += w[k] * row.a[static_cast<std::size_t>(j0 + k)];
-    sb += w[k] * row.b[static_cast<std::size_t>(j0 + k)];
+  const auto first = static_cast<std::size_t>(j0);
+  for (std::size_t k = 0; k < 4; ++k) {
+    sa += w[k] * row.a[first + k];
+    sb += w[k] * row.b[first + k];
   }
   *a = sa;
   *b = sb;
