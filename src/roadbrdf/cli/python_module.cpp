@@ -33,4 +33,16 @@ void exec_python_module(const std::string& module, const std::vector<std::string
                    needs + ")");
 }
 
+void add_python_command(CLI::App& app, const PythonCommand& command) {
+  auto* sub = app.add_subcommand(command.name, command.help);
+  sub->prefix_command();
+  sub->set_help_flag();  // --help goes to the Python module
+  sub->callback([sub, command] {
+    std::vector<std::string> remaining = sub->remaining();
+    if (remaining.empty()) remaining.emplace_back("--help");
+    if (command.draws && std::getenv("MPLBACKEND") == nullptr) setenv("MPLBACKEND", "Agg", 1);
+    exec_python_module(command.module, remaining, command.purpose, command.needs);
+  });
+}
+
 }  // namespace roadbrdf::cli

@@ -2,10 +2,23 @@
 // command line and the Python function are one implementation.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
 namespace roadbrdf::cli {
+
+// What a command made by the Python package needs: its name and help line here, the module that
+// runs it, what it is for and which packages it needs (for the error when they are missing), and
+// whether it draws with matplotlib (then MPLBACKEND defaults to Agg: no display needed).
+struct PythonCommand {
+  std::string name, help, module, purpose, needs;
+  bool draws = false;
+};
+
+// Registers the command: every argument (and --help) goes to `python -m MODULE`; no argument is
+// `--help`.
+void add_python_command(CLI::App& app, const PythonCommand& command);
 
 // Replaces this process by `python -m MODULE ARGUMENTS...`. The interpreter: $ROADBRDF_PYTHON,
 // else the python3 next to the program (a virtual environment that pip installed roadbrdf into),
