@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import os
+import sys
+import tempfile
 from typing import Any, Tuple
 
 import numpy as np
@@ -46,3 +49,62 @@ def road_to_zenith_azimuth(gamma: ArrayLike, alpha: ArrayLike, beta: ArrayLike,
     phi_r = d + 180.0
     phi_i = phi_r - (180.0 - b)
     return theta_i, phi_i, theta_r, phi_r
+
+
+def umask() -> int:
+    """The process's umask, read without changing it where /proc tells it."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def write_atomic(path, write, suffix: str = "") -> str:
+    """Write an output file as the library's AtomicFile does: ``write(temporary_path)`` fills a temporary
+    file in the target's folder, which is synced, given the mode of the file it replaces (a new file:
+    0666 & ~umask, as any program's output) and renamed over the target; the folder is synced. A symbolic
+    link is followed and kept. On any error the temporary file is removed and the target is untouched.
+    Returns ``path``."""
+    target = os.path.realpath(os.fspath(path))
+    folder = os.path.dirname(target)
+    try:
+        mode = os.stat(target).st_mode & 0o7777
+    except FileNotFoundError:
+        mode = 0o666 & ~umask()
+    fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-", suffix=suffix, dir=folder)
+    os.close(fd)
+    try:
+        write(tmp)
+        with open(tmp, "rb") as fh:
+            os.fsync(fh.fileno())
+        os.chmod(tmp, mode)
+        os.replace(tmp, target)
+        dir_fd = os.open(folder, os.O_RDONLY)
+        try:
+            os.fsync(dir_fd)
+        finally:
+            os.close(dir_fd)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    return path
+
+
+def write_text_atomic(path, text: str, suffix: str = "") -> None:
+    """``text`` (UTF-8) to ``path`` by :func:`write_atomic`, or to standard output for ``-``."""
+    if os.fspath(path) == "-":
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+
+    def fill(tmp):
+        with open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(text)
+
+    write_atomic(path, fill, suffix)

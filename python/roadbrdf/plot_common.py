@@ -7,7 +7,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import tempfile
 
 import numpy as np
 
@@ -18,6 +17,7 @@ if os.environ.get("MPLBACKEND") is None and not os.environ.get("DISPLAY"):
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
+from .core import write_atomic  # noqa: E402
 
 __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
 
@@ -39,20 +39,6 @@ def check_output_folder(output) -> None:
         raise OutputFolderError(f"output folder '{folder}' does not exist")
 
 
-def _umask() -> int:
-    """The process's umask, read without changing it where /proc tells it."""
-    try:
-        with open("/proc/self/status", encoding="ascii") as fh:
-            for line in fh:
-                if line.startswith("Umask:"):
-                    return int(line.split()[1], 8)
-    except (OSError, ValueError, IndexError):
-        pass
-    old = os.umask(0o022)
-    os.umask(old)
-    return old
-
-
 def save(fig, output, dpi=None):
     """Save a figure as PNG, SVG or PDF (from the extension) atomically: a temporary file in the same folder,
     given the mode of the file it replaces (a new file: 0666 & ~umask, as any program's output), then renamed
@@ -60,22 +46,9 @@ def save(fig, output, dpi=None):
     Returns the path."""
     output = os.fspath(output)
     check_output_folder(output)
-    target = os.path.realpath(output)
-    folder = os.path.dirname(target)
-    try:
-        mode = os.stat(target).st_mode & 0o7777
-    except FileNotFoundError:
-        mode = 0o666 & ~_umask()
-    fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-plot-", suffix=os.path.splitext(output)[1], dir=folder)
-    os.close(fd)
-    try:
-        root = fig.figure  # a SubFigure saves its whole figure
-        root.savefig(tmp, dpi=dpi or DEFAULT_DPI, bbox_inches="tight")
-        os.chmod(tmp, mode)
-        os.replace(tmp, target)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    root = fig.figure  # a SubFigure saves its whole figure
+    write_atomic(output, lambda tmp: root.savefig(tmp, dpi=dpi or DEFAULT_DPI, bbox_inches="tight"),
+                 os.path.splitext(output)[1])
     return output
 
 

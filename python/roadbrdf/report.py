@@ -29,7 +29,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import __version__, _roadbrdf
-from .core import InputError
+from .core import InputError, write_text_atomic
 
 __all__ = ["write_report", "render_report", "gather", "main", "DEFAULT_MODELS"]
 
@@ -243,32 +243,8 @@ def render_report(r, command: str = "") -> str:
 
 
 def _write_atomic(path: str, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same folder, then rename; a symbolic link
-    is followed (and kept), an existing file's mode is kept, a new file gets 0666 & ~umask."""
-    if path == "-":
-        sys.stdout.write(text)
-        sys.stdout.flush()
-        return
-    target = os.path.realpath(path) if os.path.islink(path) else path
-    folder = os.path.dirname(os.path.abspath(target))
-    if os.path.exists(target):
-        mode = os.stat(target).st_mode & 0o7777
-    else:
-        mask = os.umask(0)
-        os.umask(mask)
-        mode = 0o666 & ~mask
-    fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-report-", suffix=".html", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
+    """The page to ``path`` atomically (core.write_text_atomic), or to standard output for ``-``."""
+    write_text_atomic(path, text, ".html")
 
 
 def _check_output(output: str, inputs) -> None:

@@ -16,8 +16,8 @@ import fcntl
 import json
 import os
 import sys
-import tempfile
 
+from ..core import write_text_atomic
 from .spec import InputError
 
 _HEADER = {"format": "roadbrdf-study-store", "version": 1}
@@ -103,35 +103,4 @@ def _text(value):
 def write_csv(path, header, rows):
     """The results CSV, atomically (or to standard output for ``-``)."""
     body = "".join(",".join(_text(v) for v in row) + "\n" for row in [header] + rows)
-    if path == "-":
-        sys.stdout.write(body)
-        sys.stdout.flush()
-        return
-    target = os.path.realpath(path)  # a link is written through
-    folder = os.path.dirname(target)
-    mode = None
-    if os.path.exists(target):
-        mode = os.stat(target).st_mode & 0o7777
-    fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-study-", suffix=".csv", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(body)
-            f.flush()
-            os.fsync(f.fileno())
-        os.chmod(tmp, mode if mode is not None else 0o644 & ~_umask())
-        os.replace(tmp, target)
-        dir_fd = os.open(folder, os.O_RDONLY)
-        try:
-            os.fsync(dir_fd)
-        finally:
-            os.close(dir_fd)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-
-
-def _umask():
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
+    write_text_atomic(path, body, ".csv")
