@@ -37,11 +37,24 @@ TEST(AlbedoCli, JsonKeysAndLambertValues) {
 }
 
 TEST(AlbedoCli, RejectsBadInput) {
+  // The library's request validation names fields (AlbedoRequest::validate); the command line
+  // names its flags for them.
   int status = 0;
-  run("albedo lambert --sun-zenith 95", status);
+  std::string out = run("albedo lambert -p albedo=0.3 --sun-zenith 95", status);
   EXPECT_NE(status, 0);
-  run("albedo lambert --diffuse-fraction 0.2 --atmosphere spectrl2", status);
+  EXPECT_NE(out.find("roadbrdf: error: --sun-zenith: must be in [0, 90) deg, got 95"), std::string::npos) << out;
+  out = run("albedo lambert -p albedo=0.3 --diffuse-fraction 0.2 --atmosphere spectrl2", status);
   EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("--diffuse-fraction: excludes atmosphere"), std::string::npos) << out;
+  out = run("albedo lambert -p albedo=0.3 --diffuse-fraction 1.5", status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("--diffuse-fraction: must be in [0, 1]"), std::string::npos) << out;
+  out = run("albedo lambert -p albedo=0.3 --tolerance 0", status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("--tolerance: must be > 0"), std::string::npos) << out;
+  out = run("albedo lambert -p albedo=0.3 --wavelengths 500", status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("--wavelengths: needs a fit file"), std::string::npos) << out;
   run("albedo lambert --atmosphere spectrl2:bogus=1", status);
   EXPECT_NE(status, 0);
 }

@@ -104,3 +104,18 @@ def test_mistyped_command_or_option_names_the_nearest(cli):
     assert "unknown kind of figure 'hemisphre'" in message and "did you mean 'hemisphere'?" in message
     message = _cli_error(cli, "plot", "hemisphere", "lambert", "--thta-i", "30", "-o", "x.png")
     assert "did you mean '--theta-i'?" in message, message
+
+
+@pytest.mark.parametrize("cli_args, py_kwargs, flag, field", [
+    (["--sun-zenith", "95"], {"sun_zenith": 95}, "--sun-zenith", "sun_zenith"),
+    (["--tolerance", "0"], {"tolerance": 0.0}, "--tolerance", "tolerance"),
+    (["--diffuse-fraction", "1.5"], {"diffuse_fraction": 1.5}, "--diffuse-fraction", "diffuse_fraction"),
+    (["--diffuse-fraction", "0.2", "--atmosphere", "spectrl2"], {"diffuse_fraction": 0.2, "atmosphere": "spectrl2"},
+     "--diffuse-fraction", "diffuse_fraction"),
+])
+def test_albedo_request_errors_are_the_same(cli, cli_args, py_kwargs, flag, field):
+    """AlbedoRequest::validate names the field once; each front end names it its own way."""
+    cli_message = _cli_error(cli, "albedo", "lambert", "-p", "albedo=0.3", *cli_args, "--json")
+    with pytest.raises(roadbrdf.InputError) as e:
+        roadbrdf.albedo(roadbrdf.Model("lambert"), {"albedo": 0.3}, **py_kwargs)
+    assert _detail(cli_message, flag) == _detail(str(e.value), field)

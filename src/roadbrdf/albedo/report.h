@@ -31,9 +31,15 @@ struct AlbedoRequest {
   // Integrals done: one black-sky integral per sun zenith (all wavelengths at once), then the
   // white-sky one.
   ProgressCallback progress;
+
+  // Throws FieldError naming the request's field (tolerance, sun_zenith, diffuse_fraction,
+  // atmosphere) for a request that is invalid whatever the model; compute_albedo calls it.
+  void validate() const;
 };
 
-// Throws InputError for inconsistent requests.
+// Throws FieldError for a request that is invalid (validate(), and what depends on the model:
+// wavelengths of a model without any, a diffuse-fraction table for it), InputError or FileError for
+// unreadable spectra.
 nlohmann::json compute_albedo(const SpectralModel& model, const AlbedoRequest& request);
 
 // The CSV table `roadbrdf albedo` prints without --json (per wavelength, then broadband lines).

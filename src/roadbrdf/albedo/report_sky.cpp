@@ -1,0 +1,138 @@
+// compute_albedo's first stages (report_stages.h): the parameter sets, the hemispherical integrals,
+// and the sky (diffuse fraction and blue-sky).
+#include <cmath>
+#include <utility>
+
+#include "roadbrdf/albedo/report_stages.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
+#include "roadbrdf/core/number.h"
+
+namespace roadbrdf::albedo::detail {
+
+namespace {
+
+// Diffuse-fraction table: CSV wavelength_nm, diffuse_fraction.
+SolarSpectrum read_diffuse_table(const std::string& path) {
+  SolarSpectrum t = read_solar_spectrum(path);  // same two-column format and checks
+  for (double d : t.irradiance) {
+    if (d > 1.0) throw FileError(path, 0, 0, "a diffuse fraction must be in [0, 1]");
+  }
+  return t;
+}
+
+// D = E_diffuse / E_global at one wavelength of SPECTRL2's spectra, or of their integrals for a
+// model without wavelengths (trapezoid over SPECTRL2's own grid).
+double spectrl2_diffuse_fraction(const Spectrl2Output& o, const ParameterSets& sets, std::size_t s) {
+  if (sets.spectral) {
+    const double dif = interpolate(o.wavelengths, o.diffuse, sets.wavelengths[s], "SPECTRL2 (300-4000 nm)");
+    const double glo = interpolate(o.wavelengths, o.global, sets.wavelengths[s], "SPECTRL2 (300-4000 nm)");
+    return glo > 0.0 ? dif / glo : 1.0;
+  }
+  double dif = 0.0, glo = 0.0;
+  for (std::size_t k = 1; k < o.wavelengths.size(); ++k) {
+    const double dl = o.wavelengths[k] - o.wavelengths[k - 1];
+    dif += 0.5 * (o.diffuse[k] + o.diffuse[k - 1]) * dl;
+    glo += 0.5 * (o.global[k] + o.global[k - 1]) * dl;
+  }
+  return dif / glo;
+}
+
+}  // namespace
+
+ParameterSets parameter_sets(const SpectralModel& sm, const AlbedoRequest& a) {
+  ParameterSets sets;
+  sets.spectral = sm.is_spectral();
+  if (!sets.spectral && !a.wavelengths.empty()) {
+    throw FieldError("wavelengths", "needs a fit file: MODEL -p ... has no wavelength axis");
+  }
+  if (sets.spectral && !a.wavelengths.empty()) {
+    sets.wavelengths = a.wavelengths;
+    for (double l : sets.wavelengths) {
+      const auto p = sm.parameters_at(l);
+      sets.params.insert(sets.params.end(), p.begin(), p.end());
+    }
+  } else {
+    if (sets.spectral) sets.wavelengths = sm.wavelengths();
+    sets.params = sm.parameter_table();
+  }
+  sets.n_sets = sets.params.size() / sm.model().parameter_count();
+  return sets;
+}
+
+SpectralIntegral black_sky_at(const Model& model, const std::vector<double>& params, std::size_t n_sets, double theta_s,
+                              const SunAzimuth& azimuth, const QuadratureSettings& settings) {
+  return azimuth.mean ? black_sky_azimuth_mean(model, params.data(), n_sets, theta_s, settings)
+                      : black_sky(model, params.data(), n_sets, theta_s, azimuth.phi_s, settings);
+}
+
+Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& sets,
+                                    const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
+                                    const QuadratureSettings& settings, ProgressCounter& progress) {
+  Hemispherical h;
+  for (double zenith : zeniths_deg) {
+    SpectralIntegral r = black_sky_at(model, sets.params, sets.n_sets, zenith * kDegree, azimuth, settings);
+    h.converged = h.converged && r.converged;
+    h.black.push_back(std::move(r.value));
+    h.black_error.push_back(std::move(r.error));
+    progress.add();
+  }
+  h.white = white_sky(model, sets.params.data(), sets.n_sets, settings);
+  h.converged = h.converged && h.white.converged;
+  progress.add();
+  return h;
+}
+
+Sky sky_conditions(const ParameterSets& sets, const AlbedoRequest& a, const Hemispherical& albedos) {
+  Sky sky;
+  if (!a.atmosphere.empty()) sky.atmosphere = parse_spectrl2_spec(a.atmosphere);
+  if (a.diffuse_fraction.empty() && !sky.atmosphere) return sky;
+
+  // A number is a constant D; anything else names a table file.
+  std::optional<double> constant;
+  SolarSpectrum table;
+  if (!a.diffuse_fraction.empty()) {
+    double v = 0.0;
+    if (parse_finite_double(a.diffuse_fraction, v)) {
+      if (!(v >= 0.0 && v <= 1.0)) throw FieldError("diffuse_fraction", "must be in [0, 1]");
+      constant = v;
+    } else {
+      if (!sets.spectral) {
+        throw FieldError("diffuse_fraction", "a table needs a fit file (a model has no wavelengths)");
+      }
+      table = read_diffuse_table(a.diffuse_fraction);
+    }
+  }
+  const std::size_t n_zeniths = albedos.black.size();
+  sky.diffuse.assign(n_zeniths, std::vector<double>(sets.n_sets, 0.0));
+  for (std::size_t z = 0; z < n_zeniths; ++z) {
+    if (sky.atmosphere) {
+      Spectrl2Input in = *sky.atmosphere;
+      in.zenith_deg = a.sun_zenith_deg[z];
+      sky.spectra.push_back(spectrl2(in));
+    }
+    for (std::size_t s = 0; s < sets.n_sets; ++s) {
+      if (constant) {
+        sky.diffuse[z][s] = *constant;
+      } else if (sky.atmosphere) {
+        sky.diffuse[z][s] = spectrl2_diffuse_fraction(sky.spectra.back(), sets, s);
+      } else {
+        sky.diffuse[z][s] = interpolate(table.wavelengths, table.irradiance, sets.wavelengths[s], a.diffuse_fraction);
+      }
+    }
+  }
+
+  // Blue-sky albedo (report eq. 2.19) and its error estimate, the same combination.
+  sky.blue.assign(n_zeniths, std::vector<double>(sets.n_sets));
+  sky.blue_error.assign(n_zeniths, std::vector<double>(sets.n_sets));
+  for (std::size_t z = 0; z < n_zeniths; ++z) {
+    for (std::size_t s = 0; s < sets.n_sets; ++s) {
+      const double d = sky.diffuse[z][s];
+      sky.blue[z][s] = (1.0 - d) * albedos.black[z][s] + d * albedos.white.value[s];
+      sky.blue_error[z][s] = (1.0 - d) * albedos.black_error[z][s] + d * albedos.white.error[s];
+    }
+  }
+  return sky;
+}
+
+}  // namespace roadbrdf::albedo::detail

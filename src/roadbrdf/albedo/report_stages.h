@@ -1,0 +1,83 @@
+// The stages of compute_albedo (report.cpp), one concept per stage, in the order they run:
+// parameter sets -> hemispherical integrals -> sky (diffuse fraction, blue-sky) -> broadband and
+// luminous weighting -> uncertainty. Internal to the albedo module: the public interface is
+// report.h; these types only carry one stage's results to the next and to the JSON writer.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/albedo/hemisphere.h"
+#include "roadbrdf/albedo/report.h"
+#include "roadbrdf/albedo/solar.h"
+
+namespace roadbrdf::albedo::detail {
+
+// The parameter sets integrated at once: one per wavelength of a fit (or of request.wavelengths,
+// interpolated), or the single set of a model given by its parameters (not spectral).
+struct ParameterSets {
+  bool spectral = false;
+  std::vector<double> wavelengths;  // [nm], empty when not spectral
+  std::vector<double> params;       // n_sets x parameter_count, row-major
+  std::size_t n_sets = 0;
+};
+ParameterSets parameter_sets(const SpectralModel& model, const AlbedoRequest& request);
+
+// How the black-sky integral treats the sun azimuth: anisotropic models are integrated at the given
+// azimuth, or averaged over it (AlbedoRequest::azimuth_mean).
+struct SunAzimuth {
+  bool mean = false;
+  double phi_s = 0.0;  // [rad]
+};
+SpectralIntegral black_sky_at(const Model& model, const std::vector<double>& params, std::size_t n_sets, double theta_s,
+                              const SunAzimuth& azimuth, const QuadratureSettings& settings);
+
+// Black-sky per sun zenith and white-sky, each for every parameter set.
+struct Hemispherical {
+  std::vector<std::vector<double>> black, black_error;  // [zenith][set]
+  SpectralIntegral white;
+  bool converged = true;
+};
+Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& sets,
+                                    const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
+                                    const QuadratureSettings& settings, ProgressCounter& progress);
+
+// The sky: diffuse fraction D per sun zenith and set (a constant, a table or SPECTRL2), SPECTRL2's
+// spectra per zenith, and blue-sky = (1 - D) black + D white (report eq. 2.19). All empty without a
+// diffuse fraction or atmosphere.
+struct Sky {
+  std::optional<Spectrl2Input> atmosphere;
+  std::vector<Spectrl2Output> spectra;                // [zenith], with an atmosphere
+  std::vector<std::vector<double>> diffuse;           // [zenith][set]
+  std::vector<std::vector<double>> blue, blue_error;  // [zenith][set]
+};
+Sky sky_conditions(const ParameterSets& sets, const AlbedoRequest& request, const Hemispherical& albedos);
+
+// Solar-weighted (broadband) values; `formed` false for a single band (nothing to weigh).
+struct Broadband {
+  bool formed = true;
+  std::string weighting;
+  std::vector<double> black, black_error, blue, blue_error;  // [zenith]
+  double white = 0.0, white_error = 0.0, outside = 0.0;
+  // The weighted means with their coefficients (WeightedValue::first/second), for the uncertainties;
+  // empty when not spectral.
+  std::vector<WeightedValue> black_means, blue_means;
+  WeightedValue white_mean;
+};
+Broadband broadband_albedos(const ParameterSets& sets, const AlbedoRequest& request, const Hemispherical& albedos,
+                            const Sky& sky, std::vector<std::string>& notes);
+
+// The luminous (V(lambda) x illuminant weighted) values, JSON null without an illuminant or when the
+// wavelengths cannot form them (with a note).
+nlohmann::json luminous_albedos(const ParameterSets& sets, const AlbedoRequest& request, const Hemispherical& albedos,
+                                std::vector<std::string>& notes);
+
+// Standard uncertainties from the fit's parameter covariance (albedo/uncertainty.h), JSON "uncertainty";
+// null (with a note) where they are not defined.
+nlohmann::json albedo_uncertainty(const SpectralModel& model, const ParameterSets& sets, const AlbedoRequest& request,
+                                  const SunAzimuth& azimuth, const Sky& sky, const Broadband& broadband,
+                                  ProgressCounter& progress, std::vector<std::string>& notes);
+
+}  // namespace roadbrdf::albedo::detail

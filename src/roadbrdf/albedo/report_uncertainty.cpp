@@ -1,0 +1,117 @@
+// compute_albedo's uncertainty stage (report_stages.h): standard uncertainties of every albedo from
+// the fit's parameter covariance, per wavelength and broadband (albedo/uncertainty.h explains the
+// linearised propagation and why it is preferred to sampling here).
+#include <cmath>
+
+#include "roadbrdf/albedo/report_stages.h"
+#include "roadbrdf/albedo/uncertainty.h"
+#include "roadbrdf/core/math.h"
+
+namespace roadbrdf::albedo::detail {
+
+namespace {
+
+// Undefined (NaN) uncertainties are JSON null, in the document itself and not only when dumped.
+nlohmann::json number_or_null(double x) { return std::isnan(x) ? nlohmann::json(nullptr) : nlohmann::json(x); }
+
+nlohmann::json with_nulls(const std::vector<double>& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (double x : v) out.push_back(number_or_null(x));
+  return out;
+}
+
+nlohmann::json rows_with_nulls(const std::vector<std::vector<double>>& rows) {
+  if (rows.empty()) return nullptr;
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& row : rows) out.push_back(with_nulls(row));
+  return out;
+}
+
+nlohmann::json broadband_json(const BroadbandUncertainty& b) {
+  return {{"independent", number_or_null(b.independent)}, {"correlated", number_or_null(b.correlated)}};
+}
+
+// The gradient of blue = (1 - D) black + D white is the same combination of theirs.
+std::vector<double> blue_sky_gradient(const std::vector<double>& g_black, const std::vector<double>& g_white,
+                                      const std::vector<double>& diffuse, std::size_t n_params) {
+  std::vector<double> g(g_black.size());
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const double d = diffuse[k / n_params];
+    g[k] = (1.0 - d) * g_black[k] + d * g_white[k];
+  }
+  return g;
+}
+
+}  // namespace
+
+nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& sets, const AlbedoRequest& a,
+                                  const SunAzimuth& azimuth, const Sky& sky, const Broadband& broadband,
+                                  ProgressCounter& progress, std::vector<std::string>& notes) {
+  const std::vector<double>& covariance = sm.parameter_covariance();
+  if (covariance.empty()) return nullptr;
+  // At the fit's own wavelengths only: an interpolated parameter set has no covariance of its own.
+  if (!sets.spectral || !a.wavelengths.empty()) {
+    notes.push_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
+    return nullptr;
+  }
+  const Model& model = sm.model();
+  const std::size_t n_params = model.parameter_count();
+  const std::size_t n_sets = sets.n_sets;
+  auto propagated = [&](const std::vector<double>& g) { return propagate(g, covariance, n_sets, n_params); };
+  auto broadband_of = [&](const std::vector<const std::vector<double>*>& gradients,
+                          const std::vector<const std::vector<double>*>& coefficients) {
+    return broadband_json(broadband_uncertainty(gradients, coefficients, covariance, n_sets, n_params));
+  };
+
+  const std::vector<double>& zeniths = a.sun_zenith_deg;
+  progress.add_total(zeniths.size() + 1);
+  QuadratureSettings tight;
+  tight.tolerance = kDerivativeTolerance;
+  const SetIntegral white = [&](const std::vector<double>& p, std::size_t n) {
+    return white_sky(model, p.data(), n, tight).value;
+  };
+  const std::vector<double> g_white = albedo_gradient(model, sets.params, n_sets, covariance, white);
+  progress.add();
+
+  const bool with_broadband = broadband.formed && !broadband.black_means.empty();
+  std::vector<std::vector<double>> u_black, u_blue;
+  nlohmann::json bb_black = nlohmann::json::array(), bb_blue = nlohmann::json::array();
+  for (std::size_t z = 0; z < zeniths.size(); ++z) {
+    const double theta_s = zeniths[z] * kDegree;
+    const SetIntegral black = [&](const std::vector<double>& p, std::size_t n) {
+      return black_sky_at(model, p, n, theta_s, azimuth, tight).value;
+    };
+    const std::vector<double> g_black = albedo_gradient(model, sets.params, n_sets, covariance, black);
+    u_black.push_back(propagated(g_black));
+    if (with_broadband) bb_black.push_back(broadband_of({&g_black}, {&broadband.black_means[z].first}));
+    if (!sky.diffuse.empty()) {
+      const std::vector<double> g_blue = blue_sky_gradient(g_black, g_white, sky.diffuse[z], n_params);
+      u_blue.push_back(propagated(g_blue));
+      if (with_broadband && !broadband.blue_means.empty()) {
+        const WeightedValue& m = broadband.blue_means[z];
+        // SPECTRL2: direct-weighted black-sky plus diffuse-weighted white-sky; else one weight on blue.
+        bb_blue.push_back(m.second.empty() ? broadband_of({&g_blue}, {&m.first})
+                                           : broadband_of({&g_black, &g_white}, {&m.first, &m.second}));
+      }
+    }
+    progress.add();
+  }
+
+  nlohmann::json u = {{"method", "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength"},
+                      {"black_sky", rows_with_nulls(u_black)},
+                      {"white_sky", with_nulls(propagated(g_white))},
+                      {"blue_sky", rows_with_nulls(u_blue)},
+                      {"broadband", nullptr}};
+  if (with_broadband) {
+    u["broadband"] = {{"black_sky", bb_black},
+                      {"white_sky", broadband_of({&g_white}, {&broadband.white_mean.first})},
+                      {"blue_sky", bb_blue.empty() ? nlohmann::json(nullptr) : bb_blue}};
+  }
+  notes.push_back(
+      "standard uncertainties from the fit's parameter covariance, per wavelength; the broadband ones "
+      "treat the wavelengths as independent ('independent') and give the bound for errors correlated "
+      "across wavelengths ('correlated')");
+  return u;
+}
+
+}  // namespace roadbrdf::albedo::detail
