@@ -155,16 +155,7 @@ void bind_fitting(py::module_& m) {
       .def("statistics", [](const FitSummary& s, std::size_t i) { return statistics(fit_at(s, i)); })
       .def("totals", [](const FitSummary& s, std::size_t i) { return totals(fit_at(s, i)); })
       .def("spectral_model",
-           [](const FitSummary& s, std::size_t i) {
-             const FitResult& f = fit_at(s, i);
-             const std::size_t p = f.parameter_names.size();
-             std::vector<double> wavelengths, table;
-             for (const auto& w : f.wavelengths) {
-               wavelengths.push_back(w.wavelength);
-               table.insert(table.end(), w.parameters.begin(), w.parameters.begin() + static_cast<std::ptrdiff_t>(p));
-             }
-             return SpectralModel(s.models.at(i), wavelengths, table);
-           })
+           [](const FitSummary& s, std::size_t i) { return spectral_model_of(fit_at(s, i), s.models.at(i)); })
       .def(
           "file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits, s.notes)); },
           "The fit file's content as Python objects (dicts, lists, numbers).")

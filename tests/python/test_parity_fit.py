@@ -152,3 +152,26 @@ def test_result_objects(root):
     assert set(df["model"]) == {"lambert", "oren-nayar"} and len(df) == 3 * (1 + 2)
     wide = on.to_dataframe()
     assert list(wide["wavelength_nm"]) == [510.0, 610.0, 710.0] and "stderr_sigma" in wide
+
+
+def test_albedo_of_a_fit_result_equals_that_of_its_fit_file(cli, root, tmp_path):
+    """A FitResult in memory carries what its fit file carries (parameter covariance, angular
+    coverage): its albedo, uncertainties and coverage equal `roadbrdf albedo FIT.json`'s."""
+    out = tmp_path / "fit.json"
+    cli("fit", root / DATA, "--model", "oren-nayar", "--wavelengths", "400:700:50", "-o", out)
+    from_file = json.loads(cli("albedo", out, "--sun-zenith", "20,50", "--json").stdout)
+    result = roadbrdf.fit(roadbrdf.read_dataset(root / DATA), "oren-nayar", wavelengths="400:700:50")
+    with pytest.warns(UserWarning, match="mostly extrapolation"):  # lazard.csv: one incidence plane
+        in_memory = roadbrdf.albedo(result.spectral_model(), sun_zenith=[20, 50])
+    assert in_memory["coverage"] == from_file["coverage"] and from_file["coverage"] is not None
+    for key in ("black_sky", "white_sky"):
+        np.testing.assert_allclose(in_memory[key], from_file[key], rtol=1e-12, atol=0)
+        u_file = np.array(from_file["uncertainty"][key], dtype=float)
+        assert np.all(u_file > 0), u_file
+        np.testing.assert_allclose(np.array(in_memory["uncertainty"][key], dtype=float), u_file, rtol=1e-9, atol=0)
+    bb_file, bb_memory = from_file["uncertainty"]["broadband"], in_memory["uncertainty"]["broadband"]
+    for kind in ("independent", "correlated"):
+        assert bb_file["white_sky"][kind] > 0
+        assert bb_memory["white_sky"][kind] == pytest.approx(bb_file["white_sky"][kind], rel=1e-9)
+        assert [b[kind] for b in bb_memory["black_sky"]] == pytest.approx([b[kind] for b in bb_file["black_sky"]],
+                                                                          rel=1e-9)

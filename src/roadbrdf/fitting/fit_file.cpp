@@ -440,3 +440,35 @@ SpectralModel read_fit_file(const std::string& path, const std::string& selectio
 }
 
 }  // namespace roadbrdf
+
+namespace roadbrdf {
+
+SpectralModel spectral_model_of(const FitResult& fit, std::shared_ptr<const Model> model) {
+  const std::size_t p = fit.parameter_names.size();
+  if (model->parameter_count() != p) {
+    throw InputError("spectral_model_of: the model has " + std::to_string(model->parameter_count()) +
+                     " parameters, the fit " + std::to_string(p));
+  }
+  std::vector<bool> fixed(p, false);
+  for (const std::string& name : fit.fixed) {
+    if (const auto k = model->description().parameter_index(name)) fixed[*k] = true;
+  }
+  std::vector<double> wavelengths, table, covariance;
+  for (const WavelengthFit& w : fit.wavelengths) {
+    wavelengths.push_back(w.wavelength);
+    table.insert(table.end(), w.parameters.begin(), w.parameters.begin() + static_cast<std::ptrdiff_t>(p));
+    // As read_covariance builds it from the file's "stderr" and "correlation".
+    for (std::size_t a = 0; a < p; ++a) {
+      for (std::size_t b = 0; b < p; ++b) {
+        covariance.push_back(
+            fixed[a] || fixed[b] ? 0.0 : w.correlation[a * p + b] * w.standard_errors[a] * w.standard_errors[b]);
+      }
+    }
+  }
+  SpectralModel spectral(std::move(model), wavelengths, table);
+  spectral.set_coverage(fit.coverage);
+  spectral.set_parameter_covariance(std::move(covariance));
+  return spectral;
+}
+
+}  // namespace roadbrdf

@@ -27,6 +27,7 @@
 // }
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
@@ -51,6 +52,13 @@ FitSelector parse_fit_selector(const std::string& text);
 // file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
 // InputError (FieldError "fit" for a selection matching no fit or several).
 SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
+
+// The SpectralModel of a fit held in memory, the same as read_fit_file gives for it from the file:
+// parameters per wavelength, the data's angular coverage and the parameter covariance per wavelength
+// (cov_ab = r_ab s_a s_b; 0 for a fixed parameter, NaN where undefined), so that albedo and r-table
+// uncertainties of a Python FitResult equal those of its fit file. `model` is the fitted model
+// (FitResult holds its name and options only).
+SpectralModel spectral_model_of(const FitResult& fit, std::shared_ptr<const Model> model);
 
 // True if `argument` names a fit file rather than a model (ends in ".json").
 bool is_fit_file_argument(const std::string& argument);
