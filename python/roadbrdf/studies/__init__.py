@@ -1,11 +1,13 @@
-"""Design studies: sweep a formulation space, predict every candidate, collect the table (docs/studies.md).
+"""Design studies: sweep a formulation space, predict every candidate, collect the table (docs/studies.md);
+and campaign fitting: fit every measured sample of a folder or list and collect their parameters (campaign.py).
 
 ``roadbrdf.study(STUDY, output=...)`` and ``roadbrdf study STUDY.json -o RESULTS.csv`` are the same code: the
-command line runs :func:`main` (``python3 -m roadbrdf.studies``).
+command line runs :func:`main` (``python3 -m roadbrdf.studies``). The file's ``format`` says which it is.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 
@@ -20,8 +22,19 @@ def _inputs(study):
     return [(role, path) for role, path in files if os.path.exists(path)]
 
 
+def _is_campaign(source):
+    from .campaign import is_campaign
+    if isinstance(source, dict):
+        return is_campaign(source)
+    try:
+        with open(os.fspath(source), encoding="utf-8") as f:
+            return is_campaign(json.load(f))
+    except (OSError, ValueError):
+        return False  # read_study reports what is wrong with the file
+
+
 def study(source, output=None, store=None, scheduler=None, workers=None, progress=True, retry_failed=False):
-    """Run a design study and return its table as a list of dicts (CSV header -> value).
+    """Run a design study (or a campaign fit) and return its table as a list of dicts (CSV header -> value).
 
     ``source``: a study file (``"format": "roadbrdf-study"``) or its content as a dict. ``output``: the results
     CSV (``-`` = standard output), written once every candidate is done. ``store``: the results store (JSON
@@ -30,11 +43,22 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
     ``$ROADBRDF_SCHEDULER``), else ``workers`` local processes (default: all cores). ``progress``: report on
     standard error. ``retry_failed``: run failed candidates again. Errors in the study raise InputError naming
     the file and the JSON key.
+
+    A ``"format": "roadbrdf-campaign"`` file fits every sample it lists with the same models and settings instead
+    (one task per sample; the table has one row per sample, model and wavelength: docs/studies.md "Campaign
+    fitting").
     """
     from .. import _roadbrdf
-    from .run import execute, table
+    from .run import execute, run_pending, table
     from .store import Store, write_csv
-    s = read_study(source)
+    campaign = _is_campaign(source)
+    if campaign:
+        from .campaign import read_campaign
+        s = read_campaign(source)
+        inputs = [("CAMPAIGN", s.path)] + [("samples", sample["path"]) for sample in s.samples]
+    else:
+        s = read_study(source)
+        inputs = _inputs(s)
     if scheduler is None:
         scheduler = os.environ.get("ROADBRDF_SCHEDULER") or None
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
@@ -46,13 +70,28 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
     outputs = [("-o", os.fspath(output))] if output is not None else []
     if store is not None:
         outputs.append(("--store", os.fspath(store)))
-    _roadbrdf.check_distinct_files(_inputs(s), outputs)
+    _roadbrdf.check_distinct_files([(role, p) for role, p in inputs if os.path.exists(p)], outputs)
     results = Store(store)
     try:
-        tasks, _ = execute(s, results, scheduler, workers, progress, retry_failed, _roadbrdf.__version__)
+        if campaign:
+            from . import campaign as c
+            tasks = c.make_tasks(s, _roadbrdf.__version__)
+            remote = c.texts_of(s) if scheduler else None
+            run_pending(f"campaign '{s.name}'", tasks, None, c.fit_sample, results, scheduler, workers, progress,
+                        retry_failed, shared_remote=remote, noun="samples")
+        else:
+            tasks, _ = execute(s, results, scheduler, workers, progress, retry_failed, _roadbrdf.__version__)
     finally:
         results.close()
-    header, rows = table(s, tasks, results)
+    if campaign:
+        header, rows = c.table(s, tasks, results)
+        c.write_fit_files(s, tasks, results)
+        failures = {results.results[key]["error"] for *_, key, _ in tasks}
+        if None not in failures and len(failures) == 1:
+            # The same error for every sample is the campaign's settings', not the samples'.
+            raise InputError(f"every sample failed: {failures.pop()}")
+    else:
+        header, rows = table(s, tasks, results)
     if output is not None:
         write_csv(os.fspath(output), header, rows)
     return [dict(zip(header, row)) for row in rows]
@@ -62,9 +101,10 @@ def main(argv=None):
     """``roadbrdf study STUDY.json -o RESULTS.csv ...`` (``python3 -m roadbrdf.studies``)."""
     import argparse
     parser = argparse.ArgumentParser(prog="roadbrdf study",
-                                     description="Design study: predict every candidate formulation of STUDY.json "
+                                     description="Design study: predict every candidate formulation of STUDY.json; "
+                                                 "or campaign fitting: fit every sample of CAMPAIGN.json "
                                                  "(docs/studies.md).")
-    parser.add_argument("study", help="study file (\"format\": \"roadbrdf-study\")")
+    parser.add_argument("study", help="study file (\"format\": \"roadbrdf-study\" or \"roadbrdf-campaign\")")
     parser.add_argument("-o", "--output", required=True, help="results CSV (- = standard output)")
     parser.add_argument("--store", help="results store (default: OUTPUT.store.jsonl)")
     parser.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $ROADBRDF_SCHEDULER)")

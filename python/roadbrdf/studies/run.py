@@ -51,8 +51,8 @@ def make_tasks(study, version):
 class Progress:
     """Done, in flight, failed and the estimated time left, on standard error (at most once a second)."""
 
-    def __init__(self, total, cached, enabled, running="running"):
-        self.total, self.cached, self.enabled, self.running = total, cached, enabled, running
+    def __init__(self, total, cached, enabled, running="running", label="study"):
+        self.total, self.cached, self.enabled, self.running, self.label = total, cached, enabled, running, label
         self.done = self.failed = 0
         self.start = time.monotonic()
         self.last = 0.0
@@ -70,16 +70,16 @@ class Progress:
             eta_text = f"{int(eta) // 3600}:{int(eta) % 3600 // 60:02d}:{int(eta) % 60:02d}"
         else:
             eta_text = "?"
-        print(f"study: {self.cached + self.done}/{self.total} done ({self.cached} from the store), {running} {self.running}, "
+        print(f"{self.label}: {self.cached + self.done}/{self.total} done ({self.cached} from the store), {running} {self.running}, "
               f"{self.failed} failed, about {eta_text} left", file=sys.stderr, flush=True)
 
 
-def _local(pending, fits, workers, store, progress):
+def _local(pending, shared, workers, store, progress, function):
     import concurrent.futures as cf
     import multiprocessing
     ctx = multiprocessing.get_context(_start_method())
     with cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
-                                initargs=(fits,)) as pool:
+                                initargs=(function, shared)) as pool:
         futures = {}
         for key, task in pending:
             futures[pool.submit(_run_cached, task)] = key
@@ -97,7 +97,8 @@ def _local(pending, fits, workers, store, progress):
             raise
 
 
-_FITS = None
+_FUNCTION = None
+_SHARED = None
 
 
 def _start_method():
@@ -112,16 +113,16 @@ def _start_method():
     return "fork" if threads == 1 else "forkserver"
 
 
-def _init_worker(fits):
-    global _FITS
-    _FITS = fits
+def _init_worker(function, shared):
+    global _FUNCTION, _SHARED
+    _FUNCTION, _SHARED = function, shared
 
 
 def _run_cached(task):
-    return run_task(task, _FITS)
+    return _FUNCTION(task, _SHARED)
 
 
-def _dask(pending, fits, scheduler, store, progress):
+def _dask(pending, shared, scheduler, store, progress, function):
     try:
         from distributed import Client, as_completed
     except ImportError:
@@ -132,10 +133,10 @@ def _dask(pending, fits, scheduler, store, progress):
     except (OSError, TimeoutError) as e:
         raise InputError(f"--scheduler {scheduler}: cannot connect: {e}") from None
     try:
-        shared = client.scatter(fits, broadcast=True)
+        scattered = client.scatter(shared, broadcast=True)
         futures = {}
         for key, task in pending:
-            futures[client.submit(run_task, task, shared, key=f"roadbrdf-study-{key}", pure=False)] = key
+            futures[client.submit(function, task, scattered, key=f"roadbrdf-study-{key}", pure=False)] = key
         done = 0
         for future in as_completed(list(futures)):
             key = futures[future]
@@ -194,11 +195,21 @@ def table(study, tasks, store):
 
 def execute(study, store, scheduler=None, workers=None, progress=True, retry_failed=False, version=""):
     """Run the study's tasks that the store lacks; return (tasks, number computed)."""
-    from . import spec  # noqa: F401
     tasks = make_tasks(study, version)
+    computed = run_pending(f"study '{study.name}'", tasks, study.fits, run_task, store, scheduler, workers, progress,
+                           retry_failed)
+    return tasks, computed
+
+
+def run_pending(title, tasks, shared, function, store, scheduler, workers, progress, retry_failed, shared_remote=None,
+                noun="candidates"):
+    """Run function(task, shared) for every distinct task key the store lacks (or failed, with retry_failed), on
+    local processes or the Dask scheduler, adding each result to the store as it arrives; return how many ran.
+    ``tasks``: (..., key, task) tuples, the key in the last but one place. ``shared_remote``: what the Dask
+    workers get instead of ``shared`` (data the local processes read from disk), when it differs."""
     todo = []
     seen = set()
-    for _, _, _, key, task in tasks:
+    for *_, key, task in tasks:
         if key in seen:
             continue  # the same candidate twice in a design (e.g. a grid with repeated choices) runs once
         seen.add(key)
@@ -206,15 +217,15 @@ def execute(study, store, scheduler=None, workers=None, progress=True, retry_fai
         if record is None or (retry_failed and record["error"] is not None):
             todo.append((key, task))
     cached = len(seen) - len(todo)
-    bar = Progress(len(seen), cached, progress, "running or queued" if scheduler else "running")
+    bar = Progress(len(seen), cached, progress, "running or queued" if scheduler else "running", title.split()[0])
     if progress:
-        print(f"study '{study.name}': {len(tasks)} candidates, {cached} already in the store, {len(todo)} to compute"
+        print(f"{title}: {len(tasks)} {noun}, {cached} already in the store, {len(todo)} to compute"
               f"{' on ' + scheduler if scheduler else ''}", file=sys.stderr, flush=True)
     if todo:
         if scheduler:
-            _dask(todo, study.fits, scheduler, store, bar)
+            _dask(todo, shared if shared_remote is None else shared_remote, scheduler, store, bar, function)
         else:
             n = workers or os.cpu_count() or 1
-            _local(todo, study.fits, min(n, len(todo)), store, bar)
+            _local(todo, shared, min(n, len(todo)), store, bar, function)
         bar.update(0, force=True)
-    return tasks, len(todo)
+    return len(todo)

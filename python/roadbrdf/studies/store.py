@@ -79,6 +79,9 @@ class Store:
     def add(self, key, result):
         record = {"key": key, "error": result["error"], "rows": result["rows"],
                   "cpu_seconds": round(result.get("seconds", 0.0), 6)}
+        for extra in ("units", "fit_file"):  # campaign fitting: parameter units, the fit file's text (campaign.py)
+            if extra in result:
+                record[extra] = result[extra]
         if self._fd is not None:
             self._append(record)
         self.results[key] = record
