@@ -108,8 +108,8 @@ UsgsSpectrum parse_usgs_spectrum(std::string_view spectrum_text, const std::stri
       continue;
     }
     // The wavelength files are in micrometres, written in single precision (~1e-7 relative): rounded to
-    // 1e-4 nm so that 0.34999999 um is 350 nm.
-    const double nm = std::round(w.values[i] * 1e7) / 1e4;
+    // 1e-3 nm so that 0.34999999 um is 350 nm.
+    const double nm = std::round(w.values[i] * 1e6) / 1e3;
     if (!(nm > 0.0)) throw FileError(wavelength_name, w.lines[i], 1, "wavelength must be > 0 (micrometres)");
     if (nm <= previous) {
       throw FileError(wavelength_name, w.lines[i], 1,
