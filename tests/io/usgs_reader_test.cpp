@@ -162,6 +162,10 @@ TEST(UsgsReader, WavelengthsMustIncreaseAndBePositive) {
   const FileError z = error_of(s, " splib07a Record=8: w\n 0.0\n 0.6\n 0.7\n");
   EXPECT_EQ(z.line(), 2);
   EXPECT_NE(std::string(z.what()).find("must be > 0"), std::string::npos) << z.what();
+  // A wavelength too large to be a spectrometer channel (and infinite once in nanometres): refused.
+  const FileError h = error_of(s, " splib07a Record=8: w\n 0.5\n 0.6\n 1e303\n");
+  EXPECT_EQ(h.line(), 4);
+  EXPECT_NE(std::string(h.what()).find("must be > 0 and < 1e6"), std::string::npos) << h.what();
 }
 
 TEST(UsgsReader, EmptyFileAndTitleOnly) {

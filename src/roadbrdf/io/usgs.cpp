@@ -110,7 +110,10 @@ UsgsSpectrum parse_usgs_spectrum(std::string_view spectrum_text, const std::stri
     // The wavelength files are in micrometres, written in single precision (~1e-7 relative): rounded to
     // 1e-3 nm so that 0.34999999 um is 350 nm.
     const double nm = std::round(w.values[i] * 1e6) / 1e3;
-    if (!(nm > 0.0)) throw FileError(wavelength_name, w.lines[i], 1, "wavelength must be > 0 (micrometres)");
+    // 1e6 um (1 m) bounds any spectrometer and keeps the conversion finite (1e303 um would be inf nm).
+    if (!(nm > 0.0) || !(w.values[i] < 1e6)) {
+      throw FileError(wavelength_name, w.lines[i], 1, "wavelength must be > 0 and < 1e6 (micrometres)");
+    }
     if (nm <= previous) {
       throw FileError(wavelength_name, w.lines[i], 1,
                       fmt::format("wavelengths must increase: {} um after {} um on line {}", w.values[i],
