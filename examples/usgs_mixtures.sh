@@ -68,13 +68,13 @@ angles="$(echo "$geometry" | sed -E 's/(theta_i|phi_i|theta_r|phi_r)=//g')"
 hapke_fit=(-m hapke --option h_function=hapke1981 --fix b0=0 --fix xi=0 --fix h=0.05 --wavelengths 400:2400:10)
 
 # One set: wavelength file, end-members "name|file|density", mixtures "name|file|name=wt,name=wt",
-# size class "d_min d_max" [mm].
+# size class d_min, d_max [mm].
 define_set() {
   case "$1" in
     dalton)
       title="Dalton et al. (2002) calcite-epidote-chlorite, 75-150 um, ASD FR"
       wavelengths="splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt"
-      size="0.075 0.150"
+      d_min=0.075 d_max=0.150
       endmembers=("calcite|Calcite_GDS304_75-150um_ASDFRb|2.71" "epidote|Epidote_GDS301_75-150um_ASDFRb|3.45"
                   "chlorite|Clinochlore_Fe_GDS157.b_ASDFRa|3.0")
       mixtures=("GDS310|Calcite.67+Epidote.33_GDS310_ASDFRa|calcite=67,epidote=33"
@@ -91,7 +91,7 @@ define_set() {
       # ASD NG (the Beckman copies lack their channels below 0.57 um); size class unknown (see above).
       title="Calcite WS272 + clay (80/20 wt %), ASD NG"
       wavelengths="splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt"
-      size="0.075 0.150"
+      d_min=0.075 d_max=0.150
       endmembers=("calcite|Calcite_WS272_ASDNGa|2.71" "montmorillonite|Montmorillonite_SWy-1_ASDNGb|2.35"
                   "kaolinite|Kaolinite_CM9_ASDNGb|2.63")
       mixtures=("GDS212|Calcite.80+Mont_Swy-1_GDS212_ASDNGa|calcite=80,montmorillonite=20"
@@ -100,7 +100,7 @@ define_set() {
       # Quartz GDS31 is not the mixtures' quartz and the goethite fraction is unknown (PROVENANCE.md).
       title="2 wt % iron oxide + quartz (approximate end-members), Beckman"
       wavelengths="splib07a_Wavelengths_BECK_Beckman_0.2-3.0_microns.txt"
-      size="0.075 0.150"
+      d_min=0.075 d_max=0.150
       endmembers=("hematite|Hematite_GDS27_BECKa|5.26" "goethite|Goethite_WS222_Medium_Gr._BECKa|4.27"
                   "quartz|Quartz_GDS31_0-74um_fr_BECKa|2.65")
       mixtures=("GDS76|Hematite.02+Quartz.98_GDS76_BECKa|hematite=2,quartz=98"
@@ -115,7 +115,7 @@ write_formulation() {  # NAME FRACTIONS FILE
     printf '{\n  "format": "roadbrdf-formulation",\n  "version": 1,\n  "name": "%s",\n' "$name"
     printf '  "source": "USGS splib07a %s (Kokaly et al. 2017, doi:10.5066/F7RR1WDJ)",\n' "$name"
     printf '  "assumptions": ["geometry %s (not recorded in splib07a)", "densities: Handbook of Mineralogy",\n' "$geometry"
-    printf '                  "one size class %s-%s mm for every component"],\n' ${size}
+    printf '                  "one size class %s-%s mm for every component"],\n' "$d_min" "$d_max"
     # Published fractions are rounded (GDS319: 33+33+33 = 99 %).
     printf '  "fraction_tolerance_percent": 1.5,\n  "components": [\n'
     IFS=, read -ra parts <<< "$fractions"
@@ -131,7 +131,7 @@ write_formulation() {  # NAME FRACTIONS FILE
       [ $first -eq 1 ] || printf ',\n'
       first=0
       printf '    {"name": "%s", "kind": "aggregate", "mass_percent": %s, "density_g_cm3": %s, ' "$component" "$wt" "$density"
-      printf '"d_min_mm": %s, "d_max_mm": %s, "fit": "../fits/%s.fit.json"}' ${size} "$component"
+      printf '"d_min_mm": %s, "d_max_mm": %s, "fit": "../fits/%s.fit.json"}' "$d_min" "$d_max" "$component"
     done
     printf '\n  ]\n}\n'
   } > "$file.tmp"
