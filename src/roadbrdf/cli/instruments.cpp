@@ -87,6 +87,9 @@ SpectralDataset convert_instrument_input(const std::string& from, const std::str
   if (from == "usgs") {
     if (args.usgs_wavelengths.empty())
       throw InputError("--from usgs needs --usgs-wavelengths FILE (the splib07a wavelength file of the spectrum)");
+    // The file holds the reflectance only (target and reflectance mean the same here); no panel signal.
+    if (args.quantity == "reference")
+      throw InputError("--quantity reference: a USGS splib07a file holds no reference signal");
     AngleConvention convention = AngleConvention::kZenithAzimuth;
     const Geometry geometry = parse_geometry(args.geometry, convention);
     const UsgsSpectrum s = read_usgs_spectrum(input, args.usgs_wavelengths);

@@ -10,7 +10,8 @@
 // The library's "AREF" spectra are absolute directional reflectance of a lab set-up whose geometry is
 // not recorded per file: usgs_dataset() stores them at a geometry the caller states, as the
 // BRDF R / pi of a surface of reflectance factor R (exact for a Lambertian sample, the usual
-// approximation otherwise; docs/mixing.md "USGS intimate mixtures" says which geometry was assumed).
+// approximation otherwise; docs/mixing.md "Real intimate mixtures (USGS, Dalton et al. 2002)" says which geometry was
+// assumed).
 #pragma once
 
 #include <string>
