@@ -32,7 +32,7 @@ from .albedos import albedo
 from .surfaces import (Surface, flat_surface, gaussian_slope_surface, read_surface, render, render_albedo,
                       surface)
 from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dataset, read_instrument,
-                          read_manifest)
+                          read_manifest, read_usgs, usgs_dataset)
 # Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
 from .studies import study
 
@@ -42,6 +42,6 @@ __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "FitResu
            "road_to_zenith_azimuth",
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
-           "read_manifest", "calibrate_manifest", "study"]
+           "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study"]
 
 __version__ = _roadbrdf.__version__

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from . import _roadbrdf
 
-__all__ = ["InstrumentSpectrum", "read_instrument", "instrument_dataset", "read_manifest", "calibrate_manifest"]
+__all__ = ["InstrumentSpectrum", "read_instrument", "instrument_dataset", "read_manifest", "calibrate_manifest",
+           "read_usgs", "usgs_dataset"]
 
 _ZENITH = ("theta_i", "phi_i", "theta_r", "phi_r")
 _ROAD = ("gamma", "alpha", "beta", "delta")
@@ -68,6 +69,33 @@ def instrument_dataset(path, quantity="target", overlap="upper", **angles):
         raise _roadbrdf.InputError("give the angles theta_i, phi_i, theta_r, phi_r or gamma, alpha, beta, delta [deg]")
     values = [float(angles[n]) for n in order]
     return Dataset._from_dict(_roadbrdf.instrument_dataset(str(path), values, convention, quantity, overlap))
+
+
+def _angles(angles):
+    names = set(angles)
+    if names == set(_ZENITH):
+        return "zenith", [float(angles[n]) for n in _ZENITH]
+    if names == set(_ROAD):
+        return "road", [float(angles[n]) for n in _ROAD]
+    raise _roadbrdf.InputError("give the angles theta_i, phi_i, theta_r, phi_r or gamma, alpha, beta, delta [deg]")
+
+
+def read_usgs(path, wavelengths) -> dict:
+    """A USGS Spectral Library v7 (splib07a) ASCII spectrum and its wavelength file (io/usgs.h):
+    a dict with ``record``, ``title``, ``wavelengths`` [nm] and ``reflectance`` [1] (missing
+    channels, -1.23e+34, left out; ``missing`` counts them). Malformed files raise
+    :class:`roadbrdf.InputError` naming the file, line and column."""
+    return _roadbrdf.read_usgs(str(path), str(wavelengths))
+
+
+def usgs_dataset(path, wavelengths, **angles):
+    """A one-geometry :class:`roadbrdf.Dataset` of BRDF = R/pi [sr^-1] from a splib07a spectrum
+    (``roadbrdf convert FILE --from usgs --usgs-wavelengths W.txt --geometry ...``); the angles [deg]
+    as in :func:`instrument_dataset`. The library does not record the lab geometry per file."""
+    from . import Dataset
+
+    convention, values = _angles(angles)
+    return Dataset._from_dict(_roadbrdf.usgs_dataset(str(path), str(wavelengths), values, convention))
 
 
 def read_manifest(path, quantity="target", overlap="upper"):

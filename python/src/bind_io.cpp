@@ -19,6 +19,7 @@
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/quality.h"
+#include "roadbrdf/io/usgs.h"
 
 namespace py = pybind11;
 
@@ -111,6 +112,34 @@ void bind_instruments(py::module_& m) {
       },
       py::arg("path"), py::arg("angles"), py::arg("convention"), py::arg("quantity") = "target",
       py::arg("overlap") = "upper");
+  m.def(
+      "read_usgs",
+      [](const std::string& path, const std::string& wavelengths) {
+        const UsgsSpectrum s = read_usgs_spectrum(path, wavelengths);
+        py::dict out;
+        out["path"] = s.path;
+        out["wavelength_path"] = s.wavelength_path;
+        out["record"] = s.record;
+        out["title"] = s.title;
+        out["wavelength_record"] = s.wavelength_record;
+        out["wavelength_title"] = s.wavelength_title;
+        out["wavelengths"] = vector_array(s.wavelengths);
+        out["reflectance"] = vector_array(s.reflectance);
+        out["channels"] = s.channels;
+        out["missing"] = s.missing;
+        return out;
+      },
+      py::arg("path"), py::arg("wavelengths"));
+  m.def(
+      "usgs_dataset",
+      [](const std::string& path, const std::string& wavelengths, const std::vector<double>& angles,
+         const std::string& convention) {
+        if (angles.size() != 4) throw InputError("give four angles (degrees)");
+        const AngleConvention c = convention == "road" ? AngleConvention::kRoad : AngleConvention::kZenithAzimuth;
+        return dataset_to_dict(
+            usgs_dataset(read_usgs_spectrum(path, wavelengths), geometry_from_angle_values(c, angles.data()), c));
+      },
+      py::arg("path"), py::arg("wavelengths"), py::arg("angles"), py::arg("convention"));
   m.def(
       "manifest_dataset",
       [](const std::string& path, const std::string& quantity, const std::string& overlap) {

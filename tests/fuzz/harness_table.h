@@ -34,6 +34,7 @@ inline const std::map<std::string, Harness>& harnesses() {
       {"sig", sig_one_input},
       {"solar", solar_one_input},
       {"surface", surface_one_input},
+      {"usgs", usgs_one_input},
   };
   return table;
 }

@@ -1,7 +1,7 @@
 // libFuzzer entry points of the file parsers (datasets, geometry tables, CUReT, ALTA, formulations,
-// fit and MIX files, r-tables, solar spectra, surfaces), as inline functions shared by the harness
-// programs (*_fuzz.cpp, one LLVMFuzzerTestOneInput each). Rejecting an input with InputError or
-// FileError is the expected outcome; any other exception, a crash or a sanitizer report is a bug.
+// fit and MIX files, r-tables, solar spectra, surfaces, USGS splib07a spectra), as inline functions shared by the
+// harness programs (*_fuzz.cpp, one LLVMFuzzerTestOneInput each). Rejecting an input with InputError or FileError is
+// the expected outcome; any other exception, a crash or a sanitizer report is a bug.
 //
 // Parsers that read a path get the input in a per-process scratch file. Warnings are swallowed.
 // Built two ways (tests/fuzz/CMakeLists.txt): with -DROADBRDF_FUZZ=ON as libFuzzer programs
@@ -11,8 +11,11 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -28,6 +31,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/geometry_selection.h"
+#include "roadbrdf/io/usgs.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/surface/height_field.h"
@@ -170,6 +174,31 @@ inline int solar_one_input(const std::uint8_t* data, std::size_t size) {
 inline int surface_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("surface.json", bytes(data, size));
   return refusing([&] { surface::read_surface(file.path()); });
+}
+
+// USGS splib07a needs two texts: the input is the wavelength file, a NUL byte, then the spectrum
+// (without a NUL, the input is both, so that the channel counts agree and the value checks run).
+// Beyond refusing bad input, an accepted spectrum must keep the reader's promises (io/usgs.h):
+// as many wavelengths as values, finite, strictly increasing and positive, kept + dropped = channels;
+// a broken promise aborts, which the fuzzer and the replay test report.
+inline int usgs_one_input(const std::uint8_t* data, std::size_t size) {
+  const std::string_view all = bytes(data, size);
+  const auto nul = all.find('\0');
+  const std::string_view wavelengths = nul == std::string_view::npos ? all : all.substr(0, nul);
+  const std::string_view spectrum = nul == std::string_view::npos ? all : all.substr(nul + 1);
+  return refusing([&] {
+    const UsgsSpectrum s = parse_usgs_spectrum(spectrum, "fuzz_spectrum.txt", wavelengths, "fuzz_wavelengths.txt");
+    bool kept = s.wavelengths.size() == s.reflectance.size() && s.wavelengths.size() + s.missing == s.channels;
+    for (std::size_t i = 0; kept && i < s.wavelengths.size(); ++i) {
+      kept = s.wavelengths[i] > 0.0 && std::isfinite(s.wavelengths[i]) && std::isfinite(s.reflectance[i]) &&
+             (i == 0 || s.wavelengths[i] > s.wavelengths[i - 1]) && s.reflectance[i] >= kUsgsMissingBelow;
+    }
+    if (!kept) {
+      std::fprintf(stderr, "usgs: accepted spectrum breaks the reader's invariants\n");
+      std::abort();
+    }
+    usgs_dataset(s, geometry_from_degrees(30.0, 0.0, 0.0, 0.0), AngleConvention::kZenithAzimuth);
+  });
 }
 
 }  // namespace roadbrdf::fuzz

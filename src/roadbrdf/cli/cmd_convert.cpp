@@ -1,4 +1,4 @@
-// roadbrdf convert INPUT [--from wide|long|curet|alta|asd|sed|sig|manifest] [--to wide|long] -o OUT.csv
+// roadbrdf convert INPUT [--from wide|long|curet|alta|asd|sed|sig|manifest|usgs] [--to wide|long] -o OUT.csv
 // (instrument files and manifests: cli/instruments.h)
 #include <fmt/core.h>
 
@@ -69,7 +69,7 @@ void run(const ConvertArgs& a) {
     d = read_alta(a.input, o);
   } else {
     throw InputError("--from: unknown format '" + a.from +
-                     "' (auto, wide, long, curet, alta, asd, sed, sig, manifest)");
+                     "' (auto, wide, long, curet, alta, asd, sed, sig, manifest, usgs)");
   }
   if (a.convention == "road") {
     d.convention = AngleConvention::kRoad;
@@ -87,12 +87,13 @@ void register_convert_command(CLI::App& app) {
   static ConvertArgs args;
   auto* c = app.add_subcommand("convert",
                                "Convert a dataset between wide/long CSV, and from CUReT, ALTA, instrument (.asd, .sed, "
-                               ".sig) and manifest files");
+                               ".sig), manifest and USGS splib07a files");
   c->add_option("input", args.input, "Input file (for CUReT: abrdf.dat)")->required();
   c->add_option("--from", args.from,
                 "Input format: auto (wide or long CSV, or an instrument file by its extension), wide, long, curet, "
                 "alta, asd, sed, "
-                "sig, manifest (a run of instrument files: docs/data.md)");
+                "sig, manifest (a run of instrument files: docs/data.md), usgs (a USGS splib07a ASCII spectrum: "
+                "needs --usgs-wavelengths and --geometry; stored as BRDF = R/pi)");
   c->add_option("--to", args.to, "Output format: wide (default) or long");
   c->add_option("--curet-table", args.curet_table, "CUReT geometry table (default: table.txt next to the input)");
   c->add_option("--sample", args.sample, "CUReT sample number (first column of abrdf.dat)");

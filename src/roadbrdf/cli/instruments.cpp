@@ -10,6 +10,7 @@
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
+#include "roadbrdf/io/usgs.h"
 
 namespace roadbrdf::cli {
 
@@ -59,6 +60,9 @@ void add_instrument_flags(CLI::App* c, InstrumentArgs& args, bool convert) {
     c->add_option("--quantity", args.quantity,
                   "Instrument signal to store: target (default), reference (the panel signal stored in the file) or "
                   "reflectance (the file's reflectance, or ASD target/reference)");
+    c->add_option("--usgs-wavelengths", args.usgs_wavelengths,
+                  "--from usgs: the splib07a wavelength file of the spectrum's instrument, e.g. "
+                  "splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt (micrometres)");
   }
   c->add_option("--overlap", args.overlap,
                 "SVC .sig detector overlap: upper (default: keep the next detector's channels), lower (keep the "
@@ -66,7 +70,8 @@ void add_instrument_flags(CLI::App* c, InstrumentArgs& args, bool convert) {
 }
 
 bool is_instrument_input(const std::string& from, const std::string& input) {
-  if (from == "asd" || from == "sed" || from == "sig" || from == "instrument" || from == "manifest") return true;
+  if (from == "asd" || from == "sed" || from == "sig" || from == "instrument" || from == "manifest" || from == "usgs")
+    return true;
   return from == "auto" && has_instrument_extension(input);
 }
 
@@ -79,6 +84,19 @@ SpectralDataset convert_instrument_input(const std::string& from, const std::str
       throw InputError("--geometry is for a single instrument file: a manifest gives its own");
     return manifest_dataset(read_manifest(input), quantity, options);
   }
+  if (from == "usgs") {
+    if (args.usgs_wavelengths.empty())
+      throw InputError("--from usgs needs --usgs-wavelengths FILE (the splib07a wavelength file of the spectrum)");
+    // The file holds the reflectance only (target and reflectance mean the same here); no panel signal.
+    if (args.quantity == "reference")
+      throw InputError("--quantity reference: a USGS splib07a file holds no reference signal");
+    AngleConvention convention = AngleConvention::kZenithAzimuth;
+    const Geometry geometry = parse_geometry(args.geometry, convention);
+    const UsgsSpectrum s = read_usgs_spectrum(input, args.usgs_wavelengths);
+    if (s.missing > 0) warn(fmt::format("{}: {} missing channels (-1.23e+34) left out", input, s.missing));
+    return usgs_dataset(s, geometry, convention);
+  }
+  if (!args.usgs_wavelengths.empty()) throw InputError("--usgs-wavelengths is for --from usgs");
   AngleConvention convention = AngleConvention::kZenithAzimuth;
   const Geometry geometry = parse_geometry(args.geometry, convention);
   InstrumentSpectrum s = read_instrument_file(input, options.read);

@@ -14,12 +14,13 @@ struct InstrumentArgs {
   std::string geometry;  // "theta_i=..,phi_i=..,theta_r=..,phi_r=.." or "gamma=..,alpha=..,beta=..,delta=.."
   std::string quantity = "target";
   std::string overlap = "upper";
+  std::string usgs_wavelengths;  // --from usgs: the splib07a wavelength file of the spectrum
 };
 
 // --geometry and --quantity (convert only) and --overlap.
 void add_instrument_flags(CLI::App* command, InstrumentArgs& args, bool convert);
 
-// True when `from` names an instrument format or a manifest, or is "auto" and the input has an
+// True when `from` names an instrument format, a manifest or "usgs", or is "auto" and the input has an
 // instrument file extension (.asd, .sed, .sig).
 bool is_instrument_input(const std::string& from, const std::string& input);
 
