@@ -26,6 +26,7 @@ void exec_python_module(const std::string& module, const std::vector<std::string
   std::vector<std::string> args = {interpreter, "-m", module};
   args.insert(args.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   execv(interpreter.c_str(), argv.data());

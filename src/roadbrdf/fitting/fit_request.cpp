@@ -91,9 +91,11 @@ void check_finite(const std::map<std::string, double>& values, const std::string
 
 }  // namespace
 
-std::vector<PlannedFit> plan_fits(const FitRequest& r) {
-  if (r.models.empty()) throw FieldError("models", "give at least one model");
-  const FitOptions base = settings_of(r);
+namespace {
+
+// The checks of the request that need no model (after settings_of): finite values, intervals, bands, the selection
+// grammar, model names given once.
+void check_request(const FitRequest& r) {
   check_finite(r.fixed, "fixed");
   check_finite(r.start, "start");
   for (const auto& [name, range] : r.bounds) {
@@ -123,75 +125,72 @@ std::vector<PlannedFit> plan_fits(const FitRequest& r) {
   for (const auto& name : r.models) {
     if (!names_seen.insert(name).second) throw FieldError("models", "'" + name + "' is given twice");
   }
+}
 
-  // The models without options, to see who declares what.
-  std::vector<std::shared_ptr<const Model>> probes;
-  for (const auto& name : r.models) {
-    try {
-      probes.push_back(make_model(name));
-    } catch (const InputError& e) {
-      throw FieldError("models", e.what());
+// The model `name` made with the options it declares (a plain name reaches every component that
+// declares it); a refused option is named.
+std::shared_ptr<const Model> model_with_options(const std::string& name, const Model& probe, const OptionSet& options,
+                                                std::set<std::string>& used_options) {
+  OptionSet mine;
+  for (const auto& [k, v] : options) {
+    if (declares_option(probe.description(), k)) {
+      mine[k] = v;
+      used_options.insert(k);
     }
   }
-  std::set<std::string> used_options, used_parameters;
-  std::vector<PlannedFit> plan;
-  for (std::size_t i = 0; i < r.models.size(); ++i) {
-    OptionSet mine;
-    for (const auto& [k, v] : r.options) {
-      if (declares_option(probes[i]->description(), k)) {
-        mine[k] = v;
-        used_options.insert(k);
+  try {
+    return make_model(name, mine);
+  } catch (const InputError& e) {
+    // Say which option: try them one at a time.
+    for (const auto& [k, v] : mine) {
+      try {
+        make_model(name, {{k, v}});
+      } catch (const InputError& one) {
+        throw FieldError("options." + k, one.what());
       }
     }
-    PlannedFit p;
-    try {
-      p.model = make_model(r.models[i], mine);
-    } catch (const InputError& e) {
-      // Say which option: try them one at a time.
-      for (const auto& [k, v] : mine) {
-        try {
-          make_model(r.models[i], {{k, v}});
-        } catch (const InputError& one) {
-          throw FieldError("options." + k, one.what());
-        }
-      }
-      throw FieldError("options", e.what());
-    }
-    const ModelDescription& desc = p.model->description();
-    p.options = base;
-    for (const auto& [k, v] : r.fixed) {
-      if (desc.parameter_index(k)) {
-        p.options.fixed[k] = v;
-        used_parameters.insert("fixed." + k);
-      }
-    }
-    for (const auto& [k, v] : r.start) {
-      if (desc.parameter_index(k)) {
-        p.options.start[k] = v;
-        used_parameters.insert("start." + k);
-      }
-    }
-    for (const auto& [k, v] : r.bounds) {
-      if (desc.parameter_index(k)) {
-        p.options.bounds[k] = v;
-        used_parameters.insert("bounds." + k);
-      }
-    }
-    for (const auto& k : r.shared) {
-      if (k == "auto") {
-        for (const auto& q : desc.parameters) {
-          if (!q.spectral && !p.options.fixed.count(q.name)) p.options.shared.push_back(q.name);
-        }
-        used_parameters.insert("shared.auto");
-      } else if (desc.parameter_index(k)) {
-        if (std::find(p.options.shared.begin(), p.options.shared.end(), k) == p.options.shared.end()) {
-          p.options.shared.push_back(k);
-        }
-        used_parameters.insert("shared." + k);
-      }
-    }
-    plan.push_back(std::move(p));
+    throw FieldError("options", e.what());
   }
+}
+
+// The entries of `values` that name a parameter of the model, into `out`; each recorded as used
+// ("fixed.roughness").
+template <class Value>
+void take_parameters(const std::map<std::string, Value>& values, const ModelDescription& desc, const std::string& field,
+                     std::map<std::string, Value>& out, std::set<std::string>& used) {
+  for (const auto& [k, v] : values) {
+    if (desc.parameter_index(k)) {
+      out[k] = v;
+      used.insert(field + "." + k);
+    }
+  }
+}
+
+// The shared parameters of one model: "auto" = its spectral-independent (non-spectral) free ones.
+void take_shared(const std::vector<std::string>& shared, const ModelDescription& desc, FitOptions& options,
+                 std::set<std::string>& used) {
+  auto add = [&](const std::string& name) {
+    if (std::find(options.shared.begin(), options.shared.end(), name) == options.shared.end()) {
+      options.shared.push_back(name);
+    }
+  };
+  for (const auto& k : shared) {
+    if (k == "auto") {
+      for (const auto& q : desc.parameters) {
+        if (!q.spectral && !options.fixed.count(q.name)) add(q.name);
+      }
+      used.insert("shared.auto");
+    } else if (desc.parameter_index(k)) {
+      add(k);
+      used.insert("shared." + k);
+    }
+  }
+}
+
+// Every option and parameter name of the request must reach at least one model: a misspelt name is
+// an error naming the nearest known one, never silently ignored.
+void check_all_used(const FitRequest& r, const std::vector<std::shared_ptr<const Model>>& probes,
+                    const std::set<std::string>& used_options, const std::set<std::string>& used_parameters) {
   for (const auto& [k, v] : r.options) {
     if (!used_options.count(k)) {
       throw FieldError("options." + k,
@@ -211,6 +210,37 @@ std::vector<PlannedFit> plan_fits(const FitRequest& r) {
   for (const auto& k : r.shared) {
     if (k != "auto") check_used("shared", k);
   }
+}
+
+}  // namespace
+
+std::vector<PlannedFit> plan_fits(const FitRequest& r) {
+  if (r.models.empty()) throw FieldError("models", "give at least one model");
+  const FitOptions base = settings_of(r);
+  check_request(r);
+  // The models without options, to see who declares what.
+  std::vector<std::shared_ptr<const Model>> probes;
+  for (const auto& name : r.models) {
+    try {
+      probes.push_back(make_model(name));
+    } catch (const InputError& e) {
+      throw FieldError("models", e.what());
+    }
+  }
+  std::set<std::string> used_options, used_parameters;
+  std::vector<PlannedFit> plan;
+  for (std::size_t i = 0; i < r.models.size(); ++i) {
+    PlannedFit p;
+    p.model = model_with_options(r.models[i], *probes[i], r.options, used_options);
+    const ModelDescription& desc = p.model->description();
+    p.options = base;
+    take_parameters(r.fixed, desc, "fixed", p.options.fixed, used_parameters);
+    take_parameters(r.start, desc, "start", p.options.start, used_parameters);
+    take_parameters(r.bounds, desc, "bounds", p.options.bounds, used_parameters);
+    take_shared(r.shared, desc, p.options, used_parameters);
+    plan.push_back(std::move(p));
+  }
+  check_all_used(r, probes, used_options, used_parameters);
   return plan;
 }
 

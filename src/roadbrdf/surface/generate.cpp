@@ -103,12 +103,12 @@ void validate(const GeneratorSettings& s) {
   }
 }
 
-GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSettings& s) {
-  validate(s);
-  const int n = static_cast<int>(std::lround(s.size_mm / s.cell_size_mm));
+namespace {
+
+// The slab thickness T: the largest grain size, after checking the classes.
+double slab_thickness(const SampleRecipe& recipe, double L) {
   if (recipe.classes.empty()) throw InputError("surface: no grain class");
   if (recipe.classes.size() > 60000) throw InputError("surface: too many classes");
-  const double L = n * s.cell_size_mm;
   double T = 0.0;
   for (const auto& c : recipe.classes) {
     if (!(c.d_min_mm > 0.0 && c.d_max_mm >= c.d_min_mm))
@@ -117,14 +117,16 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
     T = std::max(T, c.d_max_mm);
   }
   if (T > L / 2) throw InputError("surface: the sample must be at least twice the largest grain size");
+  return T;
+}
 
-  GeneratedSample out;
-  out.slab_thickness_mm = T;
+// Packs all classes together, largest first at equal progress (packing.h), into out.grains with the
+// target and achieved volume fractions, grain counts and a note when the packing jammed.
+void pack_grains(const SampleRecipe& recipe, const GeneratorSettings& s, double L, double T, GeneratedSample& out) {
   const std::size_t K = recipe.classes.size();
   out.target_volume_fraction.resize(K);
   out.achieved_volume_fraction.assign(K, 0.0);
   out.grain_count.assign(K, 0);
-  // Pack all classes together, largest first at equal progress (packing.h).
   std::vector<std::size_t> order(K);
   for (std::size_t k = 0; k < K; ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -132,6 +134,7 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   });
   const double slab_volume = L * L * T;
   std::vector<PackingClass> pack_classes;
+  pack_classes.reserve(K);
   for (std::size_t k : order) {
     const GrainClass& c = recipe.classes[k];
     out.target_volume_fraction[k] = c.volume_fraction;
@@ -153,45 +156,52 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
   ps.progress = s.progress;
   const PackingResult packed = pack_ellipsoids(pack_classes, ps);
   // Grains entirely below the slab never reach the surface: dropped.
-  std::vector<Ellipsoid> grains;
   for (Ellipsoid e : packed.grains) {
     if (e.z + std::sqrt(e.shape()[8]) <= 0.0) continue;
     e.cls = static_cast<int>(order[e.cls]);
     ++out.grain_count[e.cls];
-    grains.push_back(e);
+    out.grains.push_back(e);
   }
   for (std::size_t p = 0; p < K; ++p) {
     out.achieved_volume_fraction[order[p]] = packed.layer_volume_mm3[p] / slab_volume;
   }
   out.targets_reached = packed.reached;
   out.deposition = packed.deposition;
-  if (!packed.reached) {
-    double target_total = 0.0, achieved_total = 0.0;
-    for (std::size_t k = 0; k < K; ++k) {
-      target_total += out.target_volume_fraction[k];
-      achieved_total += out.achieved_volume_fraction[k];
-    }
-    std::ostringstream note;
-    note << "packing jammed at grain volume fraction " << achieved_total << " of the slab (target " << target_total
-         << "): all classes scaled down together, achieved / target:";
-    for (std::size_t k = 0; k < K; ++k) {
-      note << " " << recipe.classes[k].material.name << " " << out.achieved_volume_fraction[k] << " / "
-           << out.target_volume_fraction[k] << (k + 1 < K ? ";" : "");
-    }
-    out.notes.push_back(note.str());
+  if (packed.reached) return;
+  double target_total = 0.0, achieved_total = 0.0;
+  for (std::size_t k = 0; k < K; ++k) {
+    target_total += out.target_volume_fraction[k];
+    achieved_total += out.achieved_volume_fraction[k];
   }
-  out.grains = grains;
+  std::ostringstream note;
+  note << "packing jammed at grain volume fraction " << achieved_total << " of the slab (target " << target_total
+       << "): all classes scaled down together, achieved / target:";
+  for (std::size_t k = 0; k < K; ++k) {
+    note << " " << recipe.classes[k].material.name << " " << out.achieved_volume_fraction[k] << " / "
+         << out.target_volume_fraction[k] << (k + 1 < K ? ";" : "");
+  }
+  out.notes.push_back(note.str());
+}
 
-  // Rasterise the grain tops at the nodes (heights) and at the cell centres (materials).
-  const double h = s.cell_size_mm;
+// The grain tops rasterised at the nodes (heights) and at the cell centres (materials): the highest
+// grain surface there and its class (-1: no grain).
+struct GrainTops {
+  std::vector<double> nodes, centres;
+  std::vector<int> node_class, centre_class;
+};
+
+GrainTops rasterise(const std::vector<Ellipsoid>& grains, int n, double h) {
   const double lowest = -std::numeric_limits<double>::infinity();
-  std::vector<double> top_nodes(static_cast<std::size_t>(n) * n, lowest), top_centres(top_nodes.size(), lowest);
-  std::vector<int> centre_class(top_nodes.size(), -1), node_class(top_nodes.size(), -1);
+  const std::size_t cells = static_cast<std::size_t>(n) * n;
+  GrainTops t{std::vector<double>(cells, lowest), std::vector<double>(cells, lowest), std::vector<int>(cells, -1),
+              std::vector<int>(cells, -1)};
   for (const Ellipsoid& g : grains) {
     const Mat3 A = g.shape(), Q = g.inverse_shape();
     const double wx = std::sqrt(A[0]), wy = std::sqrt(A[4]);
     for (int pass = 0; pass < 2; ++pass) {
       const double off = pass == 0 ? 0.0 : 0.5;  // nodes, then cell centres
+      std::vector<double>& top = pass == 0 ? t.nodes : t.centres;
+      std::vector<int>& cls = pass == 0 ? t.node_class : t.centre_class;
       const long i0 = static_cast<long>(std::floor((g.x - wx) / h - off)),
                  i1 = static_cast<long>(std::ceil((g.x + wx) / h - off));
       const long j0 = static_cast<long>(std::floor((g.y - wy) / h - off)),
@@ -202,145 +212,164 @@ GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSetti
           if (!top_offset(Q, (i + off) * h - g.x, (j + off) * h - g.y, dz)) continue;
           const long iw = ((i % n) + n) % n, jw = ((j % n) + n) % n;
           const std::size_t idx = static_cast<std::size_t>(jw) * n + iw;
-          const double z = g.z + dz;
-          if (pass == 0) {
-            if (z > top_nodes[idx]) {
-              top_nodes[idx] = z;
-              node_class[idx] = g.cls;
-            }
-          } else if (z > top_centres[idx]) {
-            top_centres[idx] = z;
-            centre_class[idx] = g.cls;
+          if (g.z + dz > top[idx]) {
+            top[idx] = g.z + dz;
+            cls[idx] = g.cls;
           }
         }
       }
     }
   }
+  return t;
+}
 
-  HeightField& f = out.field;
-  f.name = recipe.name;
-  f.cell_size_mm = h;
-  f.nx = f.ny = n;
-  f.heights.assign(top_nodes.size(), 0.0);
-  f.material.assign(top_nodes.size(), 0);
-  f.materials.push_back(recipe.matrix);
-  for (const auto& c : recipe.classes) f.materials.push_back(c.material);
-
-  // Material map at a mastic level; returns the number of mastic cells. A cell is grain where a grain pokes
-  // out of the mastic at its centre; else, the mastic being the flat fill at the level, a cell whose mesh
-  // rises above it (a node on a grain) is the flank of that grain (class of the highest such node); else
-  // mastic. So a cell is mastic exactly when its centre and its 4 nodes are at or below the level (generate.h).
-  auto label_cells = [&](double level) {
-    long mastic_cells = 0;
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const std::size_t k = static_cast<std::size_t>(j) * n + i;
-        int cls = top_centres[k] > level ? centre_class[k] : -1;
-        if (cls < 0) {
-          double highest = level;
-          for (const std::size_t node : {f.index(i, j), f.index(i + 1, j), f.index(i, j + 1), f.index(i + 1, j + 1)}) {
-            if (top_nodes[node] > highest) {
-              highest = top_nodes[node];
-              cls = node_class[node];
-            }
+// Material map at a mastic level; returns the number of mastic cells. A cell is grain where a grain pokes
+// out of the mastic at its centre; else, the mastic being the flat fill at the level, a cell whose mesh
+// rises above it (a node on a grain) is the flank of that grain (class of the highest such node); else
+// mastic. So a cell is mastic exactly when its centre and its 4 nodes are at or below the level (generate.h).
+long label_cells(const GrainTops& tops, double level, HeightField& f) {
+  long mastic_cells = 0;
+  for (int j = 0; j < f.ny; ++j) {
+    for (int i = 0; i < f.nx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * f.nx + i;
+      int cls = tops.centres[k] > level ? tops.centre_class[k] : -1;
+      if (cls < 0) {
+        double highest = level;
+        for (const std::size_t node : {f.index(i, j), f.index(i + 1, j), f.index(i, j + 1), f.index(i + 1, j + 1)}) {
+          if (tops.nodes[node] > highest) {
+            highest = tops.nodes[node];
+            cls = tops.node_class[node];
           }
         }
-        f.material[k] = static_cast<std::uint16_t>(cls + 1);
-        if (cls < 0) ++mastic_cells;
       }
+      f.material[k] = static_cast<std::uint16_t>(cls + 1);
+      if (cls < 0) ++mastic_cells;
     }
-    return mastic_cells;
+  }
+  return mastic_cells;
+}
+
+double mastic_fraction_at(const GrainTops& tops, double level, HeightField& f) {
+  return static_cast<double>(label_cells(tops, level, f)) / (static_cast<double>(f.nx) * f.ny);
+}
+
+// The mastic level in [0, T] giving the target MPD (bisection: the MPD decreases as the mastic rises).
+double level_for_mpd(const GrainTops& tops, double T, double target_mpd, HeightField& f) {
+  double lo = 0.0, hi = T;
+  const double mpd_lo = mpd_of_level(tops.nodes, lo, f);
+  if (mpd_lo < target_mpd) {
+    // Not clamped to the nearest reachable level: the user asked for a texture this packing cannot give.
+    std::ostringstream e;
+    e << "surface: target MPD " << target_mpd << " mm not reachable with this packing (at most " << mpd_lo
+      << " mm, with the mastic at the bottom of the " << T << " mm slab; it decreases as the mastic rises)";
+    throw InputError(e.str());
+  }
+  for (int it = 0; it < 50; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mpd_of_level(tops.nodes, mid, f) > target_mpd) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The mastic level in [0, T] whose exposed mastic fraction is within `tol` of the target (bisection:
+// the fraction is non-decreasing in the level, generate.h); an error when no level reaches it.
+double level_for_mastic_fraction(const GrainTops& tops, double T, double target, double tol, HeightField& f) {
+  double lo = 0.0, hi = T;
+  const double f_lo = mastic_fraction_at(tops, lo, f), f_hi = mastic_fraction_at(tops, hi, f);
+  auto range = [&] {
+    std::ostringstream r;
+    r << "reachable with this packing: " << f_lo << " (mastic at the bottom of the " << T << " mm slab) to " << f_hi
+      << " (at its top), tolerance " << tol;
+    return r.str();
   };
-  const double cells = static_cast<double>(n) * n;
-  auto mastic_fraction_at = [&](double level) { return static_cast<double>(label_cells(level)) / cells; };
+  if (target < f_lo - tol || target > f_hi + tol) {
+    std::ostringstream e;
+    e << "surface: exposed mastic fraction " << target << " not reachable (" << range() << ")";
+    throw InputError(e.str());
+  }
+  if (target <= f_lo) return lo;
+  if (target >= f_hi) return hi;
+  // Invariant: fraction(lo) < target <= fraction(hi).
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mastic_fraction_at(tops, mid, f) < target) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  const double a_lo = mastic_fraction_at(tops, lo, f), a_hi = mastic_fraction_at(tops, hi, f);
+  const double level = target - a_lo <= a_hi - target ? lo : hi;
+  const double achieved = level == lo ? a_lo : a_hi;
+  if (std::fabs(achieved - target) > tol) {
+    std::ostringstream e;
+    e << "surface: exposed mastic fraction " << target << " not reachable within " << tol
+      << ": the fraction jumps from " << a_lo << " to " << a_hi << " at the mastic level " << level
+      << " mm (cells whose grain tops are at equal heights; " << range() << ")";
+    throw InputError(e.str());
+  }
+  return level;
+}
 
-  double level = s.matrix_level * T;
-  if (s.target_mpd_mm) {
-    double lo = 0.0, hi = T;  // MPD decreases as the matrix rises
-    const double mpd_lo = mpd_of_level(top_nodes, lo, f);
-    if (mpd_lo < *s.target_mpd_mm) {
-      // Not clamped to the nearest reachable level: the user asked for a texture this packing cannot give.
-      std::ostringstream e;
-      e << "surface: target MPD " << *s.target_mpd_mm << " mm not reachable with this packing (at most " << mpd_lo
-        << " mm, with the mastic at the bottom of the " << T << " mm slab; it decreases as the mastic rises)";
-      throw InputError(e.str());
-    } else {
-      for (int it = 0; it < 50; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (mpd_of_level(top_nodes, mid, f) > *s.target_mpd_mm) {
-          lo = mid;
-        } else {
-          hi = mid;
-        }
-      }
-      level = 0.5 * (lo + hi);
-    }
-  }
-  if (s.mastic_fraction) {
-    const double target = *s.mastic_fraction;
-    const double tol = std::max(1e-3, 1.0 / cells);
-    out.mastic_fraction_tolerance = tol;
-    double lo = 0.0, hi = T;  // the fraction is non-decreasing in the level (generate.h)
-    const double f_lo = mastic_fraction_at(lo), f_hi = mastic_fraction_at(hi);
-    auto range = [&] {
-      std::ostringstream r;
-      r << "reachable with this packing: " << f_lo << " (mastic at the bottom of the " << T << " mm slab) to " << f_hi
-        << " (at its top), tolerance " << tol;
-      return r.str();
-    };
-    if (target < f_lo - tol || target > f_hi + tol) {
-      std::ostringstream e;
-      e << "surface: exposed mastic fraction " << target << " not reachable (" << range() << ")";
-      throw InputError(e.str());
-    }
-    if (target <= f_lo) {
-      level = lo;
-    } else if (target >= f_hi) {
-      level = hi;
-    } else {
-      // Invariant: fraction(lo) < target <= fraction(hi).
-      for (int it = 0; it < 60; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (mastic_fraction_at(mid) < target) {
-          lo = mid;
-        } else {
-          hi = mid;
-        }
-      }
-      const double a_lo = mastic_fraction_at(lo), a_hi = mastic_fraction_at(hi);
-      level = target - a_lo <= a_hi - target ? lo : hi;
-      const double achieved = level == lo ? a_lo : a_hi;
-      if (std::fabs(achieved - target) > tol) {
-        std::ostringstream e;
-        e << "surface: exposed mastic fraction " << target << " not reachable within " << tol
-          << ": the fraction jumps from " << a_lo << " to " << a_hi << " at the mastic level " << level
-          << " mm (cells whose grain tops are at equal heights; " << range() << ")";
-        throw InputError(e.str());
-      }
-    }
-  }
-  out.matrix_level_mm = level;
-  for (std::size_t k = 0; k < top_nodes.size(); ++k) f.heights[k] = std::max(level, top_nodes[k]);
-  out.mastic_fraction = mastic_fraction_at(level);
+std::string describe(const SampleRecipe& recipe, const GeneratorSettings& s, const GeneratedSample& out, double L) {
+  const double T = out.slab_thickness_mm;
   std::ostringstream d;
-  d << "virtual sample of " << recipe.name << ": " << grains.size()
+  d << "virtual sample of " << recipe.name << ": " << out.grains.size()
     << " ellipsoidal grains (random orientation, b/a in [" << s.elongation_min << ", " << s.elongation_max
     << "], c/b in [" << s.flatness_min << ", " << s.flatness_max
     << "]) packed without overlap, all classes together in proportion, by "
     << (out.deposition ? "deposition against the roller's plane with settling (random sequential addition jammed)"
                        : "random sequential addition")
-    << " in a " << T << " mm slab, periodic " << L << " mm x " << L << " mm, mastic level " << level << " mm";
+    << " in a " << T << " mm slab, periodic " << L << " mm x " << L << " mm, mastic level " << out.matrix_level_mm
+    << " mm";
   if (s.mastic_fraction) {
     d << " (chosen for an exposed mastic fraction of " << *s.mastic_fraction << ": achieved " << out.mastic_fraction
       << ", tolerance " << out.mastic_fraction_tolerance << ")";
   }
   d << ", seed " << s.seed << ". Classes (target / achieved volume fraction of the slab"
     << (out.targets_reached ? "" : "; targets NOT reached, classes scaled down together") << "):";
-  for (std::size_t k = 0; k < K; ++k) {
+  for (std::size_t k = 0; k < recipe.classes.size(); ++k) {
     d << " " << recipe.classes[k].material.name << " " << out.target_volume_fraction[k] << " / "
       << out.achieved_volume_fraction[k] << " (" << out.grain_count[k] << " grains);";
   }
-  f.description = d.str();
+  return d.str();
+}
+
+}  // namespace
+
+GeneratedSample generate_sample(const SampleRecipe& recipe, const GeneratorSettings& s) {
+  validate(s);
+  const int n = static_cast<int>(std::lround(s.size_mm / s.cell_size_mm));
+  const double L = n * s.cell_size_mm;
+  GeneratedSample out;
+  const double T = slab_thickness(recipe, L);
+  out.slab_thickness_mm = T;
+  pack_grains(recipe, s, L, T, out);
+  const GrainTops tops = rasterise(out.grains, n, s.cell_size_mm);
+
+  HeightField& f = out.field;
+  f.name = recipe.name;
+  f.cell_size_mm = s.cell_size_mm;
+  f.nx = f.ny = n;
+  f.heights.assign(tops.nodes.size(), 0.0);
+  f.material.assign(tops.nodes.size(), 0);
+  f.materials.push_back(recipe.matrix);
+  for (const auto& c : recipe.classes) f.materials.push_back(c.material);
+
+  double level = s.matrix_level * T;
+  if (s.target_mpd_mm) level = level_for_mpd(tops, T, *s.target_mpd_mm, f);
+  if (s.mastic_fraction) {
+    out.mastic_fraction_tolerance = std::max(1e-3, 1.0 / (static_cast<double>(n) * n));
+    level = level_for_mastic_fraction(tops, T, *s.mastic_fraction, out.mastic_fraction_tolerance, f);
+  }
+  out.matrix_level_mm = level;
+  for (std::size_t k = 0; k < tops.nodes.size(); ++k) f.heights[k] = std::max(level, tops.nodes[k]);
+  out.mastic_fraction = mastic_fraction_at(tops, level, f);
+  f.description = describe(recipe, s, out, L);
   return out;
 }
 
