@@ -46,15 +46,31 @@ def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
     return [(labels[k] if k < len(labels) else name, r) for k, (name, r) in enumerate(out)]
 
 
+def _u(values, shape=None):
+    """Standard uncertainties of the JSON "uncertainty" as floats (null -> NaN), or None when absent."""
+    if values is None:
+        return None
+    a = np.array(values, dtype=float)  # None entries become NaN
+    return a if shape is None else a.reshape(shape)
+
+
 def _versus_zenith(r):
-    """Black-, blue- and white-sky values against sun zenith: solar-weighted, else at the single band."""
+    """Black-, blue- and white-sky values against sun zenith: solar-weighted, else at the single band; with
+    their standard uncertainties from the fit's covariance (``*_u``, the broadband ones for independent
+    wavelengths; None when the result has none)."""
     zen = np.atleast_1d(np.asarray(r["sun_zenith_deg"], dtype=float))
     bb = r.get("broadband")
+    u = r.get("uncertainty") or {}
     if bb is not None:
         black = np.atleast_1d(np.asarray(bb["black_sky"], dtype=float))
         blue = None if bb.get("blue_sky") is None else np.atleast_1d(np.asarray(bb["blue_sky"], dtype=float))
         white = float(np.atleast_1d(bb["white_sky"])[0])
         how = "solar-weighted"
+        ub = u.get("broadband") or {}
+        independent = lambda items: None if items is None else [i["independent"] for i in items]  # noqa: E731
+        black_u = _u(independent(ub.get("black_sky")))
+        blue_u = _u(independent(ub.get("blue_sky")))
+        white_u = None if ub.get("white_sky") is None else _u(ub["white_sky"]["independent"])
     else:
         wl = np.atleast_1d(np.asarray(r["wavelengths"], dtype=float))
         j = int(np.argmin(np.abs(wl - 550.0)))
@@ -62,7 +78,19 @@ def _versus_zenith(r):
         blue = None if r.get("blue_sky") is None else np.asarray(r["blue_sky"], dtype=float).reshape(zen.size, -1)[:, j]
         white = float(np.atleast_1d(r["white_sky"])[j])
         how = f"at {wl[j]:g} nm"
-    return {"sun_zenith_deg": zen, "black_sky": black, "blue_sky": blue, "white_sky": white, "weighting": how}
+        black_u = None if u.get("black_sky") is None else _u(u["black_sky"], (zen.size, -1))[:, j]
+        blue_u = None if u.get("blue_sky") is None else _u(u["blue_sky"], (zen.size, -1))[:, j]
+        white_u = None if u.get("white_sky") is None else _u(u["white_sky"])[j]
+    return {"sun_zenith_deg": zen, "black_sky": black, "blue_sky": blue, "white_sky": white, "weighting": how,
+            "black_sky_u": black_u, "blue_sky_u": blue_u, "white_sky_u": None if white_u is None else float(white_u)}
+
+
+def _line(axis, x, y, u, fmt, **kw):
+    """A curve with its standard uncertainty as error bars (k = 1) when known."""
+    if u is None:
+        axis.plot(x, y, fmt, **kw)
+    else:
+        axis.errorbar(x, y, yerr=u, fmt=fmt, capsize=2, elinewidth=0.8, **kw)
 
 
 def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, sun_zenith="0:80:10",
@@ -77,9 +105,13 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
     for each of ``atmospheres`` (e.g. ``["spectrl2:aod=0.05", "spectrl2:aod=0.4"]``; ``fit``: which fit of
     the file). ``ax``: the panels' axes, or ``fig``.
 
+    Where the result has standard uncertainties (a fit file with its covariance: ``uncertainty``), they are drawn
+    as error bars (k = 1; the solar-weighted ones for independent wavelengths) and shaded bands.
+
     ``fig.roadbrdf_data``: the first result's keys, and ``zenith_panel`` = {label: {sun_zenith_deg,
-    black_sky, blue_sky, white_sky, weighting}}, ``spectral_panel`` = {wavelengths, black_sky {zenith: (M,)},
-    white_sky, blue_sky {label: (M,)}, blue_sky_zenith_deg} (None without several bands), ``results``.
+    black_sky, blue_sky, white_sky, weighting, black_sky_u, blue_sky_u, white_sky_u}}, ``spectral_panel`` =
+    {wavelengths, black_sky {zenith: (M,)}, white_sky, blue_sky {label: (M,)}, blue_sky_zenith_deg, black_sky_u,
+    white_sky_u} (None without several bands), ``results``.
     """
     results = _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params)
     if not results:
@@ -97,22 +129,36 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
         if kind == "zenith":
             for k, (label, c) in enumerate(curves.items()):
                 colour = f"C{k}"
-                axis.plot(c["sun_zenith_deg"], c["black_sky"], "o-", color=colour, ms=3,
-                          label=f"black-sky ({c['weighting']}), {label}")
+                _line(axis, c["sun_zenith_deg"], c["black_sky"], c["black_sky_u"], "o-", color=colour, ms=3,
+                      label=f"black-sky ({c['weighting']}), {label}")
                 if c["blue_sky"] is not None:
-                    axis.plot(c["sun_zenith_deg"], c["blue_sky"], "s--", color=colour, ms=3,
-                              label=f"blue-sky, {label}")
+                    _line(axis, c["sun_zenith_deg"], c["blue_sky"], c["blue_sky_u"], "s--", color=colour, ms=3,
+                          label=f"blue-sky, {label}")
                 axis.axhline(c["white_sky"], color=colour, ls=":", lw=1.4, label=f"white-sky, {label}")
+                if c["white_sky_u"] is not None and np.isfinite(c["white_sky_u"]):
+                    axis.axhspan(c["white_sky"] - c["white_sky_u"], c["white_sky"] + c["white_sky_u"], color=colour,
+                                 alpha=0.12, lw=0)
+            if any(c["black_sky_u"] is not None for c in curves.values()):
+                axis.text(0.01, 0.01, "bars: standard uncertainty from the fit's covariance (k = 1)",
+                          transform=axis.transAxes, fontsize=6, va="bottom")
             axis.set_xlabel("sun zenith angle [deg]")
             axis.set_ylabel("albedo [1]")
             axis.set_title("albedo vs sun zenith", fontsize=10)
         elif kind == "spectral":
             black = np.asarray(first["black_sky"], dtype=float).reshape(zen.size, -1)
             shown = sorted(set(np.linspace(0, zen.size - 1, min(zen.size, 4)).round().astype(int)))
-            for j in shown:
-                axis.plot(wl, black[j], lw=1.2, label=f"black-sky, sun zenith {zen[j]:g}°")
+            u = first.get("uncertainty") or {}
+            black_u = None if u.get("black_sky") is None else _u(u["black_sky"], black.shape)
+            for k, j in enumerate(shown):
+                axis.plot(wl, black[j], lw=1.2, color=f"C{k}", label=f"black-sky, sun zenith {zen[j]:g}°")
+                if black_u is not None:
+                    axis.fill_between(wl, black[j] - black_u[j], black[j] + black_u[j], color=f"C{k}", alpha=0.2, lw=0)
             white = np.asarray(first["white_sky"], dtype=float)
             axis.plot(wl, white, "k", lw=1.6, label="white-sky")
+            white_u = None if u.get("white_sky") is None else _u(u["white_sky"])
+            if white_u is not None:
+                axis.fill_between(wl, white - white_u, white + white_u, color="k", alpha=0.15, lw=0,
+                                  label="± standard uncertainty (fit covariance)")
             blues = {}
             for k, (label, r) in enumerate(results):
                 if r.get("blue_sky") is not None:
@@ -121,7 +167,9 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
                     axis.plot(r["wavelengths"], blue, "--", lw=1.3, color=f"C{k + len(shown)}",
                               label=f"blue-sky, sun zenith {r['sun_zenith_deg'][0]:g}°, {label}")
             spectral_panel = {"wavelengths": wl, "black_sky": {float(zen[j]): black[j] for j in shown},
-                              "white_sky": white, "blue_sky": blues, "blue_sky_zenith_deg": float(zen[0])}
+                              "white_sky": white, "blue_sky": blues, "blue_sky_zenith_deg": float(zen[0]),
+                              "black_sky_u": None if black_u is None else {float(zen[j]): black_u[j] for j in shown},
+                              "white_sky_u": white_u}
             axis.set_xlabel("wavelength [nm]")
             axis.set_ylabel("albedo [1]")
             axis.set_title("spectral albedo", fontsize=10)

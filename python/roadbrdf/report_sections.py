@@ -322,19 +322,6 @@ def albedo(r) -> Section:
             f"{esc(r.atmosphere_text)} (<code>roadbrdf albedo</code> / <code>roadbrdf.albedo</code>). "
             "Black-sky: directional-hemispherical; white-sky: bi-hemispherical; blue-sky: their mix for the "
             "sky's diffuse fraction.</p>")
-    bb = a.get("broadband")
-    if bb:
-        html += f"<h3>Solar-weighted ({esc(bb.get('weighting', ''))})</h3>"
-        rows = []
-        for k, zen in enumerate(z):
-            rows.append([cell(zen, None, 4), cell(bb["black_sky"][k], f"albedo.broadband.black_sky.{zen:g}", 4),
-                         cell(_at(bb.get("blue_sky"), k), f"albedo.broadband.blue_sky.{zen:g}", 4)])
-        html += table(["sun zenith [°]", "black-sky", "blue-sky"], rows)
-        html += "<p>White-sky (solar-weighted): " + \
-            f'<strong data-key="albedo.broadband.white_sky" data-value="{bb["white_sky"]!r}">' \
-            f'{number(bb["white_sky"], 4)}</strong></p>'
-    wl = np.asarray(a["wavelengths"], dtype=float)
-    k = int(np.argmin(np.abs(wl - r.band)))
     u = a.get("uncertainty") or {}
 
     def with_u(value, uncertainty, key):
@@ -343,6 +330,27 @@ def albedo(r) -> Section:
             text += f" ± {number(uncertainty, 2)}"
         return Cell(text, key, float(value), True)
 
+    bb = a.get("broadband")
+    if bb:
+        # The solar-weighted uncertainties for independent wavelengths (albedo/uncertainty.h).
+        ub = u.get("broadband") or {}
+        independent = lambda items, k: (_at(items, k) or {}).get("independent")  # noqa: E731
+        html += f"<h3>Solar-weighted ({esc(bb.get('weighting', ''))})</h3>"
+        rows = []
+        for k, zen in enumerate(z):
+            rows.append([cell(zen, None, 4),
+                         with_u(bb["black_sky"][k], independent(ub.get("black_sky"), k),
+                                f"albedo.broadband.black_sky.{zen:g}"),
+                         with_u(bb["blue_sky"][k], independent(ub.get("blue_sky"), k),
+                                f"albedo.broadband.blue_sky.{zen:g}") if bb.get("blue_sky") is not None else "–"])
+        html += table(["sun zenith [°]", "black-sky", "blue-sky"], rows)
+        white_u = (ub.get("white_sky") or {}).get("independent")
+        html += "<p>White-sky (solar-weighted): " + \
+            f'<strong data-key="albedo.broadband.white_sky" data-value="{bb["white_sky"]!r}">' \
+            f'{number(bb["white_sky"], 4)}</strong>' + \
+            (f" ± {number(white_u, 2)}" if white_u is not None else "") + "</p>"
+    wl = np.asarray(a["wavelengths"], dtype=float)
+    k = int(np.argmin(np.abs(wl - r.band)))
     rows = []
     for j, zen in enumerate(z):
         rows.append([cell(zen, None, 4),

@@ -324,6 +324,31 @@ def test_albedo_blue_sky_is_the_diffuse_weighted_mean_and_single_values_are_bars
     np.testing.assert_allclose(heights, [0.25, 0.25, 0.25], atol=1e-9)
 
 
+def test_albedo_error_bars_are_the_uncertainties_of_the_result(cli, root, tmp_path):
+    """A fit file with its covariance: the figure draws the result's standard uncertainties, the solar-weighted
+    ones (independent wavelengths) against sun zenith and the per-wavelength ones as bands."""
+    fit = tmp_path / "on.fit.json"
+    cli("fit", root / "data" / "examples" / "single" / "lazard.csv", "--model", "oren-nayar", "--wavelengths",
+        "400:700:50", "-o", fit)
+    result = json.loads(cli("albedo", fit, "--sun-zenith", "0,30,60", "--diffuse-fraction", "0.2", "--json").stdout)
+    fig = rplot.albedo(result)
+    c, = fig.roadbrdf_data["zenith_panel"].values()
+    u = result["uncertainty"]["broadband"]
+    np.testing.assert_array_equal(c["black_sky_u"], [b["independent"] for b in u["black_sky"]])
+    np.testing.assert_array_equal(c["blue_sky_u"], [b["independent"] for b in u["blue_sky"]])
+    assert c["white_sky_u"] == u["white_sky"]["independent"] > 0
+    zenith_axis = fig.axes[0]
+    bars = [child for child in zenith_axis.containers if hasattr(child, "has_yerr") and child.has_yerr]
+    assert len(bars) == 2  # black-sky and blue-sky
+    spectral = fig.roadbrdf_data["spectral_panel"]
+    np.testing.assert_array_equal(spectral["white_sky_u"], result["uncertainty"]["white_sky"])
+    np.testing.assert_array_equal(spectral["black_sky_u"][0.0], result["uncertainty"]["black_sky"][0])
+    # Without uncertainties (a model with given parameters) there are no bars.
+    fig = rplot.albedo(roadbrdf.albedo(roadbrdf.Model("lambert"), {"albedo": 0.3}, sun_zenith=[0, 40]))
+    c, = fig.roadbrdf_data["zenith_panel"].values()
+    assert c["black_sky_u"] is None and not fig.axes[0].containers
+
+
 def test_albedo_command_with_atmospheres(cli, tmp_path):
     fit = lambert_fit(tmp_path / "l.fit.json")
     out = tmp_path / "a.png"

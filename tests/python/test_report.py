@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 import roadbrdf
+from roadbrdf import report_html
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 DATA = ROOT / "data" / "examples" / "mixed" / "F1.csv"
@@ -232,6 +233,12 @@ def test_albedo_and_rtable_equal_the_api(tmp_path, report):
         _same(page, f"albedo.broadband.blue_sky.{z:g}", bb["blue_sky"][k])
         _same(page, f"coverage.black_sky.{z:g}", 100 * a["coverage"]["black_sky_outside_fraction"][k], digits=3)
     _same(page, "albedo.broadband.white_sky", bb["white_sky"])
+    # The solar-weighted values are shown with their standard uncertainty (independent wavelengths).
+    ub = a["uncertainty"]["broadband"]
+    for k, z in enumerate(a["sun_zenith_deg"]):
+        shown_u = float(_value(page, f"albedo.broadband.black_sky.{z:g}")[1].split("±")[1])
+        assert shown_u == pytest.approx(ub["black_sky"][k]["independent"], rel=0.06)
+    assert f"± {report_html.number(ub['white_sky']['independent'], 2)}" in report["text"]
     _same(page, "summary.white_sky", bb["white_sky"], digits=3)
     band = a["wavelengths"].index(590.0)
     _same(page, "albedo.band.white_sky", a["white_sky"][band])
