@@ -95,6 +95,7 @@ py::dict report_to_dict(const RTableReport& report) {
   d["class"] = report.chosen.name;
   d["class_system"] = report.class_system;
   d["coverage"] = json_to_python(report.coverage.to_json());
+  d["uncertainty"] = json_to_python(report.uncertainty_json());  // None without a fit's covariance
   d["weighting"] = json_to_python(report.weighting);
   d["notes"] = report.notes;
   d["warnings"] = report.warnings;
