@@ -57,6 +57,7 @@ py::dict rtable_to_dict(const RTable& t, std::optional<double> declared_q0 = std
     d["class"] = py::none();
   }
   d["declared_q0"] = declared_q0 ? py::object(py::float_(*declared_q0)) : py::object(py::none());
+  d["uncertainty"] = py::none();  // a table alone has no covariance (report_to_dict sets a fit's)
   return d;
 }
 

@@ -40,10 +40,14 @@ SpectralWeighting at_wavelength(double nm) {
   return w;
 }
 
-SummaryUncertainty uncertainty_of(const SpectralModel& sm, const SpectralWeighting& w) {
-  const std::optional<SummaryUncertainty> u = summary_uncertainty(sm, w, compute_rtable(sm, w));
+// Both propagations; uncertainty_of() the value (wavelengths independent).
+RTableUncertainty both_of(const SpectralModel& sm, const SpectralWeighting& w) {
+  const std::optional<RTableUncertainty> u = summary_uncertainty(sm, w, compute_rtable(sm, w));
   EXPECT_TRUE(u.has_value());
-  return u.value_or(SummaryUncertainty{});
+  return u.value_or(RTableUncertainty{});
+}
+SummaryUncertainty uncertainty_of(const SpectralModel& sm, const SpectralWeighting& w) {
+  return both_of(sm, w).independent;
 }
 
 double standard_deviation(const std::vector<double>& v) {
@@ -119,28 +123,33 @@ TEST(RTableUncertainty, LambertQ0IsLinearInTheAlbedoAndS1DoesNotDependOnIt) {
 
 TEST(RTableUncertainty, PhotometricWeightingOfLambertIsTheSumOverTheFitWavelengths) {
   // Five bands covering the luminous integral; Q0 = sum_j c_j rho_j with c_j = dQ0/drho_j taken from
-  // compute_rtable (exact: linear), so u^2(Q0) = sum_j c_j^2 u_j^2.
+  // compute_rtable (exact: linear), so u^2(Q0) = sum_j c_j^2 u_j^2 for independent bands and
+  // u(Q0) = sum_j c_j u_j (c_j > 0) for errors fully correlated across them.
   const std::shared_ptr<const Model> lambert = make_model("lambert");
   const std::vector<double> wavelengths = {360.0, 450.0, 550.0, 650.0, 830.0};
   const std::vector<double> rho = {0.2, 0.25, 0.3, 0.35, 0.4};
   const std::vector<double> u_rho = {0.01, 0.02, 0.015, 0.03, 0.05};
   const SpectralWeighting photometric;  // CIE A
   const double base = q0(compute_rtable(SpectralModel(lambert, wavelengths, rho), photometric));
-  double sum = 0.0;
+  double sum = 0.0, bound = 0.0;
   for (std::size_t j = 0; j < rho.size(); ++j) {
     std::vector<double> moved = rho;
     moved[j] += 0.1;
     const double c = (q0(compute_rtable(SpectralModel(lambert, wavelengths, moved), photometric)) - base) / 0.1;
     EXPECT_GT(c, 0.0) << j;
     sum += c * c * u_rho[j] * u_rho[j];
+    bound += c * u_rho[j];
   }
   SpectralModel sm(lambert, wavelengths, rho);
   std::vector<double> covariance;
   for (double x : u_rho) covariance.push_back(x * x);
   sm.set_parameter_covariance(covariance);
-  const SummaryUncertainty u = uncertainty_of(sm, photometric);
-  EXPECT_NEAR(u.q0, std::sqrt(sum), 1e-9 * std::sqrt(sum));
-  EXPECT_NEAR(u.s1, 0.0, 1e-12);
+  const RTableUncertainty u = both_of(sm, photometric);
+  EXPECT_NEAR(u.independent.q0, std::sqrt(sum), 1e-9 * std::sqrt(sum));
+  EXPECT_NEAR(u.correlated.q0, bound, 1e-9 * bound);
+  EXPECT_GT(u.correlated.q0, 1.5 * u.independent.q0);  // the two cases differ here
+  EXPECT_NEAR(u.independent.s1, 0.0, 1e-12);
+  EXPECT_NEAR(u.correlated.s1, 0.0, 1e-12);
 }
 
 TEST(RTableUncertainty, FixedParametersAndWavelengthsOutsideTheWeightingContributeNothing) {
@@ -200,12 +209,14 @@ TEST(RTableUncertainty, ClassProbabilitiesAreNormalProbabilitiesBetweenTheS1Limi
 
 TEST(RTableUncertainty, ReportListsTheClassesOfAtLeastOnePercent) {
   RTableReport report;
-  report.uncertainty = SummaryUncertainty{0.001, 0.05, 0.02, std::numeric_limits<double>::quiet_NaN()};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  report.uncertainty = RTableUncertainty{{0.001, 0.05, 0.02, nan}, {0.002, 0.1, 0.04, nan}};
   report.class_system = "R";
   report.class_probabilities = class_probabilities(0.80, 0.05);
   const nlohmann::json j = report.uncertainty_json();
   EXPECT_EQ(j["S1"].get<double>(), 0.05);
   EXPECT_TRUE(j["Qd"].is_null());
+  EXPECT_EQ(j["correlated"]["S1"].get<double>(), 0.1);
   ASSERT_EQ(j["class_probabilities"].size(), 2u);  // R1 and R4 are below 1 %
   EXPECT_EQ(j["class_probabilities"][0]["class"], "R2");
   EXPECT_EQ(j["class_probabilities"][1]["class"], "R3");
@@ -235,17 +246,18 @@ TEST(RTableUncertaintyCli, JsonAndTextCarryTheUncertainties) {
   ASSERT_EQ(json.status, 0) << json.output;
   const nlohmann::json j = nlohmann::json::parse(json.output);
   const nlohmann::json& u = j.at("uncertainty");
-  EXPECT_DOUBLE_EQ(u["Q0"].get<double>(), expected.uncertainty->q0);
-  EXPECT_DOUBLE_EQ(u["S1"].get<double>(), expected.uncertainty->s1);
+  const SummaryUncertainty& e = expected.uncertainty->independent;
+  EXPECT_DOUBLE_EQ(u["Q0"].get<double>(), e.q0);
+  EXPECT_DOUBLE_EQ(u["S1"].get<double>(), e.s1);
+  // One wavelength: the correlated bound is the same number.
+  EXPECT_DOUBLE_EQ(u["correlated"]["S1"].get<double>(), e.s1);
   EXPECT_GT(u["S1"].get<double>(), 0.0);
   EXPECT_EQ(u["class_probabilities"][0]["class"], j["class"]);
   EXPECT_NE(u["method"].get<std::string>().find("GUM"), std::string::npos);
   EXPECT_TRUE(j["units"].contains("uncertainty"));
   const test::CliResult text = test::run_cli("rtable " + fit + " -o " + (scratch.path() / "t.csv").string());
   ASSERT_EQ(text.status, 0) << text.output;
-  EXPECT_NE(text.output.find(fmt::format("u(Q0) = {:.3g} sr^-1, u(S1) = {:.3g}", expected.uncertainty->q0,
-                                         expected.uncertainty->s1)),
-            std::string::npos)
+  EXPECT_NE(text.output.find(fmt::format("u(Q0) = {:.3g} sr^-1, u(S1) = {:.3g}", e.q0, e.s1)), std::string::npos)
       << text.output;
   EXPECT_NE(text.output.find("class probability (R, S1 normal with u(S1)): R1 1.000"), std::string::npos)
       << text.output;

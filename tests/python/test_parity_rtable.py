@@ -65,6 +65,7 @@ def test_rtable_uncertainty_is_the_same_and_follows_the_lambert_closed_form(cli,
     assert u["S1"] == pytest.approx(0.0, abs=1e-12)
     assert u["S2"] == pytest.approx(0.0, abs=1e-12)
     assert u["class_probabilities"] == [{"class": t["class"], "probability": 1.0}]
+    assert u["correlated"]["Q0"] == pytest.approx(u["Q0"], rel=1e-12)  # one wavelength: the same
     # Rough diffuse with a correlated roughness: S1 moves too; the text names the uncertainties.
     fit = _fit_file(tmp_path / "on.fit.json", "oren-nayar", {"albedo": 0.4, "sigma": 0.3},
                     {"albedo": 0.01, "sigma": 0.05}, [[1, 0.6], [0.6, 1]])

@@ -141,8 +141,9 @@ RTableReport rtable_report(const SpectralModel& model, const RTableRequest& requ
   summarize_into(report, request, model.coverage());
   // Cheap (each parameter moves only its neighbouring wavelengths): always, as for albedo.
   report.uncertainty = summary_uncertainty(model, w, report.table, request.region());
-  if (report.uncertainty && !std::isnan(report.uncertainty->s1)) {
-    report.class_probabilities = class_probabilities(report.summary.s1, report.uncertainty->s1, request.system());
+  if (report.uncertainty && !std::isnan(report.uncertainty->independent.s1)) {
+    report.class_probabilities =
+        class_probabilities(report.summary.s1, report.uncertainty->independent.s1, request.system());
   }
   return report;
 }
@@ -174,7 +175,8 @@ nlohmann::json RTableReport::to_json() const {
                 {"tan_gamma", "1"},
                 {"uncertainty",
                  "standard uncertainties (units of the figures) of Q0, S1, S2, Qd from the fit's parameter "
-                 "covariance, wavelengths independent; class_probabilities: the classes of class_system with "
+                 "covariance, wavelengths independent; correlated: the bound for errors fully correlated "
+                 "across wavelengths; class_probabilities: the classes of class_system with "
                  "probability >= 0.01 for S1 normal with that u; null when unknown (a model given by its "
                  "parameters, a mixture, an imported table), null entries where the covariance is undefined"}};
   j["Q0"] = summary.q0;
@@ -236,13 +238,18 @@ nlohmann::json RTableReport::uncertainty_json() const {
       classes.push_back({{"class", c.name}, {"probability", c.probability}});
     }
   }
-  return {{"method",
-           "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength, wavelengths independent"},
-          {"Q0", number_or_null(uncertainty->q0)},
-          {"S1", number_or_null(uncertainty->s1)},
-          {"S2", number_or_null(uncertainty->s2)},
-          {"Qd", number_or_null(uncertainty->qd)},
-          {"class_probabilities", classes}};
+  auto figures = [](const SummaryUncertainty& u) {
+    return nlohmann::json{{"Q0", number_or_null(u.q0)},
+                          {"S1", number_or_null(u.s1)},
+                          {"S2", number_or_null(u.s2)},
+                          {"Qd", number_or_null(u.qd)}};
+  };
+  nlohmann::json j = figures(uncertainty->independent);
+  j["method"] =
+      "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength, wavelengths independent";
+  j["correlated"] = figures(uncertainty->correlated);
+  j["class_probabilities"] = classes;
+  return j;
 }
 
 std::string RTableReport::summary_text() const {
@@ -254,10 +261,16 @@ std::string RTableReport::summary_text() const {
                       summary.r_class.name, summary.n_class.name, summary.c_class.name);
   if (uncertainty) {
     auto u = [](double x) { return std::isnan(x) ? std::string("undefined") : fmt::format("{:.3g}", x); };
+    const SummaryUncertainty& i = uncertainty->independent;
+    const SummaryUncertainty& c = uncertainty->correlated;
     text << fmt::format(
         "u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} sr^-1 (standard uncertainties from the fit's "
         "parameter covariance)\n",
-        u(uncertainty->q0), u(uncertainty->s1), u(uncertainty->s2), u(uncertainty->qd));
+        u(i.q0), u(i.s1), u(i.s2), u(i.qd));
+    text << fmt::format(
+        "errors correlated across wavelengths (bound): u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} "
+        "sr^-1\n",
+        u(c.q0), u(c.s1), u(c.s2), u(c.qd));
     if (!class_probabilities.empty()) {
       std::string classes;
       for (const ClassProbability& c : reported_classes()) {

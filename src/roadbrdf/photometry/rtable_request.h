@@ -1,8 +1,9 @@
 // An r-table as the front ends ask for it (`roadbrdf rtable`, roadbrdf.rtable in Python): the
 // request with its one validation, and the report with the table, its summary figures, the class,
-// the coverage of the fit behind it, and the notes and warnings that go with them. The command line
-// and the Python module only translate their arguments into an RTableRequest and print or return
-// the report; neither decides a rule of its own.
+// their uncertainties from a fit's covariance (rtable_uncertainty.h), the coverage of the fit behind
+// it, and the notes and warnings that go with them. The command line and the Python module only
+// translate their arguments into an RTableRequest and print or return the report; neither decides a
+// rule of its own.
 //
 // Errors are FieldError with the field names below ("wavelength", "band", "alpha", ...), which are
 // also the Python keywords; the command line maps them to its flags (cli/common.h).
@@ -56,7 +57,7 @@ struct RTableReport {
   // From a fit's parameter covariance (rtable_uncertainty.h; none for a model given by its
   // parameters, a mixture, an imported table): u of the figures, and the probability of every class
   // of the request's system (in increasing S1; empty when u(S1) is undefined or unknown).
-  std::optional<SummaryUncertainty> uncertainty;
+  std::optional<RTableUncertainty> uncertainty;
   std::vector<ClassProbability> class_probabilities;
   std::string compared_with;  // the reference's name, when compared
 
@@ -66,8 +67,9 @@ struct RTableReport {
   nlohmann::json to_json() const;
   // The classes of class_probabilities worth reporting (probability >= kReportedClassProbability).
   std::vector<ClassProbability> reported_classes() const;
-  // The JSON "uncertainty" object: {method, Q0, S1, S2, Qd, class_probabilities: [{class,
-  // probability}...]} (null entries where undefined); null without an uncertainty.
+  // The JSON "uncertainty" object: {method, Q0, S1, S2, Qd, correlated: {Q0, S1, S2, Qd},
+  // class_probabilities: [{class, probability}...]} (null entries where undefined); null without an
+  // uncertainty.
   nlohmann::json uncertainty_json() const;
   // The summary lines `roadbrdf rtable` prints (Q0, S1, S2, Qd, r(0,0), class, cells...).
   std::string summary_text() const;

@@ -18,8 +18,8 @@ double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 }  // namespace
 
-std::optional<SummaryUncertainty> summary_uncertainty(const SpectralModel& model, const SpectralWeighting& weighting,
-                                                      const RTable& table, Q0Region region) {
+std::optional<RTableUncertainty> summary_uncertainty(const SpectralModel& model, const SpectralWeighting& weighting,
+                                                     const RTable& table, Q0Region region) {
   const std::vector<double>& covariance = model.parameter_covariance();
   if (covariance.empty() || !model.is_spectral()) return std::nullopt;
   const Model& m = model.model();
@@ -93,14 +93,19 @@ std::optional<SummaryUncertainty> summary_uncertainty(const SpectralModel& model
     }
   }
 
-  // u^2 = sum_j g_j^T Sigma_j g_j over the independent fit wavelengths.
-  std::array<double, kFigures> u{};
+  // u^2 = sum_j g_j^T Sigma_j g_j over the independent fit wavelengths; sum_j u_j fully correlated.
+  std::array<double, kFigures> independent{}, correlated{};
   for (std::size_t f = 0; f < kFigures; ++f) {
-    double sum = 0.0;
-    for (double u_j : propagate(gradient[f], covariance, J, P)) sum += u_j * u_j;  // NaN propagates
-    u[f] = std::sqrt(sum);
+    double sum_squares = 0.0, sum = 0.0;
+    for (double u_j : propagate(gradient[f], covariance, J, P)) {
+      sum_squares += u_j * u_j;  // NaN propagates
+      sum += u_j;
+    }
+    independent[f] = std::sqrt(sum_squares);
+    correlated[f] = sum;
   }
-  return SummaryUncertainty{u[kQ0], u[kS1], u[kS2], u[kQd]};
+  return RTableUncertainty{{independent[kQ0], independent[kS1], independent[kS2], independent[kQd]},
+                           {correlated[kQ0], correlated[kS1], correlated[kS2], correlated[kQd]}};
 }
 
 std::vector<ClassProbability> class_probabilities(double s1_value, double u_s1, ClassSystem system) {

@@ -14,7 +14,10 @@
 // derivatives follow by the quotient rule (the difference quotient of the ratio to O(h^2)).
 // Fits at different wavelengths are independent (per-wavelength fits share no parameter), so
 //   u^2(Y) = sum_j g_j^T Sigma_j g_j,
-// Sigma_j the fit's covariance at wavelength j. Cost: each parameter moves only the sets between
+// Sigma_j the fit's covariance at wavelength j. A per-wavelength covariance cannot tell whether
+// errors are correlated across wavelengths (e.g. a reference-panel calibration common to every band);
+// for that case sum_j sqrt(g_j^T Sigma_j g_j) is given as well, the bound for fully correlated errors
+// (as the albedo's broadband values do, albedo/uncertainty.h). Cost: each parameter moves only the sets between
 // its neighbouring fit wavelengths, so all gradients together evaluate the model about 4 P times
 // as often as the table itself (P parameters). Fixed parameters (variance 0) contribute nothing;
 // an undefined covariance (NaN) of a parameter that matters makes the uncertainty undefined (NaN).
@@ -39,11 +42,16 @@ struct SummaryUncertainty {
   double q0 = 0.0, s1 = 0.0, s2 = 0.0, qd = 0.0;
 };
 
+struct RTableUncertainty {
+  SummaryUncertainty independent;  // sqrt(sum_j u_j^2): the fit's wavelengths independent (the value)
+  SummaryUncertainty correlated;   // sum_j u_j: the bound for errors fully correlated across them
+};
+
 // The uncertainties of summarize(table, region) for `table` = compute_rtable(model, weighting,
 // alpha_deg), from model.parameter_covariance(); nullopt when the model has no covariance (a model
 // given by its parameters, a mixture). Throws InputError as compute_rtable.
-std::optional<SummaryUncertainty> summary_uncertainty(const SpectralModel& model, const SpectralWeighting& weighting,
-                                                      const RTable& table, Q0Region region = Q0Region::standard);
+std::optional<RTableUncertainty> summary_uncertainty(const SpectralModel& model, const SpectralWeighting& weighting,
+                                                     const RTable& table, Q0Region region = Q0Region::standard);
 
 struct ClassProbability {
   std::string name;  // "R3"...
