@@ -382,13 +382,27 @@ def rtable(r) -> Section:
             f"best-ranked fit ({esc(r.best.model)}), {esc(kind)} "
             "(<code>roadbrdf rtable</code> / <code>roadbrdf.rtable</code>).</p>")
     cls = t["classes"]
-    items = [("Q0 (average luminance coefficient) [sr⁻¹]", cell(t["Q0"], "rtable.Q0", 4)),
-             ("S1 = r(0, 2) / r(0, 0)", cell(t["S1"], "rtable.S1", 4)),
-             ("S2", cell(t["S2"], "rtable.S2", 4)),
-             ("Qd [sr⁻¹]", cell(t["Qd"], "rtable.Qd", 4)),
+    u = t.get("uncertainty") or {}
+
+    def with_u(name, key):
+        # The figure ± its standard uncertainty from the fit's covariance (photometry/rtable_uncertainty.h).
+        text = number(t[name], 4)
+        if u.get(name) is not None and np.isfinite(u[name]):
+            text += f" ± {number(u[name], 2)}"
+        return Cell(text, key, float(t[name]), True)
+
+    items = [("Q0 (average luminance coefficient) [sr⁻¹]", with_u("Q0", "rtable.Q0")),
+             ("S1 = r(0, 2) / r(0, 0)", with_u("S1", "rtable.S1")),
+             ("S2", with_u("S2", "rtable.S2")),
+             ("Qd [sr⁻¹]", with_u("Qd", "rtable.Qd")),
              ("class (R system)", Cell(esc(t["class"]), "rtable.class")),
              ("classes N / C", esc(f"{cls.get('N', '–')} / {cls.get('C', '–')}"))]
+    if u.get("class_probabilities"):
+        items.append(("class probability (S1 normal with its uncertainty; ≥ 1 %)",
+                      esc(", ".join(f"{c['class']} {c['probability']:.2f}" for c in u["class_probabilities"]))))
     html += definition_list(items)
+    if u:
+        html += "<p>± standard uncertainty from the fit's covariance (wavelengths independent, where defined).</p>"
     html += caveats(list(t.get("warnings") or []) + [n for n in t.get("notes") or [] if n.startswith("coverage")])
     html += caveats([n for n in t.get("notes") or [] if not n.startswith("coverage")], info=True)
     html += _figure(r, "rtable")

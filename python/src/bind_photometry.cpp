@@ -57,6 +57,7 @@ py::dict rtable_to_dict(const RTable& t, std::optional<double> declared_q0 = std
     d["class"] = py::none();
   }
   d["declared_q0"] = declared_q0 ? py::object(py::float_(*declared_q0)) : py::object(py::none());
+  d["uncertainty"] = py::none();  // a table alone has no covariance (report_to_dict sets a fit's)
   return d;
 }
 
@@ -95,6 +96,7 @@ py::dict report_to_dict(const RTableReport& report) {
   d["class"] = report.chosen.name;
   d["class_system"] = report.class_system;
   d["coverage"] = json_to_python(report.coverage.to_json());
+  d["uncertainty"] = json_to_python(report.uncertainty_json());  // None without a fit's covariance
   d["weighting"] = json_to_python(report.weighting);
   d["notes"] = report.notes;
   d["warnings"] = report.warnings;

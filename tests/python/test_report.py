@@ -250,6 +250,9 @@ def test_albedo_and_rtable_equal_the_api(tmp_path, report):
     _same(page, "rtable.S1", t["S1"])
     _same(page, "rtable.S2", t["S2"])
     assert _value(page, "rtable.class")[1] == t["class"]
+    # ± the standard uncertainties of the figures from the fit's covariance.
+    assert "±" in _value(page, "rtable.Q0")[1]
+    assert float(_value(page, "rtable.S1")[1].split("±")[1]) == pytest.approx(t["uncertainty"]["S1"], rel=0.06)
     c = t["coverage"]
     _same(page, "coverage.rtable_standard", 100 * c["standard_cells_outside"] / c["standard_cells"], digits=3)
     # The coverage caveats are on the page (here: F1 is measured to theta_r = 80 deg, the r-table's alpha = 1 deg

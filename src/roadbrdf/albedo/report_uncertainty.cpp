@@ -70,7 +70,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
   const SetIntegral white = [&](const std::vector<double>& p, std::size_t n) {
     return white_sky(model, p.data(), n, tight).value;
   };
-  const std::vector<double> g_white = albedo_gradient(model, sets.params, n_sets, covariance, white);
+  const std::vector<double> g_white = parameter_gradient(model.description(), sets.params, n_sets, covariance, white);
   progress.add();
 
   const bool with_broadband = broadband.formed && !broadband.black_means.empty();
@@ -81,7 +81,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
     const SetIntegral black = [&](const std::vector<double>& p, std::size_t n) {
       return black_sky_at(model, p, n, theta_s, azimuth, tight).value;
     };
-    const std::vector<double> g_black = albedo_gradient(model, sets.params, n_sets, covariance, black);
+    const std::vector<double> g_black = parameter_gradient(model.description(), sets.params, n_sets, covariance, black);
     u_black.push_back(propagated(g_black));
     if (with_broadband) bb_black.push_back(broadband_of({&g_black}, {&broadband.black_means[z].first}));
     if (!sky.diffuse.empty()) {

@@ -1,6 +1,7 @@
 // roadbrdf rtable (FIT.json | MODEL -p ... | --import FILE) [--alpha 1] [--illuminant A|D65|FILE]
 //   [--wavelength NM | --band A:B] [--format csv|rtb|radiance] [-o FILE] [--json] [--compare OTHER]
-// Road-photometry r-table of a BRDF (or of an r-table file) and its summary figures Q0, S1, S2, Qd, class.
+// Road-photometry r-table of a BRDF (or of an r-table file) and its summary figures Q0, S1, S2, Qd, class;
+// for a fit file also their standard uncertainties and the class probabilities (rtable_uncertainty.h).
 #include <fmt/core.h>
 
 #include <iostream>
@@ -152,7 +153,8 @@ void register_rtable_command(CLI::App& app) {
                       "Table format: csv (default), rtb (DIALux), radiance (Radiance data file); all store 1e4 r");
   command->add_option("-o,--output", args.output, "Write the table here (atomically); default: standard output");
   command->add_flag("--json", args.json,
-                    "Print JSON: Q0, S1, S2, Qd, class, beta_deg, tan_gamma, r (plain r in sr^-1, null = missing)");
+                    "Print JSON: Q0, S1, S2, Qd, class, beta_deg, tan_gamma, r (plain r in sr^-1, null = missing), "
+                    "uncertainty (from a fit's covariance)");
   command->add_option(
       "--compare", args.compare_file,
       "Compare with another r-table file (reference): max/mean relative difference, Q0 and S1 differences");

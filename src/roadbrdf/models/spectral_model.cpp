@@ -27,24 +27,33 @@ SpectralModel::SpectralModel(std::shared_ptr<const Model> model, std::vector<dou
   }
 }
 
-std::vector<double> SpectralModel::parameters_at(double wavelength_nm) const {
-  const std::size_t n = model_->parameter_count();
-  if (wavelengths_.empty()) return parameters_;
+std::vector<std::pair<std::size_t, double>> SpectralModel::interpolation_weights(double wavelength_nm) const {
+  if (wavelengths_.empty()) return {{0, 1.0}};  // one parameter set for every wavelength
   const double lo = wavelengths_.front();
   const double hi = wavelengths_.back();
   if (!(wavelength_nm >= lo && wavelength_nm <= hi)) {
     throw InputError("wavelength " + std::to_string(wavelength_nm) + " nm is outside the model's range [" +
                      std::to_string(lo) + ", " + std::to_string(hi) + "] nm (no extrapolation)");
   }
-  if (wavelengths_.size() == 1) return parameters_;
+  if (wavelengths_.size() == 1) return {{0, 1.0}};
   const auto it = std::upper_bound(wavelengths_.begin(), wavelengths_.end(), wavelength_nm);
   std::size_t k = static_cast<std::size_t>(it - wavelengths_.begin());
   if (k == wavelengths_.size()) k = wavelengths_.size() - 1;
   const std::size_t j = k - 1;
   const double t = (wavelength_nm - wavelengths_[j]) / (wavelengths_[k] - wavelengths_[j]);
+  return {{j, 1.0 - t}, {k, t}};
+}
+
+std::vector<double> SpectralModel::parameters_at(double wavelength_nm) const {
+  const std::size_t n = model_->parameter_count();
+  if (wavelengths_.empty()) return parameters_;
+  const auto weights = interpolation_weights(wavelength_nm);
+  if (weights.size() == 1) return parameters_;
+  const auto [j, a] = weights[0];
+  const auto [k, t] = weights[1];
   std::vector<double> p(n);
   for (std::size_t q = 0; q < n; ++q) {
-    p[q] = (1.0 - t) * parameters_[j * n + q] + t * parameters_[k * n + q];
+    p[q] = a * parameters_[j * n + q] + t * parameters_[k * n + q];
   }
   return p;
 }

@@ -29,6 +29,10 @@ class SpectralModel {
   // Parameters at a wavelength [nm], linearly interpolated between tabulated wavelengths.
   // Throws InputError outside the tabulated range (no extrapolation).
   std::vector<double> parameters_at(double wavelength_nm) const;
+  // The tabulated wavelengths parameters_at() combines and their weights: {(j, 1 - t), (j + 1, t)}
+  // (one entry {(0, 1)} for a single tabulated wavelength or none). Throws InputError as parameters_at().
+  // Uncertainties need it: a parameter at wavelength j moves every interpolated set with weight w_j.
+  std::vector<std::pair<std::size_t, double>> interpolation_weights(double wavelength_nm) const;
 
   // The angular coverage of the data a fit was fitted to (from the fit file), if known: albedo
   // and r-tables report how much of their result lies outside it.

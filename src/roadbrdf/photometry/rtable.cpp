@@ -167,6 +167,20 @@ SpectralWeighting effective_weighting(const SpectralModel& model, const Spectral
   return w;
 }
 
+WeightedWavelengths weighted_wavelengths(const SpectralModel& model, const SpectralWeighting& weighting) {
+  WeightedWavelengths result;
+  if (!model.is_spectral()) return result;
+  std::vector<double> grid, weights;
+  spectral_grid(model, weighting, grid, weights);
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    if (weights[k] == 0.0) continue;
+    result.wavelengths.push_back(grid[k]);
+    result.weights.push_back(weights[k]);
+  }
+  if (result.wavelengths.empty()) throw InputError("no wavelength to weight");
+  return result;
+}
+
 std::vector<double> weighted_brdf(const SpectralModel& model, const SpectralWeighting& weighting,
                                   const std::vector<Geometry>& geometries) {
   const Model& m = model.model();
@@ -176,24 +190,19 @@ std::vector<double> weighted_brdf(const SpectralModel& model, const SpectralWeig
     m.evaluate_batch(geometries.data(), geometries.size(), model.parameter_table().data(), 1, result.data());
     return result;
   }
-  std::vector<double> grid, weights;
-  spectral_grid(model, weighting, grid, weights);
-  // Keep only wavelengths with a weight (V = 0 outside 340-830 nm).
+  const WeightedWavelengths w = weighted_wavelengths(model, weighting);
   std::vector<double> params;
-  std::vector<double> used_weights;
-  for (std::size_t k = 0; k < grid.size(); ++k) {
-    if (weights[k] == 0.0) continue;
-    const std::vector<double> p = model.parameters_at(grid[k]);
+  for (double wavelength : w.wavelengths) {
+    const std::vector<double> p = model.parameters_at(wavelength);
     params.insert(params.end(), p.begin(), p.end());
-    used_weights.push_back(weights[k]);
   }
-  const std::size_t n_sets = used_weights.size();
-  if (n_sets == 0 || params.size() != n_sets * np) throw InputError("no wavelength to weight");
+  const std::size_t n_sets = w.weights.size();
+  if (params.size() != n_sets * np) throw InputError("no wavelength to weight");
   std::vector<double> values(geometries.size() * n_sets);
   m.evaluate_batch(geometries.data(), geometries.size(), params.data(), n_sets, values.data());
   for (std::size_t n = 0; n < geometries.size(); ++n) {
     double s = 0.0;
-    for (std::size_t k = 0; k < n_sets; ++k) s += used_weights[k] * values[n * n_sets + k];
+    for (std::size_t k = 0; k < n_sets; ++k) s += w.weights[k] * values[n * n_sets + k];
     result[n] = s;
   }
   return result;
@@ -294,34 +303,32 @@ double qd(const RTable& table) {
   return num / den;
 }
 
+const std::vector<RoadClass>& road_classes(ClassSystem system) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // name, standard Q0, S1 limits [lower, upper); the first class has no lower limit (S1 < upper).
+  static const std::vector<RoadClass> r_classes = {
+      {"R1", 0.10, -inf, 0.42}, {"R2", 0.07, 0.42, 0.85}, {"R3", 0.07, 0.85, 1.35}, {"R4", 0.08, 1.35, inf}};
+  static const std::vector<RoadClass> n_classes = {
+      {"N1", 0.10, -inf, 0.28}, {"N2", 0.07, 0.28, 0.60}, {"N3", 0.07, 0.60, 1.30}, {"N4", 0.08, 1.30, inf}};
+  static const std::vector<RoadClass> c_classes = {{"C1", 0.10, -inf, 0.40}, {"C2", 0.07, 0.40, inf}};
+  switch (system) {
+    case ClassSystem::N:
+      return n_classes;
+    case ClassSystem::C:
+      return c_classes;
+    case ClassSystem::R:
+      break;
+  }
+  return r_classes;
+}
+
 RoadClass classify(double s1_value, ClassSystem system) {
   if (!std::isfinite(s1_value)) throw InputError("cannot classify: S1 is not finite");
-  const double inf = std::numeric_limits<double>::infinity();
-  struct Row {
-    const char* name;
-    double lo, hi, q0;
-  };
-  static const Row r_rows[] = {
-      {"R1", 0.0, 0.42, 0.10}, {"R2", 0.42, 0.85, 0.07}, {"R3", 0.85, 1.35, 0.07}, {"R4", 1.35, inf, 0.08}};
-  static const Row n_rows[] = {
-      {"N1", 0.0, 0.28, 0.10}, {"N2", 0.28, 0.60, 0.07}, {"N3", 0.60, 1.30, 0.07}, {"N4", 1.30, inf, 0.08}};
-  static const Row c_rows[] = {{"C1", 0.0, 0.40, 0.10}, {"C2", 0.40, inf, 0.07}};
-  const Row* begin = r_rows;
-  std::size_t n = 4;
-  if (system == ClassSystem::N) begin = n_rows;
-  if (system == ClassSystem::C) {
-    begin = c_rows;
-    n = 2;
+  const std::vector<RoadClass>& classes = road_classes(system);
+  for (const RoadClass& c : classes) {
+    if (s1_value < c.s1_upper) return c;
   }
-  for (std::size_t k = 0; k < n; ++k) {
-    const Row& row = begin[k];
-    // The first class has no lower limit (S1 < upper).
-    if ((k == 0 || s1_value >= row.lo) && s1_value < row.hi) {
-      return RoadClass{row.name, row.q0, k == 0 ? -inf : row.lo, row.hi};
-    }
-  }
-  const Row& last = begin[n - 1];
-  return RoadClass{last.name, last.q0, last.lo, last.hi};
+  return classes.back();
 }
 
 ClassSystem class_system_from_name(const std::string& name) {

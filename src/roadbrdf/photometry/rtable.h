@@ -91,6 +91,14 @@ RTable compute_rtable(const Model& model, const std::vector<double>& parameters,
 // a single-band one is taken at its wavelength (effective_weighting).
 RTable compute_rtable(const SpectralModel& model, const SpectralWeighting& weighting, double alpha_deg = 1.0);
 
+// The wavelengths [nm] a spectral reduction evaluates the model at, with their weights (summing to
+// 1; wavelengths of zero weight, V = 0 outside 340-830 nm, left out): f = sum_k weights[k] f(l_k).
+// A wavelength-independent model has none. Throws InputError as compute_rtable.
+struct WeightedWavelengths {
+  std::vector<double> wavelengths, weights;
+};
+WeightedWavelengths weighted_wavelengths(const SpectralModel& model, const SpectralWeighting& weighting);
+
 // Per-geometry weighted BRDF of a spectral model (the reduction above), for any geometries.
 std::vector<double> weighted_brdf(const SpectralModel& model, const SpectralWeighting& weighting,
                                   const std::vector<Geometry>& geometries);
@@ -134,6 +142,9 @@ struct RoadClass {
 //   N: N1 S1 < 0.28, N2 < 0.60, N3 < 1.30, N4 >= 1.30 (0.10, 0.07, 0.07, 0.08)
 //   C: C1 S1 < 0.40, C2 >= 0.40 (0.10, 0.07)
 RoadClass classify(double s1_value, ClassSystem system = ClassSystem::R);
+// The classes of a system in increasing S1, as classify() returns them (the first with s1_lower =
+// -inf, the last with s1_upper = +inf): consecutive classes share their S1 limit.
+const std::vector<RoadClass>& road_classes(ClassSystem system);
 ClassSystem class_system_from_name(const std::string& name);  // "R", "N", "C"
 
 struct RTableSummary {

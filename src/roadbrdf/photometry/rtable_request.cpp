@@ -139,6 +139,12 @@ RTableReport rtable_report(const SpectralModel& model, const RTableRequest& requ
   }
   report.table = compute_rtable(model, w, request.alpha);
   summarize_into(report, request, model.coverage());
+  // Cheap (each parameter moves only its neighbouring wavelengths): always, as for albedo.
+  report.uncertainty = summary_uncertainty(model, w, report.table, request.region());
+  if (report.uncertainty && !std::isnan(report.uncertainty->independent.s1)) {
+    report.class_probabilities =
+        class_probabilities(report.summary.s1, report.uncertainty->independent.s1, request.system());
+  }
   return report;
 }
 
@@ -166,7 +172,13 @@ nlohmann::json RTableReport::to_json() const {
                 {"S1", "1"},
                 {"S2", "1"},
                 {"beta_deg", "deg, 0 = forward side"},
-                {"tan_gamma", "1"}};
+                {"tan_gamma", "1"},
+                {"uncertainty",
+                 "standard uncertainties (units of the figures) of Q0, S1, S2, Qd from the fit's parameter "
+                 "covariance, wavelengths independent; correlated: the bound for errors fully correlated "
+                 "across wavelengths; class_probabilities: the classes of class_system with "
+                 "probability >= 0.01 for S1 normal with that u; null when unknown (a model given by its "
+                 "parameters, a mixture, an imported table), null entries where the covariance is undefined"}};
   j["Q0"] = summary.q0;
   j["q0_region"] = q0_region;
   j["S1"] = summary.s1;
@@ -179,6 +191,7 @@ nlohmann::json RTableReport::to_json() const {
   j["classes"] = {
       {"R", class_json(summary.r_class)}, {"N", class_json(summary.n_class)}, {"C", class_json(summary.c_class)}};
   j["defined_cells"] = summary.defined_cells;
+  j["uncertainty"] = uncertainty_json();
   if (declared_q0) j["declared_q0"] = *declared_q0;
   j["beta_deg"] = standard_beta_deg();
   j["tan_gamma"] = standard_tan_gamma();
@@ -208,6 +221,37 @@ nlohmann::json RTableReport::to_json() const {
   return j;
 }
 
+std::vector<ClassProbability> RTableReport::reported_classes() const {
+  std::vector<ClassProbability> reported;
+  for (const ClassProbability& c : class_probabilities) {
+    if (c.probability >= kReportedClassProbability) reported.push_back(c);
+  }
+  return reported;
+}
+
+nlohmann::json RTableReport::uncertainty_json() const {
+  if (!uncertainty) return nullptr;
+  nlohmann::json classes = nullptr;
+  if (!class_probabilities.empty()) {
+    classes = nlohmann::json::array();
+    for (const ClassProbability& c : reported_classes()) {
+      classes.push_back({{"class", c.name}, {"probability", c.probability}});
+    }
+  }
+  auto figures = [](const SummaryUncertainty& u) {
+    return nlohmann::json{{"Q0", number_or_null(u.q0)},
+                          {"S1", number_or_null(u.s1)},
+                          {"S2", number_or_null(u.s2)},
+                          {"Qd", number_or_null(u.qd)}};
+  };
+  nlohmann::json j = figures(uncertainty->independent);
+  j["method"] =
+      "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength, wavelengths independent";
+  j["correlated"] = figures(uncertainty->correlated);
+  j["class_probabilities"] = classes;
+  return j;
+}
+
 std::string RTableReport::summary_text() const {
   std::ostringstream text;
   text << fmt::format("Q0 = {:.6g} sr^-1 (region: {})\n", summary.q0, q0_region);
@@ -215,6 +259,26 @@ std::string RTableReport::summary_text() const {
                       summary.qd, summary.r00);
   text << fmt::format("class = {} (standard Q0 {:.2f}); R: {}, N: {}, C: {}\n", chosen.name, chosen.standard_q0,
                       summary.r_class.name, summary.n_class.name, summary.c_class.name);
+  if (uncertainty) {
+    auto u = [](double x) { return std::isnan(x) ? std::string("undefined") : fmt::format("{:.3g}", x); };
+    const SummaryUncertainty& i = uncertainty->independent;
+    const SummaryUncertainty& c = uncertainty->correlated;
+    text << fmt::format(
+        "u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} sr^-1 (standard uncertainties from the fit's "
+        "parameter covariance)\n",
+        u(i.q0), u(i.s1), u(i.s2), u(i.qd));
+    text << fmt::format(
+        "errors correlated across wavelengths (bound): u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} "
+        "sr^-1\n",
+        u(c.q0), u(c.s1), u(c.s2), u(c.qd));
+    if (!class_probabilities.empty()) {
+      std::string classes;
+      for (const ClassProbability& c : reported_classes()) {
+        classes += fmt::format("{}{} {:.3f}", classes.empty() ? "" : ", ", c.name, c.probability);
+      }
+      text << fmt::format("class probability ({}, S1 normal with u(S1)): {}\n", class_system, classes);
+    }
+  }
   text << fmt::format("defined cells = {} of {}; alpha = {} deg\n", summary.defined_cells, kRows * kColumns,
                       table.alpha_deg);
   if (declared_q0) text << fmt::format("declared q0 (file) = {:.6g}\n", *declared_q0);

@@ -1,8 +1,9 @@
 // An r-table as the front ends ask for it (`roadbrdf rtable`, roadbrdf.rtable in Python): the
 // request with its one validation, and the report with the table, its summary figures, the class,
-// the coverage of the fit behind it, and the notes and warnings that go with them. The command line
-// and the Python module only translate their arguments into an RTableRequest and print or return
-// the report; neither decides a rule of its own.
+// their uncertainties from a fit's covariance (rtable_uncertainty.h), the coverage of the fit behind
+// it, and the notes and warnings that go with them. The command line and the Python module only
+// translate their arguments into an RTableRequest and print or return the report; neither decides a
+// rule of its own.
 //
 // Errors are FieldError with the field names below ("wavelength", "band", "alpha", ...), which are
 // also the Python keywords; the command line maps them to its flags (cli/common.h).
@@ -18,6 +19,7 @@
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_coverage.h"
 #include "roadbrdf/photometry/rtable_io.h"
+#include "roadbrdf/photometry/rtable_uncertainty.h"
 
 namespace roadbrdf::photometry {
 
@@ -52,12 +54,23 @@ struct RTableReport {
   std::vector<std::string> notes;     // one line each ("the fit has a single band...")
   std::vector<std::string> warnings;  // one line each (mostly extrapolated, implausible Q0...)
   std::optional<RTableComparison> comparison;
+  // From a fit's parameter covariance (rtable_uncertainty.h; none for a model given by its
+  // parameters, a mixture, an imported table): u of the figures, and the probability of every class
+  // of the request's system (in increasing S1; empty when u(S1) is undefined or unknown).
+  std::optional<RTableUncertainty> uncertainty;
+  std::vector<ClassProbability> class_probabilities;
   std::string compared_with;  // the reference's name, when compared
 
   // Compare with a reference table (`b` of compare()): fills `comparison`.
   void compare_with(const RTable& reference, const std::string& name);
   // The document `roadbrdf rtable --json` prints (plain r in sr^-1, null = missing; units listed).
   nlohmann::json to_json() const;
+  // The classes of class_probabilities worth reporting (probability >= kReportedClassProbability).
+  std::vector<ClassProbability> reported_classes() const;
+  // The JSON "uncertainty" object: {method, Q0, S1, S2, Qd, correlated: {Q0, S1, S2, Qd},
+  // class_probabilities: [{class, probability}...]} (null entries where undefined); null without an
+  // uncertainty.
+  nlohmann::json uncertainty_json() const;
   // The summary lines `roadbrdf rtable` prints (Q0, S1, S2, Qd, r(0,0), class, cells...).
   std::string summary_text() const;
 };
