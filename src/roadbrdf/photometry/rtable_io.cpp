@@ -124,64 +124,52 @@ void check_value(TokenStream& s, double v) {
 
 // ---- CSV --------------------------------------------------------------------------------------
 
-RTable read_csv(const std::string& path, double scale) {
-  CsvReader reader(path);
-  std::vector<CsvCell> cells;
-  RTable table;
-  table.name = path;
-  bool header_seen = false;
-  bool with_tan_column = false;
-  std::size_t row = 0;
-  while (reader.next_row(cells)) {
-    if (row == 0 && !header_seen) {
-      // Header row: first cell not a number.
-      if (!is_number_text(cells[0].text)) {
-        header_seen = true;
-        with_tan_column = true;
-        if (cells.size() != kColumns + 1) {
-          reader.fail(cells.size() > kColumns + 1 ? cells[kColumns + 1].column : cells.back().column,
-                      "header: expected tan_gamma and 20 beta values, got " + std::to_string(cells.size()) + " cells");
-        }
-        for (std::size_t j = 0; j < kColumns; ++j) {
-          const double b = reader.number(cells[j + 1], "beta [deg]");
-          if (!matches_beta(b, j)) {
-            reader.fail(cells[j + 1].column, "beta = " + std::string(cells[j + 1].text) +
-                                                 " deg; the standard grid has " + number_text(standard_beta_deg()[j]) +
-                                                 " here");
-          }
-        }
-        continue;
-      }
-      with_tan_column = cells.size() == kColumns + 1;
-    }
-    if (row >= kRows) reader.fail(cells.front().column, "more than 29 rows of values");
-    const std::size_t expected = with_tan_column ? kColumns + 1 : kColumns;
-    if (cells.size() != expected) {
-      // Located at the first extra cell, or after the last one when cells are missing.
-      const long column = cells.size() > expected ? cells[expected].column
-                                                  : cells.back().column + static_cast<long>(cells.back().text.size());
-      reader.fail(column, "expected " + std::to_string(expected) + " cells, got " + std::to_string(cells.size()));
-    }
-    std::size_t first = 0;
-    if (with_tan_column) {
-      const double t = reader.number(cells[0], "tan(gamma)");
-      if (!matches_tan(t, row)) {
-        reader.fail(cells[0].column, "tan(gamma) = " + std::string(cells[0].text) + "; row " + std::to_string(row + 1) +
-                                         " of the standard grid is " + number_text(standard_tan_gamma()[row]));
-      }
-      first = 1;
-    }
-    for (std::size_t j = 0; j < kColumns; ++j) {
-      const CsvCell& c = cells[first + j];
-      if (c.text.empty() || lower(std::string(c.text)) == "nan") continue;  // missing
-      const double v = reader.number(c, "reduced luminance coefficient");
-      if (v < 0.0) reader.fail(c.column, "negative reduced luminance coefficient");
-      table.at(row, j) = stored_value(v, scale);
-    }
-    ++row;
+// The header row: tan_gamma and the 20 standard beta values [deg].
+void check_csv_header(CsvReader& reader, const std::vector<CsvCell>& cells) {
+  if (cells.size() != kColumns + 1) {
+    reader.fail(cells.size() > kColumns + 1 ? cells[kColumns + 1].column : cells.back().column,
+                "header: expected tan_gamma and 20 beta values, got " + std::to_string(cells.size()) + " cells");
   }
-  if (row != kRows)
-    throw FileError(path, reader.line_number(), 0, "expected 29 rows of values, got " + std::to_string(row));
+  for (std::size_t j = 0; j < kColumns; ++j) {
+    const double b = reader.number(cells[j + 1], "beta [deg]");
+    if (!matches_beta(b, j)) {
+      reader.fail(cells[j + 1].column, "beta = " + std::string(cells[j + 1].text) + " deg; the standard grid has " +
+                                           number_text(standard_beta_deg()[j]) + " here");
+    }
+  }
+}
+
+// One row of values (row 0-based), with its tan(gamma) cell first when the table has that column.
+void read_csv_row(CsvReader& reader, const std::vector<CsvCell>& cells, std::size_t row, bool with_tan_column,
+                  double scale, RTable& table) {
+  if (row >= kRows) reader.fail(cells.front().column, "more than 29 rows of values");
+  const std::size_t expected = with_tan_column ? kColumns + 1 : kColumns;
+  if (cells.size() != expected) {
+    // Located at the first extra cell, or after the last one when cells are missing.
+    const long column = cells.size() > expected ? cells[expected].column
+                                                : cells.back().column + static_cast<long>(cells.back().text.size());
+    reader.fail(column, "expected " + std::to_string(expected) + " cells, got " + std::to_string(cells.size()));
+  }
+  std::size_t first = 0;
+  if (with_tan_column) {
+    const double t = reader.number(cells[0], "tan(gamma)");
+    if (!matches_tan(t, row)) {
+      reader.fail(cells[0].column, "tan(gamma) = " + std::string(cells[0].text) + "; row " + std::to_string(row + 1) +
+                                       " of the standard grid is " + number_text(standard_tan_gamma()[row]));
+    }
+    first = 1;
+  }
+  for (std::size_t j = 0; j < kColumns; ++j) {
+    const CsvCell& c = cells[first + j];
+    if (c.text.empty() || lower(std::string(c.text)) == "nan") continue;  // missing
+    const double v = reader.number(c, "reduced luminance coefficient");
+    if (v < 0.0) reader.fail(c.column, "negative reduced luminance coefficient");
+    table.at(row, j) = stored_value(v, scale);
+  }
+}
+
+// The comment lines' metadata: "alpha_deg = A" (the observation angle) and "name: N".
+void read_csv_comments(const std::string& path, CsvReader& reader, RTable& table) {
   for (std::size_t k = 0; k < reader.comments().size(); ++k) {
     const std::string c = reader.comments()[k];
     const auto key = c.find("alpha_deg");
@@ -206,6 +194,33 @@ RTable read_csv(const std::string& path, double scale) {
       if (!n.empty()) table.name = n;
     }
   }
+}
+
+RTable read_csv(const std::string& path, double scale) {
+  CsvReader reader(path);
+  std::vector<CsvCell> cells;
+  RTable table;
+  table.name = path;
+  bool header_seen = false;
+  bool with_tan_column = false;
+  std::size_t row = 0;
+  while (reader.next_row(cells)) {
+    if (row == 0 && !header_seen) {
+      // A header row's first cell is not a number.
+      if (!is_number_text(cells[0].text)) {
+        header_seen = true;
+        with_tan_column = true;
+        check_csv_header(reader, cells);
+        continue;
+      }
+      with_tan_column = cells.size() == kColumns + 1;
+    }
+    read_csv_row(reader, cells, row, with_tan_column, scale, table);
+    ++row;
+  }
+  if (row != kRows)
+    throw FileError(path, reader.line_number(), 0, "expected 29 rows of values, got " + std::to_string(row));
+  read_csv_comments(path, reader, table);
   return table;
 }
 
