@@ -214,7 +214,8 @@ for set in "${sets[@]}"; do
            --quiet -o "$dir/mix/$name.calibrated.mix.json" > "$dir/mix/$name.calibrated.log" 2>&1; then
       loo="$dir/mix/$name.calibrated.mix.json"
     else
-      echo "$name: no leave-one-out prediction: $(tail -1 "$dir/calibration/loo-$name.log" "$dir/mix/$name.calibrated.log" 2>/dev/null | grep error | head -1)" >&2
+      echo "$name: no leave-one-out prediction: $(cat "$dir/calibration/loo-$name.log" "$dir/mix/$name.calibrated.log" \
+          2>/dev/null | grep -h 'error' | head -1)" >&2
     fi
     line="$(grep "^$name," "$manifest")"
     echo "$line" | awk -F, -v ins="$dir/mix/$name.insample.mix.json" -v loo="$loo" \

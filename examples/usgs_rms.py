@@ -150,8 +150,11 @@ def main(argv=None):
         n_loo = len(loo)
         mean_loo = float(np.mean([x for x, _ in loo])) if loo else math.nan
         mean_unc = float(np.mean([y for _, y in loo])) if loo else math.nan
-        print(f"leave-one-out calibrated hapke: {n_loo} of {len(results)} mixtures predicted; mean RMS "
-              f"{mean_loo:.4f} (uncalibrated hapke on the same mixtures {mean_unc:.4f})")
+        if n_loo:
+            print(f"leave-one-out calibrated hapke: {n_loo} of {len(results)} mixtures predicted; mean RMS "
+                  f"{mean_loo:.4f} (uncalibrated hapke on the same mixtures {mean_unc:.4f})")
+        else:
+            print(f"leave-one-out calibrated hapke: none of the {len(results)} mixtures can be predicted from the others")
         if a.check_loo_mean is not None:
             if n_loo < len(results) or not mean_loo <= a.check_loo_mean:
                 print(f"CHECK FAILED: leave-one-out mean RMS {mean_loo:.4f} over {n_loo} of {len(results)} "
