@@ -3,7 +3,8 @@
 # doi:10.5066/F7RR1WDJ) through the roadbrdf chain, issue 17 (docs/mixing.md, "Real intimate mixtures"):
 #   end-member spectrum -> dataset (convert --from usgs, BRDF = R/pi at an assumed geometry)
 #   -> Hapke fit (single-scattering albedo per wavelength) -> one formulation per mixture (wt %)
-#   -> mix --method hapke and --method areal -> RMS reflectance error against the measured mixture.
+#   -> mix --method hapke and --method areal -> RMS reflectance error against the measured mixture;
+#   -> calibrated hapke: mix-calibrate on the other mixtures (leave-one-out) -> mix --cross-sections.
 #
 # Usage: bash examples/usgs_mixtures.sh BUILD OUT [SET ...] [--check-ratio K]
 #   BUILD  build folder (with roadbrdf and python/) or the roadbrdf program in it
@@ -11,6 +12,8 @@
 #   SET    dalton (default: Dalton et al. 2002 calcite-epidote-chlorite, 10 mixtures), calcite-clay,
 #          ironoxide-quartz, or all
 #   --check-ratio K   exit 1 unless hapke is >= K times better than areal on more than half of each set's mixtures
+#   --check-loo-mean X  exit 1 unless the leave-one-out calibrated hapke RMS, averaged over the mixtures, is <= X
+#   --check-calibration-improves  exit 1 unless that mean is below the uncalibrated hapke mean
 # Data: ../shared/real-data/usgs-splib07a-mixtures next to the repository (never copied into it), or
 # $ROADBRDF_USGS_DATA. Exit status 77 (skipped) when it is absent.
 #
@@ -29,7 +32,11 @@
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 
-usage() { echo "usage: $0 BUILD OUT [dalton|calcite-clay|ironoxide-quartz|all ...] [--check-ratio K]" >&2; exit 2; }
+usage() {
+  echo "usage: $0 BUILD OUT [dalton|calcite-clay|ironoxide-quartz|all ...] [--check-ratio K] [--check-loo-mean X]" \
+       "[--check-calibration-improves]" >&2
+  exit 2
+}
 [ $# -ge 2 ] || usage
 build="$1"
 out="$2"
@@ -38,7 +45,9 @@ check=()
 sets=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --check-ratio) [ $# -ge 2 ] || usage; check=(--check-ratio "$2"); shift 2 ;;
+    --check-ratio) [ $# -ge 2 ] || usage; check+=(--check-ratio "$2"); shift 2 ;;
+    --check-loo-mean) [ $# -ge 2 ] || usage; check+=(--check-loo-mean "$2"); shift 2 ;;
+    --check-calibration-improves) check+=(--check-calibration-improves); shift ;;
     all) sets+=(dalton calcite-clay ironoxide-quartz); shift ;;
     dalton|calcite-clay|ironoxide-quartz) sets+=("$1"); shift ;;
     *) usage ;;
@@ -176,8 +185,46 @@ for set in "${sets[@]}"; do
     echo "$row" >> "$manifest.tmp"
   done
   mv "$manifest.tmp" "$manifest"
+  # Calibrated hapke (docs/mixing.md "Calibrated intimate mixing"): cross-section factors per end-member
+  # fitted with `mix-calibrate`, (a) on every mixture of the set (in-sample: the best the factors can do),
+  # (b) leave-one-out: on all mixtures but one, then predicting that one. A mixture whose end-members the
+  # other mixtures do not link (e.g. the only mixture with montmorillonite) cannot be predicted: "n/a".
+  mkdir -p "$dir/calibration"
+  pairs=()
+  for mix in "${mixtures[@]}"; do
+    IFS='|' read -r name _ _ <<< "$mix"
+    pairs+=("$dir/formulations/$name.json" "$dir/data/$name.csv")
+  done
+  "$roadbrdf" mix-calibrate "${pairs[@]}" -o "$dir/calibration/all.json" > "$dir/calibration/all.log" 2>&1 ||
+    { cat "$dir/calibration/all.log" >&2; exit 1; }
+  { head -1 "$manifest" | sed 's/^mixture,measured,hapke,areal/mixture,measured,hapke,areal,insample,calibrated/'; } > "$manifest.tmp"
+  i=0
+  for mix in "${mixtures[@]}"; do
+    IFS='|' read -r name _ _ <<< "$mix"
+    "$roadbrdf" mix "$dir/formulations/$name.json" --method hapke --cross-sections "$dir/calibration/all.json" --quiet \
+        -o "$dir/mix/$name.insample.mix.json" > "$dir/mix/$name.insample.log" 2>&1 ||
+      { cat "$dir/mix/$name.insample.log" >&2; exit 1; }
+    others=()
+    for ((j = 0; j < ${#pairs[@]}; j += 2)); do
+      [ $j -eq $((2 * i)) ] || others+=("${pairs[$j]}" "${pairs[$((j + 1))]}")
+    done
+    loo=""
+    if "$roadbrdf" mix-calibrate "${others[@]}" -o "$dir/calibration/loo-$name.json" > "$dir/calibration/loo-$name.log" 2>&1 &&
+       "$roadbrdf" mix "$dir/formulations/$name.json" --method hapke --cross-sections "$dir/calibration/loo-$name.json" \
+           --quiet -o "$dir/mix/$name.calibrated.mix.json" > "$dir/mix/$name.calibrated.log" 2>&1; then
+      loo="$dir/mix/$name.calibrated.mix.json"
+    else
+      echo "$name: no leave-one-out prediction: $(cat "$dir/calibration/loo-$name.log" "$dir/mix/$name.calibrated.log" \
+          2>/dev/null | grep -h 'error' | head -1)" >&2
+    fi
+    line="$(grep "^$name," "$manifest")"
+    echo "$line" | awk -F, -v ins="$dir/mix/$name.insample.mix.json" -v loo="$loo" \
+        'BEGIN{OFS=","} {out=$1 OFS $2 OFS $3 OFS $4 OFS ins OFS loo; for (k = 5; k <= NF; k++) out = out OFS $k; print out}' >> "$manifest.tmp"
+    i=$((i + 1))
+  done
+  mv "$manifest.tmp" "$manifest"
   "$python" "$repo/examples/usgs_rms.py" "$manifest" --geometry "$angles" --range 400:2400 \
       --table "$dir/rms.csv" --figure "$dir/spectra.png" --title "$title" "${check[@]}" || status=1
-  echo "wrote $dir/rms.csv $dir/spectra.png"
+  echo "wrote $dir/rms.csv $dir/spectra.png $dir/calibration/"
 done
 exit $status

@@ -27,7 +27,7 @@ from .model import Model, SpectralModel, model_aliases, model_names, models
 from .io import Dataset, check, read_alta, read_curet, read_dataset, write_dataset
 from .fitting import FitResult, ModelFit, fit, params, read_fit, spectral_model_from_fit
 from .photometry import RTable, read_rtable, rtable
-from .mixing import mix
+from .mixing import mix, mix_calibrate
 from .albedos import albedo
 from .surfaces import (Surface, flat_surface, gaussian_slope_surface, read_surface, render, render_albedo,
                       surface)
@@ -38,8 +38,8 @@ from .studies import study
 
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "FitResult", "ModelFit", "models",
            "model_names", "model_aliases", "read_fit", "read_dataset", "write_dataset", "read_curet", "read_alta",
-           "rtable", "read_rtable", "check", "fit", "params", "spectral_model_from_fit", "mix", "albedo",
-           "road_to_zenith_azimuth",
+           "rtable", "read_rtable", "check", "fit", "params", "spectral_model_from_fit", "mix", "mix_calibrate",
+           "albedo", "road_to_zenith_azimuth",
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
            "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study"]

@@ -120,7 +120,8 @@ class MixResult:
 def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all", folds: int = 5, seed: int = 1,
         per_wavelength: bool = False, sum_to_one: bool = False, binder_coverage: float | None = None,
         mastic_fraction: float | None = None, reference: PathLike | None = None, output: PathLike | None = None,
-        use_sigma: bool = True, residuals: PathLike | None = None) -> MixResult:
+        use_sigma: bool = True, residuals: PathLike | None = None,
+        cross_sections: PathLike | None = None) -> MixResult:
     """Predict the BRDF of a road formulation from its components' fits, as ``roadbrdf mix`` does.
 
     ``formulation``: a formulation JSON file (see docs/mixing.md); ``data``: the measured mixture
@@ -128,7 +129,8 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
     the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
     sigma (False = ``--no-sigma``); ``output``: also write MIX.json; ``residuals``: CSV path for the
-    held-out residuals (needs ``data``). Methods skipped with ``method="all"`` are reported as
+    held-out residuals (needs ``data``); ``cross_sections``: calibration file of :func:`mix_calibrate`
+    (``--cross-sections``, hapke only). Methods skipped with ``method="all"`` are reported as
     :class:`UserWarning` (and in ``notes``).
     """
     run = _roadbrdf.mix(os.fspath(formulation), "" if data is None else os.fspath(data), str(method), int(folds),
@@ -136,7 +138,8 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
                         None if binder_coverage is None else float(binder_coverage),
                         None if mastic_fraction is None else float(mastic_fraction),
                         "" if reference is None else os.fspath(reference), "" if output is None else os.fspath(output),
-                        bool(use_sigma), "" if residuals is None else os.fspath(residuals))
+                        bool(use_sigma), "" if residuals is None else os.fspath(residuals),
+                        "" if cross_sections is None else os.fspath(cross_sections))
     for note in run.notes:
         warnings.warn(note, UserWarning, stacklevel=2)
     result = MixResult(run)
@@ -145,3 +148,18 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     if residuals is not None:
         result.write_residuals(residuals)
     return result
+
+
+def mix_calibrate(mixtures, reference: str | None = None, output: PathLike | None = None) -> dict:
+    """Fit effective cross-section factors of the hapke method's end-members, as ``roadbrdf mix-calibrate``.
+
+    ``mixtures``: pairs ``(formulation, data)`` of measured mixtures; ``reference``: the end-member whose
+    factor is 1 (default: the first); ``output``: also write the calibration file (for ``mix(...,
+    cross_sections=...)``). Returns ``reference``, ``factors`` and ``standard_errors`` ({end-member: value}),
+    ``mixtures``, ``rms_uncalibrated``, ``rms_calibrated`` (per mixture, reflectance factor), ``notes`` and
+    ``table`` (the report). See docs/mixing.md "Calibrated intimate mixing".
+    """
+    pairs = [(os.fspath(f), os.fspath(d)) for f, d in mixtures]
+    return _roadbrdf.mix_calibrate([f for f, _ in pairs], [d for _, d in pairs],
+                                   "" if reference is None else str(reference),
+                                   "" if output is None else os.fspath(output))

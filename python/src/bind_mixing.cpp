@@ -5,9 +5,12 @@
 
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "binding.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mix_request.h"
 #include "roadbrdf/mixing/mixing.h"
@@ -44,7 +47,7 @@ void bind_mixing(py::module_& m) {
       [](const std::string& formulation_path, const std::string& data_path, const std::string& method, int folds,
          unsigned seed, bool per_wavelength, bool sum_to_one, std::optional<double> binder_coverage,
          std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output,
-         bool use_sigma, const std::string& residuals) {
+         bool use_sigma, const std::string& residuals, const std::string& cross_sections) {
         mixing::MixRequest request;
         request.formulation = formulation_path;
         request.data = data_path;
@@ -58,6 +61,7 @@ void bind_mixing(py::module_& m) {
         request.reference = reference_path;
         request.use_sigma = use_sigma;
         request.residuals = !residuals.empty();
+        request.cross_sections = cross_sections;
         std::shared_ptr<MixRun> run;
         {
           py::gil_scoped_release release;
@@ -68,7 +72,41 @@ void bind_mixing(py::module_& m) {
       py::arg("formulation"), py::arg("data") = "", py::arg("method") = "all", py::arg("folds") = 5,
       py::arg("seed") = 1u, py::arg("per_wavelength") = false, py::arg("sum_to_one") = false,
       py::arg("binder_coverage") = py::none(), py::arg("mastic_fraction") = py::none(), py::arg("reference") = "",
-      py::arg("output") = "", py::arg("use_sigma") = true, py::arg("residuals") = "");
+      py::arg("output") = "", py::arg("use_sigma") = true, py::arg("residuals") = "", py::arg("cross_sections") = "");
+  // Calibrated intimate mixing (mixing/calibration.h): a CrossSectionRequest; returns the calibration
+  // file's content (written to `output` when given) and the report.
+  m.def(
+      "mix_calibrate",
+      [](const std::vector<std::string>& formulations, const std::vector<std::string>& data,
+         const std::string& reference, const std::string& output) {
+        mixing::CrossSectionRequest request;
+        request.formulations = formulations;
+        request.data = data;
+        request.reference = reference;
+        mixing::CrossSectionRun run;
+        {
+          py::gil_scoped_release release;
+          run = mixing::run_cross_section_calibration(request, {{"output", output}});
+          if (!output.empty()) mixing::write_cross_section_file(output, run.content);
+        }
+        const mixing::CrossSectionCalibration& c = run.content.calibration;
+        py::dict factors, errors;
+        for (std::size_t i = 0; i < c.end_members.size(); ++i) {
+          factors[py::str(c.end_members[i])] = c.factors[i];
+          errors[py::str(c.end_members[i])] = c.standard_errors[i];
+        }
+        py::dict out;
+        out["reference"] = c.reference;
+        out["factors"] = factors;
+        out["standard_errors"] = errors;
+        out["mixtures"] = c.mixtures;
+        out["rms_uncalibrated"] = c.rms_uncalibrated;
+        out["rms_calibrated"] = c.rms_calibrated;
+        out["notes"] = c.notes;
+        out["table"] = run.table();
+        return out;
+      },
+      py::arg("formulations"), py::arg("data"), py::arg("reference") = "", py::arg("output") = "");
   m.def("read_spectral_model_file", &mixing::read_spectral_model_file, py::arg("path"), py::arg("selection") = "");
 }
 

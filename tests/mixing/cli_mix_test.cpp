@@ -318,3 +318,49 @@ TEST_F(CliMix, NoSigmaSwitchTurnsWeightingOff) {
 }
 
 }  // namespace
+
+namespace {
+
+// `roadbrdf mix-calibrate` (mixing/calibration.h) and `mix --cross-sections`.
+TEST_F(CliMix, CalibrateCrossSectionsAndUseThem) {
+  const std::string f = (dir_ / "F.json").string(), data = (dir_ / "mixed.csv").string();
+  const std::string cal = (dir_ / "cal.json").string();
+  Result r = run("mix-calibrate " + f + " -o " + cal);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("pairs FORMULATION.json DATA.csv"), std::string::npos) << r.output;
+  r = run("mix-calibrate " + f + " " + data + " --reference granite -o " + cal);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--reference: 'granite' is not an end-member"), std::string::npos) << r.output;
+  r = run("mix-calibrate " + f + " " + data + " --reference gravel -o " + cal);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("(reference)"), std::string::npos) << r.output;
+  nlohmann::json j;
+  std::ifstream(cal) >> j;
+  EXPECT_EQ(j.at("format"), "roadbrdf-cross-sections");
+  EXPECT_EQ(j.at("reference"), "gravel");
+  std::map<std::string, double> k;
+  for (const auto& e : j.at("end_members")) k[e.at("name")] = e.at("cross_section_factor").get<double>();
+  ASSERT_EQ(k.size(), 3u);
+  EXPECT_EQ(k.at("gravel"), 1.0);
+  // The fit lowers the RMS against the measured mixture (it starts from k = 1).
+  EXPECT_LT(j.at("rms_calibrated").get<double>(), j.at("rms_uncalibrated").get<double>());
+
+  const std::string out = (dir_ / "mix.json").string();
+  r = run("mix " + f + " --method hapke --cross-sections " + cal + " -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  nlohmann::json m;
+  std::ifstream(out) >> m;
+  EXPECT_EQ(m.at("methods").at(0).at("settings").at("cross_section_factor.mastic").get<double>(), k.at("mastic"));
+  r = run("mix " + f + " --method areal --cross-sections " + cal + " -o " + out);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--cross-sections: only the hapke method"), std::string::npos) << r.output;
+  // A calibration without one of the formulation's end-members.
+  j["end_members"].erase(1);
+  std::ofstream(cal) << j.dump(1);
+  r = run("mix " + f + " --method hapke --cross-sections " + cal + " -o " + out);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--cross-sections: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("has no factor for end-member"), std::string::npos) << r.output;
+}
+
+}  // namespace

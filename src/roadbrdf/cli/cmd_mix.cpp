@@ -1,5 +1,6 @@
 // roadbrdf mix FORMULATION.json [--data MEASURED.csv] [--method areal|fitted|mastic|hapke|shadowed|all]
-//              [--folds K] [--reference FIT.json] [--no-sigma] [--residuals RES.csv] -o MIX.json
+//              [--folds K] [--reference FIT.json] [--no-sigma] [--residuals RES.csv]
+//              [--cross-sections CAL.json] -o MIX.json
 // Predicts the BRDF of a road formulation from its components' fits (mixing/mixing.h) and, with
 // measured data of the mixed sample, compares the methods with k-fold held-out geometries.
 #include <fmt/core.h>
@@ -41,6 +42,7 @@ struct MixArgs {
   std::optional<double> binder_coverage;
   std::optional<double> mastic_fraction;
   std::string reference;
+  std::string cross_sections;
   std::string output;
   bool quiet = false;
 };
@@ -61,6 +63,7 @@ void run(const MixArgs& a) {
   request.binder_coverage = a.binder_coverage;
   request.mastic_fraction = a.mastic_fraction;
   request.reference = a.reference;
+  request.cross_sections = a.cross_sections;
   request.residuals = !a.residuals.empty();
   ProgressBar bar("mix: mixes (methods x folds)", stderr, ProgressBar::terminal_enabled(a.quiet));
   request.progress = bar.callback();
@@ -106,6 +109,8 @@ void register_mix_command(CLI::App& app) {
                       "see docs/mixing.md)");
   command->add_option("--reference", args.reference,
                       "Fit file of the measured mixture: the albedo difference column compares with it");
+  command->add_option("--cross-sections", args.cross_sections,
+                      "hapke: calibrated cross-section factors per end-member (file of `roadbrdf mix-calibrate`)");
   command->add_option("-o,--output", args.output, "Output MIX.json (format: src/roadbrdf/mixing/mix_file.h)")
       ->required();
   add_quiet_flag(command, args.quiet);

@@ -16,6 +16,7 @@ void register_resample_command(CLI::App& app);
 void register_calibrate_command(CLI::App& app);
 void register_convert_command(CLI::App& app);
 void register_mix_command(CLI::App& app);
+void register_mix_calibrate_command(CLI::App& app);
 void register_surface_command(CLI::App& app);  // also registers "render"
 void register_albedo_command(CLI::App& app);
 void register_plot_command(CLI::App& app);

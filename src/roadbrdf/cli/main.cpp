@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   roadbrdf::cli::register_calibrate_command(app);
   roadbrdf::cli::register_convert_command(app);
   roadbrdf::cli::register_mix_command(app);
+  roadbrdf::cli::register_mix_calibrate_command(app);
   roadbrdf::cli::register_surface_command(app);
   roadbrdf::cli::register_albedo_command(app);
   roadbrdf::cli::register_plot_command(app);

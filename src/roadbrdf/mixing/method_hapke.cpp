@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/hapke_imsa.h"
 #include "roadbrdf/mixing/method_support.h"
 #include "roadbrdf/mixing/method_table.h"
@@ -16,12 +17,19 @@ void mix_hapke(const MethodCall& call, MixResult& r, std::vector<std::size_t>& m
   const MixInputs& inputs = call.inputs;
   const Formulation& f = inputs.formulation;
   std::vector<double> c(members.size(), 0.0);
-  double total = 0.0;
   for (std::size_t i = 0; i < f.components.size(); ++i) {
     const Component& comp = f.components[i];
-    const double x = comp.mass_percent / (comp.density * effective_diameter_mm(f, comp));
-    c[member_position(members, member_of_component(inputs, i))] += x;
-    total += x;
+    c[member_position(members, member_of_component(inputs, i))] +=
+        comp.mass_percent / (comp.density * effective_diameter_mm(f, comp));
+  }
+  // Calibrated effective cross-sections (calibration.h): c_e = k_e sum M/(rho D).
+  double total = 0.0;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const std::string& name = inputs.end_members[members[k]].name;
+    const double factor = cross_section_factor(call.settings, name);
+    c[k] *= factor;
+    total += c[k];
+    if (!call.settings.cross_section_factors.empty()) r.settings["cross_section_factor." + name] = factor;
   }
   for (double& x : c) x /= total;
   const std::vector<double> grid = output_grid(inputs, members, call.settings, call.data);

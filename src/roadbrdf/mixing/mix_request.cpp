@@ -8,6 +8,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/nearest_name.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/mixing/calibration.h"
 
 namespace roadbrdf::mixing {
 
@@ -54,6 +55,9 @@ void MixRequest::validate() const {
   if (!reference.empty() && data.empty()) {
     throw FieldError("reference", "needs data (the albedo is compared at the data's wavelengths)");
   }
+  if (!cross_sections.empty() && method != "all" && method != "hapke") {
+    throw FieldError("cross_sections", "only the hapke method uses cross-section factors (method is '" + method + "')");
+  }
   if (method != "all" && data.empty() && method_needs_data(method_from_string(method))) {
     throw FieldError("method", "'" + method + "' is fitted to a measured mixture: give data");
   }
@@ -65,7 +69,8 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   auto named = [&](const std::string& field) { return role ? role(field) : field; };
   std::vector<FileArgument> read = {{named("formulation"), request.formulation},
                                     {named("data"), request.data},
-                                    {named("reference"), request.reference}};
+                                    {named("reference"), request.reference},
+                                    {named("cross_sections"), request.cross_sections}};
   check_distinct_files(read, outputs);
   MixRun run;
   run.request = request;
@@ -81,6 +86,17 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   settings.per_wavelength = request.per_wavelength;
   settings.sum_to_one = request.sum_to_one;
   settings.use_sigma = request.use_sigma;
+  if (!request.cross_sections.empty()) {
+    settings.cross_section_factors = read_cross_section_factors(request.cross_sections);
+    for (std::size_t e = 0; e < run.inputs->end_members.size(); ++e) {
+      const EndMember& em = run.inputs->end_members[e];
+      if (em.components.empty() || settings.cross_section_factors.count(em.name)) continue;
+      std::string known;
+      for (const auto& [name, k] : settings.cross_section_factors) known += (known.empty() ? "" : ", ") + name;
+      throw FieldError("cross_sections", request.cross_sections + " has no factor for end-member '" + em.name +
+                                             "' of " + request.formulation + " (it has: " + known + ")");
+    }
+  }
   const bool all = request.method == "all";
   const std::vector<Method> methods = all ? all_methods() : std::vector<Method>{method_from_string(request.method)};
   if (!request.data.empty()) run.data = read_dataset(request.data, request.data_read);

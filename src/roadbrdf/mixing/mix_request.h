@@ -40,7 +40,10 @@ struct MixRequest {
   std::optional<double> mastic_fraction;  // overrides the formulation (mastic), in [0, 1]
   std::string reference;                  // fit file or MIX.json of the measured mixture; needs data
   bool residuals = false;                 // held-out residuals will be written: needs data
-  ProgressCallback progress;              // mixes done (every method, every fold); not kept in MixRun
+  // hapke: calibration file of `roadbrdf mix-calibrate` (calibration.h) with a cross-section factor
+  // for every end-member of the formulation; "" = uncalibrated. Only with method hapke or all.
+  std::string cross_sections;
+  ProgressCallback progress;  // mixes done (every method, every fold); not kept in MixRun
 
   // Checks everything that needs no file. Throws FieldError.
   void validate() const;

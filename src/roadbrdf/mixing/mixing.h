@@ -36,7 +36,8 @@
 //            M_k/(rho_k D_k) (Q_E = 1: grains much larger than the wavelength; binder and pigment
 //            without a size class use binder_film_thickness_mm as D: a film of thickness t has area
 //            per unit mass 1/(rho t)); effective phase terms mixed with weights c_k w_k; see
-//            MixtureModel kind "hapke".
+//            MixtureModel kind "hapke". Calibrated: each weight times a fitted factor k_e
+//            (MixSettings::cross_section_factors, calibration.h).
 //  shadowed  Nonlinear fitted mixing: MixtureModel kind "shadowed" (the coarse aggregates shadow the
 //            matrix at grazing angles through a shared term exp(-s (tan theta_i + tan theta_r))). The
 //            end-members are those of the mastic method (matrix = the measured mastic) when the
@@ -108,6 +109,10 @@ struct MixSettings {
   // sigma (weights 1/sigma^2, as `fit` does, fitting/fit.h use_sigma); false: plain least squares.
   bool use_sigma = true;
   std::vector<double> wavelengths;  // output grid [nm]; empty: automatic (see above)
+  // hapke: calibrated effective cross-section factor k per end-member name (calibration.h): the
+  // weight of end-member e becomes k_e * sum M/(rho D) over its components. Empty: k = 1 for all;
+  // otherwise every end-member of the mixture needs one (extra names are ignored).
+  std::map<std::string, double> cross_section_factors;
 };
 
 struct MixResult {
