@@ -189,11 +189,15 @@ for set in "${sets[@]}"; do
   # fitted with `mix-calibrate`, (a) on every mixture of the set (in-sample: the best the factors can do),
   # (b) leave-one-out: on all mixtures but one, then predicting that one. A mixture whose end-members the
   # other mixtures do not link (e.g. the only mixture with montmorillonite) cannot be predicted: "n/a".
+  # The factors are fitted to the measured spectra's 10 nm band means at the end-member fits' wavelengths
+  # (400-2400 nm every 10 nm, `resample`): the same information as the 2001 channels there for three smooth
+  # factors, at a tenth of the cost; the RMS of the table is still taken against the measured channels.
   mkdir -p "$dir/calibration"
   pairs=()
   for mix in "${mixtures[@]}"; do
     IFS='|' read -r name _ _ <<< "$mix"
-    pairs+=("$dir/formulations/$name.json" "$dir/data/$name.csv")
+    "$roadbrdf" resample "$dir/data/$name.csv" --wavelengths 395:2405:10 -o "$dir/data/$name.bands.csv"
+    pairs+=("$dir/formulations/$name.json" "$dir/data/$name.bands.csv")
   done
   "$roadbrdf" mix-calibrate "${pairs[@]}" -o "$dir/calibration/all.json" > "$dir/calibration/all.log" 2>&1 ||
     { cat "$dir/calibration/all.log" >&2; exit 1; }
