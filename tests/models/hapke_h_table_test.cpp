@@ -12,8 +12,10 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -162,6 +164,81 @@ TEST(HapkeHTable, ModelPathsAgreeBitForBit) {
       for (int k = 0; k < 4; ++k) EXPECT_EQ(jacobian[n * 4 + k], gradient[k]);
       EXPECT_NEAR(f, model->evaluate(p, geometries[n]), 1e-15 * f);
     }
+  }
+}
+
+// The table reduced to one albedo (h_table_series, the path tracer's per-wavelength H): the same
+// interpolant summed in another order, so within a few units in the last place of h_table_evaluate,
+// and within the table's own accuracy of the quadrature.
+TEST(HapkeHTable, SeriesAtOneAlbedoMatchesTheTable) {
+  std::vector<double> series(hapke::kHTableSeriesSize);
+  double worst = 0.0;
+  for (double w : grid_w()) {
+    const double gamma = std::sqrt(1.0 - w);
+    hapke::h_table_series(gamma, series.data());
+    for (double x : grid_x()) {
+      hapke::HTablePoint point;
+      ASSERT_EQ(hapke::h_table_point(x, point), hapke::h_table_covers(x, 0.5)) << x;  // x only
+      if (!hapke::h_table_covers(x, w)) continue;
+      const double table = hapke::h_table_evaluate(x, gamma, nullptr);
+      const double value = hapke::h_series_evaluate(series.data(), point);
+      worst = std::max(worst, std::fabs(value - table) / table);
+      ASSERT_NEAR(value, table, 1e-14 * table) << "x " << x << " w " << w;
+    }
+  }
+  EXPECT_GT(worst, 0.0);  // the order differs: not the same computation
+  hapke::HTablePoint point;
+  EXPECT_FALSE(hapke::h_table_point(0.0, point));
+  EXPECT_FALSE(hapke::h_table_point(std::nextafter(1.0, 2.0), point));
+  EXPECT_FALSE(hapke::h_table_point(std::ldexp(1.0, -hapke::kHTableOctaves - 1), point));
+}
+
+// The model's evaluator of fixed parameter sets (model.h FixedSetEvaluator, used by the renderer)
+// against evaluate_batch, for every phase function, at geometries including mu = 0 and grazing ones
+// (fallback to operator()), and with w at both ends; the approximate H functions take the generic path
+// (bit for bit).
+TEST(HapkeHTable, FixedSetsMatchTheBatchEvaluation) {
+  std::vector<Geometry> geometries;
+  for (double ti : {0.0, 1e-3, 23.0, 61.0, 89.0, 89.999999, 90.0}) {
+    for (double tr : {0.0, 5.0, 45.0, 80.0, 89.9999, 90.0}) {
+      for (double dp : {0.0, 37.0, 150.0, 180.0}) geometries.push_back(geometry_from_degrees(ti, 0.0, tr, dp));
+    }
+  }
+  struct Case {
+    std::map<std::string, std::string> options;
+    std::vector<double> params;  // three sets
+  };
+  const std::vector<Case> cases = {
+      {{}, {0.37, 0.4, 0.06, 0.2, 0.9991, 0.1, 0.3, -0.4, 0.0, 0.0, 0.05, 0.0}},
+      {{{"phase", "legendre"}}, {0.5, 0.2, 0.1, 0.3, 0.4, 1.0, 0.0, 0.05, -0.2, 0.1, 0.02, 1.0, 1.0, 0.5, 0.9}},
+      {{{"phase", "hg2"}}, {0.8, 0.3, 0.2, 0.4, 0.5, 0.123, 0.0, 0.05, 0.9, -1.0, 0.999999, 1.0, 2.0, 0.1, 0.2}},
+      {{{"h_function", "hapke2002"}}, {0.37, 0.4, 0.06, 0.2, 0.9991, 0.1, 0.3, -0.4, 0.6, 0.0, 0.05, 0.0}},
+  };
+  for (const Case& c : cases) {
+    const auto model = make_model("hapke", c.options);
+    const std::size_t np = model->parameter_count(), sets = c.params.size() / np;
+    ASSERT_EQ(sets * np, c.params.size());
+    const auto fixed = model->fixed_sets(c.params.data(), sets);
+    std::vector<double> batch(sets), value(sets);
+    int reordered = 0;  // values not bit for bit those of the batch: the series path was taken
+    for (const Geometry& g : geometries) {
+      model->evaluate_batch(&g, 1, c.params.data(), sets, batch.data());
+      fixed->evaluate(g, value.data());
+      for (std::size_t s = 0; s < sets; ++s) {
+        if (c.options.count("h_function")) {
+          EXPECT_EQ(value[s], batch[s]);
+        } else {
+          // Rounding of H is relative to H(mu0) H(mu) <= 9 (H <= 3), which cancels against the -1 of
+          // the bracket where H -> 1 (mu -> 0): the tolerance is relative to that term, w <= 1.
+          const double mu_sum = std::max(g.cos_theta_i(), 0.0) + std::max(g.cos_theta_r(), 0.0);
+          const double scale = 10.0 / (4.0 * kPi * std::max(mu_sum, 1e-9));
+          reordered += value[s] != batch[s];
+          EXPECT_NEAR(value[s], batch[s], 1e-14 * (std::fabs(batch[s]) + scale))
+              << "theta_i " << g.theta_i << " theta_r " << g.theta_r << " set " << s;
+        }
+      }
+    }
+    if (!c.options.count("h_function")) EXPECT_GT(reordered, 0);
   }
 }
 

@@ -311,6 +311,56 @@ struct Hapke {
     return s;
   }
 
+  // Fixed parameter sets (model.h, FixedSetEvaluator; the path tracer's one set per wavelength). With
+  // the exact H, each set whose w is in the table keeps the table reduced to its albedo
+  // (hapke::h_table_series), so an evaluation computes T_a(t) once per cosine for all sets and then 12
+  // multiply-adds per H and set, instead of a full two-variable table evaluation per H and set.
+  // Values equal operator() to rounding (see hapke_h_table.h); other sets and cosines outside the
+  // table (e.g. exactly 0) use operator() itself.
+  struct FixedSets {
+    std::size_t n_sets = 0, n_params = 0;
+    std::vector<double> params;   // n_sets x n_params
+    std::vector<char> tabulated;  // per set: its series is in `series`
+    std::vector<double> series;   // n_sets x hapke::kHTableSeriesSize
+  };
+
+  FixedSets fix(const double* p, std::size_t n) const {
+    FixedSets f;
+    f.n_sets = n;
+    f.n_params = phase_ == Phase::kHenyeyGreenstein ? 4 : 5;
+    f.params.assign(p, p + n * f.n_params);
+    f.tabulated.assign(n, 0);
+    f.series.assign(n * hapke::kHTableSeriesSize, 0.0);
+    for (std::size_t s = 0; s < n; ++s) {
+      const double w = f.params[s * f.n_params + kW];
+      if (h_function_ != HFunction::kExact || !(w >= 0.0 && w <= 1.0)) continue;
+      hapke::h_table_series(std::sqrt(1.0 - w), f.series.data() + s * hapke::kHTableSeriesSize);
+      f.tabulated[s] = 1;
+    }
+    return f;
+  }
+
+  void evaluate_fixed(const FixedSets& f, const Geometry& geometry, double* out) const {
+    const Prepared q = prepare(geometry);
+    hapke::HTablePoint point_i, point_r;
+    const bool inside = h_function_ == HFunction::kExact && q.mu0 > 0.0 && q.mu > 0.0 &&
+                        hapke::h_table_point(q.mu0, point_i) && hapke::h_table_point(q.mu, point_r);
+    for (std::size_t s = 0; s < f.n_sets; ++s) {
+      const double* p = f.params.data() + s * f.n_params;
+      if (!inside || !f.tabulated[s]) {
+        out[s] = (*this)(p, q);
+        continue;
+      }
+      const double* series = f.series.data() + s * hapke::kHTableSeriesSize;
+      const double w = p[kW];
+      const double b = opposition(p[kB0], p[kH], q.tan_half_g);
+      const double phase = phase_function(p, q.cos_g);
+      const double multiple =
+          hapke::h_series_evaluate(series, point_i) * hapke::h_series_evaluate(series, point_r) - 1.0;
+      out[s] = w * q.scale * ((1.0 + b) * phase + multiple);
+    }
+  }
+
   // Values (bit for bit those of operator()) and, if `jacobian` is not null, the analytic gradient
   // jacobian[n * parameter count + k] (see the definition below).
   void evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p, double* values,

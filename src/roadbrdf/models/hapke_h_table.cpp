@@ -71,6 +71,41 @@ const double* h_table_block(int octave, int gamma_panel) {
   return block;
 }
 
+void h_table_series(double gamma, double* series) {
+  const int panel = std::min(static_cast<int>(gamma * kHTableGammaPanels), kHTableGammaPanels - 1);
+  const double s = 2.0 * kHTableGammaPanels * gamma - (2.0 * panel + 1.0);
+  double tg[kHTableNodesG];
+  tg[0] = 1.0;
+  tg[1] = s;
+  for (int b = 2; b < kHTableNodesG; ++b) tg[b] = 2.0 * s * tg[b - 1] - tg[b - 2];
+  for (int octave = 0; octave < kHTableOctaves; ++octave) {
+    const double* c = h_table_block(octave, panel);
+    for (int a = 0; a < kHTableNodesX; ++a) {
+      double r = 0.0;
+      for (int b = 0; b < kHTableNodesG; ++b) r += c[a * kHTableNodesG + b] * tg[b];
+      series[octave * kHTableNodesX + a] = r;
+    }
+  }
+}
+
+bool h_table_point(double x, HTablePoint& point) {
+  if (!(x <= 1.0 && x >= std::ldexp(1.0, -kHTableOctaves))) return false;
+  // As in h_table_evaluate: octave k (x in [2^-(k+1), 2^-k]) and t = 2 log2(x 2^k) + 1 in [-1, 1].
+  int e = 0;
+  const double m = std::frexp(x, &e);
+  int octave = -e;
+  double t = 2.0 * std::log2(m) + 1.0;
+  if (octave < 0) {  // x = 1
+    octave = 0;
+    t = 1.0;
+  }
+  point.octave = octave;
+  point.tx[0] = 1.0;
+  point.tx[1] = t;
+  for (int a = 2; a < kHTableNodesX; ++a) point.tx[a] = 2.0 * t * point.tx[a - 1] - point.tx[a - 2];
+  return true;
+}
+
 double h_table_evaluate(double x, double gamma, double* dh_dgamma) {
   // Octave k (x in [2^-(k+1), 2^-k]) and t = 2 log2(x 2^k) + 1 in [-1, 1].
   int e = 0;

@@ -44,6 +44,32 @@ const double* h_table_block(int octave, int gamma_panel);
 // derivative with respect to gamma. The value does not depend on whether the derivative is asked for.
 double h_table_evaluate(double x, double gamma, double* dh_dgamma);
 
+// The table at one albedo, for callers that evaluate H at many x for a few fixed w (the path tracer:
+// one parameter set per wavelength for a whole render). With gamma fixed, the panel j and the
+// T_b(s) are fixed, so each block collapses to a one-variable Chebyshev series in t:
+//   H(x) = sum_a r_a T_a(t),  r_a = sum_b c_ab T_b(s)   (same interpolant, other summation order),
+// 12 multiply-adds per x instead of 120 + the Chebyshev recurrences in s. The value equals
+// h_table_evaluate(x, gamma, nullptr) to rounding (a few units in the last place: the double sum is
+// only reassociated; tests/models/hapke_h_table_test.cpp bounds it), not bit for bit.
+inline constexpr int kHTableSeriesSize = kHTableOctaves * kHTableNodesX;
+// series[k * kHTableNodesX + a] = r_a of octave k at this gamma (0 <= gamma <= 1); builds the blocks
+// of gamma's panel for every octave.
+void h_table_series(double gamma, double* series);
+// Where x falls in the table: the octave and T_a(t), a < kHTableNodesX (computed once per x, shared by
+// every albedo). False outside 2^-kHTableOctaves <= x <= 1.
+struct HTablePoint {
+  int octave = 0;
+  double tx[kHTableNodesX];
+};
+bool h_table_point(double x, HTablePoint& point);
+// H at a point from the series of one albedo.
+inline double h_series_evaluate(const double* series, const HTablePoint& point) {
+  const double* r = series + point.octave * kHTableNodesX;
+  double value = 0.0;
+  for (int a = 0; a < kHTableNodesX; ++a) value += r[a] * point.tx[a];
+  return value;
+}
+
 // Whether h_tabulated(x, w) reads the table (0 < x <= 1 inside it, 0 <= w <= 1).
 inline bool h_table_covers(double x, double w) {
   return x > 0.0 && x <= 1.0 && x >= std::ldexp(1.0, -kHTableOctaves) && w >= 0.0 && w <= 1.0;

@@ -70,6 +70,30 @@ class PreparedGeometries {
   std::size_t count_;
 };
 
+class Model;
+
+// Fixed parameter sets evaluated at one geometry at a time: out[s] = f(params_s, g), s < n_sets. The
+// path tracer keeps one parameter set per wavelength for a whole render and asks for the spectrum at
+// each path vertex; a model may precompute parameter-only work here once (Hapke: its H table reduced
+// to the albedo of each set). The base evaluator calls Model::evaluate_batch (same values bit for
+// bit); a model's own evaluator must agree with it to rounding. Immutable once built: several threads
+// may share one.
+class FixedSetEvaluator {
+ public:
+  FixedSetEvaluator(const Model& model, const double* params, std::size_t n_sets);
+  virtual ~FixedSetEvaluator() = default;
+  FixedSetEvaluator(const FixedSetEvaluator&) = delete;
+  FixedSetEvaluator& operator=(const FixedSetEvaluator&) = delete;
+
+  virtual void evaluate(const Geometry& g, double* out) const;
+  std::size_t size() const { return n_sets_; }
+
+ protected:
+  const Model& model_;
+  std::vector<double> params_;  // n_sets x parameter count, row-major
+  std::size_t n_sets_;
+};
+
 class Model {
  public:
   virtual ~Model() = default;
@@ -114,10 +138,23 @@ class Model {
   // Reflectance R(theta_i) of the ideal specular part (0 when the model has none).
   virtual double delta_reflectance(const double* /*params*/, double /*cos_theta_i*/) const { return 0.0; }
 
+  // `n_sets` parameter sets (as for evaluate_batch) fixed for repeated single-geometry evaluation
+  // (FixedSetEvaluator). The default evaluates through evaluate_batch.
+  virtual std::unique_ptr<FixedSetEvaluator> fixed_sets(const double* params, std::size_t n_sets) const {
+    return std::make_unique<FixedSetEvaluator>(*this, params, n_sets);
+  }
+
  protected:
   explicit Model(ModelDescription description) : description_(std::move(description)) {}
   ModelDescription description_;
 };
+
+inline FixedSetEvaluator::FixedSetEvaluator(const Model& model, const double* params, std::size_t n_sets)
+    : model_(model), params_(params, params + n_sets * model.parameter_count()), n_sets_(n_sets) {}
+
+inline void FixedSetEvaluator::evaluate(const Geometry& g, double* out) const {
+  model_.evaluate_batch(&g, 1, params_.data(), n_sets_, out);
+}
 
 template <class M>
 concept HasDeltaPart = requires(const M& m, const double* p, double c) {
@@ -146,6 +183,27 @@ concept HasSharedTerms = HasPreparedGeometry<M> &&
              const double* p, double* out) {
   { m.share(g, n) } -> std::same_as<typename M::SharedTerms>;
   m.evaluate_shared(s, g, n, p, out, out);
+};
+
+// A model struct with its own evaluator of fixed parameter sets (see FixedSetEvaluator):
+//   struct FixedSets { ... };                                  // parameter-only data of n sets
+//   FixedSets fix(const double* p, std::size_t n) const;
+//   void evaluate_fixed(const FixedSets& f, const Geometry& g, double* out) const;  // out[s], s < n
+// with values equal to operator()(p_s, g) to rounding.
+template <class M>
+concept HasFixedSets = requires(const M& m, const double* p, std::size_t n, const typename M::FixedSets& f,
+                                const Geometry& g, double* out) {
+  { m.fix(p, n) } -> std::same_as<typename M::FixedSets>;
+  m.evaluate_fixed(f, g, out);
+};
+
+template <class M>
+struct FixedSetsOf {
+  struct type {};
+};
+template <HasFixedSets M>
+struct FixedSetsOf<M> {
+  using type = typename M::FixedSets;
 };
 
 template <class M>
@@ -274,6 +332,14 @@ class ModelAdapter final : public Model {
     }
   }
 
+  std::unique_ptr<FixedSetEvaluator> fixed_sets(const double* params, std::size_t n_sets) const override {
+    if constexpr (HasFixedSets<M>) {
+      return std::make_unique<FixedSets>(*this, params, n_sets);
+    } else {
+      return Model::fixed_sets(params, n_sets);
+    }
+  }
+
   const M& model() const { return model_; }
 
  private:
@@ -309,6 +375,15 @@ class ModelAdapter final : public Model {
     const ModelAdapter* adapter;  // the adapter that built it
     std::vector<GeometryData> data;
     typename SharedTermsOf<M>::type shared;  // empty unless HasSharedTerms<M>
+  };
+
+  // The model's own fixed-set data (models with HasFixedSets only).
+  struct FixedSets final : FixedSetEvaluator {
+    FixedSets(const ModelAdapter& owner, const double* params, std::size_t n_sets)
+        : FixedSetEvaluator(owner, params, n_sets), adapter(owner), data(owner.model_.fix(params, n_sets)) {}
+    void evaluate(const Geometry& g, double* out) const override { adapter.model_.evaluate_fixed(data, g, out); }
+    const ModelAdapter& adapter;
+    typename FixedSetsOf<M>::type data;
   };
 
   static ModelDescription describe_resolved(const OptionSet& resolved, const std::string& name) {

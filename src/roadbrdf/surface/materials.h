@@ -46,10 +46,9 @@ class MaterialSet {
   const BrdfSampler& sampler(int material) const { return samplers_[material]; }
 
   // Smooth BRDF [sr^-1] of `material` at a geometry in the facet's frame: out[w], w < wavelength_count().
-  void evaluate(int material, const Geometry& g, double* out) const {
-    const RenderMaterial& mat = materials_[material];
-    mat.model->evaluate_batch(&g, 1, mat.parameters.data(), m_, out);
-  }
+  // Through the model's evaluator of its fixed per-wavelength parameter sets (model.h,
+  // FixedSetEvaluator): evaluate_batch's values, to rounding for models with their own evaluator.
+  void evaluate(int material, const Geometry& g, double* out) const { evaluators_[material]->evaluate(g, out); }
   // Reflectance R of the delta part for light arriving at cos_theta from the facet normal, per
   // wavelength: beta[w] *= factor * R_w.
   void scale_by_delta_reflectance(int material, double cos_theta, double factor, double* beta) const {
@@ -62,6 +61,7 @@ class MaterialSet {
  private:
   std::vector<RenderMaterial> materials_;
   std::vector<BrdfSampler> samplers_;
+  std::vector<std::unique_ptr<FixedSetEvaluator>> evaluators_;
   std::size_t m_ = 0;
   bool any_delta_ = false;
 };
