@@ -149,13 +149,13 @@ mix() {  # out c0 sample-label mastic coarse1 share1 [coarse2 share2]
       print line
     }' "$mastic" > "$out"
 }
-mix $GEOMETRIC/F1.csv 0.667 "F1 (synthetic): bitumen + Garonne 0/2, 2/6, 6/10" \
+mix "$GEOMETRIC"/F1.csv 0.667 "F1 (synthetic): bitumen + Garonne 0/2, 2/6, 6/10" \
   $E/mastics/mastic-garonne-bitumen.csv $E/single/garonne.csv 1
-mix $GEOMETRIC/F2.csv 0.694 "F2 (synthetic): bitumen + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
+mix "$GEOMETRIC"/F2.csv 0.694 "F2 (synthetic): bitumen + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
   $E/mastics/mastic-soreze-bitumen.csv $E/single/lazard.csv 1
-mix $GEOMETRIC/F3.csv 0.703 "F3 (synthetic): TiO2 synthetic binder + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
+mix "$GEOMETRIC"/F3.csv 0.703 "F3 (synthetic): TiO2 synthetic binder + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
   $E/mastics/mastic-soreze-synthetic.csv $E/single/lazard.csv 1
-mix $GEOMETRIC/F4.csv 0.682 "F4 (synthetic): bitumen + Garonne 0/2, 2/6 + Gouraudiere 6/10" \
+mix "$GEOMETRIC"/F4.csv 0.682 "F4 (synthetic): bitumen + Garonne 0/2, 2/6 + Gouraudiere 6/10" \
   $E/mastics/mastic-garonne-bitumen.csv $E/single/garonne.csv 0.313 $E/single/gouraudiere.csv 0.687
 for f in "$GEOMETRIC"/F*.csv; do "$R" convert "$f" -o "$f.tmp.csv" && mv "$f.tmp.csv" "$f"; done   # validates, normalises
 
@@ -195,6 +195,6 @@ awk -F, '/^#/ { next } /^gamma/ { print "# dark signal (arbitrary radiance units
 "$R" calibrate $E/calibration/sample-radiance.csv --reference $E/calibration/reference-radiance.csv \
   --dark $E/calibration/dark.csv --panel-reflectance $PANEL -o $E/calibration/soreze-limestone-calibrated.csv
 # ---- mixed samples F1-F4: path-traced virtual samples of the formulations (issue 17) ---------------
-# made of the fits of the components above; about 80 s CPU (see data/examples/README.md).
+# made of the fits of the components above; about 45 s CPU (see data/examples/README.md).
 bash examples/make_virtual_mixtures.sh "$(dirname "$R")" "$(dirname "$R")/virtual-mixtures" $E/mixed
 echo "example data written to $E (former geometric mixtures: $GEOMETRIC)"
