@@ -97,7 +97,14 @@ for m in garonne-bitumen soreze-bitumen soreze-synthetic; do
     --metadata sample="mastic $m (synthetic: intimate mixing of fines with binder)" --metadata behaviour="diffuse + weak specular"
 done
 
-# ---- mixed samples F1-F4 (report Table 5.1): NONLINEAR geometric mixing ---------------------------
+# ---- FORMER mixed samples F1-F4 (report Table 5.1): NONLINEAR geometric mixing ---------------------
+# Until issue 17 these were the bundled data/examples/mixed/F1-F4.csv. They are circular for the `shadowed`
+# mixing method (it fits the same shadowing form), so the bundled mixtures are now path-traced virtual samples
+# (examples/make_virtual_mixtures.sh, called at the end of this script). These geometric mixtures are still
+# made here, but outside the source tree (not bundled: 644 KB, and reproducible from the bundled components
+# in a second): into $GEOMETRIC (default build/mixed-geometric).
+GEOMETRIC=${GEOMETRIC:-build/mixed-geometric}
+mkdir -p "$GEOMETRIC"
 # f = (1 - c) f_mastic + c sum_k s_k f_coarse_k with the coarse-aggregate cover fraction seen AND lit
 #   c(theta_i, theta_r) = 1 - (1 - c0)^((1/mu_i + 1/mu_r)/2),  mu = max(cos theta, 0.1):
 # the recessed mastic between protruding coarse aggregates is shadowed and masked more and more
@@ -142,15 +149,15 @@ mix() {  # out c0 sample-label mastic coarse1 share1 [coarse2 share2]
       print line
     }' "$mastic" > "$out"
 }
-mix $E/mixed/F1.csv 0.667 "F1 (synthetic): bitumen + Garonne 0/2, 2/6, 6/10" \
+mix "$GEOMETRIC"/F1.csv 0.667 "F1 (synthetic): bitumen + Garonne 0/2, 2/6, 6/10" \
   $E/mastics/mastic-garonne-bitumen.csv $E/single/garonne.csv 1
-mix $E/mixed/F2.csv 0.694 "F2 (synthetic): bitumen + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
+mix "$GEOMETRIC"/F2.csv 0.694 "F2 (synthetic): bitumen + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
   $E/mastics/mastic-soreze-bitumen.csv $E/single/lazard.csv 1
-mix $E/mixed/F3.csv 0.703 "F3 (synthetic): TiO2 synthetic binder + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
+mix "$GEOMETRIC"/F3.csv 0.703 "F3 (synthetic): TiO2 synthetic binder + Soreze limestone 0/2 + Lazard 2/6, 6/10" \
   $E/mastics/mastic-soreze-synthetic.csv $E/single/lazard.csv 1
-mix $E/mixed/F4.csv 0.682 "F4 (synthetic): bitumen + Garonne 0/2, 2/6 + Gouraudiere 6/10" \
+mix "$GEOMETRIC"/F4.csv 0.682 "F4 (synthetic): bitumen + Garonne 0/2, 2/6 + Gouraudiere 6/10" \
   $E/mastics/mastic-garonne-bitumen.csv $E/single/garonne.csv 0.313 $E/single/gouraudiere.csv 0.687
-for f in $E/mixed/F*.csv; do "$R" convert "$f" -o "$f"; done   # validates, normalises the header
+for f in "$GEOMETRIC"/F*.csv; do "$R" convert "$f" -o "$f.tmp.csv" && mv "$f.tmp.csv" "$f"; done   # validates, normalises
 
 # ---- calibration example with the real Spectralon calibration ------------------------------------
 # Radiances of the Soreze limestone sample and of the Spectralon panel (Lambertian rho(lambda)/pi,
@@ -187,4 +194,7 @@ awk -F, '/^#/ { next } /^gamma/ { print "# dark signal (arbitrary radiance units
   $E/calibration/sample-radiance.csv > $E/calibration/dark.csv
 "$R" calibrate $E/calibration/sample-radiance.csv --reference $E/calibration/reference-radiance.csv \
   --dark $E/calibration/dark.csv --panel-reflectance $PANEL -o $E/calibration/soreze-limestone-calibrated.csv
-echo "example data written to $E"
+# ---- mixed samples F1-F4: path-traced virtual samples of the formulations (issue 17) ---------------
+# made of the fits of the components above; about 45 s CPU (see data/examples/README.md).
+bash examples/make_virtual_mixtures.sh "$(dirname "$R")" "$(dirname "$R")/virtual-mixtures" $E/mixed
+echo "example data written to $E (former geometric mixtures: $GEOMETRIC)"
