@@ -238,7 +238,9 @@ TEST(HapkeHTable, FixedSetsMatchTheBatchEvaluation) {
         }
       }
     }
-    if (!c.options.count("h_function")) EXPECT_GT(reordered, 0);
+    if (!c.options.count("h_function")) {
+      EXPECT_GT(reordered, 0);
+    }
   }
 }
 

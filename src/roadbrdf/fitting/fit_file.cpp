@@ -446,8 +446,8 @@ namespace roadbrdf {
 SpectralModel spectral_model_of(const FitResult& fit, std::shared_ptr<const Model> model) {
   const std::size_t p = fit.parameter_names.size();
   if (model->parameter_count() != p) {
-    throw InputError("spectral_model_of: the model has " + std::to_string(model->parameter_count()) +
-                     " parameters, the fit " + std::to_string(p));
+    throw InputError(
+        fmt::format("spectral_model_of: the model has {} parameters, the fit {}", model->parameter_count(), p));
   }
   std::vector<bool> fixed(p, false);
   for (const std::string& name : fit.fixed) {

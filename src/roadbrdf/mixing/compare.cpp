@@ -71,6 +71,7 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
       const MixResult part = mix(inputs, method, settings, &data, &train);
       if (progress) progress->add();
       std::vector<Geometry> geometries;
+      geometries.reserve(test.size());
       for (std::size_t n : test) geometries.push_back(data.geometries[n]);
       const std::vector<double> predicted = evaluate_spectral(*part.model, geometries, data.wavelengths);
       for (std::size_t t = 0; t < test.size(); ++t) {

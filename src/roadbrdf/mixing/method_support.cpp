@@ -39,6 +39,7 @@ void common_range(const std::vector<const SpectralModel*>& models, double& lo, d
 std::vector<double> output_grid(const MixInputs& inputs, const std::vector<std::size_t>& members,
                                 const MixSettings& settings, const SpectralDataset* data) {
   std::vector<const SpectralModel*> models;
+  models.reserve(members.size());
   for (std::size_t e : members) models.push_back(inputs.end_members[e].model.get());
   double lo, hi;
   bool any;
