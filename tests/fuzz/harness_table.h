@@ -19,6 +19,7 @@ inline const std::map<std::string, Harness>& harnesses() {
   static const std::map<std::string, Harness> table = {
       {"alta", alta_one_input},
       {"asd", asd_one_input},
+      {"cross_sections", cross_sections_one_input},
       {"curet", curet_one_input},
       {"dataset", dataset_one_input},
       {"fit_file", fit_file_one_input},

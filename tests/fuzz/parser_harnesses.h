@@ -32,6 +32,7 @@
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/geometry_selection.h"
 #include "roadbrdf/io/usgs.h"
+#include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/surface/height_field.h"
@@ -148,6 +149,20 @@ inline int selection_one_input(const std::uint8_t* data, std::size_t size) {
 inline int mix_file_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("mix.json", bytes(data, size));
   return refusing([&] { mixing::read_mix_file(file.path()); });
+}
+
+// Beyond refusing bad input, an accepted calibration file must give positive, finite factors
+// (mixing/calibration.h); a broken promise aborts.
+inline int cross_sections_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("cal.json", bytes(data, size));
+  return refusing([&] {
+    for (const auto& [name, k] : mixing::read_cross_section_factors(file.path())) {
+      if (!(k > 0.0 && std::isfinite(k))) {
+        std::fprintf(stderr, "cross_sections: accepted factor %g of '%s'\n", k, name.c_str());
+        std::abort();
+      }
+    }
+  });
 }
 
 inline int rtable_one_input(const std::uint8_t* data, std::size_t size, photometry::RTableFormat format,
