@@ -92,7 +92,8 @@ PYBIND11_MODULE(_roadbrdf, m) {
 
   // InputError and FileError become roadbrdf.InputError (a ValueError) with the CLI's message.
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
-  py::register_exception_translator([](std::exception_ptr p) {
+  // pybind11's translator type is void (*)(std::exception_ptr): the pointer is taken by value.
+  py::register_exception_translator([](std::exception_ptr p) {  // NOLINT(performance-unnecessary-value-param)
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {

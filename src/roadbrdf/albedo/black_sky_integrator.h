@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -96,8 +97,8 @@ struct MuNode {
 };
 
 struct Panel {
-  double a = 0.0, b = 1.0;  // mu range
-  MuNode nodes[15];
+  double a = 0.0, b = 1.0;        // mu range
+  std::array<MuNode, 15> nodes;   // the K15 nodes
   std::vector<double> q, err_mu;  // per set: K15 value and |K15 - G7|
 };
 

@@ -130,6 +130,7 @@ SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params
   SpectralIntegral result;
   std::vector<SpectralIntegral> samples;  // at phi = 2 pi k / n
   int n = 4;
+  samples.reserve(n);
   for (int k = 0; k < n; ++k) samples.push_back(black_sky(model, params, n_sets, theta_s, 2.0 * kPi * k / n, inner));
   auto mean_of = [&](int stride) {
     std::vector<double> m(n_sets, 0.0), e(n_sets, 0.0);
