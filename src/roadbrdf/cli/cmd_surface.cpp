@@ -244,7 +244,7 @@ void run_render(const RenderArgs& a) {
   }
   std::sort(worst.begin(), worst.end());
   auto quantile = [&](double q) {
-    return worst[static_cast<std::size_t>(q * static_cast<double>(worst.size() - 1) + 0.5)];
+    return worst[static_cast<std::size_t>(std::lround(q * static_cast<double>(worst.size() - 1)))];
   };
   fmt::print(report, "rendered {}: {} geometries x {} wavelengths, {} sampling, acceptance {} deg, {} paths in total\n",
              a.surface, data.geometry_count(), data.wavelength_count(), a.sampling, a.acceptance, total_paths);

@@ -35,6 +35,7 @@ Geometry parse_geometry(const std::string& text, AngleConvention& convention) {
   }
   const std::map<std::string, double> values = parse_numeric_assignments(items, "--geometry");
   std::vector<std::string> header;
+  header.reserve(values.size());
   for (const auto& [name, value] : values) header.push_back(name);
   if (header.size() != 4) throw InputError("--geometry: give exactly four angles (degrees)");
   const auto columns = find_angle_columns(header, "--geometry", 0, convention);

@@ -54,7 +54,8 @@ std::vector<CsvCell> split_whitespace(std::string_view line) {
   return cells;
 }
 
-CsvReader::CsvReader(std::string path) : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
+CsvReader::CsvReader(const std::string& path)
+    : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
 
 bool CsvReader::next_line(std::string_view& line) {
   while (in_->read_line(line_)) {

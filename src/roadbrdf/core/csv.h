@@ -26,7 +26,7 @@ struct CsvCell {
 class CsvReader {
  public:
   // Throws FileError if the file cannot be opened ("-" = standard input).
-  explicit CsvReader(std::string path);
+  explicit CsvReader(const std::string& path);
 
   // Next non-blank, non-comment line split into cells; false at end of file. Comment lines seen
   // on the way are collected in comments() (without the leading '#'). Throws FileError on a read

@@ -55,7 +55,7 @@ std::string data_directory() {
 }
 
 std::string data_file(const std::string& relative) {
-  const std::string path = data_directory() + "/" + relative;
+  std::string path = data_directory() + "/" + relative;
   if (!fs::exists(path)) {
     throw InputError("bundled data file '" + path + "' not found (set ROADBRDF_DATA to the roadbrdf data/ folder)");
   }

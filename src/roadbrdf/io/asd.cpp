@@ -15,6 +15,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -221,6 +222,7 @@ void read_dependents(const Bytes& b, std::size_t& o, InstrumentSpectrum& s) {
   b.need(o, 10, "dependent variable labels");
   o += 10;
   std::vector<std::string> labels;
+  labels.reserve(count > 0 ? static_cast<std::size_t>(count) : 0);
   for (int k = 0; k < count; ++k) labels.push_back(b.bstr(o, "dependent variable label"));
   b.need(o, 10, "dependent variable values");
   o += 10;

@@ -84,6 +84,7 @@ std::vector<HeaderCell> header_names(Reading& r, std::string_view header, std::s
 std::vector<std::size_t> angle_columns_of(Reading& r, const std::vector<HeaderCell>& names, long header_line,
                                           AngleConvention& convention) {
   std::vector<std::string> canonical;
+  canonical.reserve(names.size());
   for (const auto& n : names) canonical.push_back(n.canonical);
   std::vector<std::size_t> columns = find_angle_columns(canonical, r.reader.path(), header_line, convention);
   for (auto& c : columns) {

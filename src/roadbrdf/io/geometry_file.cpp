@@ -14,6 +14,7 @@ std::vector<std::size_t> find_angle_columns(const std::vector<std::string>& head
                                             AngleConvention& convention) {
   // Names in any case, with units or aliases (io/dataset_dialect.h).
   std::vector<std::string> canonical;
+  canonical.reserve(header.size());
   for (const auto& h : header) canonical.push_back(canonical_column_name(h));
   auto locate = [&](const std::vector<std::string>& names) {
     std::vector<std::size_t> idx;
@@ -80,6 +81,7 @@ GeometryTable read_geometry_file(const std::string& path) {
       reader.fail(cells[angle_columns[0]].column, e.what());
     }
     std::vector<std::string> row;
+    row.reserve(cells.size());
     for (const auto& c : cells) row.emplace_back(c.text);
     table.cells.push_back(std::move(row));
   }

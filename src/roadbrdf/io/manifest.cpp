@@ -179,6 +179,7 @@ Manifest read_manifest(const std::string& path) {
   std::vector<CsvCell> cells;
   if (!reader.next_row(cells)) throw FileError(path, reader.line_number(), 0, "manifest is empty (no header line)");
   std::vector<std::string> header;
+  header.reserve(cells.size());
   for (const auto& c : cells) header.push_back(lower(c.text));
   const long header_line = reader.line_number();
   const auto angle_columns = find_angle_columns(header, path, header_line, m.convention);

@@ -43,6 +43,7 @@ std::vector<double> distinct(const std::vector<double>& values) {
     if (std::isfinite(v)) keys.insert(std::llround(v * 100.0));
   }
   std::vector<double> out;
+  out.reserve(keys.size());
   for (long long k : keys) out.push_back(static_cast<double>(k) / 100.0);
   return out;
 }

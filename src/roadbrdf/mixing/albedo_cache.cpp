@@ -20,6 +20,7 @@ std::vector<double> AlbedoCache::white_sky(const SpectralModel& model, const std
     for (std::size_t i = 0; i < missing.size(); ++i) values_[{&model, missing[i]}] = computed[i];
   }
   std::vector<double> out;
+  out.reserve(keys.size());
   std::lock_guard<std::mutex> lock(mutex_);
   for (double w : keys) out.push_back(values_.at({&model, w}));
   return out;

@@ -253,6 +253,7 @@ CrossSectionCalibration calibrate_cross_sections(const std::vector<CalibrationMi
   std::vector<double> u(p, 0.0);
   ceres::Problem problem;
   std::vector<LogFactorCost> costs;
+  costs.reserve(prepared.size());
   for (const PreparedMixture& pm : prepared) costs.push_back({&pm, n, ref});
   for (const LogFactorCost& c : costs) {
     auto* cost =

@@ -133,7 +133,7 @@ double h_table_evaluate(double x, double gamma, double* dh_dgamma) {
   double q[kHTableNodesG];
   for (int b = 0; b < kHTableNodesG; ++b) q[b] = c[b] * tx[0];
   for (int a = 1; a < kHTableNodesX; ++a) {
-    const double* row = c + a * kHTableNodesG;
+    const double* row = c + static_cast<std::ptrdiff_t>(a) * kHTableNodesG;
     for (int b = 0; b < kHTableNodesG; ++b) q[b] += row[b] * tx[a];
   }
   double value = 0.0;

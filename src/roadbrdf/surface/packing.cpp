@@ -53,8 +53,8 @@ Mat3 random_rotation(Uniform& u) {
 
 Mat3 multiply(const Mat3& A, const Mat3& B) {
   Mat3 M{};
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
+  for (std::size_t r = 0; r < 3; ++r) {
+    for (std::size_t c = 0; c < 3; ++c) {
       M[r * 3 + c] = A[r * 3] * B[c] + A[r * 3 + 1] * B[3 + c] + A[r * 3 + 2] * B[6 + c];
     }
   }
@@ -416,8 +416,9 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
       ++out.grain_count[k];
       useless = in_layer > 0.0 ? 0 : useless + 1;
       if (s.progress && target_total > 0.0) {
-        const auto units = static_cast<std::size_t>(
-            (kProgressUnits / 2) * (static_cast<double>(phase) + std::min(1.0, placed / target_total)));
+        const auto units =
+            static_cast<std::size_t>(0.5 * static_cast<double>(kProgressUnits) *
+                                     (static_cast<double>(phase) + std::min(1.0, placed / target_total)));
         if (units > reported) {
           progress.add(units - reported);
           reported = units;
