@@ -84,19 +84,13 @@ double NormalStream::next() {
   return r * std::cos(2.0 * kPi * u2);
 }
 
-SpectralDataset simulate_dataset(const SimulationInput& in) {
-  if (!in.model) throw InputError("simulate: no model");
-  if (in.geometries.empty()) throw InputError("simulate: the grid has no geometries");
-  if (in.wavelengths.empty()) throw InputError("simulate: no wavelengths");
-  for (std::size_t j = 1; j < in.wavelengths.size(); ++j) {
-    if (!(in.wavelengths[j] > in.wavelengths[j - 1]))
-      throw InputError("simulate: wavelengths must be strictly increasing");
-  }
-  const Model& model = in.model->model();
-  const ModelDescription& desc = model.description();
-  const std::size_t n = in.geometries.size(), m = in.wavelengths.size(), np = model.parameter_count();
-  // Parameter table: one set per wavelength.
-  std::vector<std::pair<std::size_t, const Spectrum*>> overrides;
+namespace {
+
+using Overrides = std::vector<std::pair<std::size_t, const Spectrum*>>;
+
+// The model's parameters replaced by spectra (SimulationInput::spectral_parameters), by index.
+Overrides spectral_overrides(const SimulationInput& in, const ModelDescription& desc) {
+  Overrides overrides;
   for (const auto& [name, spectrum] : in.spectral_parameters) {
     const auto idx = desc.parameter_index(name);
     if (!idx) {
@@ -106,6 +100,13 @@ SpectralDataset simulate_dataset(const SimulationInput& in) {
     }
     overrides.emplace_back(*idx, &spectrum);
   }
+  return overrides;
+}
+
+// The parameter table: one checked set per wavelength (m x np, row-major).
+std::vector<double> parameter_table(const SimulationInput& in, const ModelDescription& desc,
+                                    const Overrides& overrides) {
+  const std::size_t m = in.wavelengths.size(), np = desc.parameters.size();
   std::vector<double> params(m * np);
   for (std::size_t j = 0; j < m; ++j) {
     const double wl = in.wavelengths[j];
@@ -122,6 +123,24 @@ SpectralDataset simulate_dataset(const SimulationInput& in) {
     }
     std::copy(p.begin(), p.end(), params.begin() + static_cast<long>(j * np));
   }
+  return params;
+}
+
+}  // namespace
+
+SpectralDataset simulate_dataset(const SimulationInput& in) {
+  if (!in.model) throw InputError("simulate: no model");
+  if (in.geometries.empty()) throw InputError("simulate: the grid has no geometries");
+  if (in.wavelengths.empty()) throw InputError("simulate: no wavelengths");
+  for (std::size_t j = 1; j < in.wavelengths.size(); ++j) {
+    if (!(in.wavelengths[j] > in.wavelengths[j - 1]))
+      throw InputError("simulate: wavelengths must be strictly increasing");
+  }
+  const Model& model = in.model->model();
+  const ModelDescription& desc = model.description();
+  const std::size_t n = in.geometries.size(), m = in.wavelengths.size(), np = model.parameter_count();
+  const Overrides overrides = spectral_overrides(in, desc);
+  const std::vector<double> params = parameter_table(in, desc, overrides);
   SpectralDataset d;
   d.geometries = in.geometries;
   d.convention = in.convention;
