@@ -180,6 +180,60 @@ void validate_formulation(const Formulation& f) {
   }
 }
 
+namespace {
+
+// "mastic": {name, fit, fit_model}.
+MasticSpec parse_mastic(const json& m, const std::string& path, bool check_files) {
+  if (!m.is_object()) fail(path, "mastic", "must be an object {name, fit, fit_model}");
+  check_keys(m, {"name", "fit", "fit_model"}, path, "mastic");
+  MasticSpec spec;
+  if (!m.contains("fit")) fail(path, "mastic.fit", "missing");
+  spec.fit = get_string(m, "fit", path, "mastic.");
+  spec.name = m.contains("name") ? get_string(m, "name", path, "mastic.") : std::string("mastic");
+  if (m.contains("fit_model")) spec.fit_model = get_string(m, "fit_model", path, "mastic.");
+  spec.fit_path = resolve(path, spec.fit);
+  if (check_files) check_fit_exists(path, "mastic.fit", spec.fit, spec.fit_path);
+  return spec;
+}
+
+// One entry of "components" (index i), its errors named components[i] or components[i] (NAME).
+Component parse_component(const json& cj, std::size_t i, const std::string& path, bool check_files) {
+  std::string key = component_key(i, "");
+  if (!cj.is_object()) fail(path, key, "must be an object");
+  Component c;
+  if (cj.contains("name") && cj.at("name").is_string()) c.name = cj.at("name").get<std::string>();
+  key = component_key(i, c.name);
+  check_keys(
+      cj,
+      {"name", "kind", "mass_percent", "density_g_cm3", "d_min_mm", "d_max_mm", "d_eff_mm", "fit", "fit_model", "note"},
+      path, key);
+  for (const char* required : {"name", "kind", "mass_percent", "density_g_cm3", "fit"}) {
+    if (!cj.contains(required)) fail(path, key + "." + required, "missing");
+  }
+  c.name = get_string(cj, "name", path, key + ".");
+  try {
+    c.kind = component_kind_from_string(get_string(cj, "kind", path, key + "."));
+  } catch (const FileError&) {
+    throw;
+  } catch (const InputError& e) {
+    fail(path, key + ".kind", e.what());
+  }
+  c.mass_percent = get_number(cj, "mass_percent", path, key + ".");
+  c.density = get_number(cj, "density_g_cm3", path, key + ".");
+  if (cj.contains("d_min_mm")) c.d_min = get_number(cj, "d_min_mm", path, key + ".");
+  if (cj.contains("d_max_mm")) c.d_max = get_number(cj, "d_max_mm", path, key + ".");
+  if (cj.contains("d_eff_mm")) c.d_eff = get_number(cj, "d_eff_mm", path, key + ".");
+  if (cj.contains("note") && !cj.at("note").is_string()) fail(path, key + ".note", "must be a string");
+  c.fit = get_string(cj, "fit", path, key + ".");
+  if (c.fit.empty()) fail(path, key + ".fit", "must not be empty");
+  if (cj.contains("fit_model")) c.fit_model = get_string(cj, "fit_model", path, key + ".");
+  c.fit_path = resolve(path, c.fit);
+  if (check_files) check_fit_exists(path, key + ".fit", c.fit, c.fit_path);
+  return c;
+}
+
+}  // namespace
+
 Formulation parse_formulation(const std::string& text, const std::string& path, bool check_files) {
   const json j = parse_json_text(text, path.empty() ? std::string("<formulation>") : path);
   if (!j.is_object()) fail(path, "(top level)", "must be a JSON object");
@@ -222,57 +276,12 @@ Formulation parse_formulation(const std::string& text, const std::string& path, 
       f.binder_film_thickness_mm = get_number(j, "binder_film_thickness_mm", path, "");
     }
     if (j.contains("coarse_min_size_mm")) f.coarse_min_size_mm = get_number(j, "coarse_min_size_mm", path, "");
-    if (j.contains("mastic")) {
-      const json& m = j.at("mastic");
-      if (!m.is_object()) fail(path, "mastic", "must be an object {name, fit, fit_model}");
-      check_keys(m, {"name", "fit", "fit_model"}, path, "mastic");
-      MasticSpec spec;
-      if (!m.contains("fit")) fail(path, "mastic.fit", "missing");
-      spec.fit = get_string(m, "fit", path, "mastic.");
-      spec.name = m.contains("name") ? get_string(m, "name", path, "mastic.") : std::string("mastic");
-      if (m.contains("fit_model")) spec.fit_model = get_string(m, "fit_model", path, "mastic.");
-      spec.fit_path = resolve(path, spec.fit);
-      if (check_files) check_fit_exists(path, "mastic.fit", spec.fit, spec.fit_path);
-      f.mastic = spec;
-    }
+    if (j.contains("mastic")) f.mastic = parse_mastic(j.at("mastic"), path, check_files);
     if (!j.contains("components")) fail(path, "components", "missing");
     const json& list = j.at("components");
     if (!list.is_array()) fail(path, "components", "must be an array");
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const json& cj = list[i];
-      std::string key = component_key(i, "");
-      if (!cj.is_object()) fail(path, key, "must be an object");
-      Component c;
-      if (cj.contains("name") && cj.at("name").is_string()) c.name = cj.at("name").get<std::string>();
-      key = component_key(i, c.name);
-      check_keys(cj,
-                 {"name", "kind", "mass_percent", "density_g_cm3", "d_min_mm", "d_max_mm", "d_eff_mm", "fit",
-                  "fit_model", "note"},
-                 path, key);
-      for (const char* required : {"name", "kind", "mass_percent", "density_g_cm3", "fit"}) {
-        if (!cj.contains(required)) fail(path, key + "." + required, "missing");
-      }
-      c.name = get_string(cj, "name", path, key + ".");
-      try {
-        c.kind = component_kind_from_string(get_string(cj, "kind", path, key + "."));
-      } catch (const FileError&) {
-        throw;
-      } catch (const InputError& e) {
-        fail(path, key + ".kind", e.what());
-      }
-      c.mass_percent = get_number(cj, "mass_percent", path, key + ".");
-      c.density = get_number(cj, "density_g_cm3", path, key + ".");
-      if (cj.contains("d_min_mm")) c.d_min = get_number(cj, "d_min_mm", path, key + ".");
-      if (cj.contains("d_max_mm")) c.d_max = get_number(cj, "d_max_mm", path, key + ".");
-      if (cj.contains("d_eff_mm")) c.d_eff = get_number(cj, "d_eff_mm", path, key + ".");
-      if (cj.contains("note") && !cj.at("note").is_string()) fail(path, key + ".note", "must be a string");
-      c.fit = get_string(cj, "fit", path, key + ".");
-      if (c.fit.empty()) fail(path, key + ".fit", "must not be empty");
-      if (cj.contains("fit_model")) c.fit_model = get_string(cj, "fit_model", path, key + ".");
-      c.fit_path = resolve(path, c.fit);
-      if (check_files) check_fit_exists(path, key + ".fit", c.fit, c.fit_path);
-      f.components.push_back(std::move(c));
-    }
+    for (std::size_t i = 0; i < list.size(); ++i)
+      f.components.push_back(parse_component(list[i], i, path, check_files));
   } catch (const json::exception& e) {
     throw FileError(path, 0, 0, std::string("malformed formulation: ") + e.what());
   }
