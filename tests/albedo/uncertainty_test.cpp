@@ -19,6 +19,7 @@
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "support/scratch.h"
+#include "support/statistics.h"
 
 namespace roadbrdf {
 namespace {
@@ -72,17 +73,9 @@ TEST(AlbedoUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
     sets.push_back(0.5 + s_a * z1);
     sets.push_back(0.3 + s_s * (r * z1 + std::sqrt(1.0 - r * r) * z2));
   }
-  auto standard_deviation = [](const std::vector<double>& v) {
-    double mean = 0.0;
-    for (double x : v) mean += x;
-    mean /= static_cast<double>(v.size());
-    double sum = 0.0;
-    for (double x : v) sum += (x - mean) * (x - mean);
-    return std::sqrt(sum / static_cast<double>(v.size() - 1));
-  };
   const double sampled_black =
-      standard_deviation(albedo::black_sky(*model, sets.data(), kSamples, 30.0 * kDegree).value);
-  const double sampled_white = standard_deviation(albedo::white_sky(*model, sets.data(), kSamples).value);
+      test::sample_standard_deviation(albedo::black_sky(*model, sets.data(), kSamples, 30.0 * kDegree).value);
+  const double sampled_white = test::sample_standard_deviation(albedo::white_sky(*model, sets.data(), kSamples).value);
   EXPECT_NEAR(u_black, sampled_black, 0.05 * sampled_black);
   EXPECT_NEAR(u_white, sampled_white, 0.05 * sampled_white);
   EXPECT_GT(u_black, 0.5 * s_a);  // the albedo term alone would give about s_a x (black-sky at albedo 1)

@@ -29,6 +29,7 @@
 #include "roadbrdf/photometry/rtable_uncertainty.h"
 #include "support/cli.h"
 #include "support/scratch.h"
+#include "support/statistics.h"
 
 namespace roadbrdf::photometry {
 namespace {
@@ -50,14 +51,7 @@ SummaryUncertainty uncertainty_of(const SpectralModel& sm, const SpectralWeighti
   return both_of(sm, w).independent;
 }
 
-double standard_deviation(const std::vector<double>& v) {
-  double mean = 0.0;
-  for (double x : v) mean += x;
-  mean /= static_cast<double>(v.size());
-  double sum = 0.0;
-  for (double x : v) sum += (x - mean) * (x - mean);
-  return std::sqrt(sum / static_cast<double>(v.size() - 1));
-}
+using test::sample_standard_deviation;
 
 TEST(RTableUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
   // Oren-Nayar fitted at 500 and 600 nm (albedo 0.5 +- 0.01, sigma 0.3 +- 0.05, correlation 0.6;
@@ -96,10 +90,10 @@ TEST(RTableUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
     s2s.push_back(s2(t));
     qds.push_back(qd(t));
   }
-  EXPECT_NEAR(u.q0, standard_deviation(q0s), 0.05 * standard_deviation(q0s));
-  EXPECT_NEAR(u.s1, standard_deviation(s1s), 0.05 * standard_deviation(s1s));
-  EXPECT_NEAR(u.s2, standard_deviation(s2s), 0.05 * standard_deviation(s2s));
-  EXPECT_NEAR(u.qd, standard_deviation(qds), 0.05 * standard_deviation(qds));
+  EXPECT_NEAR(u.q0, sample_standard_deviation(q0s), 0.05 * sample_standard_deviation(q0s));
+  EXPECT_NEAR(u.s1, sample_standard_deviation(s1s), 0.05 * sample_standard_deviation(s1s));
+  EXPECT_NEAR(u.s2, sample_standard_deviation(s2s), 0.05 * sample_standard_deviation(s2s));
+  EXPECT_NEAR(u.qd, sample_standard_deviation(qds), 0.05 * sample_standard_deviation(qds));
   EXPECT_GT(u.s1, 1e-3);  // sigma moves S1: the comparison is not between two zeros
 }
 

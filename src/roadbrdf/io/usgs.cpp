@@ -2,12 +2,14 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/number.h"
+#include "roadbrdf/io/instrument_text.h"
 
 namespace roadbrdf {
 
@@ -20,25 +22,17 @@ struct Column {
   std::vector<long> lines;  // 1-based line of each value
 };
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
 // The title line " splib07a Record=NNNNN: title" and one number per following line; blank lines
 // are allowed (a trailing newline), anything else is an error at its line and column.
 Column parse_column(std::string_view text, const std::string& name) {
   Column c;
-  long line_number = 0;
-  std::size_t pos = 0;
+  const std::vector<instrument_text::Line> lines = instrument_text::lines(text);
+  const long line_count = static_cast<long>(lines.size());
   bool title_seen = false;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    std::size_t a = 0;
-    while (a < line.size() && is_space(line[a])) ++a;
-    std::size_t b = line.size();
-    while (b > a && is_space(line[b - 1])) --b;
+  for (const auto& [line, line_number] : lines) {
+    constexpr std::string_view kSpace = " \t\r";
+    const std::size_t a = std::min(line.find_first_not_of(kSpace), line.size());
+    const std::size_t b = a == line.size() ? a : line.find_last_not_of(kSpace) + 1;
     const std::string_view item = line.substr(a, b - a);
     const long column = static_cast<long>(a) + 1;
     if (!title_seen) {
@@ -57,9 +51,8 @@ Column parse_column(std::string_view text, const std::string& name) {
                         "expected the record number and ':' after 'splib07a Record='");
       }
       c.record = static_cast<long>(record);
-      std::string_view title = item.substr(colon + 1);
-      while (!title.empty() && is_space(title.front())) title.remove_prefix(1);
-      c.title = std::string(title);
+      const std::string_view title = item.substr(colon + 1);
+      c.title = std::string(title.substr(std::min(title.find_first_not_of(kSpace), title.size())));
       title_seen = true;
       continue;
     }
@@ -73,7 +66,7 @@ Column parse_column(std::string_view text, const std::string& name) {
     c.lines.push_back(line_number);
   }
   if (!title_seen) throw FileError(name, 1, 1, "empty file: not a USGS splib07a ASCII file");
-  if (c.values.empty()) throw FileError(name, line_number, 1, "no values after the title line");
+  if (c.values.empty()) throw FileError(name, line_count, 1, "no values after the title line");
   return c;
 }
 
