@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <utility>
 
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
@@ -44,6 +45,236 @@ int dimension(const std::string& path, long line, long offset, const CsvCell& ce
   return v;
 }
 
+// The reader of one ALTA file, a line at a time: the '#' header lines, then the data lines (one
+// geometry each: the input angles and one output value).
+class AltaParser {
+ public:
+  AltaParser(const std::string& path, const AltaReadOptions& options) : path_(path), options_(options) {}
+
+  void read_line(const std::string& line) {
+    ++n_;
+    const auto b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos) return;
+    if (line[b] == '#') {
+      header_line(line, b);
+      return;
+    }
+    if (!header_done_) begin_data();
+    data_line(line);
+  }
+
+  SpectralDataset finish();
+
+ private:
+  void header_line(const std::string& line, std::size_t b);
+  void begin_data();
+  void data_line(const std::string& line);
+  double zenith(double t, const CsvCell& cell, const char* what) const;
+  void add_sample(const Geometry& g, double value);
+  void warn(const std::string& m) const {
+    if (options_.warn) {
+      options_.warn(m);
+    } else {
+      fmt::print(stderr, "roadbrdf: warning: {}\n", m);
+    }
+  }
+
+  const std::string& path_;
+  const AltaReadOptions& options_;
+  SpectralDataset d_;
+  AltaInput input_ = AltaInput::kUnknown;
+  AltaOutput output_ = AltaOutput::kUnknown;
+  int dim_in_ = -1, dim_out_ = -1;
+  bool header_done_ = false;
+  long n_ = 0;  // line number
+  std::size_t negative_ = 0, grazing_ = 0;
+  std::string first_negative_, first_grazing_;
+  // Quantised directions -> (geometry index, line of its first sample).
+  std::map<std::array<long long, 4>, std::pair<std::size_t, long>> seen_;
+  std::vector<int> multiplicity_;  // samples per geometry, once a duplicate was averaged
+};
+
+// A '#KEY value' line: b is the position of the '#'.
+void AltaParser::header_line(const std::string& line, std::size_t b) {
+  const auto cells = split_whitespace(std::string_view(line).substr(b + 1));
+  if (cells.empty()) return;
+  const std::string key(cells[0].text);
+  // Cell columns are 1-based within the text after '#' (spaces after '#' are allowed).
+  const std::size_t key_start = b + static_cast<std::size_t>(cells[0].column);
+  const std::string rest = trim(line.substr(key_start + cells[0].text.size()));
+  const long col = static_cast<long>(key_start) + 1;
+  const bool header_key = key == "DIM" || key == "PARAM_IN" || key == "PARAM_OUT" || key == "VS";
+  if (header_key && header_done_) {
+    throw FileError(path_, n_, col,
+                    fmt::format("#{} after the data: the header must come before the first data line", key));
+  }
+  if (key == "DIM") {
+    if (cells.size() != 3) throw FileError(path_, n_, col, "#DIM expects two numbers (inputs, outputs)");
+    dim_in_ = dimension(path_, n_, static_cast<long>(b + 1), cells[1]);
+    dim_out_ = dimension(path_, n_, static_cast<long>(b + 1), cells[2]);
+    if (dim_out_ != 1) {
+      throw FileError(
+          path_, n_, static_cast<long>(b + 1) + cells[2].column,
+          fmt::format("{} output values per line: only single-channel ALTA files are supported", cells[2].text));
+    }
+  } else if (key == "VS") {
+    if (rest != "0") {
+      throw FileError(path_, n_, col, fmt::format("'#VS {}': vertical segments are not supported (only #VS 0)", rest));
+    }
+  } else if (key == "PARAM_IN") {
+    if (rest == "ISOTROPIC_TL_TV_PROJ_DPHI") {
+      input_ = AltaInput::kTlTvProjDphi;
+    } else if (rest == "SPHERICAL_TL_PL_TV_PV") {
+      input_ = AltaInput::kSphericalTlPlTvPv;
+    } else {
+      throw FileError(path_, n_, col,
+                      fmt::format("input parametrisation '{}' is not supported (ISOTROPIC_TL_TV_PROJ_DPHI, "
+                                  "SPHERICAL_TL_PL_TV_PV)",
+                                  rest));
+    }
+  } else if (key == "PARAM_OUT") {
+    output_ = parse_output(rest);
+    if (output_ == AltaOutput::kUnknown) {
+      throw FileError(
+          path_, n_, col,
+          fmt::format("output unit '{}' is not supported (INV_STERADIAN, INV_STERADIAN_COSINE_FACTOR)", rest));
+    }
+  } else if (key == "SAMPLE" || key == "ORIGIN" || key == "URL") {
+    std::string k = key;
+    for (auto& c : k) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    d_.metadata[k] = rest;
+  }
+}
+
+// At the first data line the header is complete: the parametrisation must be known, agree with
+// #DIM, and the output unit be stated (or assumed by the caller).
+void AltaParser::begin_data() {
+  header_done_ = true;
+  if (input_ == AltaInput::kUnknown) throw FileError(path_, n_, 0, "data before any #PARAM_IN line");
+  const int expected_in = input_ == AltaInput::kTlTvProjDphi ? 3 : 4;
+  if (dim_in_ >= 0 && dim_in_ != expected_in) {
+    throw FileError(path_, n_, 0,
+                    fmt::format("#DIM gives {} inputs but the parametrisation has {}", dim_in_, expected_in));
+  }
+  if (output_ == AltaOutput::kUnknown) {
+    output_ = parse_output(options_.assumed_output);
+    if (output_ == AltaOutput::kUnknown) {
+      throw FileError(path_, n_, 0,
+                      "file has no #PARAM_OUT line: state the output unit (INV_STERADIAN or "
+                      "INV_STERADIAN_COSINE_FACTOR)");
+    }
+    d_.metadata["alta_output_assumed"] = options_.assumed_output;
+  }
+}
+
+// A zenith angle [rad] of a data line in [0, pi/2] (a rounding excess up to 1e-9 is clamped).
+double AltaParser::zenith(double t, const CsvCell& cell, const char* what) const {
+  if (t < 0.0 || t > kPi / 2 + 1e-9) {
+    throw FileError(path_, n_, cell.column,
+                    fmt::format("{} = {} rad is outside [0, pi/2] (text '{}')", what, t, cell.text));
+  }
+  return std::fmin(t, kPi / 2);
+}
+
+void AltaParser::data_line(const std::string& line) {
+  const auto cells = split_whitespace(line);
+  const std::size_t n_in = input_ == AltaInput::kTlTvProjDphi ? 3 : 4;
+  if (cells.size() != n_in + 1) {
+    throw FileError(
+        path_, n_, cells.size() > n_in + 1 ? cells[n_in + 1].column : cells.back().column,
+        fmt::format("expected {} values per line ({} inputs, 1 output), found {}", n_in + 1, n_in, cells.size()));
+  }
+  double v[5];
+  for (std::size_t k = 0; k <= n_in; ++k) {
+    if (!parse_finite_double(cells[k].text, v[k])) {
+      throw FileError(path_, n_, cells[k].column, fmt::format("'{}' is not a finite number", cells[k].text));
+    }
+  }
+  double theta_l = v[0], phi_l = 0.0, theta_v = 0.0, phi_v = 0.0, value = v[n_in];
+  if (input_ == AltaInput::kTlTvProjDphi) {
+    theta_v = std::hypot(v[1], v[2]);
+    phi_v = theta_v > 0.0 ? std::atan2(v[2], v[1]) : 0.0;
+  } else {
+    phi_l = v[1];
+    theta_v = v[2];
+    phi_v = v[3];
+  }
+  theta_l = zenith(theta_l, cells[0], "theta_l");
+  theta_v = zenith(theta_v, cells[input_ == AltaInput::kTlTvProjDphi ? 1 : 2], "theta_v");
+  const Geometry g = geometry_from_radians(theta_l, phi_l, theta_v, phi_v);
+  if (output_ == AltaOutput::kInvSteradianCosine) {
+    const double c = g.cos_theta_r();
+    if (c < 1e-6) {
+      if (!options_.exclude_grazing) {
+        throw FileError(path_, n_, cells[n_in].column,
+                        fmt::format("BRDF x cos(theta_v) at grazing view (theta_v = {:.6f} deg) cannot be "
+                                    "converted to a BRDF; exclude such rows explicitly (--exclude-grazing)",
+                                    rad_to_deg(theta_v)));
+      }
+      if (grazing_++ == 0) first_grazing_ = fmt::format("{}:{}", path_, n_);
+      return;
+    }
+    value /= c;
+  }
+  if (value < 0.0 && negative_++ == 0) first_negative_ = fmt::format("{}:{}:{}", path_, n_, cells[n_in].column);
+  add_sample(g, value);
+}
+
+// A new geometry, or (when averaging is asked for) one more sample of a geometry already seen.
+void AltaParser::add_sample(const Geometry& g, double value) {
+  auto q = [](double x) { return static_cast<long long>(std::llround(x * 1e9)); };
+  const std::array<long long, 4> key{q(g.wi.x), q(g.wi.y), q(g.wr.x), q(g.wr.y)};
+  const auto [it, inserted] = seen_.emplace(key, std::make_pair(d_.geometries.size(), n_));
+  if (!inserted) {
+    if (!options_.average_duplicates) {
+      throw FileError(path_, n_, 1,
+                      fmt::format("duplicate geometry: same directions as line {} (ask for averaging of duplicates, "
+                                  "e.g. --average-duplicates, to average them)",
+                                  it->second.second));
+    }
+    if (multiplicity_.empty()) multiplicity_.assign(d_.geometries.size(), 1);
+    ++multiplicity_[it->second.first];
+    d_.brdf[it->second.first] += value;
+    return;
+  }
+  d_.geometries.push_back(g);
+  d_.brdf.push_back(value);
+  if (!multiplicity_.empty()) multiplicity_.push_back(1);
+}
+
+// The dataset once every line is read: duplicate averages, metadata, warnings.
+SpectralDataset AltaParser::finish() {
+  SpectralDataset& d = d_;
+  if (d.geometries.empty()) throw FileError(path_, n_, 0, "file has no data lines");
+  if (!multiplicity_.empty()) {
+    std::size_t extra = 0;
+    for (std::size_t k = 0; k < d.brdf.size(); ++k) {
+      d.brdf[k] /= multiplicity_[k];
+      extra += static_cast<std::size_t>(multiplicity_[k] - 1);
+    }
+    d.metadata["averaged_duplicate_rows"] = std::to_string(extra);
+    warn(fmt::format("{}: {} duplicate geometry rows were averaged", path_, extra));
+  }
+  d.wavelengths = {options_.wavelength_nm};
+  d.metadata["units"] = "sr^-1";
+  d.metadata["source"] = "ALTA text format";
+  d.metadata["alta_conversion"] = output_ == AltaOutput::kInvSteradianCosine
+                                      ? "INV_STERADIAN_COSINE_FACTOR divided by cos(theta_v) (viewing zenith)"
+                                      : "INV_STERADIAN (BRDF as stored)";
+  if (grazing_ > 0) {
+    d.metadata["alta_grazing_rows_excluded"] = std::to_string(grazing_);
+    warn(
+        fmt::format("{}: {} rows at grazing view (cos theta_v < 1e-6) excluded: BRDF x cos theta_v cannot be "
+                    "converted there (first at {})",
+                    path_, grazing_, first_grazing_));
+  }
+  if (negative_ > 0) {
+    warn(fmt::format("{}: {} of {} BRDF values are negative (kept: measurement noise; first at {})", path_, negative_,
+                     d.brdf.size(), first_negative_));
+  }
+  return std::move(d_);
+}
+
 }  // namespace
 
 SpectralDataset read_alta(const std::string& path, const AltaReadOptions& options) {
@@ -51,192 +282,10 @@ SpectralDataset read_alta(const std::string& path, const AltaReadOptions& option
     throw InputError(path + ": ALTA files carry no wavelength: give the wavelength [nm] of the measurement");
   }
   InputFile in(path);
-  SpectralDataset d;
-  AltaInput input = AltaInput::kUnknown;
-  AltaOutput output = AltaOutput::kUnknown;
-  int dim_in = -1, dim_out = -1;
-  bool header_done = false;
+  AltaParser parser(path, options);
   std::string line;
-  long n = 0;
-  std::size_t negative = 0, grazing = 0;
-  std::string first_negative, first_grazing;
-  std::map<std::array<long long, 4>, std::pair<std::size_t, long>> seen;
-  std::vector<int> multiplicity;
-  auto warn = [&](const std::string& m) {
-    if (options.warn) {
-      options.warn(m);
-    } else {
-      fmt::print(stderr, "roadbrdf: warning: {}\n", m);
-    }
-  };
-  while (in.read_line(line)) {
-    ++n;
-    const auto b = line.find_first_not_of(" \t\r");
-    if (b == std::string::npos) continue;
-    if (line[b] == '#') {
-      const auto cells = split_whitespace(std::string_view(line).substr(b + 1));
-      if (cells.empty()) continue;
-      const std::string key(cells[0].text);
-      // Cell columns are 1-based within the text after '#' (spaces after '#' are allowed).
-      const std::size_t key_start = b + static_cast<std::size_t>(cells[0].column);
-      const std::string rest = trim(line.substr(key_start + cells[0].text.size()));
-      const long col = static_cast<long>(key_start) + 1;
-      const bool header_key = key == "DIM" || key == "PARAM_IN" || key == "PARAM_OUT" || key == "VS";
-      if (header_key && header_done) {
-        throw FileError(path, n, col,
-                        fmt::format("#{} after the data: the header must come before the first data line", key));
-      }
-      if (key == "DIM") {
-        if (cells.size() != 3) throw FileError(path, n, col, "#DIM expects two numbers (inputs, outputs)");
-        dim_in = dimension(path, n, static_cast<long>(b + 1), cells[1]);
-        dim_out = dimension(path, n, static_cast<long>(b + 1), cells[2]);
-        if (dim_out != 1) {
-          throw FileError(
-              path, n, static_cast<long>(b + 1) + cells[2].column,
-              fmt::format("{} output values per line: only single-channel ALTA files are supported", cells[2].text));
-        }
-      } else if (key == "VS") {
-        if (rest != "0") {
-          throw FileError(path, n, col,
-                          fmt::format("'#VS {}': vertical segments are not supported (only #VS 0)", rest));
-        }
-      } else if (key == "PARAM_IN") {
-        if (rest == "ISOTROPIC_TL_TV_PROJ_DPHI") {
-          input = AltaInput::kTlTvProjDphi;
-        } else if (rest == "SPHERICAL_TL_PL_TV_PV") {
-          input = AltaInput::kSphericalTlPlTvPv;
-        } else {
-          throw FileError(path, n, col,
-                          fmt::format("input parametrisation '{}' is not supported (ISOTROPIC_TL_TV_PROJ_DPHI, "
-                                      "SPHERICAL_TL_PL_TV_PV)",
-                                      rest));
-        }
-      } else if (key == "PARAM_OUT") {
-        output = parse_output(rest);
-        if (output == AltaOutput::kUnknown) {
-          throw FileError(
-              path, n, col,
-              fmt::format("output unit '{}' is not supported (INV_STERADIAN, INV_STERADIAN_COSINE_FACTOR)", rest));
-        }
-      } else if (key == "SAMPLE" || key == "ORIGIN" || key == "URL") {
-        std::string k = key;
-        for (auto& c : k) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        d.metadata[k] = rest;
-      }
-      continue;
-    }
-    if (!header_done) {
-      header_done = true;
-      if (input == AltaInput::kUnknown) throw FileError(path, n, 0, "data before any #PARAM_IN line");
-      const int expected_in = input == AltaInput::kTlTvProjDphi ? 3 : 4;
-      if (dim_in >= 0 && dim_in != expected_in) {
-        throw FileError(path, n, 0,
-                        fmt::format("#DIM gives {} inputs but the parametrisation has {}", dim_in, expected_in));
-      }
-      if (output == AltaOutput::kUnknown) {
-        output = parse_output(options.assumed_output);
-        if (output == AltaOutput::kUnknown) {
-          throw FileError(path, n, 0,
-                          "file has no #PARAM_OUT line: state the output unit (INV_STERADIAN or "
-                          "INV_STERADIAN_COSINE_FACTOR)");
-        }
-        d.metadata["alta_output_assumed"] = options.assumed_output;
-      }
-    }
-    const auto cells = split_whitespace(line);
-    const std::size_t n_in = input == AltaInput::kTlTvProjDphi ? 3 : 4;
-    if (cells.size() != n_in + 1) {
-      throw FileError(
-          path, n, cells.size() > n_in + 1 ? cells[n_in + 1].column : cells.back().column,
-          fmt::format("expected {} values per line ({} inputs, 1 output), found {}", n_in + 1, n_in, cells.size()));
-    }
-    double v[5];
-    for (std::size_t k = 0; k <= n_in; ++k) {
-      if (!parse_finite_double(cells[k].text, v[k])) {
-        throw FileError(path, n, cells[k].column, fmt::format("'{}' is not a finite number", cells[k].text));
-      }
-    }
-    double theta_l = v[0], phi_l = 0.0, theta_v = 0.0, phi_v = 0.0, value = v[n_in];
-    if (input == AltaInput::kTlTvProjDphi) {
-      theta_v = std::hypot(v[1], v[2]);
-      phi_v = theta_v > 0.0 ? std::atan2(v[2], v[1]) : 0.0;
-    } else {
-      phi_l = v[1];
-      theta_v = v[2];
-      phi_v = v[3];
-    }
-    auto zenith_check = [&](double t, std::size_t k, const char* what) {
-      if (t < 0.0 || t > kPi / 2 + 1e-9) {
-        throw FileError(path, n, cells[k].column,
-                        fmt::format("{} = {} rad is outside [0, pi/2] (text '{}')", what, t, cells[k].text));
-      }
-      return std::fmin(t, kPi / 2);
-    };
-    theta_l = zenith_check(theta_l, 0, "theta_l");
-    theta_v = zenith_check(theta_v, input == AltaInput::kTlTvProjDphi ? 1 : 2, "theta_v");
-    const Geometry g = geometry_from_radians(theta_l, phi_l, theta_v, phi_v);
-    if (output == AltaOutput::kInvSteradianCosine) {
-      const double c = g.cos_theta_r();
-      if (c < 1e-6) {
-        if (!options.exclude_grazing) {
-          throw FileError(path, n, cells[n_in].column,
-                          fmt::format("BRDF x cos(theta_v) at grazing view (theta_v = {:.6f} deg) cannot be "
-                                      "converted to a BRDF; exclude such rows explicitly (--exclude-grazing)",
-                                      rad_to_deg(theta_v)));
-        }
-        if (grazing++ == 0) first_grazing = fmt::format("{}:{}", path, n);
-        continue;
-      }
-      value /= c;
-    }
-    if (value < 0.0 && negative++ == 0) first_negative = fmt::format("{}:{}:{}", path, n, cells[n_in].column);
-    auto q = [](double x) { return static_cast<long long>(std::llround(x * 1e9)); };
-    const std::array<long long, 4> key{q(g.wi.x), q(g.wi.y), q(g.wr.x), q(g.wr.y)};
-    const auto [it, inserted] = seen.emplace(key, std::make_pair(d.geometries.size(), n));
-    if (!inserted) {
-      if (!options.average_duplicates) {
-        throw FileError(path, n, 1,
-                        fmt::format("duplicate geometry: same directions as line {} (ask for averaging of duplicates, "
-                                    "e.g. --average-duplicates, to average them)",
-                                    it->second.second));
-      }
-      if (multiplicity.empty()) multiplicity.assign(d.geometries.size(), 1);
-      ++multiplicity[it->second.first];
-      d.brdf[it->second.first] += value;
-      continue;
-    }
-    d.geometries.push_back(g);
-    d.brdf.push_back(value);
-    if (!multiplicity.empty()) multiplicity.push_back(1);
-  }
-  if (d.geometries.empty()) throw FileError(path, n, 0, "file has no data lines");
-  if (!multiplicity.empty()) {
-    std::size_t extra = 0;
-    for (std::size_t k = 0; k < d.brdf.size(); ++k) {
-      d.brdf[k] /= multiplicity[k];
-      extra += static_cast<std::size_t>(multiplicity[k] - 1);
-    }
-    d.metadata["averaged_duplicate_rows"] = std::to_string(extra);
-    warn(fmt::format("{}: {} duplicate geometry rows were averaged", path, extra));
-  }
-  d.wavelengths = {options.wavelength_nm};
-  d.metadata["units"] = "sr^-1";
-  d.metadata["source"] = "ALTA text format";
-  d.metadata["alta_conversion"] = output == AltaOutput::kInvSteradianCosine
-                                      ? "INV_STERADIAN_COSINE_FACTOR divided by cos(theta_v) (viewing zenith)"
-                                      : "INV_STERADIAN (BRDF as stored)";
-  if (grazing > 0) {
-    d.metadata["alta_grazing_rows_excluded"] = std::to_string(grazing);
-    warn(
-        fmt::format("{}: {} rows at grazing view (cos theta_v < 1e-6) excluded: BRDF x cos theta_v cannot be "
-                    "converted there (first at {})",
-                    path, grazing, first_grazing));
-  }
-  if (negative > 0) {
-    warn(fmt::format("{}: {} of {} BRDF values are negative (kept: measurement noise; first at {})", path, negative,
-                     d.brdf.size(), first_negative));
-  }
-  return d;
+  while (in.read_line(line)) parser.read_line(line);
+  return parser.finish();
 }
 
 }  // namespace roadbrdf

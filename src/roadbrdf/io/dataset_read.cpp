@@ -108,185 +108,271 @@ struct Role {
   std::uint32_t index;  // angle 0-3, or wavelength index
 };
 
-SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector<HeaderCell>& names,
-                          std::size_t column_count) {
+// The wide header's column roles; its wavelengths go to the dataset.
+struct WideColumns {
+  std::vector<Role> roles;
+  bool with_sigma = false;
+};
+
+// The sigma_<nm> columns of a wide header, in header order.
+struct SigmaColumns {
+  std::vector<double> wavelengths;
+  std::vector<long> columns;
+  std::vector<std::string_view> texts;
+};
+
+// A non-angle header cell: the wavelength [nm] it names ("550", "550nm", "550 nm"), and whether it
+// is an uncertainty column ("sigma_550").
+double header_wavelength(Reading& r, std::string_view text, long column, long header_line, bool& sigma) {
+  std::string lower(text.substr(0, std::min<std::size_t>(text.size(), 6)));
+  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  sigma = lower == "sigma_";
+  std::string_view number = sigma ? text.substr(6) : text;
+  // "400nm", "400 nm"
+  std::string stripped = canonical_column_name(number);
+  double wl = 0.0;
+  if (!r.numbers.parse(stripped, wl, header_line, column) || !(wl > 0.0)) {
+    r.reader.fail(column, fmt::format("column '{}' is neither an angle column, a wavelength in nm (e.g. 550) "
+                                      "nor an uncertainty column sigma_<nm>{}",
+                                      text, r.numbers.hint(stripped)));
+  }
+  return wl;
+}
+
+// The sigma_<nm> block, if any, lists the wavelengths of the value columns, in their order.
+void check_sigma_block(Reading& r, const SigmaColumns& sigma, const std::vector<double>& wavelengths,
+                       const std::vector<std::string_view>& value_texts, long header_end) {
+  const std::size_t m = wavelengths.size();
+  for (std::size_t k = 0; k < std::max(sigma.wavelengths.size(), m); ++k) {
+    if (k >= sigma.wavelengths.size()) {
+      r.reader.fail(header_end, fmt::format("uncertainty block lacks sigma_{} (it must list the same wavelengths)",
+                                            wavelengths[k]));
+    }
+    if (k >= m || sigma.wavelengths[k] != wavelengths[k]) {
+      r.reader.fail(sigma.columns[k],
+                    fmt::format("uncertainty column '{}' does not match wavelength column {} (the sigma_<nm> "
+                                "block must list the same wavelengths in the same order)",
+                                sigma.texts[k], k < m ? std::string(value_texts[k]) : "none"));
+    }
+  }
+}
+
+// The roles of a wide header's columns: the four angles (d's convention), then one column per
+// wavelength (strictly increasing, into d.wavelengths), then optionally the same wavelengths again
+// as sigma_<nm>.
+WideColumns wide_columns(Reading& r, std::string_view header, const std::vector<HeaderCell>& names,
+                         std::size_t column_count, SpectralDataset& d) {
   CsvReader& reader = r.reader;
-  SpectralDataset d;
-  read_metadata(r, d);
   const long header_line = reader.line_number();
   const std::vector<std::size_t> angle_columns = angle_columns_of(r, names, header_line, d.convention);
-
-  std::vector<Role> roles(column_count, Role{Role::kValue, 0});
+  WideColumns w;
+  auto& roles = w.roles;
+  roles.assign(column_count, Role{Role::kValue, 0});
   for (int k = 0; k < 4; ++k)
     roles[angle_columns[static_cast<std::size_t>(k)]] = {Role::kAngle, static_cast<std::uint32_t>(k)};
-  std::vector<double> sigma_wavelengths;
-  std::vector<long> sigma_header_columns;
-  std::vector<std::string_view> value_header_texts, sigma_header_texts;
-  {
-    CellScanner cells(header, r.delimiter);
-    std::string_view text;
-    long column = 0;
-    std::size_t k = 0;
-    for (; cells.next(text, column); ++k) {
-      if (roles[k].kind == Role::kAngle) continue;
-      std::string lower(text.substr(0, std::min<std::size_t>(text.size(), 6)));
-      for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      const bool sigma = lower == "sigma_";
-      std::string_view number = sigma ? text.substr(6) : text;
-      // "400nm", "400 nm"
-      std::string stripped = canonical_column_name(number);
-      double wl = 0.0;
-      if (!r.numbers.parse(stripped, wl, header_line, column) || !(wl > 0.0)) {
-        reader.fail(column, fmt::format("column '{}' is neither an angle column, a wavelength in nm (e.g. 550) "
-                                        "nor an uncertainty column sigma_<nm>{}",
-                                        text, r.numbers.hint(stripped)));
+  SigmaColumns sigma_columns;
+  auto& sigma_wavelengths = sigma_columns.wavelengths;
+  std::vector<std::string_view> value_header_texts;
+  CellScanner cells(header, r.delimiter);
+  std::string_view text;
+  long column = 0;
+  for (std::size_t k = 0; cells.next(text, column); ++k) {
+    if (roles[k].kind == Role::kAngle) continue;
+    bool sigma = false;
+    const double wl = header_wavelength(r, text, column, header_line, sigma);
+    if (sigma) {
+      if (!sigma_wavelengths.empty() && wl <= sigma_wavelengths.back()) {
+        reader.fail(column, fmt::format("uncertainty column '{}' follows sigma_{}: wavelengths must be strictly "
+                                        "increasing (no duplicates)",
+                                        text, sigma_wavelengths.back()));
       }
-      if (sigma) {
-        if (!sigma_wavelengths.empty() && wl <= sigma_wavelengths.back()) {
-          reader.fail(column, fmt::format("uncertainty column '{}' follows sigma_{}: wavelengths must be strictly "
-                                          "increasing (no duplicates)",
-                                          text, sigma_wavelengths.back()));
-        }
-        roles[k] = {Role::kSigma, static_cast<std::uint32_t>(sigma_wavelengths.size())};
-        sigma_wavelengths.push_back(wl);
-        sigma_header_columns.push_back(column);
-        sigma_header_texts.push_back(text);
-      } else {
-        if (!sigma_wavelengths.empty()) {
-          reader.fail(column, fmt::format("wavelength column '{}' after the sigma_<nm> block: put every "
-                                          "wavelength column before the uncertainties",
-                                          text));
-        }
-        if (!d.wavelengths.empty() && wl <= d.wavelengths.back()) {
-          reader.fail(column,
-                      fmt::format("wavelength '{}' nm is {} the previous column's {} nm: wavelengths must be "
-                                  "strictly increasing (no duplicates)",
-                                  text, wl == d.wavelengths.back() ? "equal to" : "below", d.wavelengths.back()));
-        }
-        roles[k] = {Role::kValue, static_cast<std::uint32_t>(d.wavelengths.size())};
-        d.wavelengths.push_back(wl);
-        value_header_texts.push_back(text);
+      roles[k] = {Role::kSigma, static_cast<std::uint32_t>(sigma_wavelengths.size())};
+      sigma_wavelengths.push_back(wl);
+      sigma_columns.columns.push_back(column);
+      sigma_columns.texts.push_back(text);
+    } else {
+      if (!sigma_wavelengths.empty()) {
+        reader.fail(column, fmt::format("wavelength column '{}' after the sigma_<nm> block: put every "
+                                        "wavelength column before the uncertainties",
+                                        text));
       }
+      if (!d.wavelengths.empty() && wl <= d.wavelengths.back()) {
+        reader.fail(column, fmt::format("wavelength '{}' nm is {} the previous column's {} nm: wavelengths must be "
+                                        "strictly increasing (no duplicates)",
+                                        text, wl == d.wavelengths.back() ? "equal to" : "below", d.wavelengths.back()));
+      }
+      roles[k] = {Role::kValue, static_cast<std::uint32_t>(d.wavelengths.size())};
+      d.wavelengths.push_back(wl);
+      value_header_texts.push_back(text);
     }
   }
   const long header_end = static_cast<long>(header.size()) + 1;
   if (d.wavelengths.empty()) {
     reader.fail(header_end, "header has no wavelength columns (one column per wavelength, named by its value in nm)");
   }
-  const std::size_t m = d.wavelengths.size();
-  const bool with_sigma = !sigma_wavelengths.empty();
-  if (with_sigma) {
-    for (std::size_t k = 0; k < std::max(sigma_wavelengths.size(), m); ++k) {
-      if (k >= sigma_wavelengths.size()) {
-        reader.fail(header_end, fmt::format("uncertainty block lacks sigma_{} (it must list the same wavelengths)",
-                                            d.wavelengths[k]));
-      }
-      if (k >= m || sigma_wavelengths[k] != d.wavelengths[k]) {
-        reader.fail(sigma_header_columns[k],
-                    fmt::format("uncertainty column '{}' does not match wavelength column {} (the sigma_<nm> "
-                                "block must list the same wavelengths in the same order)",
-                                sigma_header_texts[k], k < m ? std::string(value_header_texts[k]) : "none"));
-      }
+  w.with_sigma = !sigma_wavelengths.empty();
+  if (w.with_sigma) check_sigma_block(r, sigma_columns, d.wavelengths, value_header_texts, header_end);
+  return w;
+}
+
+// The cells of one row by their column roles: the angle cells into angles, the BRDF values into
+// values[wavelength index], the uncertainties into sigmas. The hot loop of a wide file: nothing is
+// allocated, each number is parsed in place.
+void read_wide_cells(Reading& r, std::string_view line, const std::vector<Role>& roles, AngleCells& angles,
+                     double* values, double* sigmas) {
+  const std::size_t column_count = roles.size();
+  CellScanner cells(line, r.delimiter);
+  std::string_view text;
+  long column = 0;
+  std::size_t k = 0;
+  while (cells.next(text, column)) {
+    if (k == column_count) ragged(r, line, column_count, text, column, true);
+    const Role role = roles[k++];
+    switch (role.kind) {
+      case Role::kAngle:
+        angles.text[role.index] = text;
+        angles.column[role.index] = column;
+        angles.value[role.index] = number(r, text, column, "angle in degrees");
+        break;
+      case Role::kValue:
+        values[role.index] = parse_brdf(r, text, column);
+        break;
+      case Role::kSigma:
+        sigmas[role.index] = parse_sigma(r, text, column);
+        break;
+    }
+  }
+  if (k != column_count) ragged(r, line, column_count, text, column, false);
+}
+
+// The data rows of a wide file into the dataset, one at a time: each a new geometry, or (when
+// averaging is asked for) one more measurement of a geometry already read. While averaging, the
+// dataset holds sums (of values, and of squared uncertainties) until finish().
+class WideRows {
+ public:
+  WideRows(Reading& r, SpectralDataset& d, const WideColumns& columns)
+      : r_(r),
+        d_(d),
+        roles_(columns.roles),
+        m_(d.wavelengths.size()),
+        with_sigma_(columns.with_sigma),
+        row_(m_),
+        srow_(with_sigma_ ? m_ : 0) {}
+
+  void read(std::string_view line) {
+    if (!reserved_) reserve(line);
+    read_wide_cells(r_, line, roles_, angles_, row_.data(), srow_.data());
+    const Geometry g = parse_geometry(r_, d_.convention, angles_);
+    const auto [it, inserted] = seen_.emplace(key_of(g), d_.geometries.size());
+    if (inserted) {
+      append(g);
+    } else {
+      add_duplicate(it->second);
     }
   }
 
-  std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen;
-  std::vector<long> row_lines;
-  std::vector<int> multiplicity;  // only when averaging
-  std::vector<double> row(m), srow(with_sigma ? m : 0);
-  AngleCells angles;
-  bool reserved = false;
-  std::string_view line;
-  while (reader.next_line(line)) {
-    if (!reserved) {
-      // Reserve for the whole file from the length of the first row (memory proportional to the
-      // data, without the copies of repeated growth).
-      reserved = true;
-      const auto size = reader.size_hint();
-      if (size > 0 && !line.empty()) {
-        const std::size_t rows = static_cast<std::size_t>(size / (line.size() + 1)) + 1;
-        if (rows < (std::size_t{1} << 26) / std::max<std::size_t>(m, 1)) {
-          d.brdf.reserve(rows * m);
-          d.geometries.reserve(rows);
-          if (with_sigma) d.sigma.reserve(rows * m);
-        }
-      }
-    }
-    CellScanner cells(line, r.delimiter);
-    std::string_view text;
-    long column = 0;
-    std::size_t k = 0;
-    while (cells.next(text, column)) {
-      if (k == column_count) ragged(r, line, column_count, text, column, true);
-      const Role role = roles[k++];
-      switch (role.kind) {
-        case Role::kAngle:
-          angles.text[role.index] = text;
-          angles.column[role.index] = column;
-          angles.value[role.index] = number(r, text, column, "angle in degrees");
-          break;
-        case Role::kValue:
-          row[role.index] = parse_brdf(r, text, column);
-          break;
-        case Role::kSigma:
-          srow[role.index] = parse_sigma(r, text, column);
-          break;
-      }
-    }
-    if (k != column_count) ragged(r, line, column_count, text, column, false);
-    const Geometry g = parse_geometry(r, d.convention, angles);
-    const auto [it, inserted] = seen.emplace(key_of(g), d.geometries.size());
-    if (!inserted) {
-      if (!r.options.average_duplicates) {
-        reader.fail(angles.column[0], fmt::format("duplicate geometry: same angles as line {} ({})",
-                                                  row_lines[it->second], duplicates_hint()));
-      }
-      const std::size_t n = it->second;
-      if (multiplicity.empty()) {
-        // Per cell: how many of the duplicates measured it (missing cells are not averaged in).
-        multiplicity.resize(d.brdf.size());
-        for (std::size_t k = 0; k < d.brdf.size(); ++k) multiplicity[k] = std::isnan(d.brdf[k]) ? 0 : 1;
-      }
-      ++r.stats.averaged_duplicate_rows;
-      for (std::size_t j = 0; j < m; ++j) {
-        if (std::isnan(row[j])) continue;
-        double& v = d.brdf[n * m + j];
-        v = multiplicity[n * m + j]++ == 0 ? row[j] : v + row[j];
-        if (with_sigma) {
-          double& s = d.sigma[n * m + j];
-          s = multiplicity[n * m + j] == 1 ? srow[j] * srow[j] : s + srow[j] * srow[j];
-        }
-      }
-      continue;
-    }
-    d.geometries.push_back(g);
-    row_lines.push_back(reader.line_number());
-    if (!multiplicity.empty()) {
-      for (std::size_t j = 0; j < m; ++j) multiplicity.push_back(std::isnan(row[j]) ? 0 : 1);
-    }
-    d.brdf.insert(d.brdf.end(), row.begin(), row.end());
-    if (with_sigma) {
-      if (r.options.average_duplicates) {
-        for (std::size_t j = 0; j < m; ++j) d.sigma.push_back(srow[j] * srow[j]);
-      } else {
-        d.sigma.insert(d.sigma.end(), srow.begin(), srow.end());
-      }
+  void finish();
+
+ private:
+  void reserve(std::string_view first_row);
+  void append(const Geometry& g);
+  void add_duplicate(std::size_t n);
+
+  Reading& r_;
+  SpectralDataset& d_;
+  const std::vector<Role>& roles_;
+  const std::size_t m_;
+  const bool with_sigma_;
+  std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen_;
+  std::vector<long> row_lines_;
+  std::vector<int> multiplicity_;  // only when averaging
+  std::vector<double> row_, srow_;
+  AngleCells angles_;
+  bool reserved_ = false;
+};
+
+// Reserve for the whole file from the length of the first row (memory proportional to the data,
+// without the copies of repeated growth).
+void WideRows::reserve(std::string_view first_row) {
+  reserved_ = true;
+  const auto size = r_.reader.size_hint();
+  if (size > 0 && !first_row.empty()) {
+    const std::size_t rows = static_cast<std::size_t>(size / (first_row.size() + 1)) + 1;
+    if (rows < (std::size_t{1} << 26) / std::max<std::size_t>(m_, 1)) {
+      d_.brdf.reserve(rows * m_);
+      d_.geometries.reserve(rows);
+      if (with_sigma_) d_.sigma.reserve(rows * m_);
     }
   }
+}
+
+void WideRows::append(const Geometry& g) {
+  d_.geometries.push_back(g);
+  row_lines_.push_back(r_.reader.line_number());
+  if (!multiplicity_.empty()) {
+    for (std::size_t j = 0; j < m_; ++j) multiplicity_.push_back(std::isnan(row_[j]) ? 0 : 1);
+  }
+  d_.brdf.insert(d_.brdf.end(), row_.begin(), row_.end());
+  if (with_sigma_) {
+    if (r_.options.average_duplicates) {
+      for (std::size_t j = 0; j < m_; ++j) d_.sigma.push_back(srow_[j] * srow_[j]);
+    } else {
+      d_.sigma.insert(d_.sigma.end(), srow_.begin(), srow_.end());
+    }
+  }
+}
+
+// The current row repeats geometry n: an error, or summed into it when averaging.
+void WideRows::add_duplicate(std::size_t n) {
+  if (!r_.options.average_duplicates) {
+    r_.reader.fail(angles_.column[0],
+                   fmt::format("duplicate geometry: same angles as line {} ({})", row_lines_[n], duplicates_hint()));
+  }
+  auto& brdf = d_.brdf;
+  if (multiplicity_.empty()) {
+    // Per cell: how many of the duplicates measured it (missing cells are not averaged in).
+    multiplicity_.resize(brdf.size());
+    for (std::size_t k = 0; k < brdf.size(); ++k) multiplicity_[k] = std::isnan(brdf[k]) ? 0 : 1;
+  }
+  ++r_.stats.averaged_duplicate_rows;
+  for (std::size_t j = 0; j < m_; ++j) {
+    if (std::isnan(row_[j])) continue;
+    double& v = brdf[n * m_ + j];
+    v = multiplicity_[n * m_ + j]++ == 0 ? row_[j] : v + row_[j];
+    if (with_sigma_) {
+      double& s = d_.sigma[n * m_ + j];
+      s = multiplicity_[n * m_ + j] == 1 ? srow_[j] * srow_[j] : s + srow_[j] * srow_[j];
+    }
+  }
+}
+
+// When averaging: the sums become means (uncertainty: root of the summed squares over the count).
+void WideRows::finish() {
+  if (!r_.options.average_duplicates) return;
+  for (std::size_t n = 0; n < d_.geometries.size(); ++n) {
+    for (std::size_t j = 0; j < m_; ++j) {
+      // A cell no duplicate measured stays missing (NaN); 0/0 is never formed.
+      const double c = multiplicity_.empty() ? 1.0 : std::max<double>(1.0, multiplicity_[n * m_ + j]);
+      d_.brdf[n * m_ + j] /= c;
+      if (with_sigma_) d_.sigma[n * m_ + j] = std::sqrt(d_.sigma[n * m_ + j]) / c;
+    }
+  }
+  if (r_.stats.averaged_duplicate_rows)
+    d_.metadata["averaged_duplicate_rows"] = std::to_string(r_.stats.averaged_duplicate_rows);
+}
+
+SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector<HeaderCell>& names,
+                          std::size_t column_count) {
+  CsvReader& reader = r.reader;
+  SpectralDataset d;
+  read_metadata(r, d);
+  const WideColumns columns = wide_columns(r, header, names, column_count, d);
+  WideRows rows(r, d, columns);
+  std::string_view line;
+  while (reader.next_line(line)) rows.read(line);
   if (d.geometries.empty())
     throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
-  if (r.options.average_duplicates) {
-    for (std::size_t n = 0; n < d.geometries.size(); ++n) {
-      for (std::size_t j = 0; j < m; ++j) {
-        // A cell no duplicate measured stays missing (NaN); 0/0 is never formed.
-        const double c = multiplicity.empty() ? 1.0 : std::max<double>(1.0, multiplicity[n * m + j]);
-        d.brdf[n * m + j] /= c;
-        if (with_sigma) d.sigma[n * m + j] = std::sqrt(d.sigma[n * m + j]) / c;
-      }
-    }
-    if (r.stats.averaged_duplicate_rows)
-      d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
-  }
+  rows.finish();
   return d;
 }
 

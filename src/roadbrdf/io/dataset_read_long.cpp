@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <unordered_map>
+#include <utility>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
@@ -223,12 +224,17 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
 
 // ---- long ---------------------------------------------------------------------------------------
 
-SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, std::size_t column_count,
-                          const std::vector<std::size_t>& angle_columns, AngleConvention convention) {
+namespace {
+
+// The role of each column of a long dataset: 0-3 the angles, 4 wavelength, 5 brdf, 6 sigma.
+struct LongLayout {
+  std::vector<int> role;
+  bool with_sigma = false;
+};
+
+LongLayout long_layout(Reading& r, const std::vector<LongColumn>& columns, std::size_t column_count,
+                       const std::vector<std::size_t>& angle_columns) {
   CsvReader& reader = r.reader;
-  SpectralDataset d;
-  d.convention = convention;
-  read_metadata(r, d);
   std::size_t wl_col = column_count, brdf_col = column_count, sigma_col = column_count;
   for (const auto& c : columns) {
     std::size_t* target = c.canonical == "wavelength" ? &wl_col
@@ -246,144 +252,186 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
   if (brdf_col == column_count) {
     throw FileError(reader.path(), reader.line_number(), 0, "long dataset header lacks the 'brdf' column");
   }
-  const bool with_sigma = sigma_col != column_count;
-  // Column -> role: 0-3 angle, 4 wavelength, 5 brdf, 6 sigma.
-  std::vector<int> role(column_count, -1);
-  for (int k = 0; k < 4; ++k) role[angle_columns[static_cast<std::size_t>(k)]] = k;
-  role[wl_col] = 4;
-  role[brdf_col] = 5;
-  if (with_sigma) role[sigma_col] = 6;
+  LongLayout l;
+  l.with_sigma = sigma_col != column_count;
+  l.role.assign(column_count, -1);
+  for (int k = 0; k < 4; ++k) l.role[angle_columns[static_cast<std::size_t>(k)]] = k;
+  l.role[wl_col] = 4;
+  l.role[brdf_col] = 5;
+  if (l.with_sigma) l.role[sigma_col] = 6;
+  return l;
+}
 
-  // One record per row; the table is allocated only once its shape is known to be complete.
-  struct Record {
-    std::size_t geometry;
-    double wavelength, brdf, sigma;
-    long line, column;
-  };
+// One data row: a value (and its uncertainty) at one geometry and wavelength.
+struct Record {
+  std::size_t geometry;
+  double wavelength, brdf, sigma;
+  long line, column;
+};
+
+// The cells of one row: the angle cells into angles, the wavelength, BRDF and uncertainty into rec.
+void read_long_row(Reading& r, std::string_view line, const std::vector<int>& role, AngleCells& angles, Record& rec) {
+  const std::size_t column_count = role.size();
+  CellScanner cells(line, r.delimiter);
+  std::string_view text;
+  long column = 0;
+  std::size_t k = 0;
+  while (cells.next(text, column)) {
+    if (k == column_count) ragged(r, line, column_count, text, column, true);
+    const int what = role[k++];
+    if (what < 4) {
+      angles.text[static_cast<std::size_t>(what)] = text;
+      angles.column[static_cast<std::size_t>(what)] = column;
+      angles.value[static_cast<std::size_t>(what)] = number(r, text, column, "angle in degrees");
+    } else if (what == 4) {
+      rec.wavelength = number(r, text, column, "wavelength in nm");
+      if (rec.wavelength <= 0.0) r.reader.fail(column, fmt::format("wavelength '{}' nm is not positive", text));
+    } else if (what == 5) {
+      rec.brdf = parse_brdf(r, text, column);
+    } else {
+      rec.sigma = parse_sigma(r, text, column);
+    }
+  }
+  if (k != column_count) ragged(r, line, column_count, text, column, false);
+}
+
+// Every data row as a record; the geometries into d in order of first appearance, with the line of
+// each one's first row in first_lines.
+std::vector<Record> read_records(Reading& r, const std::vector<int>& role, SpectralDataset& d,
+                                 std::vector<long>& first_lines) {
+  CsvReader& reader = r.reader;
   std::vector<Record> records;
   std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen;
-  std::vector<long> first_lines;
   AngleCells angles;
   std::string_view line;
   while (reader.next_line(line)) {
-    CellScanner cells(line, r.delimiter);
-    std::string_view text;
-    long column = 0;
-    std::size_t k = 0;
-    double wl = 0.0, v = 0.0, s = 0.0;
-    while (cells.next(text, column)) {
-      if (k == column_count) ragged(r, line, column_count, text, column, true);
-      const int what = role[k++];
-      if (what < 4) {
-        angles.text[static_cast<std::size_t>(what)] = text;
-        angles.column[static_cast<std::size_t>(what)] = column;
-        angles.value[static_cast<std::size_t>(what)] = number(r, text, column, "angle in degrees");
-      } else if (what == 4) {
-        wl = number(r, text, column, "wavelength in nm");
-        if (wl <= 0.0) reader.fail(column, fmt::format("wavelength '{}' nm is not positive", text));
-      } else if (what == 5) {
-        v = parse_brdf(r, text, column);
-      } else {
-        s = parse_sigma(r, text, column);
-      }
-    }
-    if (k != column_count) ragged(r, line, column_count, text, column, false);
+    Record rec{0, 0.0, 0.0, 0.0, 0, 0};
+    read_long_row(r, line, role, angles, rec);
     const Geometry g = parse_geometry(r, d.convention, angles);
     const auto [it, inserted] = seen.emplace(key_of(g), d.geometries.size());
     if (inserted) {
       d.geometries.push_back(g);
       first_lines.push_back(reader.line_number());
     }
-    records.push_back({it->second, wl, v, s, reader.line_number(), angles.column[0]});
+    rec.geometry = it->second;
+    rec.line = reader.line_number();
+    rec.column = angles.column[0];
+    records.push_back(rec);
   }
   if (records.empty()) throw FileError(reader.path(), reader.line_number(), 0, "file has a header but no data rows");
-  std::vector<double> wls;
-  wls.reserve(records.size());
-  for (const auto& rec : records) wls.push_back(rec.wavelength);
+  return records;
+}
+
+// The records with their wavelength grid (the distinct wavelengths, ascending), each record's index
+// on it, and the records' order by geometry, wavelength and line: the shape checks work on these,
+// so that memory stays proportional to the file, whatever geometries x wavelengths would be.
+struct RecordTable {
+  std::vector<Record> records;
+  std::vector<double> wavelengths;
+  std::vector<std::uint32_t> wl_index;
+  std::vector<std::size_t> order;
+
+  // Records a and b are of one (geometry, wavelength) pair.
+  bool same(std::size_t a, std::size_t b) const {
+    return records[a].geometry == records[b].geometry && wl_index[a] == wl_index[b];
+  }
+};
+
+RecordTable record_table(std::vector<Record> records) {
+  RecordTable t;
+  t.records = std::move(records);
+  const auto& rec = t.records;
+  auto& wls = t.wavelengths;
+  wls.reserve(rec.size());
+  for (const auto& x : rec) wls.push_back(x.wavelength);
   std::sort(wls.begin(), wls.end());
   wls.erase(std::unique(wls.begin(), wls.end()), wls.end());
-  const std::size_t n = d.geometries.size(), m = wls.size();
-
-  // Shape check on the records themselves (sorted by geometry, wavelength, line): memory stays
-  // proportional to the file, whatever geometries x wavelengths would be.
-  std::vector<std::uint32_t> wl_index(records.size());
-  for (std::size_t k = 0; k < records.size(); ++k) {
-    wl_index[k] =
-        static_cast<std::uint32_t>(std::lower_bound(wls.begin(), wls.end(), records[k].wavelength) - wls.begin());
+  t.wl_index.resize(rec.size());
+  for (std::size_t k = 0; k < rec.size(); ++k) {
+    t.wl_index[k] =
+        static_cast<std::uint32_t>(std::lower_bound(wls.begin(), wls.end(), rec[k].wavelength) - wls.begin());
   }
-  std::vector<std::size_t> order(records.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    if (records[a].geometry != records[b].geometry) return records[a].geometry < records[b].geometry;
-    if (wl_index[a] != wl_index[b]) return wl_index[a] < wl_index[b];
+  t.order.resize(rec.size());
+  for (std::size_t k = 0; k < t.order.size(); ++k) t.order[k] = k;
+  std::sort(t.order.begin(), t.order.end(), [&](std::size_t a, std::size_t b) {
+    if (rec[a].geometry != rec[b].geometry) return rec[a].geometry < rec[b].geometry;
+    if (t.wl_index[a] != t.wl_index[b]) return t.wl_index[a] < t.wl_index[b];
     return a < b;
   });
-  // Duplicates: report the first one in file order (a group's members are in file order).
-  auto same = [&](std::size_t a, std::size_t b) {
-    return records[a].geometry == records[b].geometry && wl_index[a] == wl_index[b];
-  };
-  if (!r.options.average_duplicates) {
-    std::size_t worst = records.size(), earlier = 0;
-    for (std::size_t k = 0; k < order.size();) {
-      std::size_t e = k + 1;
-      while (e < order.size() && same(order[e], order[k])) ++e;
-      if (e - k > 1 && order[k + 1] < worst) {
-        worst = order[k + 1];
-        earlier = order[k];
-      }
-      k = e;
-    }
-    if (worst < records.size()) {
-      const auto& rec = records[worst];
-      throw FileError(reader.path(), rec.line, rec.column,
-                      fmt::format("duplicate value: this geometry already has wavelength {} nm at line {} ({})",
-                                  rec.wavelength, records[earlier].line, duplicates_hint()));
-    }
-  }
-  // Completeness: a (geometry, wavelength) pair without a row is a measurement that was not made,
-  // a missing cell like an empty or "nan" one (counted and warned about), unless missing values
-  // are refused. A table that would be more than half missing is refused too: its geometries are on
-  // different wavelength grids, and the table would take memory out of proportion to the file.
-  {
-    std::size_t distinct = 0;
-    for (std::size_t k = 0; k < order.size(); ++k) distinct += k == 0 || !same(order[k], order[k - 1]);
-    const bool too_sparse = n * m > 2 * distinct;
-    std::size_t k = 0;
-    for (std::size_t g = 0; g < n; ++g) {
-      for (std::size_t j = 0; j < m; ++j) {
-        if (k >= order.size() || records[order[k]].geometry != g || wl_index[order[k]] != j) {
-          if (!r.options.allow_missing) {
-            throw FileError(reader.path(), first_lines[g], 0,
-                            fmt::format("the geometry first given on this line has no value at wavelength {} nm "
-                                        "(missing values are refused here)",
-                                        wls[j]));
-          }
-          if (too_sparse) {
-            throw FileError(reader.path(), first_lines[g], 0,
-                            fmt::format("the geometry first given on this line has no value at wavelength {} nm, "
-                                        "and {} of the {} x {} (geometry, wavelength) pairs have no row: the "
-                                        "geometries are on different wavelength grids (put them on one grid first)",
-                                        wls[j], n * m - distinct, n, m));
-          }
-          if (r.stats.absent_rows++ == 0) {
-            r.first_absent = fmt::format("the geometry of {}:{} at {} nm", reader.path(), first_lines[g], wls[j]);
-          }
-          continue;
-        }
-        while (k < order.size() && records[order[k]].geometry == g && wl_index[order[k]] == j) ++k;
-      }
-    }
-  }
+  return t;
+}
 
-  d.wavelengths = wls;
+// Duplicates: report the first one in file order (a group's members are in file order).
+void refuse_duplicates(Reading& r, const RecordTable& t) {
+  const auto& order = t.order;
+  std::size_t worst = t.records.size(), earlier = 0;
+  for (std::size_t k = 0; k < order.size();) {
+    std::size_t e = k + 1;
+    while (e < order.size() && t.same(order[e], order[k])) ++e;
+    if (e - k > 1 && order[k + 1] < worst) {
+      worst = order[k + 1];
+      earlier = order[k];
+    }
+    k = e;
+  }
+  if (worst < t.records.size()) {
+    const auto& rec = t.records[worst];
+    throw FileError(r.reader.path(), rec.line, rec.column,
+                    fmt::format("duplicate value: this geometry already has wavelength {} nm at line {} ({})",
+                                rec.wavelength, t.records[earlier].line, duplicates_hint()));
+  }
+}
+
+// Completeness: a (geometry, wavelength) pair without a row is a measurement that was not made,
+// a missing cell like an empty or "nan" one (counted and warned about), unless missing values
+// are refused. A table that would be more than half missing is refused too: its geometries are on
+// different wavelength grids, and the table would take memory out of proportion to the file.
+void check_completeness(Reading& r, const RecordTable& t, std::size_t n, const std::vector<long>& first_lines) {
+  const auto& order = t.order;
+  const auto& wls = t.wavelengths;
+  const std::size_t m = wls.size();
+  std::size_t distinct = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) distinct += k == 0 || !t.same(order[k], order[k - 1]);
+  const bool too_sparse = n * m > 2 * distinct;
+  std::size_t k = 0;
+  for (std::size_t g = 0; g < n; ++g) {
+    for (std::size_t j = 0; j < m; ++j) {
+      if (k >= order.size() || t.records[order[k]].geometry != g || t.wl_index[order[k]] != j) {
+        if (!r.options.allow_missing) {
+          throw FileError(r.reader.path(), first_lines[g], 0,
+                          fmt::format("the geometry first given on this line has no value at wavelength {} nm "
+                                      "(missing values are refused here)",
+                                      wls[j]));
+        }
+        if (too_sparse) {
+          throw FileError(r.reader.path(), first_lines[g], 0,
+                          fmt::format("the geometry first given on this line has no value at wavelength {} nm, "
+                                      "and {} of the {} x {} (geometry, wavelength) pairs have no row: the "
+                                      "geometries are on different wavelength grids (put them on one grid first)",
+                                      wls[j], n * m - distinct, n, m));
+        }
+        if (r.stats.absent_rows++ == 0) {
+          r.first_absent = fmt::format("the geometry of {}:{} at {} nm", r.reader.path(), first_lines[g], wls[j]);
+        }
+        continue;
+      }
+      while (k < order.size() && t.records[order[k]].geometry == g && t.wl_index[order[k]] == j) ++k;
+    }
+  }
+}
+
+// The geometries x wavelengths table of d from the records. Rows per cell, and how many of them
+// were measured: a duplicate average is over the measured values; a cell no row measured stays
+// missing (NaN).
+void fill_table(Reading& r, const RecordTable& t, bool with_sigma, SpectralDataset& d) {
+  const std::size_t n = d.geometries.size(), m = t.wavelengths.size();
+  d.wavelengths = t.wavelengths;
   d.brdf.assign(n * m, 0.0);
   if (with_sigma) d.sigma.assign(n * m, 0.0);
-  // Rows per cell, and how many of them were measured: a duplicate average is over the measured
-  // values; a cell no row measured stays missing (NaN).
   std::vector<std::uint32_t> rows(n * m, 0), count(n * m, 0);
-  for (std::size_t k = 0; k < records.size(); ++k) {
-    const auto& rec = records[k];
-    const std::size_t idx = rec.geometry * m + wl_index[k];
+  for (std::size_t k = 0; k < t.records.size(); ++k) {
+    const auto& rec = t.records[k];
+    const std::size_t idx = rec.geometry * m + t.wl_index[k];
     if (rows[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
     if (std::isnan(rec.brdf)) continue;
     ++count[idx];
@@ -399,6 +447,22 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
     d.brdf[idx] /= count[idx];
     if (with_sigma) d.sigma[idx] = std::sqrt(d.sigma[idx]) / count[idx];
   }
+}
+
+}  // namespace
+
+SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, std::size_t column_count,
+                          const std::vector<std::size_t>& angle_columns, AngleConvention convention) {
+  SpectralDataset d;
+  d.convention = convention;
+  read_metadata(r, d);
+  const LongLayout layout = long_layout(r, columns, column_count, angle_columns);
+  // One record per row; the table is allocated only once its shape is known to be complete.
+  std::vector<long> first_lines;
+  const RecordTable table = record_table(read_records(r, layout.role, d, first_lines));
+  if (!r.options.average_duplicates) refuse_duplicates(r, table);
+  check_completeness(r, table, d.geometries.size(), first_lines);
+  fill_table(r, table, layout.with_sigma, d);
   if (r.stats.averaged_duplicate_rows)
     d.metadata["averaged_duplicate_rows"] = std::to_string(r.stats.averaged_duplicate_rows);
   return d;

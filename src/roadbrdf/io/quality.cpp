@@ -191,14 +191,21 @@ bool solve_small(std::vector<std::vector<double>> A, std::vector<double> b, std:
   return true;
 }
 
-void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityReport& r) {
+// Per-geometry inputs of the outlier check: the log of the spectral mean (NaN unless the mean is
+// positive), the isotropic angular coordinates, and whether the view lies in the specular cone.
+struct OutlierInputs {
+  std::vector<double> level;
+  std::vector<std::array<double, 3>> coord;
+  std::vector<bool> specular;
+};
+
+OutlierInputs outlier_inputs(const SpectralDataset& d, const QualityOptions& o) {
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
-  std::vector<double> level(n, std::nan(""));
-  std::vector<std::array<double, 3>> coord(n);
-  std::vector<bool> specular(n, false);
+  OutlierInputs in{std::vector<double>(n, std::nan("")), std::vector<std::array<double, 3>>(n),
+                   std::vector<bool>(n, false)};
   for (std::size_t g = 0; g < n; ++g) {
-    coord[g] = angular_coordinates(d.geometries[g]);
-    specular[g] =
+    in.coord[g] = angular_coordinates(d.geometries[g]);
+    in.specular[g] =
         rad_to_deg(angle_between(d.geometries[g].wr, mirror_direction(d.geometries[g].wi))) < o.specular_cone_deg;
     double s = 0.0;
     std::size_t c = 0;
@@ -208,57 +215,64 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
         ++c;
       }
     }
-    if (c && s > 0.0) level[g] = std::log(s / static_cast<double>(c));
+    if (c && s > 0.0) in.level[g] = std::log(s / static_cast<double>(c));
   }
-  // Prediction of each geometry's log spectral mean from its angular neighbours: a local linear
-  // fit (plane in the 3 angular coordinates, least squares with a small ridge) when there are
-  // enough neighbours, else their median. A linear fit follows smooth angular gradients, also at
-  // the edge of the grid where every neighbour lies on one side.
-  const std::size_t k_wanted = static_cast<std::size_t>(o.neighbours);
-  std::vector<double> residual(n, std::nan(""));
-  std::vector<std::pair<double, std::size_t>> cand;
-  for (std::size_t g = 0; g < n; ++g) {
-    if (!std::isfinite(level[g])) continue;
-    cand.clear();
-    for (std::size_t k = 0; k < n; ++k) {
-      if (k == g || !std::isfinite(level[k])) continue;
-      if (specular[k] && !specular[g]) continue;  // a physical specular peak would bias the prediction
-      const double dist =
-          std::sqrt(sqr(coord[g][0] - coord[k][0]) + sqr(coord[g][1] - coord[k][1]) + sqr(coord[g][2] - coord[k][2]));
-      if (dist > 1e-9 && dist <= o.neighbour_max_distance_deg) cand.emplace_back(dist, k);
-    }
-    if (cand.size() < 2) continue;
-    const std::size_t k = std::min(cand.size(), k_wanted);
-    std::partial_sort(cand.begin(), cand.begin() + static_cast<long>(k), cand.end());
-    double prediction = 0.0;
-    bool fitted = false;
-    // Quadratic terms when the neighbourhood supports them (they follow the curvature of smooth
-    // BRDFs towards grazing angles), else linear.
-    const std::size_t terms = k >= 12 ? 7 : (k >= 5 ? 4 : 0);
-    if (terms > 0) {
-      std::vector<std::vector<double>> A(terms, std::vector<double>(terms, 0.0));
-      std::vector<double> b(terms, 0.0), x;
-      for (std::size_t q = 0; q < k; ++q) {
-        const auto& c = coord[cand[q].second];
-        const double u0 = (c[0] - coord[g][0]) / 10.0, u1 = (c[1] - coord[g][1]) / 10.0,
-                     u2 = (c[2] - coord[g][2]) / 10.0;
-        const double row[7] = {1.0, u0, u1, u2, u0 * u0, u1 * u1, u2 * u2};
-        for (std::size_t i = 0; i < terms; ++i) {
-          for (std::size_t j = 0; j < terms; ++j) A[i][j] += row[i] * row[j];
-          b[i] += row[i] * level[cand[q].second];
-        }
+  return in;
+}
+
+// The angular neighbours of geometry g (within the maximum distance, specular views left out for a
+// non-specular g), nearest first in cand[0, k); returns k, 0 when fewer than two qualify.
+std::size_t nearest_neighbours(const OutlierInputs& in, std::size_t g, const QualityOptions& o,
+                               std::vector<std::pair<double, std::size_t>>& cand) {
+  const std::size_t n = in.level.size();
+  const auto& coord = in.coord;
+  cand.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k == g || !std::isfinite(in.level[k])) continue;
+    if (in.specular[k] && !in.specular[g]) continue;  // a physical specular peak would bias the prediction
+    const double dist =
+        std::sqrt(sqr(coord[g][0] - coord[k][0]) + sqr(coord[g][1] - coord[k][1]) + sqr(coord[g][2] - coord[k][2]));
+    if (dist > 1e-9 && dist <= o.neighbour_max_distance_deg) cand.emplace_back(dist, k);
+  }
+  if (cand.size() < 2) return 0;
+  const std::size_t k = std::min(cand.size(), static_cast<std::size_t>(o.neighbours));
+  std::partial_sort(cand.begin(), cand.begin() + static_cast<long>(k), cand.end());
+  return k;
+}
+
+// Prediction of geometry g's log spectral mean from its k nearest neighbours: a local least-squares
+// fit in the angular coordinates (offsets in units of 10 deg, small ridge on all but the constant)
+// whose constant term is the value at g, else the neighbours' median.
+double neighbour_prediction(const OutlierInputs& in, std::size_t g,
+                            const std::vector<std::pair<double, std::size_t>>& cand, std::size_t k) {
+  const auto& coord = in.coord;
+  // Quadratic terms when the neighbourhood supports them (they follow the curvature of smooth
+  // BRDFs towards grazing angles), else linear.
+  const std::size_t terms = k >= 12 ? 7 : (k >= 5 ? 4 : 0);
+  if (terms > 0) {
+    std::vector<std::vector<double>> A(terms, std::vector<double>(terms, 0.0));
+    std::vector<double> b(terms, 0.0), x;
+    for (std::size_t q = 0; q < k; ++q) {
+      const auto& c = coord[cand[q].second];
+      const double u0 = (c[0] - coord[g][0]) / 10.0, u1 = (c[1] - coord[g][1]) / 10.0, u2 = (c[2] - coord[g][2]) / 10.0;
+      const double row[7] = {1.0, u0, u1, u2, u0 * u0, u1 * u1, u2 * u2};
+      for (std::size_t i = 0; i < terms; ++i) {
+        for (std::size_t j = 0; j < terms; ++j) A[i][j] += row[i] * row[j];
+        b[i] += row[i] * in.level[cand[q].second];
       }
-      for (std::size_t i = 1; i < terms; ++i) A[i][i] += 1e-3;
-      fitted = solve_small(A, b, x);
-      if (fitted) prediction = x[0];
     }
-    if (!fitted) {
-      std::vector<double> vals;
-      for (std::size_t q = 0; q < k; ++q) vals.push_back(level[cand[q].second]);
-      prediction = median_of(vals);
-    }
-    residual[g] = level[g] - prediction;
+    for (std::size_t i = 1; i < terms; ++i) A[i][i] += 1e-3;
+    if (solve_small(A, b, x)) return x[0];
   }
+  std::vector<double> vals;
+  for (std::size_t q = 0; q < k; ++q) vals.push_back(in.level[cand[q].second]);
+  return median_of(vals);
+}
+
+// Residuals far from their median in units of the robust spread (MAD, floored at 0.02 in log) and
+// large as a ratio are outliers; a bright one inside the specular cone is a physical peak.
+void flag_outliers(const std::vector<double>& residual, const std::vector<bool>& specular, const QualityOptions& o,
+                   QualityReport& r) {
   std::vector<double> finite;
   for (double v : residual) {
     if (std::isfinite(v)) finite.push_back(v);
@@ -268,7 +282,7 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
   const double center = median_of(tmp);
   for (auto& v : finite) v = std::fabs(v - center);
   const double scale = std::max(1.4826 * median_of(finite), 0.02);
-  for (std::size_t g = 0; g < n; ++g) {
+  for (std::size_t g = 0; g < residual.size(); ++g) {
     if (!std::isfinite(residual[g])) continue;
     const double score = std::fabs(residual[g] - center) / scale;
     if (score > o.outlier_threshold && std::exp(std::fabs(residual[g])) > o.outlier_min_ratio) {
@@ -279,6 +293,24 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
       }
     }
   }
+}
+
+void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityReport& r) {
+  const OutlierInputs in = outlier_inputs(d, o);
+  const std::size_t n = in.level.size();
+  // Prediction of each geometry's log spectral mean from its angular neighbours: a local linear
+  // fit (plane in the 3 angular coordinates, least squares with a small ridge) when there are
+  // enough neighbours, else their median. A linear fit follows smooth angular gradients, also at
+  // the edge of the grid where every neighbour lies on one side.
+  std::vector<double> residual(n, std::nan(""));
+  std::vector<std::pair<double, std::size_t>> cand;
+  for (std::size_t g = 0; g < n; ++g) {
+    if (!std::isfinite(in.level[g])) continue;
+    const std::size_t k = nearest_neighbours(in, g, o, cand);
+    if (k == 0) continue;
+    residual[g] = in.level[g] - neighbour_prediction(in, g, cand, k);
+  }
+  flag_outliers(residual, in.specular, o, r);
 }
 
 void check_panel(const SpectralDataset& d, const Spectrum& rho, QualityReport& r) {

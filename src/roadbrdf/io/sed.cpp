@@ -78,16 +78,12 @@ void halves(const std::string& value, std::string& reference, std::string& targe
   }
 }
 
-}  // namespace
-
-InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
-  const auto lines = instrument_text::lines(text);
-  InstrumentSpectrum s;
-  s.path = name;
-  s.format = InstrumentFormat::kSed;
+// The "Key: value" header up to the "Data:" line, into s.metadata as "sed.<key>". Returns the
+// index of the "Data:" line; the channel count (0 when not stated) and its line come back in
+// channels and channels_line.
+std::size_t read_header(const std::vector<instrument_text::Line>& lines, const std::string& name, InstrumentSpectrum& s,
+                        std::size_t& channels, long& channels_line) {
   std::size_t k = 0;
-  long channels_line = 0;
-  std::size_t channels = 0;
   std::vector<long> other_lines;
   for (; k < lines.size(); ++k) {
     const std::string_view line = trim(lines[k].text);
@@ -122,75 +118,120 @@ InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
     s.metadata["sed.unrecognized_header_lines"] =
         fmt::format("{} (lines {} to {})", other_lines.size(), other_lines.front(), other_lines.back());
   }
-  // Column names, tab-separated ([SpecDAL] sep='\t').
-  ++k;
-  while (k < lines.size() && trim(lines[k].text).empty()) ++k;
-  if (k == lines.size()) throw FileError(name, lines.back().number, 0, "file ends after 'Data:' (no column names)");
-  const long header_line = lines[k].number;
+  return k;
+}
+
+// The column-name line: every column's meaning, and the index of each role's column (-1 if absent).
+struct ColumnLayout {
+  long line = 0;
   std::vector<Column> columns;
   int wavelength = -1, reference = -1, target = -1, percent = -1, fraction = -1;
-  for (const auto& cell : split_cells(lines[k].text, '\t')) {
+};
+
+ColumnLayout read_column_names(const instrument_text::Line& header, const std::string& name) {
+  ColumnLayout l;
+  l.line = header.number;
+  // Tab-separated ([SpecDAL] sep='\t').
+  for (const auto& cell : split_cells(header.text, '\t')) {
     Column c{};
     if (!classify(cell.text, c)) {
-      throw FileError(name, header_line, cell.column,
+      throw FileError(name, l.line, cell.column,
                       fmt::format("unknown column '{}' (known: Wvl, Chan.#, Norm. DN/DN/Rad./Irrad. (Ref.) and "
                                   "(Target), Reflect. %, Tgt./Ref. %, Reflect. [1.0])",
                                   instrument_text::printable(cell.text)));
     }
-    const int index = static_cast<int>(columns.size());
-    int* slot = c.role == Role::kWavelength            ? &wavelength
-                : c.role == Role::kReference           ? &reference
-                : c.role == Role::kTarget              ? &target
-                : c.role == Role::kReflectancePercent  ? &percent
-                : c.role == Role::kReflectanceFraction ? &fraction
+    const int index = static_cast<int>(l.columns.size());
+    int* slot = c.role == Role::kWavelength            ? &l.wavelength
+                : c.role == Role::kReference           ? &l.reference
+                : c.role == Role::kTarget              ? &l.target
+                : c.role == Role::kReflectancePercent  ? &l.percent
+                : c.role == Role::kReflectanceFraction ? &l.fraction
                                                        : nullptr;
     if (slot) {
-      if (*slot >= 0) throw FileError(name, header_line, cell.column, fmt::format("second '{}' column", cell.text));
+      if (*slot >= 0) throw FileError(name, l.line, cell.column, fmt::format("second '{}' column", cell.text));
       *slot = index;
     }
-    columns.push_back(c);
+    l.columns.push_back(c);
   }
-  if (wavelength < 0) throw FileError(name, header_line, 0, "no 'Wvl' column");
-  if (target < 0 && percent < 0 && fraction < 0)
-    throw FileError(name, header_line, 0, "no target or reflectance column");
-  if (percent >= 0 && fraction >= 0) throw FileError(name, header_line, 0, "two reflectance columns");
-  if (reference >= 0 && target >= 0 &&
-      columns[static_cast<std::size_t>(reference)].quantity != columns[static_cast<std::size_t>(target)].quantity) {
-    throw FileError(name, header_line, 0, "the reference and target columns hold different quantities");
+  if (l.wavelength < 0) throw FileError(name, l.line, 0, "no 'Wvl' column");
+  if (l.target < 0 && l.percent < 0 && l.fraction < 0)
+    throw FileError(name, l.line, 0, "no target or reflectance column");
+  if (l.percent >= 0 && l.fraction >= 0) throw FileError(name, l.line, 0, "two reflectance columns");
+  if (l.reference >= 0 && l.target >= 0 &&
+      l.columns[static_cast<std::size_t>(l.reference)].quantity !=
+          l.columns[static_cast<std::size_t>(l.target)].quantity) {
+    throw FileError(name, l.line, 0, "the reference and target columns hold different quantities");
   }
-  const int signal = target >= 0 ? target : reference;
-  if (signal >= 0) s.quantity = columns[static_cast<std::size_t>(signal)].quantity;
+  return l;
+}
+
+// The measured quantity is that of the target column (else the reference); radiometric ones take
+// their unit from the "Units:" header line.
+void set_quantity(const ColumnLayout& l, InstrumentSpectrum& s) {
+  const int signal = l.target >= 0 ? l.target : l.reference;
+  if (signal >= 0) s.quantity = l.columns[static_cast<std::size_t>(signal)].quantity;
   const auto units = s.metadata.find("sed.units");
   if (s.quantity == "radiance" || s.quantity == "irradiance") {
     s.units = units != s.metadata.end() && units->second != "None" ? units->second : s.quantity + " (unit not stated)";
   } else if (!s.quantity.empty()) {
     s.units = s.quantity;
   }
+}
+
+// One data row: every cell a finite number, wavelengths strictly increasing.
+void read_row(const instrument_text::Line& row, const ColumnLayout& l, const std::string& name, InstrumentSpectrum& s) {
+  const auto cells = split_cells(row.text, '\t');
+  if (cells.size() != l.columns.size()) {
+    throw FileError(
+        name, row.number, cells.back().column,
+        fmt::format("row has {} values, the column line {} names {}", cells.size(), l.line, l.columns.size()));
+  }
+  std::vector<double> v(cells.size());
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (!parse_finite_double(cells[c].text, v[c])) {
+      throw FileError(name, row.number, cells[c].column,
+                      fmt::format("'{}' is not a finite number", instrument_text::printable(cells[c].text)));
+    }
+  }
+  const double wl = v[static_cast<std::size_t>(l.wavelength)];
+  if (!s.wavelengths.empty() && !(wl > s.wavelengths.back())) {
+    throw FileError(name, row.number, cells[static_cast<std::size_t>(l.wavelength)].column,
+                    fmt::format("wavelength {} nm is not above the previous {} nm", wl, s.wavelengths.back()));
+  }
+  s.wavelengths.push_back(wl);
+  if (l.target >= 0) s.target.push_back(v[static_cast<std::size_t>(l.target)]);
+  if (l.reference >= 0) s.reference.push_back(v[static_cast<std::size_t>(l.reference)]);
+  if (l.percent >= 0) s.reflectance.push_back(v[static_cast<std::size_t>(l.percent)] / 100.0);
+  if (l.fraction >= 0) s.reflectance.push_back(v[static_cast<std::size_t>(l.fraction)]);
+}
+
+// Scan settings from the header lists: integration times per scan, and the instrument name.
+void set_scan_settings(InstrumentSpectrum& s) {
+  std::string ref_it, tgt_it, ref_avg, tgt_avg;
+  if (auto it = s.metadata.find("sed.integration"); it != s.metadata.end()) halves(it->second, ref_it, tgt_it);
+  if (auto it = s.metadata.find("sed.averages"); it != s.metadata.end()) halves(it->second, ref_avg, tgt_avg);
+  if (!tgt_it.empty()) s.target_settings["integration times [ms]"] = tgt_it;
+  if (!ref_it.empty()) s.reference_settings["integration times [ms]"] = ref_it;
+  if (auto it = s.metadata.find("sed.instrument"); it != s.metadata.end()) s.metadata["instrument"] = it->second;
+}
+
+}  // namespace
+
+InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
+  const auto lines = instrument_text::lines(text);
+  InstrumentSpectrum s;
+  s.path = name;
+  s.format = InstrumentFormat::kSed;
+  long channels_line = 0;
+  std::size_t channels = 0;
+  std::size_t k = read_header(lines, name, s, channels, channels_line);
+  ++k;
+  while (k < lines.size() && trim(lines[k].text).empty()) ++k;
+  if (k == lines.size()) throw FileError(name, lines.back().number, 0, "file ends after 'Data:' (no column names)");
+  const ColumnLayout layout = read_column_names(lines[k], name);
+  set_quantity(layout, s);
   for (++k; k < lines.size(); ++k) {
-    if (trim(lines[k].text).empty()) continue;
-    const auto cells = split_cells(lines[k].text, '\t');
-    if (cells.size() != columns.size()) {
-      throw FileError(
-          name, lines[k].number, cells.back().column,
-          fmt::format("row has {} values, the column line {} names {}", cells.size(), header_line, columns.size()));
-    }
-    std::vector<double> v(cells.size());
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (!parse_finite_double(cells[c].text, v[c])) {
-        throw FileError(name, lines[k].number, cells[c].column,
-                        fmt::format("'{}' is not a finite number", instrument_text::printable(cells[c].text)));
-      }
-    }
-    const double wl = v[static_cast<std::size_t>(wavelength)];
-    if (!s.wavelengths.empty() && !(wl > s.wavelengths.back())) {
-      throw FileError(name, lines[k].number, cells[static_cast<std::size_t>(wavelength)].column,
-                      fmt::format("wavelength {} nm is not above the previous {} nm", wl, s.wavelengths.back()));
-    }
-    s.wavelengths.push_back(wl);
-    if (target >= 0) s.target.push_back(v[static_cast<std::size_t>(target)]);
-    if (reference >= 0) s.reference.push_back(v[static_cast<std::size_t>(reference)]);
-    if (percent >= 0) s.reflectance.push_back(v[static_cast<std::size_t>(percent)] / 100.0);
-    if (fraction >= 0) s.reflectance.push_back(v[static_cast<std::size_t>(fraction)]);
+    if (!trim(lines[k].text).empty()) read_row(lines[k], layout, name, s);
   }
   if (s.wavelengths.empty()) throw FileError(name, lines.back().number, 0, "no data rows after the column names");
   if (channels && s.wavelengths.size() != channels) {
@@ -198,12 +239,7 @@ InstrumentSpectrum parse_sed(std::string_view text, const std::string& name) {
                     fmt::format("{} data rows, but line {} says 'Channels: {}': truncated or corrupt file",
                                 s.wavelengths.size(), channels_line, channels));
   }
-  std::string ref_it, tgt_it, ref_avg, tgt_avg;
-  if (auto it = s.metadata.find("sed.integration"); it != s.metadata.end()) halves(it->second, ref_it, tgt_it);
-  if (auto it = s.metadata.find("sed.averages"); it != s.metadata.end()) halves(it->second, ref_avg, tgt_avg);
-  if (!tgt_it.empty()) s.target_settings["integration times [ms]"] = tgt_it;
-  if (!ref_it.empty()) s.reference_settings["integration times [ms]"] = ref_it;
-  if (auto it = s.metadata.find("sed.instrument"); it != s.metadata.end()) s.metadata["instrument"] = it->second;
+  set_scan_settings(s);
   return s;
 }
 
