@@ -150,6 +150,195 @@ struct LogFactorCost {
   }
 };
 
+// Prepare every mixture and give each of its end-members the index of its factor: end-members are
+// matched by name, in order of first appearance, and one name must be one fit file. Fills the
+// calibration's end-member and mixture lists.
+std::vector<PreparedMixture> prepare_mixtures(const std::vector<CalibrationMixture>& mixtures,
+                                              CrossSectionCalibration& cal) {
+  std::vector<PreparedMixture> prepared;
+  std::vector<std::string> canonical_fits;
+  for (std::size_t m = 0; m < mixtures.size(); ++m) {
+    const CalibrationMixture& mx = mixtures[m];
+    const std::string label = mx.name.empty() ? fmt::format("#{}", m + 1) : mx.name;
+    if (!mx.inputs || !mx.data) throw FieldError("mixtures", "mixture '" + label + "' has no formulation or data");
+    PreparedMixture pm = prepare(*mx.inputs, *mx.data, label, {});
+    pm.factor_of.assign(pm.K, 0);
+    const std::vector<std::size_t> members = detail::component_members(*mx.inputs);
+    for (std::size_t j = 0; j < pm.K; ++j) {
+      const EndMember& em = mx.inputs->end_members[members[j]];
+      const auto it = std::find(cal.end_members.begin(), cal.end_members.end(), em.name);
+      if (it == cal.end_members.end()) {
+        pm.factor_of[j] = cal.end_members.size();
+        cal.end_members.push_back(em.name);
+        cal.end_member_fits.push_back(em.fit_path);
+        canonical_fits.push_back(canonical(em.fit_path));
+        continue;
+      }
+      const std::size_t i = static_cast<std::size_t>(it - cal.end_members.begin());
+      if (canonical(em.fit_path) != canonical_fits[i]) {
+        throw FieldError("mixtures", "end-member '" + em.name + "' is '" + em.fit_path + "' in mixture '" + label +
+                                         "' but '" + cal.end_member_fits[i] +
+                                         "' in an earlier mixture (end-members are matched by name)");
+      }
+      pm.factor_of[j] = i;
+    }
+    cal.mixtures.push_back(label);
+    prepared.push_back(std::move(pm));
+  }
+  return prepared;
+}
+
+// Set cal.reference ("" = the first end-member) and return its index among the end-members.
+std::size_t reference_index(CrossSectionCalibration& cal, const std::string& reference) {
+  cal.reference = reference.empty() ? cal.end_members.front() : reference;
+  const auto ref_it = std::find(cal.end_members.begin(), cal.end_members.end(), cal.reference);
+  if (ref_it == cal.end_members.end()) {
+    std::string known;
+    for (const auto& e : cal.end_members) known += (known.empty() ? "" : ", ") + e;
+    throw FieldError("reference", "'" + cal.reference + "' is not an end-member of the mixtures (" + known + ")");
+  }
+  return static_cast<std::size_t>(ref_it - cal.end_members.begin());
+}
+
+// Identifiability: only ratios of factors of end-members that share a mixture (directly or through a
+// chain of mixtures) are determined, so every end-member must be linked to the reference.
+void require_linked_to_reference(const std::vector<PreparedMixture>& prepared, const CrossSectionCalibration& cal,
+                                 std::size_t ref) {
+  const std::size_t n = cal.end_members.size();
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const PreparedMixture& pm : prepared) {
+    for (std::size_t j = 1; j < pm.K; ++j) parent[root(parent, pm.factor_of[j])] = root(parent, pm.factor_of[0]);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (root(parent, i) != root(parent, ref)) {
+      throw FieldError("mixtures", "end-member '" + cal.end_members[i] +
+                                       "' never shares a mixture (directly or "
+                                       "through other mixtures) with '" +
+                                       cal.reference +
+                                       "': the ratio of their factors is not determined by these mixtures");
+    }
+  }
+}
+
+// Bounded least squares in u = ln k of the free factors (every end-member but the reference); records
+// the iterations and a note when the solver stopped at its limit. Returns u.
+std::vector<double> solve_log_factors(const std::vector<PreparedMixture>& prepared, std::size_t n, std::size_t ref,
+                                      CrossSectionCalibration& cal) {
+  const std::size_t p = n - 1;
+  std::vector<double> u(p, 0.0);
+  ceres::Problem problem;
+  std::vector<LogFactorCost> costs;
+  costs.reserve(prepared.size());
+  for (const PreparedMixture& pm : prepared) costs.push_back({&pm, n, ref});
+  for (const LogFactorCost& c : costs) {
+    auto* cost =
+        new ceres::DynamicNumericDiffCostFunction<LogFactorCost, ceres::CENTRAL>(&c, ceres::DO_NOT_TAKE_OWNERSHIP);
+    cost->AddParameterBlock(static_cast<int>(p));
+    cost->SetNumResiduals(static_cast<int>(c.mixture->samples.size()));
+    problem.AddResidualBlock(cost, nullptr, u.data());
+  }
+  for (std::size_t j = 0; j < p; ++j) {
+    problem.SetParameterLowerBound(u.data(), static_cast<int>(j), -kLogFactorBound);
+    problem.SetParameterUpperBound(u.data(), static_cast<int>(j), kLogFactorBound);
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 200;
+  options.function_tolerance = 1e-15;
+  options.parameter_tolerance = 1e-13;
+  options.gradient_tolerance = 1e-16;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
+    throw InputError("cross-section calibration: the solver failed: " + summary.message);
+  }
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    cal.notes.push_back("the solver stopped at its iteration limit: " + summary.message);
+  }
+  cal.iterations = static_cast<int>(summary.iterations.size());
+  return u;
+}
+
+// Reflectance-factor RMS per mixture and over all of them, with k = 1 and with the fitted factors.
+// Returns the calibrated residuals of every mixture, in mixture order.
+std::vector<double> record_rms(const std::vector<PreparedMixture>& prepared, CrossSectionCalibration& cal) {
+  const std::vector<double> ones(cal.end_members.size(), 1.0);
+  std::vector<double> all_uncal, all_cal;
+  for (const PreparedMixture& pm : prepared) {
+    std::vector<double> r0(pm.samples.size()), r1(pm.samples.size());
+    pm.residuals(ones, r0.data());
+    pm.residuals(cal.factors, r1.data());
+    cal.rms_uncalibrated.push_back(rms_of(r0));
+    cal.rms_calibrated.push_back(rms_of(r1));
+    all_uncal.insert(all_uncal.end(), r0.begin(), r0.end());
+    all_cal.insert(all_cal.end(), r1.begin(), r1.end());
+  }
+  cal.residual_count = all_cal.size();
+  cal.rms_uncalibrated_all = rms_of(all_uncal);
+  cal.rms_calibrated_all = rms_of(all_cal);
+  return all_cal;
+}
+
+// Jacobian [residual][j] of all residuals (mixture order) in u, by central differences.
+std::vector<double> log_factor_jacobian(const std::vector<PreparedMixture>& prepared, const LogFactorCost& factors,
+                                        const std::vector<double>& u, std::size_t N) {
+  const std::size_t p = u.size();
+  std::vector<double> J(N * p);
+  for (std::size_t j = 0; j < p; ++j) {
+    const double h = 1e-6 * std::max(1.0, std::abs(u[j]));
+    std::vector<double> up = u, dn = u;
+    up[j] += h;
+    dn[j] -= h;
+    std::size_t offset = 0;
+    for (const PreparedMixture& pm : prepared) {
+      std::vector<double> a(pm.samples.size()), b(pm.samples.size());
+      pm.residuals(factors.factors_from(up.data()), a.data());
+      pm.residuals(factors.factors_from(dn.data()), b.data());
+      for (std::size_t s = 0; s < a.size(); ++s) J[(offset + s) * p + j] = (a[s] - b[s]) / (2.0 * h);
+      offset += a.size();
+    }
+  }
+  return J;
+}
+
+// Standard errors of the factors: s (J^T J)^-1/2 in u with s^2 = SSR/(N - p), mapped to k = e^u
+// (SE(k) = k SE(u)); 0 for the reference, NaN without degrees of freedom or when J^T J is singular.
+void record_standard_errors(const std::vector<PreparedMixture>& prepared, const LogFactorCost& factors,
+                            const std::vector<double>& u, const std::vector<double>& all_cal, std::size_t ref,
+                            CrossSectionCalibration& cal) {
+  const std::size_t n = cal.end_members.size();
+  const std::size_t p = u.size();
+  const std::size_t N = all_cal.size();
+  const std::vector<double> J = log_factor_jacobian(prepared, factors, u, N);
+  cal.standard_errors.assign(n, 0.0);
+  if (N <= p) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i != ref) cal.standard_errors[i] = NAN;
+    }
+    return;
+  }
+  Eigen::MatrixXd JtJ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(p));
+  for (std::size_t s = 0; s < N; ++s) {
+    for (std::size_t a = 0; a < p; ++a) {
+      for (std::size_t b = 0; b < p; ++b) JtJ(a, b) += J[s * p + a] * J[s * p + b];
+    }
+  }
+  double ssr = 0.0;
+  for (double x : all_cal) ssr += x * x;
+  const double s2 = ssr / static_cast<double>(N - p);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  const bool singular = !lu.isInvertible();
+  const Eigen::MatrixXd cov = singular ? Eigen::MatrixXd() : Eigen::MatrixXd(lu.inverse() * s2);
+  for (std::size_t i = 0, j = 0; i < n; ++i) {
+    if (i == ref) continue;
+    const Eigen::Index jj = static_cast<Eigen::Index>(j++);
+    cal.standard_errors[i] = singular ? NAN : cal.factors[i] * std::sqrt(std::max(0.0, cov(jj, jj)));
+  }
+  if (singular) cal.notes.push_back("J^T J is singular at the optimum: no standard errors");
+}
+
 }  // namespace
 
 double cross_section_factor(const MixSettings& settings, const std::string& name) {
@@ -191,98 +380,15 @@ CrossSectionCalibration calibrate_cross_sections(const std::vector<CalibrationMi
                                                  const std::string& reference) {
   if (mixtures.empty()) throw FieldError("mixtures", "give at least one measured mixture");
   CrossSectionCalibration cal;
-  std::vector<PreparedMixture> prepared;
-  std::vector<std::string> canonical_fits;
-  for (std::size_t m = 0; m < mixtures.size(); ++m) {
-    const CalibrationMixture& mx = mixtures[m];
-    const std::string label = mx.name.empty() ? fmt::format("#{}", m + 1) : mx.name;
-    if (!mx.inputs || !mx.data) throw FieldError("mixtures", "mixture '" + label + "' has no formulation or data");
-    PreparedMixture pm = prepare(*mx.inputs, *mx.data, label, {});
-    // Factor index of every end-member, by name; one name, one fit file.
-    pm.factor_of.assign(pm.K, 0);
-    const std::vector<std::size_t> members = detail::component_members(*mx.inputs);
-    for (std::size_t j = 0; j < pm.K; ++j) {
-      const EndMember& em = mx.inputs->end_members[members[j]];
-      const auto it = std::find(cal.end_members.begin(), cal.end_members.end(), em.name);
-      if (it == cal.end_members.end()) {
-        pm.factor_of[j] = cal.end_members.size();
-        cal.end_members.push_back(em.name);
-        cal.end_member_fits.push_back(em.fit_path);
-        canonical_fits.push_back(canonical(em.fit_path));
-      } else {
-        const std::size_t i = static_cast<std::size_t>(it - cal.end_members.begin());
-        if (canonical(em.fit_path) != canonical_fits[i]) {
-          throw FieldError("mixtures", "end-member '" + em.name + "' is '" + em.fit_path + "' in mixture '" + label +
-                                           "' but '" + cal.end_member_fits[i] +
-                                           "' in an earlier mixture (end-members are matched by name)");
-        }
-        pm.factor_of[j] = i;
-      }
-    }
-    cal.mixtures.push_back(label);
-    prepared.push_back(std::move(pm));
-  }
+  const std::vector<PreparedMixture> prepared = prepare_mixtures(mixtures, cal);
   const std::size_t n = cal.end_members.size();
   if (n < 2) throw FieldError("mixtures", "the mixtures have a single end-member: there is no factor to calibrate");
-  cal.reference = reference.empty() ? cal.end_members.front() : reference;
-  const auto ref_it = std::find(cal.end_members.begin(), cal.end_members.end(), cal.reference);
-  if (ref_it == cal.end_members.end()) {
-    std::string known;
-    for (const auto& e : cal.end_members) known += (known.empty() ? "" : ", ") + e;
-    throw FieldError("reference", "'" + cal.reference + "' is not an end-member of the mixtures (" + known + ")");
-  }
-  const std::size_t ref = static_cast<std::size_t>(ref_it - cal.end_members.begin());
-  // Identifiability: every end-member linked to the others through shared mixtures.
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const PreparedMixture& pm : prepared) {
-    for (std::size_t j = 1; j < pm.K; ++j) parent[root(parent, pm.factor_of[j])] = root(parent, pm.factor_of[0]);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (root(parent, i) != root(parent, ref)) {
-      throw FieldError("mixtures", "end-member '" + cal.end_members[i] +
-                                       "' never shares a mixture (directly or "
-                                       "through other mixtures) with '" +
-                                       cal.reference +
-                                       "': the ratio of their factors is not determined by these mixtures");
-    }
-  }
+  const std::size_t ref = reference_index(cal, reference);
+  require_linked_to_reference(prepared, cal, ref);
 
-  // Least squares in u = ln k of the free factors.
-  const std::size_t p = n - 1;
-  std::vector<double> u(p, 0.0);
-  ceres::Problem problem;
-  std::vector<LogFactorCost> costs;
-  costs.reserve(prepared.size());
-  for (const PreparedMixture& pm : prepared) costs.push_back({&pm, n, ref});
-  for (const LogFactorCost& c : costs) {
-    auto* cost =
-        new ceres::DynamicNumericDiffCostFunction<LogFactorCost, ceres::CENTRAL>(&c, ceres::DO_NOT_TAKE_OWNERSHIP);
-    cost->AddParameterBlock(static_cast<int>(p));
-    cost->SetNumResiduals(static_cast<int>(c.mixture->samples.size()));
-    problem.AddResidualBlock(cost, nullptr, u.data());
-  }
-  for (std::size_t j = 0; j < p; ++j) {
-    problem.SetParameterLowerBound(u.data(), static_cast<int>(j), -kLogFactorBound);
-    problem.SetParameterUpperBound(u.data(), static_cast<int>(j), kLogFactorBound);
-  }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 200;
-  options.function_tolerance = 1e-15;
-  options.parameter_tolerance = 1e-13;
-  options.gradient_tolerance = 1e-16;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
-    throw InputError("cross-section calibration: the solver failed: " + summary.message);
-  }
-  if (summary.termination_type == ceres::NO_CONVERGENCE) {
-    cal.notes.push_back("the solver stopped at its iteration limit: " + summary.message);
-  }
-  cal.iterations = static_cast<int>(summary.iterations.size());
-  cal.factors = costs.front().factors_from(u.data());
+  const std::vector<double> u = solve_log_factors(prepared, n, ref, cal);
+  const LogFactorCost factors{&prepared.front(), n, ref};
+  cal.factors = factors.factors_from(u.data());
   for (std::size_t i = 0, j = 0; i < n; ++i) {
     if (i == ref) continue;
     if (std::abs(u[j++]) > kLogFactorBound * (1.0 - 1e-9)) {
@@ -290,63 +396,8 @@ CrossSectionCalibration calibrate_cross_sections(const std::vector<CalibrationMi
                                       cal.end_members[i], cal.factors[i]));
     }
   }
-
-  // RMS with k = 1 and with the fit; Jacobian (central differences in u) for the standard errors.
-  const std::vector<double> ones(n, 1.0);
-  std::vector<double> all_uncal, all_cal;
-  for (const PreparedMixture& pm : prepared) {
-    std::vector<double> r0(pm.samples.size()), r1(pm.samples.size());
-    pm.residuals(ones, r0.data());
-    pm.residuals(cal.factors, r1.data());
-    cal.rms_uncalibrated.push_back(rms_of(r0));
-    cal.rms_calibrated.push_back(rms_of(r1));
-    all_uncal.insert(all_uncal.end(), r0.begin(), r0.end());
-    all_cal.insert(all_cal.end(), r1.begin(), r1.end());
-  }
-  cal.residual_count = all_cal.size();
-  cal.rms_uncalibrated_all = rms_of(all_uncal);
-  cal.rms_calibrated_all = rms_of(all_cal);
-  const std::size_t N = all_cal.size();
-  std::vector<double> J(N * p);  // [residual][j]
-  for (std::size_t j = 0; j < p; ++j) {
-    const double h = 1e-6 * std::max(1.0, std::abs(u[j]));
-    std::vector<double> up = u, dn = u;
-    up[j] += h;
-    dn[j] -= h;
-    std::size_t offset = 0;
-    for (const PreparedMixture& pm : prepared) {
-      std::vector<double> a(pm.samples.size()), b(pm.samples.size());
-      pm.residuals(costs.front().factors_from(up.data()), a.data());
-      pm.residuals(costs.front().factors_from(dn.data()), b.data());
-      for (std::size_t s = 0; s < a.size(); ++s) J[(offset + s) * p + j] = (a[s] - b[s]) / (2.0 * h);
-      offset += a.size();
-    }
-  }
-  cal.standard_errors.assign(n, 0.0);
-  if (N > p) {
-    Eigen::MatrixXd JtJ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(p));
-    for (std::size_t s = 0; s < N; ++s) {
-      for (std::size_t a = 0; a < p; ++a) {
-        for (std::size_t b = 0; b < p; ++b) JtJ(a, b) += J[s * p + a] * J[s * p + b];
-      }
-    }
-    double ssr = 0.0;
-    for (double x : all_cal) ssr += x * x;
-    const double s2 = ssr / static_cast<double>(N - p);
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
-    const bool singular = !lu.isInvertible();
-    const Eigen::MatrixXd cov = singular ? Eigen::MatrixXd() : Eigen::MatrixXd(lu.inverse() * s2);
-    for (std::size_t i = 0, j = 0; i < n; ++i) {
-      if (i == ref) continue;
-      const Eigen::Index jj = static_cast<Eigen::Index>(j++);
-      cal.standard_errors[i] = singular ? NAN : cal.factors[i] * std::sqrt(std::max(0.0, cov(jj, jj)));
-    }
-    if (singular) cal.notes.push_back("J^T J is singular at the optimum: no standard errors");
-  } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (i != ref) cal.standard_errors[i] = NAN;
-    }
-  }
+  const std::vector<double> all_cal = record_rms(prepared, cal);
+  record_standard_errors(prepared, factors, u, all_cal, ref, cal);
   return cal;
 }
 

@@ -257,7 +257,11 @@ bool ellipsoids_overlap(const Ellipsoid& p, const Ellipsoid& q) {
   return !ellipsoids_separated(p.shape(), q.shape(), q.x - p.x, q.y - p.y, q.z - p.z);
 }
 
-PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const PackingSettings& s) {
+namespace {
+
+// Checks of the box, shapes and classes (InputError); returns the largest bounding radius a grain can
+// have (half the largest sieve size over the smallest b/a).
+double checked_max_bound(const std::vector<PackingClass>& classes, const PackingSettings& s) {
   const double L = s.period_mm, T = s.thickness_mm, B = s.bottom_mm;
   if (!(L > 0.0 && T > B)) throw InputError("packing: period must be > 0 and the top above the floor");
   if (!(s.elongation_min > 0.0 && s.elongation_max <= 1.0 && s.elongation_min <= s.elongation_max) ||
@@ -273,164 +277,216 @@ PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const Pa
     max_bound = std::max(max_bound, 0.5 * c.d_max_mm / s.elongation_min);
   }
   if (!(s.layer_bottom_mm >= B && s.layer_bottom_mm < T)) throw InputError("packing: the layer must lie in the box");
-  const std::size_t K = classes.size();
-  const double bin = std::max(max_bound, L / 256.0);
-  Uniform u(s.seed);
+  return max_bound;
+}
 
-  auto layer_volume = [&](const Item& it) {
-    return ellipsoid_volume_below(it.e, T) - ellipsoid_volume_below(it.e, s.layer_bottom_mm);
-  };
-  auto new_grain = [&](int k) {
-    const PackingClass& c = classes[k];
+// One call of pack_ellipsoids: the settings, the random stream and the progress shared by its phases
+// (packing.h: random sequential addition, then, if it jams, deposition from an empty box).
+class PackingRun {
+ public:
+  PackingRun(const std::vector<PackingClass>& classes, const PackingSettings& s, double bin)
+      : classes_(classes), s_(s), L_(s.period_mm), T_(s.thickness_mm), B_(s.bottom_mm), bin_(bin), u_(s.seed) {
+    for (const auto& c : classes) target_total_ += c.layer_volume_mm3;
+  }
+
+  // Phase 0: random sequential addition in the layer; phase 1: deposition.
+  PackingResult run_phase(int phase) {
+    const bool deposit = phase == 1;
+    const std::size_t K = classes_.size();
+    PackingResult out;
+    out.placed_volume_mm3.assign(K, 0.0);
+    out.layer_volume_mm3.assign(K, 0.0);
+    out.grain_count.assign(K, 0);
+    out.deposition = deposit;
+    Packer packer(s_, deposit ? B_ : s_.layer_bottom_mm, bin_);
+    double placed = 0.0;  // sum over classes of min(layer volume, target): what the progress counts
+    long useless = 0;     // consecutive deposited grains entirely below the layer
+    while (true) {
+      const int k = next_class(out);
+      if (k < 0) {
+        out.reached = true;
+        break;
+      }
+      const Item grain = new_grain(k);
+      const std::optional<Item> placed_grain = deposit ? deposited(packer, grain) : inserted(packer, grain);
+      if (!placed_grain) break;  // jammed (random sequential addition) or the box is full (deposition)
+      const Item& best = *placed_grain;
+      packer.add(best);
+      out.placed_volume_mm3[k] += best.e.volume();
+      const double in_layer = layer_volume(best);
+      const double target = classes_[k].layer_volume_mm3;
+      placed += std::min(out.layer_volume_mm3[k] + in_layer, target) - std::min(out.layer_volume_mm3[k], target);
+      out.layer_volume_mm3[k] += in_layer;
+      ++out.grain_count[k];
+      useless = in_layer > 0.0 ? 0 : useless + 1;
+      report_progress(phase, placed);
+      if (useless >= s_.patience) break;  // the deposit has grown below the layer
+    }
+    out.grains.reserve(packer.items().size());
+    for (const Item& it : packer.items()) out.grains.push_back(it.e);
+    return out;
+  }
+
+  void finish() { progress_.finish(); }
+
+ private:
+  static constexpr std::size_t kProgressUnits = 1000;
+
+  double layer_volume(const Item& it) const {
+    return ellipsoid_volume_below(it.e, T_) - ellipsoid_volume_below(it.e, s_.layer_bottom_mm);
+  }
+
+  // A grain of class k with its size and semi-axis ratios drawn (position and orientation not yet).
+  Item new_grain(int k) {
+    const PackingClass& c = classes_[k];
     // Sieve size with the class mass uniform over [d_min, d_max]: number density ~ d^-3.
-    const double v = u();
+    const double v = u_();
     const double d = c.d_max_mm > c.d_min_mm
                          ? 1.0 / std::sqrt(1.0 / (c.d_min_mm * c.d_min_mm) -
                                            v * (1.0 / (c.d_min_mm * c.d_min_mm) - 1.0 / (c.d_max_mm * c.d_max_mm)))
                          : c.d_min_mm;
     Item it;
     it.e.b = 0.5 * d;
-    it.e.a = it.e.b / (s.elongation_min + (s.elongation_max - s.elongation_min) * u());
-    it.e.c = it.e.b * (s.flatness_min + (s.flatness_max - s.flatness_min) * u());
+    it.e.a = it.e.b / (s_.elongation_min + (s_.elongation_max - s_.elongation_min) * u_());
+    it.e.c = it.e.b * (s_.flatness_min + (s_.flatness_max - s_.flatness_min) * u_());
     it.e.cls = k;
     return it;
-  };
+  }
 
-  double target_total = 0.0;
-  for (const auto& c : classes) target_total += c.layer_volume_mm3;
-  constexpr std::size_t kProgressUnits = 1000;
-  ProgressCounter progress(s.progress, kProgressUnits);
-  std::size_t reported = 0;
-  PackingResult out;
-  double placed = 0.0;  // sum over classes of min(layer volume, target): what the progress counts
-  for (int phase = 0; phase < 2; ++phase) {
-    // Phase 0: random sequential addition in the layer. Phase 1 (when phase 0 jams): deposition.
-    const bool deposit = phase == 1;
-    out = PackingResult{};
-    out.placed_volume_mm3.assign(K, 0.0);
-    out.layer_volume_mm3.assign(K, 0.0);
-    out.grain_count.assign(K, 0);
-    out.deposition = deposit;
-    Packer packer(s, deposit ? B : s.layer_bottom_mm, bin);
-    placed = 0.0;
-    // The class furthest behind its target in the layer (-1: all reached).
-    auto next_class = [&]() {
-      int best = -1;
-      double best_ratio = 0.0;
-      for (std::size_t k = 0; k < K; ++k) {
-        const double target = classes[k].layer_volume_mm3;
-        if (!(target > 0.0) || out.layer_volume_mm3[k] >= target) continue;
-        const double ratio = out.layer_volume_mm3[k] / target;
-        if (best < 0 || ratio < best_ratio) {
-          best = static_cast<int>(k);
-          best_ratio = ratio;
-        }
+  // The class furthest behind its target in the layer (-1: all reached).
+  int next_class(const PackingResult& out) const {
+    int best = -1;
+    double best_ratio = 0.0;
+    for (std::size_t k = 0; k < classes_.size(); ++k) {
+      const double target = classes_[k].layer_volume_mm3;
+      if (!(target > 0.0) || out.layer_volume_mm3[k] >= target) continue;
+      const double ratio = out.layer_volume_mm3[k] / target;
+      if (best < 0 || ratio < best_ratio) {
+        best = static_cast<int>(k);
+        best_ratio = ratio;
       }
-      return best;
-    };
-    // Deposition: the highest free position of `it` on its vertical (its centre lowered from the
-    // roller's plane in steps of c/2 until it fits, then the contact refined by bisection).
-    auto drop = [&](Item& it) {
-      const double top = T - it.hz, bottom = B + it.hz;
-      if (!(top > bottom)) return false;
-      double blocked = top;
-      for (double z = top;; z -= 0.5 * it.e.c) {
-        if (z < bottom) return false;
-        it.e.z = z;
-        if (packer.fits(it, -1)) {
-          if (z == top) return true;
-          double free = z;
-          for (int k = 0; k < 30; ++k) {
-            it.e.z = 0.5 * (free + blocked);
-            if (packer.fits(it, -1)) {
-              free = it.e.z;
-            } else {
-              blocked = it.e.z;
-            }
-          }
-          it.e.z = free;
-          return true;
-        }
-        blocked = z;
-      }
-    };
-
-    long useless = 0;  // consecutive deposited grains entirely below the layer
-    while (true) {
-      const int k = next_class();
-      if (k < 0) {
-        out.reached = true;
-        break;
-      }
-      const Item grain = new_grain(k);
-      bool ok = false;
-      Item best;
-      const long tries = deposit ? s.deposition_tries : s.insertion_attempts;
-      for (long attempt = 0; attempt < tries; ++attempt) {
-        Item it = grain;
-        it.e.rotation = random_rotation(u);
-        refresh(it);
-        it.e.x = u() * L;
-        it.e.y = u() * L;
-        if (deposit) {
-          if (!drop(it)) continue;
-          if (!ok || it.e.z > best.e.z) best = it;  // settles at the highest of the tried positions
-          ok = true;
-        } else {
-          it.e.z = s.layer_bottom_mm + it.hz + u() * std::max(0.0, T - s.layer_bottom_mm - 2.0 * it.hz);
-          if (!packer.in_slab(it) || !packer.fits(it, -1)) continue;
-          best = it;
-          ok = true;
-          break;
-        }
-      }
-      if (!ok) break;  // jammed (random sequential addition) or the box is full (deposition)
-      if (deposit) {
-        // Settling: small random displacements with a non-negative z component (towards the roller's
-        // plane) and small rotations, accepted when the grain stays free (zero-temperature Monte Carlo
-        // with a gravity bias, Rosato et al. 1987); the step adapts to the acceptance.
-        double step = 0.3;
-        for (long m = 0; m < s.settle_moves; ++m) {
-          Item t = best;
-          const double delta = step * t.e.c;
-          t.e.x = wrap(t.e.x + delta * (2.0 * u() - 1.0), L);
-          t.e.y = wrap(t.e.y + delta * (2.0 * u() - 1.0), L);
-          t.e.z += delta * u();
-          if (m & 1) t.e.rotation = multiply(small_rotation(u, step * (2.0 * u() - 1.0)), t.e.rotation);
-          refresh(t);
-          t.e.z = std::min(t.e.z, T - t.hz);  // stops at the roller's plane
-          if (t.e.z >= best.e.z && t.e.z >= B + t.hz && packer.fits(t, -1)) {
-            best = t;
-            step = std::min(1.0, step * 1.2);
-          } else {
-            step = std::max(0.01, step * 0.9);
-          }
-        }
-      }
-      packer.add(best);
-      out.placed_volume_mm3[k] += best.e.volume();
-      const double in_layer = layer_volume(best);
-      const double target = classes[k].layer_volume_mm3;
-      placed += std::min(out.layer_volume_mm3[k] + in_layer, target) - std::min(out.layer_volume_mm3[k], target);
-      out.layer_volume_mm3[k] += in_layer;
-      ++out.grain_count[k];
-      useless = in_layer > 0.0 ? 0 : useless + 1;
-      if (s.progress && target_total > 0.0) {
-        const auto units =
-            static_cast<std::size_t>(0.5 * static_cast<double>(kProgressUnits) *
-                                     (static_cast<double>(phase) + std::min(1.0, placed / target_total)));
-        if (units > reported) {
-          progress.add(units - reported);
-          reported = units;
-        }
-      }
-      if (useless >= s.patience) break;  // the deposit has grown below the layer
     }
-    out.grains.reserve(packer.items().size());
-    for (const Item& it : packer.items()) out.grains.push_back(it.e);
+    return best;
+  }
+
+  // `grain` at a random orientation and x-y position (the random draws of every attempt).
+  Item at_random_vertical(const Item& grain) {
+    Item it = grain;
+    it.e.rotation = random_rotation(u_);
+    refresh(it);
+    it.e.x = u_() * L_;
+    it.e.y = u_() * L_;
+    return it;
+  }
+
+  // Random sequential addition: the first of `insertion_attempts` random positions in the layer
+  // where the grain is free; none when it jams.
+  std::optional<Item> inserted(Packer& packer, const Item& grain) {
+    for (long attempt = 0; attempt < s_.insertion_attempts; ++attempt) {
+      Item it = at_random_vertical(grain);
+      it.e.z = s_.layer_bottom_mm + it.hz + u_() * std::max(0.0, T_ - s_.layer_bottom_mm - 2.0 * it.hz);
+      if (!packer.in_slab(it) || !packer.fits(it, -1)) continue;
+      return it;
+    }
+    return std::nullopt;
+  }
+
+  // Deposition: the grain dropped on `deposition_tries` random verticals settles at the highest of
+  // its rests, then moves by settling; none when it fits on no vertical (the box is full).
+  std::optional<Item> deposited(Packer& packer, const Item& grain) {
+    std::optional<Item> best;
+    for (long attempt = 0; attempt < s_.deposition_tries; ++attempt) {
+      Item it = at_random_vertical(grain);
+      if (!drop(packer, it)) continue;
+      if (!best || it.e.z > best->e.z) best = it;
+    }
+    if (best) settle(packer, *best);
+    return best;
+  }
+
+  // The highest free position of `it` on its vertical (its centre lowered from the roller's plane in
+  // steps of c/2 until it fits, then the contact refined by bisection); false when it fits nowhere.
+  bool drop(Packer& packer, Item& it) const {
+    const double top = T_ - it.hz, bottom = B_ + it.hz;
+    if (!(top > bottom)) return false;
+    double blocked = top;
+    for (double z = top;; z -= 0.5 * it.e.c) {
+      if (z < bottom) return false;
+      it.e.z = z;
+      if (packer.fits(it, -1)) {
+        if (z == top) return true;
+        double free = z;
+        for (int k = 0; k < 30; ++k) {
+          it.e.z = 0.5 * (free + blocked);
+          if (packer.fits(it, -1)) {
+            free = it.e.z;
+          } else {
+            blocked = it.e.z;
+          }
+        }
+        it.e.z = free;
+        return true;
+      }
+      blocked = z;
+    }
+  }
+
+  // Settling: small random displacements with a non-negative z component (towards the roller's
+  // plane) and small rotations, accepted when the grain stays free (zero-temperature Monte Carlo
+  // with a gravity bias, Rosato et al. 1987); the step adapts to the acceptance.
+  void settle(Packer& packer, Item& best) {
+    double step = 0.3;
+    for (long m = 0; m < s_.settle_moves; ++m) {
+      Item t = best;
+      const double delta = step * t.e.c;
+      t.e.x = wrap(t.e.x + delta * (2.0 * u_() - 1.0), L_);
+      t.e.y = wrap(t.e.y + delta * (2.0 * u_() - 1.0), L_);
+      t.e.z += delta * u_();
+      if (m & 1) t.e.rotation = multiply(small_rotation(u_, step * (2.0 * u_() - 1.0)), t.e.rotation);
+      refresh(t);
+      t.e.z = std::min(t.e.z, T_ - t.hz);  // stops at the roller's plane
+      if (t.e.z >= best.e.z && t.e.z >= B_ + t.hz && packer.fits(t, -1)) {
+        best = t;
+        step = std::min(1.0, step * 1.2);
+      } else {
+        step = std::max(0.01, step * 0.9);
+      }
+    }
+  }
+
+  // Progress: half of the units per phase, in proportion to the placed share of the targets.
+  void report_progress(int phase, double placed) {
+    if (!s_.progress || !(target_total_ > 0.0)) return;
+    const auto units = static_cast<std::size_t>(0.5 * static_cast<double>(kProgressUnits) *
+                                                (static_cast<double>(phase) + std::min(1.0, placed / target_total_)));
+    if (units > reported_) {
+      progress_.add(units - reported_);
+      reported_ = units;
+    }
+  }
+
+  const std::vector<PackingClass>& classes_;
+  const PackingSettings& s_;
+  const double L_, T_, B_;
+  const double bin_;
+  Uniform u_;
+  double target_total_ = 0.0;
+  ProgressCounter progress_{s_.progress, kProgressUnits};
+  std::size_t reported_ = 0;
+};
+
+}  // namespace
+
+PackingResult pack_ellipsoids(const std::vector<PackingClass>& classes, const PackingSettings& s) {
+  const double max_bound = checked_max_bound(classes, s);
+  const double bin = std::max(max_bound, s.period_mm / 256.0);
+  PackingRun run(classes, s, bin);
+  PackingResult out;
+  for (int phase = 0; phase < 2; ++phase) {
+    out = run.run_phase(phase);
     if (out.reached) break;
   }
-  progress.finish();
+  run.finish();
   return out;
 }
 

@@ -23,6 +23,15 @@ struct SurfaceHit {
   int material = 0;
 };
 
+namespace detail {
+// One cell of the tracer's grid: the heights of its corners (i, j), (i+1, j), (i, j+1), (i+1, j+1)
+// [mm], the highest of them, and its material.
+struct TracerCell {
+  double z00, z10, z01, z11, zmax;
+  int material;
+};
+}  // namespace detail
+
 class HeightFieldTracer {
  public:
   explicit HeightFieldTracer(const HeightField& field);
@@ -37,10 +46,7 @@ class HeightFieldTracer {
   double offset() const { return eps_; }
 
  private:
-  struct Cell {
-    double z00, z10, z01, z11, zmax;
-    int material;
-  };
+  using Cell = detail::TracerCell;
   int nx_ = 0, ny_ = 0;
   double h_ = 0.1, inv_h_ = 10.0;
   double hmax_ = 0.0, hmin_ = 0.0;
