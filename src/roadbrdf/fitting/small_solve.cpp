@@ -17,10 +17,13 @@ namespace {
 // its row-major Jacobian transposed into TinySolver's column-major one. A point outside the
 // parameter box, or one where the model is undefined, gets infinite residuals: TinySolver then
 // rejects the step and shortens the next one, as Ceres does with an undefined cost.
+// `FreeCount`: the number of free parameters when known at compile time (Eigen's fixed-size
+// normal equations and LDLT are several times cheaper than the dynamic ones), else Eigen::Dynamic.
+template <int FreeCount>
 class BoxedResiduals {
  public:
   using Scalar = double;
-  enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = Eigen::Dynamic };
+  enum { NUM_RESIDUALS = Eigen::Dynamic, NUM_PARAMETERS = FreeCount };
 
   BoxedResiduals(const FitData& d, const ParameterLayout& L, std::size_t w, const std::vector<double>& x,
                  const std::vector<std::size_t>& free)
@@ -65,28 +68,30 @@ class BoxedResiduals {
   mutable bool left_box_ = false, undefined_ = false;
 };
 
-using Solver = ceres::TinySolver<BoxedResiduals, Eigen::LDLT<Eigen::MatrixXd>>;
+template <int FreeCount>
+using Solver = ceres::TinySolver<BoxedResiduals<FreeCount>, Eigen::LDLT<Eigen::Matrix<double, FreeCount, FreeCount>>>;
 
-const char* termination_message(Solver::Status s) {
+template <int FreeCount>
+const char* termination_message(typename Solver<FreeCount>::Status s) {
   switch (s) {
-    case Solver::GRADIENT_TOO_SMALL:
+    case Solver<FreeCount>::GRADIENT_TOO_SMALL:
       return "Gradient tolerance reached (ceres::TinySolver).";
-    case Solver::RELATIVE_STEP_SIZE_TOO_SMALL:
+    case Solver<FreeCount>::RELATIVE_STEP_SIZE_TOO_SMALL:
       return "Parameter tolerance reached (ceres::TinySolver).";
-    case Solver::COST_CHANGE_TOO_SMALL:
+    case Solver<FreeCount>::COST_CHANGE_TOO_SMALL:
       return "Function tolerance reached (ceres::TinySolver).";
     default:
       return "Converged (ceres::TinySolver).";
   }
 }
 
-}  // namespace
-
-bool solve_small(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w,
+template <int FreeCount>
+bool solve_sized(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w,
                  const std::vector<std::size_t>& free, std::vector<double>& x, ceres::Solver::Summary& summary,
                  std::vector<double>& free_jacobian) {
-  const BoxedResiduals residuals(d, L, w, x, free);
-  Eigen::VectorXd block(static_cast<Eigen::Index>(free.size()));
+  using SizedSolver = Solver<FreeCount>;
+  const BoxedResiduals<FreeCount> residuals(d, L, w, x, free);
+  typename SizedSolver::Parameters block(static_cast<Eigen::Index>(free.size()));
   for (std::size_t i = 0; i < free.size(); ++i) block[static_cast<Eigen::Index>(i)] = x[free[i]];
   Eigen::VectorXd r0(static_cast<Eigen::Index>(d.n));
   if (!residuals(block.data(), r0.data(), nullptr)) return false;
@@ -97,23 +102,23 @@ bool solve_small(const FitData& d, const ParameterLayout& L, const FitOptions& o
   // the stopping test was then at most twice as loose as Ceres' at the final cost.
   double reference_cost = 0.5 * r0.squaredNorm();
   int iterations = 0;
-  Solver solver;
+  SizedSolver solver;
   solver.options.gradient_tolerance = o.gradient_tolerance;
   solver.options.parameter_tolerance = o.parameter_tolerance;
   solver.options.cost_threshold = 0.0;  // Ceres has no such test: an exact fit ends by the gradient
   for (;;) {
     solver.options.function_tolerance = 2.0 * o.function_tolerance * reference_cost;
     solver.options.max_num_iterations = o.max_iterations - iterations + 1;
-    const Solver::Summary& s = solver.Solve(residuals, &block);
-    if (residuals.left_box() || residuals.undefined() || s.status == Solver::HIT_MAX_ITERATIONS) return false;
+    const typename SizedSolver::Summary& s = solver.Solve(residuals, &block);
+    if (residuals.left_box() || residuals.undefined() || s.status == SizedSolver::HIT_MAX_ITERATIONS) return false;
     iterations += s.iterations;
-    if (s.status != Solver::COST_CHANGE_TOO_SMALL || s.final_cost >= 0.5 * reference_cost ||
+    if (s.status != SizedSolver::COST_CHANGE_TOO_SMALL || s.final_cost >= 0.5 * reference_cost ||
         iterations >= o.max_iterations) {
       summary = ceres::Solver::Summary{};
       summary.initial_cost = 0.5 * r0.squaredNorm();
       summary.final_cost = s.final_cost;
       summary.termination_type = ceres::CONVERGENCE;
-      summary.message = termination_message(s.status);
+      summary.message = termination_message<FreeCount>(s.status);
       summary.iterations.resize(static_cast<std::size_t>(iterations) + 1);
       break;
     }
@@ -126,6 +131,25 @@ bool solve_small(const FitData& d, const ParameterLayout& L, const FitOptions& o
   free_jacobian = residuals.row_major_jacobian();
   for (std::size_t i = 0; i < free.size(); ++i) x[free[i]] = block[static_cast<Eigen::Index>(i)];
   return true;
+}
+
+}  // namespace
+
+bool solve_small(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w,
+                 const std::vector<std::size_t>& free, std::vector<double>& x, ceres::Solver::Summary& summary,
+                 std::vector<double>& free_jacobian) {
+  switch (free.size()) {
+    case 1:
+      return solve_sized<1>(d, L, o, w, free, x, summary, free_jacobian);
+    case 2:
+      return solve_sized<2>(d, L, o, w, free, x, summary, free_jacobian);
+    case 3:
+      return solve_sized<3>(d, L, o, w, free, x, summary, free_jacobian);
+    case 4:
+      return solve_sized<4>(d, L, o, w, free, x, summary, free_jacobian);
+    default:
+      return solve_sized<Eigen::Dynamic>(d, L, o, w, free, x, summary, free_jacobian);
+  }
 }
 
 }  // namespace roadbrdf::fitting
