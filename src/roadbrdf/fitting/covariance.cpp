@@ -44,27 +44,33 @@ void no_covariance(const ParameterLayout& L, WavelengthFit& out, const std::stri
   out.covariance_message = why;
 }
 
-void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size_t w, WavelengthFit& out) {
+void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size_t w, WavelengthFit& out,
+                           const std::vector<double>& free_jacobian) {
   if (out.free_parameters == 0) return no_covariance(L, out, "no free parameter");
   if (out.points <= out.free_parameters)
     return no_covariance(L, out, "no degrees of freedom (points <= free parameters)");
-  std::vector<double> x = out.parameters;
-  // Jacobian of the residuals at the solution over the free columns (the fixed ones have no
-  // covariance), as Ceres' DENSE_SVD covariance of the same cost function would use it.
-  std::vector<double> r(d.n), J(d.n * d.p), f(d.n), js(d.n * d.p);
-  if (!d.residuals(w, x.data(), r.data(), J.data(), f.data(), js.data())) {
-    return no_covariance(L, out, "residuals undefined at the solution");
-  }
   std::vector<std::size_t> free;
   for (std::size_t k = 0; k < d.p; ++k) {
     if (!L.fixed[k]) free.push_back(k);
   }
   const auto nf = static_cast<Eigen::Index>(free.size());
   const auto n = static_cast<Eigen::Index>(d.n);
+  // Jacobian of the residuals at the solution over the free columns (the fixed ones have no
+  // covariance), as Ceres' DENSE_SVD covariance of the same cost function would use it.
   Eigen::MatrixXd Jf(n, nf);
-  for (Eigen::Index g = 0; g < n; ++g) {
-    for (Eigen::Index a = 0; a < nf; ++a)
-      Jf(g, a) = J[static_cast<std::size_t>(g) * d.p + free[static_cast<std::size_t>(a)]];
+  if (free_jacobian.size() == d.n * free.size()) {
+    Jf = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(free_jacobian.data(),
+                                                                                                  n, nf);
+  } else {
+    std::vector<double> x = out.parameters;
+    std::vector<double> r(d.n), J(d.n * d.p), f(d.n), js(d.n * d.p);
+    if (!d.residuals(w, x.data(), r.data(), J.data(), f.data(), js.data())) {
+      return no_covariance(L, out, "residuals undefined at the solution");
+    }
+    for (Eigen::Index g = 0; g < n; ++g) {
+      for (Eigen::Index a = 0; a < nf; ++a)
+        Jf(g, a) = J[static_cast<std::size_t>(g) * d.p + free[static_cast<std::size_t>(a)]];
+    }
   }
   // (J^T J)^-1 = R^-1 R^-T from a Householder QR of J (N x free): the accuracy of an SVD of J (the
   // condition number of J, not its square as inverting J^T J would give), for a few thousand flops

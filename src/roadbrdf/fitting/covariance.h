@@ -16,7 +16,10 @@ namespace roadbrdf::fitting {
 void no_covariance(const ParameterLayout& L, WavelengthFit& out, const std::string& why);
 
 // Per-wavelength covariance at out.parameters (out.chi2, points and free_parameters set).
-void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size_t w, WavelengthFit& out);
+// `free_jacobian`: the residuals' Jacobian there over the free parameters (N x free, row-major) when
+// the solver has it; empty: computed here.
+void wavelength_covariance(const FitData& d, const ParameterLayout& L, std::size_t w, WavelengthFit& out,
+                           const std::vector<double>& free_jacobian = {});
 
 // Joint-mode covariance of every wavelength (robust function not applied): the shared parameters'
 // block is the inverse of the Schur complement of the per-wavelength blocks.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/fitting/large_arrays.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf::fitting {
@@ -22,14 +23,14 @@ struct FitData {
   // Geometry-only data of `geometries` (Model::prepare), built once and shared by every wavelength,
   // iteration and thread.
   std::shared_ptr<const PreparedGeometries> prepared_geometries;
-  std::vector<double> y;           // M x N (wavelength-major: y[w * n + g]) for contiguous access
-  std::vector<double> mult;        // M x N multiplier of the loss residual
-  std::vector<double> cos_i;       // N
-  std::vector<double> lin_weight;  // M x N weight of (f - y) in the linearised loss (for the amplitude solve)
+  LargeArray<double> y;           // M x N (wavelength-major: y[w * n + g]) for contiguous access
+  LargeArray<double> mult;        // M x N multiplier of the loss residual
+  std::vector<double> cos_i;      // N
+  LargeArray<double> lin_weight;  // M x N weight of (f - y) in the linearised loss (for the amplitude solve)
   // M x N: 1 where a value was measured, 0 where it is missing (NaN in the dataset). A missing value
   // has y = 0 and mult = lin_weight = 0: its residual and Jacobian row are zero, which is the same
   // least-squares problem as without that geometry at that wavelength; the statistics skip it.
-  std::vector<unsigned char> measured;
+  LargeArray<unsigned char> measured;
   std::vector<std::size_t> measured_count;  // M: measured geometries per wavelength
   bool is_measured(std::size_t w, std::size_t g) const { return measured[w * n + g] != 0; }
 

@@ -13,6 +13,7 @@
 
 #include "roadbrdf/fitting/cost_functions.h"
 #include "roadbrdf/fitting/covariance.h"
+#include "roadbrdf/fitting/small_solve.h"
 #include "roadbrdf/fitting/statistics.h"
 
 namespace roadbrdf::fitting {
@@ -25,6 +26,7 @@ constexpr std::size_t kChainLength = 32;
 struct SingleSolve {
   std::vector<double> x;
   ceres::Solver::Summary summary;
+  std::vector<double> free_jacobian;  // at x, N x free row-major, when the solver provides it
 };
 
 SingleSolve solve_one(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w,
@@ -46,6 +48,9 @@ SingleSolve solve_one(const FitData& d, const ParameterLayout& L, const FitOptio
     s.summary.message = "no free parameter";
     return s;
   }
+  // The plain loss without active bounds is solved by the low-overhead TinySolver; the full Ceres
+  // solve (bounds projected, robust losses) when that does not apply.
+  if (d.robust == RobustLoss::kNone && solve_small(d, L, o, w, free, s.x, s.summary, s.free_jacobian)) return s;
   std::vector<double> block(free.size());
   for (std::size_t i = 0; i < free.size(); ++i) block[i] = x[free[i]];
   ceres::Problem::Options po;
@@ -95,7 +100,7 @@ std::vector<double> fit_wavelength(const FitData& d, const ParameterLayout& L, c
   fill_statistics(d, w, out);
   flag_bounds(L, out);
   if (o.compute_covariance) {
-    wavelength_covariance(d, L, w, out);
+    wavelength_covariance(d, L, w, out, best.free_jacobian);
   } else {
     no_covariance(L, out, "not computed");
   }

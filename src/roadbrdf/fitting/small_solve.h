@@ -1,0 +1,25 @@
+// Low-overhead solve of one wavelength's problem with ceres::TinySolver. Internal to fitting/.
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "roadbrdf/fitting/losses.h"
+#include "roadbrdf/fitting/starting_points.h"
+
+namespace roadbrdf::fitting {
+
+// Solves wavelength w over the free parameters `free` (indices of the full vector x, which holds
+// the start and receives the solution) with the plain loss, by the dense Levenberg-Marquardt of
+// ceres::TinySolver. Returns false, leaving x unchanged, when the full Ceres solve is needed
+// instead: a trial step left the parameter box (TinySolver has no bounds), the start cannot be
+// evaluated, or the iteration limit was reached. On success `summary` holds the final cost, the
+// iteration count, the termination message and CONVERGENCE, and `free_jacobian` the residuals'
+// Jacobian over the free parameters at the solution (N x free, row-major) for the covariance.
+bool solve_small(const FitData& d, const ParameterLayout& L, const FitOptions& o, std::size_t w,
+                 const std::vector<std::size_t>& free, std::vector<double>& x, ceres::Solver::Summary& summary,
+                 std::vector<double>& free_jacobian);
+
+}  // namespace roadbrdf::fitting
