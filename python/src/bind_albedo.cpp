@@ -9,6 +9,8 @@
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
+#include "roadbrdf/mixing/end_member_cache.h"
+#include "roadbrdf/mixing/mix_request.h"
 
 namespace py = pybind11;
 
@@ -16,10 +18,11 @@ namespace roadbrdf::python {
 
 namespace {
 
-py::object report(const SpectralModel& model, const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth,
-                  bool azimuth_mean, const std::string& diffuse_fraction, const std::string& atmosphere,
-                  const std::string& spectrum, const std::vector<double>& wavelengths, const std::string& illuminant,
-                  double tolerance) {
+albedo::AlbedoRequest request_from(const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth,
+                                   bool azimuth_mean, const std::string& diffuse_fraction,
+                                   const std::string& atmosphere, const std::string& spectrum,
+                                   const std::vector<double>& wavelengths, const std::string& illuminant,
+                                   double tolerance) {
   albedo::AlbedoRequest request;
   request.sun_zenith_deg = sun_zenith;
   request.sun_azimuth_deg = sun_azimuth;
@@ -30,6 +33,15 @@ py::object report(const SpectralModel& model, const std::vector<double>& sun_zen
   request.wavelengths = wavelengths;
   request.illuminant = illuminant;
   request.tolerance = tolerance;
+  return request;
+}
+
+py::object report(const SpectralModel& model, const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth,
+                  bool azimuth_mean, const std::string& diffuse_fraction, const std::string& atmosphere,
+                  const std::string& spectrum, const std::vector<double>& wavelengths, const std::string& illuminant,
+                  double tolerance) {
+  const albedo::AlbedoRequest request = request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction,
+                                                     atmosphere, spectrum, wavelengths, illuminant, tolerance);
   nlohmann::json result;
   {
     py::gil_scoped_release release;
@@ -42,6 +54,22 @@ py::object report(const SpectralModel& model, const std::vector<double>& sun_zen
 
 void bind_albedo(py::module_& m) {
   m.def("albedo_spectral", &report);
+  // The same report for method `index` of a mix run, its end-members' integrals shared through
+  // `cache` (mixing/end_member_cache.h; the design studies' fast path).
+  m.def("mixture_albedo",
+        [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache,
+           const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
+           const std::string& diffuse_fraction, const std::string& atmosphere, const std::string& spectrum,
+           const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
+          const albedo::AlbedoRequest request = request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction,
+                                                             atmosphere, spectrum, wavelengths, illuminant, tolerance);
+          nlohmann::json result;
+          {
+            py::gil_scoped_release release;
+            result = mixing::mixture_albedo(run.content.results.at(index), request, cache);
+          }
+          return json_to_python(result);
+        });
   m.def("albedo_model",
         [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters,
            const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,

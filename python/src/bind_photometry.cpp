@@ -9,6 +9,8 @@
 
 #include "binding.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/mixing/end_member_cache.h"
+#include "roadbrdf/mixing/mix_request.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_coverage.h"
 #include "roadbrdf/photometry/rtable_io.h"
@@ -119,6 +121,24 @@ void bind_photometry(py::module_& m) {
       },
       py::arg("model"), py::arg("alpha") = 1.0, py::arg("illuminant") = "", py::arg("wavelength") = py::none(),
       py::arg("band") = py::none(), py::arg("q0_region") = "standard", py::arg("class_system") = "R");
+  // The same report for method `index` of a mix run, from its end-members' values at the table's
+  // geometries shared through `cache` (mixing/end_member_cache.h; the design studies' fast path).
+  m.def(
+      "mixture_rtable_report",
+      [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache, double alpha,
+         const std::string& illuminant, std::optional<double> wavelength, std::optional<std::pair<double, double>> band,
+         const std::string& q0_region, const std::string& class_system) {
+        const RTableRequest request = request_from(alpha, illuminant, wavelength, band, q0_region, class_system);
+        RTableReport report;
+        {
+          py::gil_scoped_release release;
+          report = mixing::mixture_rtable(run.content.results.at(index), request, cache);
+        }
+        return report_to_dict(report);
+      },
+      py::arg("run"), py::arg("index"), py::arg("cache"), py::arg("alpha") = 1.0, py::arg("illuminant") = "",
+      py::arg("wavelength") = py::none(), py::arg("band") = py::none(), py::arg("q0_region") = "standard",
+      py::arg("class_system") = "R");
   m.def(
       "read_rtable",
       [](const std::string& path, std::optional<std::string> format, double alpha, double scale) {

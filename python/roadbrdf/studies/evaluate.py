@@ -20,6 +20,7 @@ import numpy as np
 _FIT_FOLDER = None
 _REGION = None
 _WEIGHTS = {}
+_END_MEMBERS = None
 
 
 def _fit_folder(fits):
@@ -77,19 +78,37 @@ def _albedo_outputs(a, zeniths):
     return out
 
 
-def _fast(task, path, work):
-    import roadbrdf
+def _end_members():
+    """This process's end-member cache (mixing/end_member_cache.h): each fit file read once, and the
+    end-members' albedo integrals and r-table values computed once for every candidate that mixes them."""
+    global _END_MEMBERS
+    if _END_MEMBERS is None:
+        from .. import _roadbrdf
+        _END_MEMBERS = _roadbrdf.EndMemberCache()
+    return _END_MEMBERS
+
+
+def _fast(task, path):
+    """The candidate mixed by each method in this process, as ``roadbrdf mix`` + ``albedo`` + ``rtable`` on its
+    MIX.json would give (the r-table bit for bit; the albedo of a linear method from its end-members' integrals,
+    within the quadrature's error estimates: docs/studies.md "Speed")."""
+    import warnings
+    from .. import _roadbrdf
+    from ..albedos import _warn_notes
     p = task["predictions"]
+    cache = _end_members()
+    zeniths = _roadbrdf.values(p["sun_zenith_deg"], "sun_zenith")
+    diffuse = "" if p["diffuse_fraction"] is None else str(p["diffuse_fraction"])
     rows = []
     for method in p["methods"]:
-        mix_path = os.path.join(work, f"{method}.mix.json")
-        roadbrdf.mix(path, method=method, output=mix_path)
-        model = roadbrdf.read_fit(mix_path, method)
-        a = roadbrdf.albedo(model, sun_zenith=p["sun_zenith_deg"], diffuse_fraction=p["diffuse_fraction"],
-                            atmosphere=p["atmosphere"], spectrum=p["spectrum"])
+        run = _roadbrdf.mix(path, "", method, 5, 1, False, False, None, None, "", "", True, "", "", cache)
+        for note in run.notes:
+            warnings.warn(note, UserWarning, stacklevel=2)
+        a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, zeniths, None, False, diffuse,
+                                                 p["atmosphere"] or "", p["spectrum"] or "", [], "", 1e-5))
         row = {"method": method}
         row.update(_albedo_outputs(a, p["sun_zenith_deg"]))
-        row.update(_rtable_outputs(roadbrdf.rtable(model, illuminant=p["illuminant"])))
+        row.update(_rtable_outputs(_roadbrdf.mixture_rtable_report(run, 0, cache, 1.0, p["illuminant"] or "")))
         rows.append(row)
     return rows
 
@@ -256,7 +275,7 @@ def _run(task, fits):
         with open(path, "w", encoding="utf-8") as f:
             json.dump(_materialise(task["formulation"], folder), f)
         try:
-            rows = _fast(task, path, work) if task["predictions"]["path"] == "fast" else _physical(task, path)
+            rows = _fast(task, path) if task["predictions"]["path"] == "fast" else _physical(task, path)
         except InputError as e:
             return {"rows": [], "error": str(e).replace(path, "<candidate formulation>")}
         return {"rows": rows, "error": None}

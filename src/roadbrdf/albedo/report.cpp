@@ -69,6 +69,11 @@ void AlbedoRequest::validate() const {
 }
 
 nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
+  return compute_albedo(sm, a, HemisphericalIntegrals{});
+}
+
+nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
+                              const HemisphericalIntegrals& integrals) {
   a.validate();
   const Model& model = sm.model();
   const detail::ParameterSets sets = detail::parameter_sets(sm, a);
@@ -88,7 +93,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a) {
   }
   ProgressCounter progress(a.progress, zeniths.size() + 1);
   const detail::Hemispherical albedos =
-      detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, progress);
+      detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, integrals, progress);
   if (!isotropic) {
     notes.push_back(azimuth.mean ? "anisotropic model: black-sky averaged over the sun azimuth"
                                  : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/models/spectral_model.h"
 
@@ -37,10 +38,28 @@ struct AlbedoRequest {
   void validate() const;
 };
 
+// The hemispherical integrals compute_albedo starts from, for n_sets parameter sets of a model at once:
+// black-sky at sun zenith theta_s [rad] (at sun azimuth phi_s [rad], or averaged over it) and white-sky.
+// The default is the adaptive quadrature of hemisphere.h. A caller that knows the integrals another way
+// supplies its own: a mixture linear in its end-members' BRDFs has the same linear combination of their
+// integrals (mixing/end_member_cache.h); every later stage (sky, broadband, luminous) is the same.
+class HemisphericalIntegrals {
+ public:
+  virtual ~HemisphericalIntegrals() = default;
+  virtual SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s,
+                                     double phi_s, bool azimuth_mean, const QuadratureSettings& settings) const;
+  virtual SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
+                                     const QuadratureSettings& settings) const;
+};
+
 // Throws FieldError for a request that is invalid (validate(), and what depends on the model:
 // wavelengths of a model without any, a diffuse-fraction table for it), InputError or FileError for
 // unreadable spectra.
 nlohmann::json compute_albedo(const SpectralModel& model, const AlbedoRequest& request);
+// The same with the hemispherical integrals from `integrals` (the uncertainty stage, which needs
+// derivatives of the integrals, keeps the quadrature of hemisphere.h).
+nlohmann::json compute_albedo(const SpectralModel& model, const AlbedoRequest& request,
+                              const HemisphericalIntegrals& integrals);
 
 // The CSV table `roadbrdf albedo` prints without --json (per wavelength, then broadband lines).
 std::string albedo_table(const nlohmann::json& report);

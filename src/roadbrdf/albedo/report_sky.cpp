@@ -68,16 +68,18 @@ SpectralIntegral black_sky_at(const Model& model, const std::vector<double>& par
 
 Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& sets,
                                     const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
-                                    const QuadratureSettings& settings, ProgressCounter& progress) {
+                                    const QuadratureSettings& settings, const HemisphericalIntegrals& integrals,
+                                    ProgressCounter& progress) {
   Hemispherical h;
   for (double zenith : zeniths_deg) {
-    SpectralIntegral r = black_sky_at(model, sets.params, sets.n_sets, zenith * kDegree, azimuth, settings);
+    SpectralIntegral r = integrals.black_sky(model, sets.params.data(), sets.n_sets, zenith * kDegree, azimuth.phi_s,
+                                             azimuth.mean, settings);
     h.converged = h.converged && r.converged;
     h.black.push_back(std::move(r.value));
     h.black_error.push_back(std::move(r.error));
     progress.add();
   }
-  h.white = white_sky(model, sets.params.data(), sets.n_sets, settings);
+  h.white = integrals.white_sky(model, sets.params.data(), sets.n_sets, settings);
   h.converged = h.converged && h.white.converged;
   progress.add();
   return h;
@@ -136,3 +138,19 @@ Sky sky_conditions(const ParameterSets& sets, const AlbedoRequest& a, const Hemi
 }
 
 }  // namespace roadbrdf::albedo::detail
+
+namespace roadbrdf::albedo {
+
+SpectralIntegral HemisphericalIntegrals::black_sky(const Model& model, const double* params, std::size_t n_sets,
+                                                   double theta_s, double phi_s, bool azimuth_mean,
+                                                   const QuadratureSettings& settings) const {
+  return azimuth_mean ? black_sky_azimuth_mean(model, params, n_sets, theta_s, settings)
+                      : albedo::black_sky(model, params, n_sets, theta_s, phi_s, settings);
+}
+
+SpectralIntegral HemisphericalIntegrals::white_sky(const Model& model, const double* params, std::size_t n_sets,
+                                                   const QuadratureSettings& settings) const {
+  return albedo::white_sky(model, params, n_sets, settings);
+}
+
+}  // namespace roadbrdf::albedo

@@ -42,7 +42,8 @@ struct Hemispherical {
 };
 Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& sets,
                                     const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
-                                    const QuadratureSettings& settings, ProgressCounter& progress);
+                                    const QuadratureSettings& settings, const HemisphericalIntegrals& integrals,
+                                    ProgressCounter& progress);
 
 // The sky: diffuse fraction D per sun zenith and set (a constant, a table or SPECTRL2), SPECTRL2's
 // spectra per zenith, and blue-sky = (1 - D) black + D white (report eq. 2.19). All empty without a

@@ -30,6 +30,10 @@ struct MethodEntry {
   const char* name;         // as on the command line and in MIX.json
   const char* description;  // one line, in MIX.json and `mix --help`
   bool needs_data;          // fitted to a measured mixture of the formulation itself
+  // The mixture is linear in the end-members' BRDFs, f = sum_k a_k f_k with a_k independent of the
+  // geometry (MixtureKind::kLinear), so its albedos are the same combination of the end-members'
+  // (end_member_cache.h). Declared here only; mixture_albedo checks the mixture's kind agrees.
+  bool linear;
   MethodFunction run;
 };
 

@@ -79,7 +79,8 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   if (formulation.mastic) read.push_back({"mastic.fit of " + request.formulation, formulation.mastic->fit_path});
   for (const auto& c : formulation.components) read.push_back({"fit of component '" + c.name + "'", c.fit_path});
   check_distinct_files(read, outputs);
-  run.inputs = std::make_unique<MixInputs>(load_mix_inputs(formulation));
+  run.inputs = std::make_unique<MixInputs>(
+      load_mix_inputs(formulation, request.end_member_cache ? request.end_member_cache->loader() : FitLoader{}));
   MixSettings settings;
   settings.binder_coverage = request.binder_coverage;
   settings.mastic_area_fraction = request.mastic_fraction;

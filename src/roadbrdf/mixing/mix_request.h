@@ -20,6 +20,7 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/mixing/end_member_cache.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mixing.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -44,6 +45,8 @@ struct MixRequest {
   // for every end-member of the formulation; "" = uncalibrated. Only with method hapke or all.
   std::string cross_sections;
   ProgressCallback progress;  // mixes done (every method, every fold); not kept in MixRun
+  // Fit files read once for many requests (a design study's candidates); null: read for this request.
+  std::shared_ptr<EndMemberCache> end_member_cache;
 
   // Checks everything that needs no file. Throws FieldError.
   void validate() const;

@@ -11,15 +11,15 @@ const std::vector<MethodEntry>& method_table() {
   static const std::vector<MethodEntry> table{
       {Method::kAreal, "areal",
        "areal mixing, area fractions from the formulation (projected area per mass 3/(2 rho D), binder coverage)",
-       false, &mix_areal},
+       false, true, &mix_areal},
       {Method::kFitted, "fitted", "linear mixing, weights fitted to the measured mixture by non-negative least squares",
-       true, &mix_fitted},
-      {Method::kMastic, "mastic", "measured mastic + coarse aggregate classes, areal mixing", false, &mix_mastic},
+       true, true, &mix_fitted},
+      {Method::kMastic, "mastic", "measured mastic + coarse aggregate classes, areal mixing", false, true, &mix_mastic},
       {Method::kHapke, "hapke",
-       "intimate Hapke mixing: w from white-sky albedo (IMSA H1), weights M/(rho D), phase terms by c w", false,
+       "intimate Hapke mixing: w from white-sky albedo (IMSA H1), weights M/(rho D), phase terms by c w", false, false,
        &mix_hapke},
       {Method::kShadowed, "shadowed",
-       "nonlinear fitted mixing: coarse aggregates shadow the matrix, exp(-s (tan theta_i + tan theta_r))", true,
+       "nonlinear fitted mixing: coarse aggregates shadow the matrix, exp(-s (tan theta_i + tan theta_r))", true, false,
        &mix_shadowed},
   };
   return table;
@@ -55,6 +55,8 @@ std::vector<Method> all_methods() {
 }
 
 bool method_needs_data(Method method) { return method_entry(method).needs_data; }
+
+bool method_is_linear(Method method) { return method_entry(method).linear; }
 
 MixResult mix(const MixInputs& inputs, Method method, const MixSettings& settings, const SpectralDataset* data,
               const std::vector<std::size_t>* training) {

@@ -99,6 +99,8 @@ std::string to_string(Method method);
 Method method_from_string(const std::string& text);  // throws InputError
 std::vector<Method> all_methods();
 bool method_needs_data(Method method);  // fitted, shadowed
+// Linear in the end-members' BRDFs (areal, fitted, mastic; method_table.h MethodEntry::linear).
+bool method_is_linear(Method method);
 
 struct MixSettings {
   std::optional<double> binder_coverage;       // overrides the formulation (areal)

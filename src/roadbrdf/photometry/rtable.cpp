@@ -64,9 +64,7 @@ std::vector<Geometry> rtable_geometries(double alpha_deg) {
   return g;
 }
 
-namespace {
-
-RTable table_from_brdf(const std::vector<double>& f, double alpha_deg, std::string name) {
+RTable rtable_from_brdf(const std::vector<double>& f, double alpha_deg, std::string name) {
   RTable table;
   table.name = std::move(name);
   table.alpha_deg = alpha_deg;
@@ -84,6 +82,8 @@ RTable table_from_brdf(const std::vector<double>& f, double alpha_deg, std::stri
   }
   return table;
 }
+
+namespace {
 
 // Wavelength grid and weights (summing to 1) for a spectral reduction.
 void spectral_grid(const SpectralModel& model, const SpectralWeighting& w, std::vector<double>& grid,
@@ -216,12 +216,12 @@ RTable compute_rtable(const Model& model, const std::vector<double>& parameters,
   const std::vector<Geometry> g = rtable_geometries(alpha_deg);
   std::vector<double> f(g.size());
   model.evaluate_batch(g.data(), g.size(), parameters.data(), 1, f.data());
-  return table_from_brdf(f, alpha_deg, model.name());
+  return rtable_from_brdf(f, alpha_deg, model.name());
 }
 
 RTable compute_rtable(const SpectralModel& model, const SpectralWeighting& weighting, double alpha_deg) {
   const std::vector<Geometry> g = rtable_geometries(alpha_deg);
-  return table_from_brdf(weighted_brdf(model, weighting, g), alpha_deg, model.model().name());
+  return rtable_from_brdf(weighted_brdf(model, weighting, g), alpha_deg, model.model().name());
 }
 
 // ---- summary figures ------------------------------------------------------------------------

@@ -91,6 +91,10 @@ RTable compute_rtable(const Model& model, const std::vector<double>& parameters,
 // a single-band one is taken at its wavelength (effective_weighting).
 RTable compute_rtable(const SpectralModel& model, const SpectralWeighting& weighting, double alpha_deg = 1.0);
 
+// The r-table from a BRDF given at rtable_geometries(alpha_deg), in their order: what compute_rtable
+// does with the values it evaluates, for a caller that has them another way.
+RTable rtable_from_brdf(const std::vector<double>& brdf, double alpha_deg, std::string name);
+
 // The wavelengths [nm] a spectral reduction evaluates the model at, with their weights (summing to
 // 1; wavelengths of zero weight, V = 0 outside 340-830 nm, left out): f = sum_k weights[k] f(l_k).
 // A wavelength-independent model has none. Throws InputError as compute_rtable.

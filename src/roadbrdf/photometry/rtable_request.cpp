@@ -93,6 +93,10 @@ ClassSystem RTableRequest::system() const {
 }
 
 RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request) {
+  return rtable_report(model, request, weighted_brdf);
+}
+
+RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request, const WeightedBrdf& brdf) {
   request.validate();
   RTableReport report;
   SpectralWeighting w;
@@ -137,7 +141,8 @@ RTableReport rtable_report(const SpectralModel& model, const RTableRequest& requ
       }
     }
   }
-  report.table = compute_rtable(model, w, request.alpha);
+  report.table =
+      rtable_from_brdf(brdf(model, w, rtable_geometries(request.alpha)), request.alpha, model.model().name());
   summarize_into(report, request, model.coverage());
   // Cheap (each parameter moves only its neighbouring wavelengths): always, as for albedo.
   report.uncertainty = summary_uncertainty(model, w, report.table, request.region());

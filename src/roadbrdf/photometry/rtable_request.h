@@ -9,6 +9,7 @@
 // also the Python keywords; the command line maps them to its flags (cli/common.h).
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -78,6 +79,13 @@ struct RTableReport {
 // The r-table of a spectral model (a fit file, a mixture, or a plain model as a constant spectral
 // model) at the request's weighting. Throws FieldError / InputError.
 RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request);
+// How rtable_report evaluates a spectral model at the r-table geometries under a weighting: the
+// per-geometry weighted BRDF, as weighted_brdf (rtable.h) computes it. A caller with a faster way to the
+// same numbers supplies its own (mixing/end_member_cache.h: a mixture from its end-members' values at
+// the table's geometries, computed once for many mixtures).
+using WeightedBrdf = std::function<std::vector<double>(const SpectralModel& model, const SpectralWeighting& weighting,
+                                                       const std::vector<Geometry>& geometries)>;
+RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request, const WeightedBrdf& brdf);
 // The report of an r-table read from a file (read_rtable). Throws FieldError / InputError.
 RTableReport rtable_report(RTableFile imported, const RTableRequest& request);
 
