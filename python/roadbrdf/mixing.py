@@ -25,7 +25,9 @@ class MethodResult:
     """One mixing method's result: ``method``, ``description``, ``end_members``, ``weights``
     {end-member: weight}, ``formulation_weights``, ``settings``, ``notes``, ``comparison`` (held-out
     errors against the measured mixture: ``rmse`` [sr^-1], ``relative_rmse``, ``chi2_reduced``,
-    ``albedo``, ...; None without data); :meth:`spectral_model` evaluates the mixture."""
+    ``albedo``, ...; None without data); :meth:`spectral_model` evaluates the mixture, with the parameter
+    covariance from the end-members' fits where the method has one (areal, mastic, hapke: see ``notes``), so
+    that :func:`roadbrdf.albedo` and :func:`roadbrdf.rtable` give its uncertainties."""
 
     def __init__(self, run, index: int, content: dict):
         self._run = run
