@@ -34,7 +34,7 @@ def mixture(tmp_path):
             {"name": "Rock", "kind": "aggregate", "mass_percent": 90, "density_g_cm3": 2.7, "d_min_mm": 2,
              "d_max_mm": 6, "fit": "fits/rock.fit.json"}]}))
     out = tmp_path / "F.mix.json"
-    run = roadbrdf.mix(formulation, output=out)
+    run = roadbrdf.mix(formulation, output=out, uncertainty=True)
     return out, run
 
 

@@ -123,12 +123,12 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
       if (run.data) {
         Comparison c = compare_method(*run.inputs, m, settings, *run.data, request.folds, request.seed,
                                       reference ? &*reference : nullptr, &progress);
-        attach_parameter_covariance(*run.inputs, c.result);
+        if (request.uncertainty) attach_parameter_covariance(*run.inputs, c.result);
         run.content.results.push_back(c.result);
         run.content.comparisons.push_back(std::move(c));
       } else {
         MixResult r = mix(*run.inputs, m, settings);
-        attach_parameter_covariance(*run.inputs, r);
+        if (request.uncertainty) attach_parameter_covariance(*run.inputs, r);
         run.content.results.push_back(std::move(r));
         progress.add();
       }

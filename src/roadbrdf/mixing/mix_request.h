@@ -43,6 +43,11 @@ struct MixRequest {
   // hapke: calibration file of `roadbrdf mix-calibrate` (calibration.h) with a cross-section factor
   // for every end-member of the formulation; "" = uncalibrated. Only with method hapke or all.
   std::string cross_sections;
+  // areal, mastic, hapke: carry the end-members' parameter covariance into the mixture
+  // (mixture_covariance.h), so that albedo and r-table of the MIX.json get uncertainties. Off by
+  // default: the albedo uncertainty of a mixture differentiates every end-member parameter
+  // (e.g. 21 for F1), which makes `roadbrdf albedo MIX.json` minutes instead of seconds.
+  bool uncertainty = false;
   ProgressCallback progress;  // mixes done (every method, every fold); not kept in MixRun
 
   // Checks everything that needs no file. Throws FieldError.
