@@ -32,8 +32,9 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     Returns a dict: ``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky`` [zenith][wavelength],
     ``white_sky`` [wavelength], ``blue_sky``, ``diffuse_fraction``, their ``*_error`` estimates,
     ``broadband`` (solar-weighted values), ``luminous``, ``coverage`` (a fit's measured directions and
-    the fractions of the black- and white-sky integrals outside them, ``None`` when unknown), ``units``
-    and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
+    the fractions of the black- and white-sky integrals outside them, ``None`` when unknown),
+    ``uncertainty`` (standard uncertainties of the same albedos from the parameter covariance of a fit, or
+    of a mixture from its end-members' fits; ``None`` when unknown), ``units`` and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
     """
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
     common = (zeniths, None if sun_azimuth is None else float(sun_azimuth), bool(azimuth_mean),

@@ -25,7 +25,9 @@ class MethodResult:
     """One mixing method's result: ``method``, ``description``, ``end_members``, ``weights``
     {end-member: weight}, ``formulation_weights``, ``settings``, ``notes``, ``comparison`` (held-out
     errors against the measured mixture: ``rmse`` [sr^-1], ``relative_rmse``, ``chi2_reduced``,
-    ``albedo``, ...; None without data); :meth:`spectral_model` evaluates the mixture."""
+    ``albedo``, ...; None without data); :meth:`spectral_model` evaluates the mixture, with the parameter
+    covariance from the end-members' fits where the method has one (areal, mastic, hapke: see ``notes``), so
+    that :func:`roadbrdf.albedo` and :func:`roadbrdf.rtable` give its uncertainties."""
 
     def __init__(self, run, index: int, content: dict):
         self._run = run
@@ -121,7 +123,7 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
         per_wavelength: bool = False, sum_to_one: bool = False, binder_coverage: float | None = None,
         mastic_fraction: float | None = None, reference: PathLike | None = None, output: PathLike | None = None,
         use_sigma: bool = True, residuals: PathLike | None = None,
-        cross_sections: PathLike | None = None) -> MixResult:
+        cross_sections: PathLike | None = None, uncertainty: bool = False) -> MixResult:
     """Predict the BRDF of a road formulation from its components' fits, as ``roadbrdf mix`` does.
 
     ``formulation``: a formulation JSON file (see docs/mixing.md); ``data``: the measured mixture
@@ -130,7 +132,8 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
     sigma (False = ``--no-sigma``); ``output``: also write MIX.json; ``residuals``: CSV path for the
     held-out residuals (needs ``data``); ``cross_sections``: calibration file of :func:`mix_calibrate`
-    (``--cross-sections``, hapke only). Methods skipped with ``method="all"`` are reported as
+    (``--cross-sections``, hapke only); ``uncertainty``: carry the components' fit covariances into the
+    areal, mastic and hapke mixtures (``--uncertainty``; their albedo is then much slower). Methods skipped with ``method="all"`` are reported as
     :class:`UserWarning` (and in ``notes``).
     """
     run = _roadbrdf.mix(os.fspath(formulation), "" if data is None else os.fspath(data), str(method), int(folds),
@@ -139,7 +142,7 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
                         None if mastic_fraction is None else float(mastic_fraction),
                         "" if reference is None else os.fspath(reference), "" if output is None else os.fspath(output),
                         bool(use_sigma), "" if residuals is None else os.fspath(residuals),
-                        "" if cross_sections is None else os.fspath(cross_sections))
+                        "" if cross_sections is None else os.fspath(cross_sections), bool(uncertainty))
     for note in run.notes:
         warnings.warn(note, UserWarning, stacklevel=2)
     result = MixResult(run)

@@ -25,9 +25,10 @@ class RTable(dict):
     from a fit also have ``coverage``: the fit's measured directions and the cells outside them, and the
     negative cells (``roadbrdf rtable --json``'s "coverage"; its warnings are :class:`UserWarning`), and
     ``uncertainty``: the standard uncertainties ``Q0``, ``S1``, ``S2``, ``Qd`` propagated from the fit's
-    parameter covariance (wavelengths independent; None where undefined) and ``class_probabilities``, a
-    list of ``{"class", "probability"}`` for the classes of ``class_system`` of probability >= 1 % with
-    S1 normal; ``uncertainty`` is None for a model given by its parameters, a mixture or a file."""
+    parameter covariance, or a mixture's from its end-members' fits (wavelengths independent; None where
+    undefined) and ``class_probabilities``, a list of ``{"class", "probability"}`` for the classes of
+    ``class_system`` of probability >= 1 % with S1 normal; ``uncertainty`` is None for a model given by its
+    parameters, a mixture fitted to measured data (methods fitted, shadowed) or a file."""
 
     def write(self, path: PathLike, format: str = "csv") -> None:
         """Write as ``"csv"``, ``"rtb"`` (DIALux) or ``"radiance"``, atomically."""

@@ -28,6 +28,16 @@ def class_diagram_range(s1, q0):
     return s1_top, q0_top
 
 
+def _error_bars(t):
+    """The standard uncertainties of S1 and Q0 to draw, with the class probabilities; None when the table has
+    none or they are undefined (null)."""
+    u = t.get("uncertainty")
+    if not isinstance(u, dict) or u.get("S1") is None or u.get("Q0") is None:
+        return None
+    classes = [(c["class"], float(c["probability"])) for c in (u.get("class_probabilities") or [])]
+    return {"S1": float(u["S1"]), "Q0": float(u["Q0"]), "class_probabilities": classes}
+
+
 def rtable(table, params=None, title=None, output=None, wavelength=None, band=None, illuminant="", *, fit=None,
            ax=None, fig=None, dpi=None):
     """r-table heat map (10^4 r over beta and tan gamma, missing cells blank) and the sample's (S1, Q0) among
@@ -38,8 +48,13 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
     :func:`roadbrdf.rtable` does: photometrically under ``illuminant``, at one ``wavelength`` [nm], or averaged
     over ``band`` = (lo, hi) [nm]; a single-band fit is taken at its band. ``ax``: two axes, or ``fig``.
 
-    ``fig.roadbrdf_data``: the r-table (``r``, ``beta_deg``, ``tan_gamma``, ``Q0``, ``S1``, ``class``, ...) and
-    ``diagram_range`` = (S1 upper limit, Q0 upper limit).
+    When the table has standard uncertainties (from the covariance of a fit, or of a mixture from its
+    end-members' fits: ``uncertainty``), the sample's point carries error bars u(S1), u(Q0) (k = 1, wavelengths
+    independent) and the legend the class probabilities.
+
+    ``fig.roadbrdf_data``: the r-table (``r``, ``beta_deg``, ``tan_gamma``, ``Q0``, ``S1``, ``class``,
+    ``uncertainty``, ...), ``diagram_range`` = (S1 upper limit, Q0 upper limit) and ``error_bars`` = {``S1``,
+    ``Q0``: the standard uncertainties drawn, ``class_probabilities``: [(class, probability)]} or None.
     """
     spectral_choice = wavelength is not None or band is not None
     name = None
@@ -96,9 +111,18 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
         axis.plot([s1_standard], [q0_standard], "s", color="gray", ms=6)
         axis.annotate(f"standard {cls}", (s1_standard, q0_standard), textcoords="offset points", xytext=(0, 7),
                       ha="center", fontsize=7, color="gray")
+    bars = _error_bars(t)
     if s1 is not None and q0 is not None:
-        axis.plot([s1], [q0], "r*", ms=14, label=f"this surface: S1 = {s1:.2f}, Q0 = {q0:.3f} sr$^{{-1}}$"
-                  + (f", class {t['class']}" if t.get("class") else ""))
+        label = f"this surface: S1 = {s1:.2f}, Q0 = {q0:.3f} sr$^{{-1}}$" + (
+            f", class {t['class']}" if t.get("class") else "")
+        if bars:
+            label = (f"this surface: S1 = {s1:.2f} ± {bars['S1']:.2f}, Q0 = {q0:.3f} ± {bars['Q0']:.3f} sr$^{{-1}}$"
+                     + (f", class {t['class']}" if t.get("class") else ""))
+            axis.errorbar([s1], [q0], xerr=[bars["S1"]], yerr=[bars["Q0"]], fmt="none", ecolor="red", capsize=3,
+                          elinewidth=1.0)
+            if bars["class_probabilities"]:
+                label += "\nP(class): " + ", ".join(f"{c} {p:.2f}" for c, p in bars["class_probabilities"])
+        axis.plot([s1], [q0], "r*", ms=14, label=label)
         axis.legend(fontsize=8, loc="upper right")
     axis.set_xlim(0, s1_top)
     axis.set_ylim(0, q0_top)
@@ -110,4 +134,5 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
     if t.get("note"):
         fig.supxlabel(textwrap.fill(t["note"], 150), fontsize=8, color="gray")
     t["diagram_range"] = (s1_top, q0_top)
+    t["error_bars"] = bars
     return finish(fig, output, t, axes, dpi)

@@ -54,7 +54,7 @@ void bind_mixing(py::module_& m) {
       [](const std::string& formulation_path, const std::string& data_path, const std::string& method, int folds,
          unsigned seed, bool per_wavelength, bool sum_to_one, std::optional<double> binder_coverage,
          std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output,
-         bool use_sigma, const std::string& residuals, const std::string& cross_sections,
+         bool use_sigma, const std::string& residuals, const std::string& cross_sections, bool uncertainty,
          std::shared_ptr<mixing::EndMemberCache> cache) {
         mixing::MixRequest request;
         request.formulation = formulation_path;
@@ -70,6 +70,7 @@ void bind_mixing(py::module_& m) {
         request.use_sigma = use_sigma;
         request.residuals = !residuals.empty();
         request.cross_sections = cross_sections;
+        request.uncertainty = uncertainty;
         request.end_member_cache = std::move(cache);
         std::shared_ptr<MixRun> run;
         {
@@ -82,7 +83,7 @@ void bind_mixing(py::module_& m) {
       py::arg("seed") = 1u, py::arg("per_wavelength") = false, py::arg("sum_to_one") = false,
       py::arg("binder_coverage") = py::none(), py::arg("mastic_fraction") = py::none(), py::arg("reference") = "",
       py::arg("output") = "", py::arg("use_sigma") = true, py::arg("residuals") = "", py::arg("cross_sections") = "",
-      py::arg("cache") = py::none());
+      py::arg("uncertainty") = false, py::arg("cache") = py::none());
   // Calibrated intimate mixing (mixing/calibration.h): a CrossSectionRequest; returns the calibration
   // file's content (written to `output` when given) and the report.
   m.def(

@@ -101,7 +101,7 @@ def _fast(task, path):
     diffuse = "" if p["diffuse_fraction"] is None else str(p["diffuse_fraction"])
     rows = []
     for method in p["methods"]:
-        run = _roadbrdf.mix(path, "", method, 5, 1, False, False, None, None, "", "", True, "", "", cache)
+        run = _roadbrdf.mix(path, "", method, 5, 1, False, False, None, None, "", "", True, "", "", cache=cache)
         for note in run.notes:
             warnings.warn(note, UserWarning, stacklevel=2)
         a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, zeniths, None, False, diffuse,

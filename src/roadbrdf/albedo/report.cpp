@@ -37,9 +37,10 @@ nlohmann::json units() {
            "the fit's measured directions (deg) and the fractions (1) of the black-sky [sun zenith] "
            "and white-sky integrals outside them; null when unknown"},
           {"uncertainty",
-           "standard uncertainties (1) of black_sky, white_sky and blue_sky from the fit's "
-           "parameter covariance, same shapes; null when unknown (a model, a mixture, "
-           "--wavelengths), null entries where the covariance is undefined; the table's "
+           "standard uncertainties (1) of black_sky, white_sky and blue_sky from the parameter "
+           "covariance of a fit, or of a mixture from its end-members' fits, same shapes; null when "
+           "unknown (a model, a mixture fitted to measured data, --wavelengths), null entries where the covariance is "
+           "undefined; the table's "
            "last columns *_u; broadband: {independent, correlated} per value (albedo/uncertainty.h)"}};
 }
 

@@ -97,7 +97,9 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
     progress.add();
   }
 
-  nlohmann::json u = {{"method", "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength"},
+  nlohmann::json u = {{"method",
+                       "linearised (GUM eq. 10) from the parameter covariance at each wavelength (a fit's, or a "
+                       "mixture's from its end-members' fits)"},
                       {"black_sky", rows_with_nulls(u_black)},
                       {"white_sky", with_nulls(propagated(g_white))},
                       {"blue_sky", rows_with_nulls(u_blue)},
@@ -108,7 +110,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
                       {"blue_sky", bb_blue.empty() ? nlohmann::json(nullptr) : bb_blue}};
   }
   notes.push_back(
-      "standard uncertainties from the fit's parameter covariance, per wavelength; the broadband ones "
+      "standard uncertainties from the parameter covariance, per wavelength; the broadband ones "
       "treat the wavelengths as independent ('independent') and give the bound for errors correlated "
       "across wavelengths ('correlated')");
   return u;

@@ -1,6 +1,6 @@
 // roadbrdf mix FORMULATION.json [--data MEASURED.csv] [--method areal|fitted|mastic|hapke|shadowed|all]
 //              [--folds K] [--reference FIT.json] [--no-sigma] [--residuals RES.csv]
-//              [--cross-sections CAL.json] -o MIX.json
+//              [--cross-sections CAL.json] [--uncertainty] -o MIX.json
 // Predicts the BRDF of a road formulation from its components' fits (mixing/mixing.h) and, with
 // measured data of the mixed sample, compares the methods with k-fold held-out geometries.
 #include <fmt/core.h>
@@ -44,6 +44,7 @@ struct MixArgs {
   std::string reference;
   std::string cross_sections;
   std::string output;
+  bool uncertainty = false;
   bool quiet = false;
 };
 
@@ -64,6 +65,7 @@ void run(const MixArgs& a) {
   request.mastic_fraction = a.mastic_fraction;
   request.reference = a.reference;
   request.cross_sections = a.cross_sections;
+  request.uncertainty = a.uncertainty;
   request.residuals = !a.residuals.empty();
   ProgressBar bar("mix: mixes (methods x folds)", stderr, ProgressBar::terminal_enabled(a.quiet));
   request.progress = bar.callback();
@@ -97,6 +99,9 @@ void register_mix_command(CLI::App& app) {
   command->add_option("--seed", args.seed, "Seed of the geometry shuffle for the folds (default 1)");
   command->add_flag("--per-wavelength", args.per_wavelength,
                     "fitted: one weight set per wavelength (default: one for all)");
+  command->add_flag("--uncertainty", args.uncertainty,
+                    "areal, mastic, hapke: carry the components' fit covariances into MIX.json (albedo and rtable "
+                    "of it then give uncertainties; the albedo becomes much slower)");
   command->add_flag("--sum-to-one", args.sum_to_one, "fitted, shadowed: constrain the weights to sum to one");
   command->add_option("--binder-coverage", args.binder_coverage,
                       "areal: fraction of the surface covered by binder, overriding the formulation");

@@ -61,10 +61,12 @@ AngularCoverage read_coverage(const JsonNode& node) {
   return c;
 }
 
+}  // namespace
+
 // The parameter covariance per wavelength (SpectralModel::parameter_covariance) from "stderr" and
 // "correlation": cov_ab = r_ab s_a s_b, 0 for a fixed parameter, NaN where either is null (undefined).
 // Empty when the file has neither, or orders its parameters otherwise than the model.
-std::vector<double> read_covariance(const JsonNode& fit, const ModelDescription& d, std::size_t m) {
+std::vector<double> read_parameter_covariance(const JsonNode& fit, const ModelDescription& d, std::size_t m) {
   const auto stderr_node = fit.find("stderr");
   const auto correlation_node = fit.find("correlation");
   if (!stderr_node || !correlation_node) return {};
@@ -111,6 +113,8 @@ std::vector<double> read_covariance(const JsonNode& fit, const ModelDescription&
   }
   return covariance;
 }
+
+namespace {
 
 // The group of a fit ("group" object; empty without groups) as (column, value) pairs.
 std::vector<std::pair<std::string, double>> fit_group(const JsonNode& fit) {
@@ -433,7 +437,7 @@ SpectralModel read_fit_file(const std::string& path, const std::string& selectio
         read_parameter_table(fit.at("parameters"), model->description(), wavelengths.size(), wavelengths);
     SpectralModel spectral(model, wavelengths, table);
     if (const auto c = fit.find("coverage")) spectral.set_coverage(read_coverage(*c));
-    spectral.set_parameter_covariance(read_covariance(fit, model->description(), wavelengths.size()));
+    spectral.set_parameter_covariance(read_parameter_covariance(fit, model->description(), wavelengths.size()));
     return spectral;
   }
   fits.fail("no fit of model '" + wanted + "' in this file");  // select_fits returned none: not reached
@@ -457,7 +461,7 @@ SpectralModel spectral_model_of(const FitResult& fit, std::shared_ptr<const Mode
   for (const WavelengthFit& w : fit.wavelengths) {
     wavelengths.push_back(w.wavelength);
     table.insert(table.end(), w.parameters.begin(), w.parameters.begin() + static_cast<std::ptrdiff_t>(p));
-    // As read_covariance builds it from the file's "stderr" and "correlation".
+    // As read_parameter_covariance builds it from the file's "stderr" and "correlation".
     for (std::size_t a = 0; a < p; ++a) {
       for (std::size_t b = 0; b < p; ++b) {
         covariance.push_back(

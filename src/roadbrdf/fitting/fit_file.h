@@ -34,6 +34,7 @@
 #include <utility>
 #include <vector>
 
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/models/spectral_model.h"
 
@@ -52,6 +53,13 @@ FitSelector parse_fit_selector(const std::string& text);
 // file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
 // InputError (FieldError "fit" for a selection matching no fit or several).
 SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
+
+// The parameter covariance per wavelength (SpectralModel::parameter_covariance) of a fit object of a
+// fit file, or of a method of a MIX.json (the same keys), from its "stderr" {name: [per wavelength]}
+// and "correlation" [per wavelength: p x p]: cov_ab = r_ab s_a s_b, 0 for a parameter in "fixed", NaN
+// where either is null (undefined). Empty when the object has neither, or orders its parameters
+// ("parameter_order") otherwise than `description`. `m` wavelengths. Throws FileError at a bad shape.
+std::vector<double> read_parameter_covariance(const JsonNode& fit, const ModelDescription& description, std::size_t m);
 
 // The SpectralModel of a fit held in memory, the same as read_fit_file gives for it from the file:
 // parameters per wavelength, the data's angular coverage and the parameter covariance per wavelength

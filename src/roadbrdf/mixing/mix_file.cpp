@@ -26,6 +26,45 @@ ordered weights_object(const std::vector<std::string>& names, const std::vector<
   return o;
 }
 
+// A mixture's parameter covariance (mixture_covariance.h) as a fit file stores a fit's: "stderr" per
+// parameter and wavelength, "correlation" per wavelength (0 off the diagonal for a parameter of
+// standard error 0) and "fixed", the parameters of variance 0 at every wavelength (the weights, the
+// end-members' fixed parameters). Nothing when the mixture has none.
+void add_covariance(ordered& method, const SpectralModel& model) {
+  const std::vector<double>& covariance = model.parameter_covariance();
+  if (covariance.empty()) return;
+  const ModelDescription& d = model.model().description();
+  const std::size_t P = d.parameters.size(), L = model.wavelengths().size();
+  auto c = [&](std::size_t l, std::size_t a, std::size_t b) { return covariance[(l * P + a) * P + b]; };
+  ordered stderr_object = ordered::object(), fixed = ordered::array();
+  for (std::size_t a = 0; a < P; ++a) {
+    ordered column = ordered::array();
+    bool always_zero = true;
+    for (std::size_t l = 0; l < L; ++l) {
+      column.push_back(number_or_null(std::sqrt(c(l, a, a))));
+      always_zero = always_zero && c(l, a, a) == 0.0;
+    }
+    stderr_object[d.parameters[a].name] = column;
+    if (always_zero) fixed.push_back(d.parameters[a].name);
+  }
+  ordered correlation = ordered::array();
+  for (std::size_t l = 0; l < L; ++l) {
+    ordered matrix = ordered::array();
+    for (std::size_t a = 0; a < P; ++a) {
+      ordered row = ordered::array();
+      for (std::size_t b = 0; b < P; ++b) {
+        const double s = std::sqrt(c(l, a, a) * c(l, b, b));
+        row.push_back(s == 0.0 ? ordered(a == b ? 1.0 : 0.0) : number_or_null(c(l, a, b) / s));
+      }
+      matrix.push_back(row);
+    }
+    correlation.push_back(matrix);
+  }
+  method["stderr"] = stderr_object;
+  method["correlation"] = correlation;
+  method["fixed"] = fixed;
+}
+
 }  // namespace
 
 nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
@@ -39,6 +78,8 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
       {"weight", "1: area fraction (linear, shadowed) or normalised cross-section weight M/(rho D) (hapke)"},
       {"ssa", "1: single-scattering albedo (Hapke IMSA, H1)"},
       {"shadowing", "1: s in exp(-s (tan theta_i + tan theta_r))"},
+      {"stderr", "standard uncertainty of each parameter, in its unit, from the end-members' fits"},
+      {"correlation", "1: correlation matrix of the parameters per wavelength"},
       {"rmse", "sr^-1 (BRDF)"},
       {"relative_rmse", "1: rmse / mean |measured BRDF|"},
       {"chi2_reduced", "1: mean of ((predicted - measured) / sigma)^2 over the held-out values (null without sigma)"},
@@ -113,6 +154,7 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
       params[d.parameters[q].name] = values;
     }
     m["parameters"] = params;
+    add_covariance(m, model);
     m["weights"] = weights_object(res.end_members, res.weights);
     m["formulation_weights"] =
         res.formulation_weights.empty() ? ordered(nullptr) : weights_object(res.end_members, res.formulation_weights);
@@ -228,7 +270,9 @@ SpectralModel read_mix_file(const std::string& path, const std::string& method) 
     const std::size_t rows = wavelengths.empty() ? 1 : wavelengths.size();
     const auto table = read_parameter_table(m.at("parameters"), mixture->description(), rows, wavelengths);
     if (wavelengths.empty()) return SpectralModel(mixture, table);
-    return SpectralModel(mixture, wavelengths, table);
+    SpectralModel model(mixture, wavelengths, table);
+    model.set_parameter_covariance(read_parameter_covariance(m, mixture->description(), wavelengths.size()));
+    return model;
   }
   methods.fail("no method '" + wanted + "' in this mix file");
 }

@@ -17,6 +17,9 @@
 //       "coarse": [false, true, ...],             // coarse flags (used by mixture-shadowed)
 //       "wavelengths": [nm, ...],                 // [] when no end-member depends on wavelength
 //       "parameters": { "<parameter name>": [value per wavelength (one value when [])], ... },
+//       "stderr", "correlation", "fixed": the mixture's parameter covariance from its end-members'
+//                                   fits (mixture_covariance.h), as a fit file stores a fit's; absent
+//                                   when it has none (fitted, shadowed; an end-member without one)
 //       "weights": { "<end-member>": value },     // summary (see MixResult::weights)
 //       "formulation_weights": { ... } | null, "weight_distance": x | null, "weight_sum": x | null,
 //       "settings": { "binder_coverage": ..., "shadowing": ..., ... },

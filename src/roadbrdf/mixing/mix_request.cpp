@@ -9,6 +9,7 @@
 #include "roadbrdf/core/nearest_name.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/calibration.h"
+#include "roadbrdf/mixing/mixture_covariance.h"
 
 namespace roadbrdf::mixing {
 
@@ -123,10 +124,13 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
       if (run.data) {
         Comparison c = compare_method(*run.inputs, m, settings, *run.data, request.folds, request.seed,
                                       reference ? &*reference : nullptr, &progress);
+        if (request.uncertainty) attach_parameter_covariance(*run.inputs, c.result);
         run.content.results.push_back(c.result);
         run.content.comparisons.push_back(std::move(c));
       } else {
-        run.content.results.push_back(mix(*run.inputs, m, settings));
+        MixResult r = mix(*run.inputs, m, settings);
+        if (request.uncertainty) attach_parameter_covariance(*run.inputs, r);
+        run.content.results.push_back(std::move(r));
         progress.add();
       }
     } catch (const FieldError&) {

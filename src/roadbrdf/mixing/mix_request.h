@@ -44,6 +44,11 @@ struct MixRequest {
   // hapke: calibration file of `roadbrdf mix-calibrate` (calibration.h) with a cross-section factor
   // for every end-member of the formulation; "" = uncalibrated. Only with method hapke or all.
   std::string cross_sections;
+  // areal, mastic, hapke: carry the end-members' parameter covariance into the mixture
+  // (mixture_covariance.h), so that albedo and r-table of the MIX.json get uncertainties. Off by
+  // default: the albedo uncertainty of a mixture differentiates every end-member parameter
+  // (e.g. 21 for F1), which makes `roadbrdf albedo MIX.json` minutes instead of seconds.
+  bool uncertainty = false;
   ProgressCallback progress;  // mixes done (every method, every fold); not kept in MixRun
   // Fit files read once for many requests (a design study's candidates); null: read for this request.
   std::shared_ptr<EndMemberCache> end_member_cache;

@@ -41,8 +41,9 @@ class SpectralModel {
 
   // The covariance of the fitted parameters at each tabulated wavelength (from the fit file's
   // standard errors and correlations): wavelengths() x P x P, row-major; NaN where undefined, 0 for
-  // fixed parameters; empty when unknown (a model given by its parameters, a mixture). Albedo
-  // uncertainties are propagated from it (albedo/uncertainty.h).
+  // fixed parameters; empty when unknown (a model given by its parameters). A mixture's comes from its
+  // end-members' fits (mixing/mixture_covariance.h). Albedo and r-table uncertainties are propagated
+  // from it (albedo/uncertainty.h, photometry/rtable_uncertainty.h).
   const std::vector<double>& parameter_covariance() const { return covariance_; }
   // Throws InputError unless `covariance` has wavelengths() x P x P values (or is empty).
   void set_parameter_covariance(std::vector<double> covariance);

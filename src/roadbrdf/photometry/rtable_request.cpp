@@ -179,11 +179,12 @@ nlohmann::json RTableReport::to_json() const {
                 {"beta_deg", "deg, 0 = forward side"},
                 {"tan_gamma", "1"},
                 {"uncertainty",
-                 "standard uncertainties (units of the figures) of Q0, S1, S2, Qd from the fit's parameter "
-                 "covariance, wavelengths independent; correlated: the bound for errors fully correlated "
-                 "across wavelengths; class_probabilities: the classes of class_system with "
-                 "probability >= 0.01 for S1 normal with that u; null when unknown (a model given by its "
-                 "parameters, a mixture, an imported table), null entries where the covariance is undefined"}};
+                 "standard uncertainties (units of the figures) of Q0, S1, S2, Qd from the parameter "
+                 "covariance of a fit, or of a mixture from its end-members' fits, wavelengths independent; "
+                 "correlated: the bound for errors fully correlated across wavelengths; class_probabilities: "
+                 "the classes of class_system with probability >= 0.01 for S1 normal with that u; null when "
+                 "unknown (a model given by its parameters, a mixture fitted to measured data, an imported "
+                 "table), null entries where the covariance is undefined"}};
   j["Q0"] = summary.q0;
   j["q0_region"] = q0_region;
   j["S1"] = summary.s1;
@@ -251,7 +252,8 @@ nlohmann::json RTableReport::uncertainty_json() const {
   };
   nlohmann::json j = figures(uncertainty->independent);
   j["method"] =
-      "linearised (GUM eq. 10) from the fit's parameter covariance at each wavelength, wavelengths independent";
+      "linearised (GUM eq. 10) from the parameter covariance at each wavelength (a fit's, or a mixture's from its "
+      "end-members' fits), wavelengths independent";
   j["correlated"] = figures(uncertainty->correlated);
   j["class_probabilities"] = classes;
   return j;
@@ -269,7 +271,7 @@ std::string RTableReport::summary_text() const {
     const SummaryUncertainty& i = uncertainty->independent;
     const SummaryUncertainty& c = uncertainty->correlated;
     text << fmt::format(
-        "u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} sr^-1 (standard uncertainties from the fit's "
+        "u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} sr^-1 (standard uncertainties from the "
         "parameter covariance)\n",
         u(i.q0), u(i.s1), u(i.s2), u(i.qd));
     text << fmt::format(

@@ -48,8 +48,8 @@ struct RTableUncertainty {
 };
 
 // The uncertainties of summarize(table, region) for `table` = compute_rtable(model, weighting,
-// alpha_deg), from model.parameter_covariance(); nullopt when the model has no covariance (a model
-// given by its parameters, a mixture). Throws InputError as compute_rtable.
+// alpha_deg), from model.parameter_covariance() (a fit's, or a mixture's, mixing/mixture_covariance.h);
+// nullopt when the model has none (a model given by its parameters). Throws InputError as compute_rtable.
 std::optional<RTableUncertainty> summary_uncertainty(const SpectralModel& model, const SpectralWeighting& weighting,
                                                      const RTable& table, Q0Region region = Q0Region::standard);
 
