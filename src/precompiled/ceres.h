@@ -5,6 +5,6 @@
 
 #include "standard.h"
 
-#include <Eigen/Dense>
 #include <ceres/ceres.h>
 #include <ceres/jet.h>
+#include <Eigen/Dense>

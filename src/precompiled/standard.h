@@ -23,6 +23,6 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Core>
 #include <fmt/core.h>
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
