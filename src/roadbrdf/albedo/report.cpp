@@ -88,7 +88,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
 
   std::vector<std::string> notes;
   if (!sets.spectral) {
-    notes.push_back(
+    notes.emplace_back(
         "non-spectral model (MODEL -p ...): values are for its constant parameters; the broadband "
         "values equal them");
   }
@@ -96,12 +96,12 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
   const detail::Hemispherical albedos =
       detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, integrals, progress);
   if (!isotropic) {
-    notes.push_back(azimuth.mean ? "anisotropic model: black-sky averaged over the sun azimuth"
-                                 : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",
-                                               a.sun_azimuth_deg.value_or(0.0)));
+    notes.emplace_back(azimuth.mean ? "anisotropic model: black-sky averaged over the sun azimuth"
+                                    : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",
+                                                  a.sun_azimuth_deg.value_or(0.0)));
   }
   if (!albedos.converged) {
-    notes.push_back("WARNING: the quadrature stopped before meeting the tolerance; see the error estimates");
+    notes.emplace_back("WARNING: the quadrature stopped before meeting the tolerance; see the error estimates");
   }
   const detail::Sky sky = detail::sky_conditions(sets, a, albedos);
   const detail::Broadband broadband = detail::broadband_albedos(sets, a, albedos, sky, notes);

@@ -51,7 +51,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
   if (covariance.empty()) return nullptr;
   // At the fit's own wavelengths only: an interpolated parameter set has no covariance of its own.
   if (!sets.spectral || !a.wavelengths.empty()) {
-    notes.push_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
+    notes.emplace_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
     return nullptr;
   }
   const Model& model = sm.model();
@@ -109,7 +109,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
                       {"white_sky", broadband_of({&g_white}, {&broadband.white_mean.first})},
                       {"blue_sky", bb_blue.empty() ? nlohmann::json(nullptr) : bb_blue}};
   }
-  notes.push_back(
+  notes.emplace_back(
       "standard uncertainties from the parameter covariance, per wavelength; the broadband ones "
       "treat the wavelengths as independent ('independent') and give the bound for errors correlated "
       "across wavelengths ('correlated')");

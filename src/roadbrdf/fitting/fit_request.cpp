@@ -391,7 +391,8 @@ FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, co
       FitOptions o = plan[i].options;
       if (progress) {
         o.progress = progress(fmt::format("fit {}{} ({}/{})", plan[i].model->description().name,
-                                          grouped ? " " + group.label() : "", s.fits.size() + 1, total));
+                                          grouped ? fmt::format(" {}", group.label()) : std::string(),
+                                          s.fits.size() + 1, total));
       }
       try {
         s.fits.push_back(fit_model(*plan[i].model, fitted, o));
