@@ -212,8 +212,10 @@ void apply_loss(const SpectralDataset& data, FitLoss loss, std::size_t g, std::s
 }
 
 // The data (wavelength-major) and the loss multipliers; `missing` counts the missing values.
+// `start`: the starting parameters, whose fixed ones the model may prepare for (Model::prepare_expecting).
 fitting::FitData fit_data(const Model& model, const SpectralDataset& data, const FitOptions& options,
-                          const std::vector<std::size_t>& measured_count, std::size_t& missing) {
+                          const std::vector<double>& start, const std::vector<std::size_t>& measured_count,
+                          std::size_t& missing) {
   const std::size_t p = model.parameter_count();
   const std::size_t N = data.geometry_count(), M = data.wavelength_count();
   fitting::FitData d;
@@ -228,7 +230,7 @@ fitting::FitData fit_data(const Model& model, const SpectralDataset& data, const
     throw InputError("the robust loss scale must be positive");
   }
   d.geometries = data.geometries.data();
-  d.prepared_geometries = model.prepare(d.geometries, N);
+  d.prepared_geometries = model.prepare_expecting(d.geometries, N, start.data());
   d.y.resize(N * M);
   d.mult.resize(N * M);
   d.lin_weight.resize(N * M);
@@ -359,7 +361,7 @@ FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOp
   const FreeCounts free_params = free_counts(L);
   check_enough_data(data, measured_count, free_params, joint, desc.name);
   std::size_t missing = 0;
-  const fitting::FitData d = fit_data(model, data, options, measured_count, missing);
+  const fitting::FitData d = fit_data(model, data, options, L.start, measured_count, missing);
   FitResult result = result_header(desc, L, options, data, missing, joint);
   if (joint) {
     fitting::fit_joint(d, L, options, result);

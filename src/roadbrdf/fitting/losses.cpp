@@ -65,8 +65,14 @@ bool FitData::residuals_of_values(std::size_t w, const double* f_values, const d
 }
 
 double FitData::chi2(std::size_t w, const double* params, bool apply_robust) const {
-  std::vector<double> r(n), f(n);
-  if (!residuals(w, params, r.data(), nullptr, f.data(), nullptr, apply_robust)) {
+  std::vector<double> f(n);
+  model->evaluate_prepared(*prepared_geometries, params, f.data());
+  return chi2_of_values(w, f.data(), apply_robust);
+}
+
+double FitData::chi2_of_values(std::size_t w, const double* f, bool apply_robust) const {
+  std::vector<double> r(n);
+  if (!residuals_of_values(w, f, nullptr, r.data(), nullptr, apply_robust)) {
     return std::numeric_limits<double>::infinity();
   }
   double s = 0.0;

@@ -51,6 +51,8 @@ struct FitData {
 
   // sum r^2 at params (infinity where the loss is undefined).
   double chi2(std::size_t w, const double* params, bool apply_robust = false) const;
+  // The same from model values f (N).
+  double chi2_of_values(std::size_t w, const double* f, bool apply_robust = false) const;
 };
 
 }  // namespace roadbrdf::fitting

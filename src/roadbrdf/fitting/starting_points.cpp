@@ -60,7 +60,8 @@ void solve_amplitudes(const FitData& d, const ParameterLayout& L, std::size_t w,
   }
   std::vector<double> trial = x;
   for (std::size_t i = 0; i < k; ++i) trial[L.free_linear[i]] = a[i];
-  if (d.chi2(w, trial.data()) < d.chi2(w, x.data())) x = trial;
+  // f holds the model at x already (its values from the gradient evaluation).
+  if (d.chi2(w, trial.data()) < d.chi2_of_values(w, f.data())) x = trial;
 }
 
 std::vector<std::vector<double>> latin_hypercube(const ParameterLayout& L, const std::vector<double>& base, int count,

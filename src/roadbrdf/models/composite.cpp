@@ -118,16 +118,26 @@ void CompositeModel::evaluate_batch_with_gradient(const Geometry* geometries, st
 }
 
 struct CompositeModel::Prepared final : PreparedGeometries {
-  Prepared(const CompositeModel& owner, const Geometry* geometries, std::size_t count)
+  // `expected`: the composite's parameter vector (component k's own parameters follow its weight), or null.
+  Prepared(const CompositeModel& owner, const Geometry* geometries, std::size_t count, const double* expected)
       : PreparedGeometries(geometries, count), composite(&owner) {
-    for (const auto& c : owner.components_) parts.push_back(c->prepare(geometries, count));
+    for (std::size_t k = 0; k < owner.components_.size(); ++k) {
+      const Model& c = *owner.components_[k];
+      parts.push_back(expected != nullptr ? c.prepare_expecting(geometries, count, expected + owner.offsets_[k] + 1)
+                                          : c.prepare(geometries, count));
+    }
   }
   const CompositeModel* composite;                         // the model that built it
   std::vector<std::unique_ptr<PreparedGeometries>> parts;  // one per component
 };
 
 std::unique_ptr<PreparedGeometries> CompositeModel::prepare(const Geometry* geometries, std::size_t count) const {
-  return std::make_unique<Prepared>(*this, geometries, count);
+  return std::make_unique<Prepared>(*this, geometries, count, nullptr);
+}
+
+std::unique_ptr<PreparedGeometries> CompositeModel::prepare_expecting(const Geometry* geometries, std::size_t count,
+                                                                      const double* expected) const {
+  return std::make_unique<Prepared>(*this, geometries, count, expected);
 }
 
 const CompositeModel::Prepared* CompositeModel::own_prepared(const PreparedGeometries& prepared) const {

@@ -27,6 +27,8 @@ class CompositeModel final : public Model {
   void evaluate_batch_with_gradient(const Geometry* geometries, std::size_t n_geometries, const double* params,
                                     double* values, double* jacobian) const override;
   std::unique_ptr<PreparedGeometries> prepare(const Geometry* geometries, std::size_t count) const override;
+  std::unique_ptr<PreparedGeometries> prepare_expecting(const Geometry* geometries, std::size_t count,
+                                                        const double* expected) const override;
   void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const override;
   void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params, double* values,
                                        double* jacobian) const override;

@@ -31,6 +31,12 @@
 //                        double* values, double* jacobian /* null: values only */) const;
 // Its values must be exactly operator()(p, g[k]); every gradient path of the adapter (single, batch,
 // prepared) then uses it instead of ceres::Jet, so the gradient paths agree with each other bit for bit.
+// A model with Prepared may also precompute, per geometry, terms of parameters that are expected to
+// keep given values (the fitter's fixed parameters, e.g. the refractive index of a Torrance-Sparrow
+// lobe; see HasExpectedParameters below):
+//   Prepared prepare(const Geometry& g, const double* expected) const;
+// operator() must check that the parameter still has the expected value and compute the term
+// otherwise, so that its values are the same bit for bit whatever `expected` was.
 //
 // operator() is templated on the scalar so that the fitter differentiates it with ceres::Jet.
 // Geometry is plain double: angles are data, parameters are unknowns.
@@ -123,6 +129,16 @@ class Model {
     return std::make_unique<PreparedGeometries>(geometries, count);
   }
 
+  // prepare() for evaluations at parameters of which some are expected to stay at the values in
+  // `expected` (parameter_count() values; the fitter passes its start, whose fixed parameters never
+  // move). Terms of those parameters may be precomputed per geometry; the evaluations give the same
+  // values bit for bit at any parameters (a precomputed term is used only where its parameter still
+  // has the expected value). The default ignores `expected`.
+  virtual std::unique_ptr<PreparedGeometries> prepare_expecting(const Geometry* geometries, std::size_t count,
+                                                                const double* /*expected*/) const {
+    return prepare(geometries, count);
+  }
+
   // evaluate_batch() for one parameter set at prepared geometries: values[n] = f(params, geometries[n]).
   // Same values as evaluate_batch(prepared.geometries(), prepared.size(), params, 1, values).
   virtual void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const {
@@ -166,6 +182,13 @@ template <class M>
 concept HasPreparedGeometry = requires(const M& m, const double* p, const Geometry& g, const typename M::Prepared& pg) {
   { m.prepare(g) } -> std::same_as<typename M::Prepared>;
   { m(p, pg) } -> std::convertible_to<double>;
+};
+
+// A model struct whose prepared geometry may hold terms of expected parameter values (see the top of
+// this file).
+template <class M>
+concept HasExpectedParameters = HasPreparedGeometry<M> && requires(const M& m, const Geometry& g, const double* p) {
+  { m.prepare(g, p) } -> std::same_as<typename M::Prepared>;
 };
 
 // A model struct with prepared geometry and parameter-only coefficients (see the top of this file).
@@ -283,7 +306,12 @@ class ModelAdapter final : public Model {
   }
 
   std::unique_ptr<PreparedGeometries> prepare(const Geometry* geometries, std::size_t count) const override {
-    return std::make_unique<Prepared>(*this, geometries, count);
+    return std::make_unique<Prepared>(*this, geometries, count, nullptr);
+  }
+
+  std::unique_ptr<PreparedGeometries> prepare_expecting(const Geometry* geometries, std::size_t count,
+                                                        const double* expected) const override {
+    return std::make_unique<Prepared>(*this, geometries, count, expected);
   }
 
   void evaluate_prepared(const PreparedGeometries& prepared, const double* params, double* values) const override {
@@ -357,11 +385,18 @@ class ModelAdapter final : public Model {
 
   // M::Prepared of every geometry (models without it: the geometries are used directly).
   struct Prepared final : PreparedGeometries {
-    Prepared(const ModelAdapter& owner, const Geometry* geometries, std::size_t count)
+    Prepared(const ModelAdapter& owner, const Geometry* geometries, std::size_t count, const double* expected)
         : PreparedGeometries(geometries, count), adapter(&owner) {
       if constexpr (HasPreparedGeometry<M>) {
         data.reserve(count);
-        for (std::size_t n = 0; n < count; ++n) data.push_back(owner.model_.prepare(geometries[n]));
+        for (std::size_t n = 0; n < count; ++n) {
+          if constexpr (HasExpectedParameters<M>) {
+            data.push_back(expected != nullptr ? owner.model_.prepare(geometries[n], expected)
+                                               : owner.model_.prepare(geometries[n]));
+          } else {
+            data.push_back(owner.model_.prepare(geometries[n]));
+          }
+        }
       }
       if constexpr (HasSharedTerms<M>) shared = owner.model_.share(data.data(), count);
     }

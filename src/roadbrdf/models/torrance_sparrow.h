@@ -185,31 +185,18 @@ struct TorranceSparrow {
     }
   }
 
-  template <typename T>
-  T fresnel(const T* p, double cos_ih) const {
-    switch (r_.fresnel) {
-      case Fresnel::kExactDielectric:
-        return lift(fresnel_dielectric_at(cos_ih, single(p[kIor])), p[kIor]);
-      case Fresnel::kSchlick: {
-        using S = SingleVariable<T>;
-        return lift(fresnel_schlick(S(cos_ih), fresnel_f0(single(p[kIor]))), p[kIor]);
-      }
-      case Fresnel::kExactConductor:
-        return fresnel_conductor(T(cos_ih), p[kIor], p[kExtinction]);
-      case Fresnel::kSchlickConductor:
-        return fresnel_schlick_conductor(T(cos_ih), p[kIor], p[kExtinction]);
-      case Fresnel::kNone:
-        break;
-    }
-    return T(1.0);
-  }
-
-  // Geometry-only quantities, computed once per geometry (model.h, "prepared geometry").
+  // Geometry-only quantities, computed once per geometry (model.h, "prepared geometry"), and the
+  // dielectric Fresnel factor at an expected index (a fit that holds the index fixed evaluates the
+  // same F(theta'_i, n) at every iteration and wavelength).
   struct Prepared {
     microfacet::HalfVector h;
     double ci = 0.0;                             // cos theta_i
     double cr = 0.0;                             // cos theta_r
     microfacet::GgxLambdaGeometry ggx_i, ggx_r;  // GGX Smith Lambda inputs of w_i and w_r
+    double fresnel_ior = -1.0;                   // index n the next three are for (-1: none)
+    double fresnel = 0.0;                        // F(theta'_i, n) in double arithmetic
+    double fresnel_jet = 0.0;                    // F(theta'_i, n) in Jet arithmetic (may differ by an ulp)
+    double fresnel_derivative = 0.0;             // dF/dn
   };
 
   Prepared prepare(const Geometry& g) const {
@@ -220,6 +207,50 @@ struct TorranceSparrow {
     q.ggx_i = microfacet::ggx_lambda_geometry(q.ci);
     q.ggx_r = microfacet::ggx_lambda_geometry(q.cr);
     return q;
+  }
+
+  // With the Fresnel factor at the expected index (real-index Fresnel options only), computed by the
+  // same functions as fresnel() in both arithmetics, so that the stored numbers are its own.
+  Prepared prepare(const Geometry& g, const double* expected) const {
+    Prepared q = prepare(g);
+    if (q.h.valid && (r_.fresnel == Fresnel::kExactDielectric || r_.fresnel == Fresnel::kSchlick)) {
+      const ceres::Jet<double, 1> f = real_index_fresnel(ceres::Jet<double, 1>(expected[kIor], 0), q.h.cos_ih);
+      q.fresnel_ior = expected[kIor];
+      q.fresnel = real_index_fresnel(expected[kIor], q.h.cos_ih);
+      q.fresnel_jet = f.a;
+      q.fresnel_derivative = f.v[0];
+    }
+    return q;
+  }
+
+  // The real-index Fresnel factors (exact dielectric, Schlick) as functions of the index alone.
+  template <typename S>
+  S real_index_fresnel(const S& ior, double cos_ih) const {
+    if (r_.fresnel == Fresnel::kSchlick) return fresnel_schlick(S(cos_ih), fresnel_f0(ior));
+    return fresnel_dielectric_at(cos_ih, ior);
+  }
+
+  template <typename T>
+  T fresnel(const T* p, const Prepared& g) const {
+    switch (r_.fresnel) {
+      case Fresnel::kExactDielectric:
+      case Fresnel::kSchlick:
+        if (scalar_value(p[kIor]) == g.fresnel_ior) {
+          if constexpr (std::is_same_v<T, double>) {
+            return g.fresnel;
+          } else {
+            return T(g.fresnel_jet, g.fresnel_derivative * p[kIor].v);
+          }
+        }
+        return lift(real_index_fresnel(single(p[kIor]), g.h.cos_ih), p[kIor]);
+      case Fresnel::kExactConductor:
+        return fresnel_conductor(T(g.h.cos_ih), p[kIor], p[kExtinction]);
+      case Fresnel::kSchlickConductor:
+        return fresnel_schlick_conductor(T(g.h.cos_ih), p[kIor], p[kExtinction]);
+      case Fresnel::kNone:
+        break;
+    }
+    return T(1.0);
   }
 
   template <typename T>
@@ -267,7 +298,7 @@ struct TorranceSparrow {
       }
       g_over_cos = microfacet::smith_g2_over_cos(ci, cr, li, lr, r_.height_correlated);
     }
-    return p[kKs] * fresnel(p, h.cos_ih) * lift(d, p[kRoughness]) * lift(g_over_cos, p[kRoughness]) * 0.25;
+    return p[kKs] * fresnel(p, g) * lift(d, p[kRoughness]) * lift(g_over_cos, p[kRoughness]) * 0.25;
   }
 
  private:
