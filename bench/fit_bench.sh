@@ -13,7 +13,7 @@
 #                                --option h_function=hapke2002 fits the same model as scipy for the costs.
 # For each model: the WHOLE command `roadbrdf fit DATA.csv --model M --threads 1 -o F.json` with its
 # defaults (warm start, amplitude solve, covariance; reading, statistics and writing included), timed
-# as process CPU (user + system), against scipy's fit CPU from a fixed start (the model defaults of
+# as process CPU (user + system; the median of 5 runs), against scipy's fit CPU from a fixed start (the model defaults of
 # `roadbrdf models`, b0 0.3 for Hapke), and the final costs compared at every wavelength scipy fitted.
 # Then the same-start comparison of issue 4 (ON+TS, --no-warm-start --no-amplitude-solve --loss plain)
 # and the joint spectral fits (--shared auto: the parameters declared non-spectral are shared).
@@ -30,8 +30,9 @@ trap 'rm -rf "$work"' EXIT
 cli="$build/roadbrdf"
 onts_fix="--fix oren-nayar.weight=1 --fix torrance-sparrow.weight=1 --fix torrance-sparrow.ior=1.5"
 
-# cpu FILE: user + system CPU seconds recorded by /usr/bin/time -f "%U %S" -o FILE
-cpu() { awk '{ printf "%.3f", $1 + $2 }' "$1"; }
+# median_cpu RUNS COMMAND...: "CPU WALL" seconds of the median of RUNS runs (bench/cpu_time.py)
+median_cpu() { $python "$here/cpu_time.py" "$@"; }
+runs=5
 
 for model in oren-nayar oren-nayar+torrance-sparrow hapke; do
   extra=""
@@ -39,26 +40,23 @@ for model in oren-nayar oren-nayar+torrance-sparrow hapke; do
   echo "==== $model"
   PYTHONPATH="$here" $python "$here/fit_bench_data.py" "$work/$model.csv" 2151 "$model"
   # shellcheck disable=SC2086
-  /usr/bin/time -f "%U %S" -o "$work/time" \
-    "$cli" fit "$work/$model.csv" --model "$model" $extra --threads 1 -o "$work/rb.json" > /dev/null
-  whole=$(cpu "$work/time")
-  echo "roadbrdf fit $model --threads 1 (defaults), whole command: $whole s CPU"
+  whole=$(median_cpu $runs "$cli" fit "$work/$model.csv" --model "$model" $extra --threads 1 -o "$work/rb.json" |
+    cut -d' ' -f1)
+  echo "roadbrdf fit $model --threads 1 (defaults), whole command: $whole s CPU (median of $runs runs)"
   PYTHONPATH="$here" $python "$here/fit_bench_scipy.py" "$work/$model.csv" "$work/sp.json" "$stride" "$model"
   if [ "$model" = hapke ]; then
-    /usr/bin/time -f "%U %S" -o "$work/time" \
-      "$cli" fit "$work/$model.csv" --model hapke --option h_function=hapke2002 --threads 1 -o "$work/rb2.json" \
-      > /dev/null
+    whole2=$(median_cpu $runs "$cli" fit "$work/$model.csv" --model hapke --option h_function=hapke2002 --threads 1 \
+      -o "$work/rb2.json" | cut -d' ' -f1)
     echo "-- roadbrdf with the exact H (default) against scipy with the 2002 H (times; costs of different models)"
     PYTHONPATH="$here" $python "$here/fit_bench_compare.py" "$work/rb.json" "$work/sp.json" "$whole"
     echo "-- roadbrdf with --option h_function=hapke2002 (the same model as scipy)"
-    PYTHONPATH="$here" $python "$here/fit_bench_compare.py" "$work/rb2.json" "$work/sp.json" "$(cpu "$work/time")"
+    PYTHONPATH="$here" $python "$here/fit_bench_compare.py" "$work/rb2.json" "$work/sp.json" "$whole2"
   else
     PYTHONPATH="$here" $python "$here/fit_bench_compare.py" "$work/rb.json" "$work/sp.json" "$whole"
   fi
   # shellcheck disable=SC2086
-  /usr/bin/time -f "%U %S %e" -o "$work/time" \
-    "$cli" fit "$work/$model.csv" --model "$model" $extra --shared auto --threads 1 -o "$work/joint.json" > /dev/null
-  echo "-- joint fit (--shared auto), whole command: $(cpu "$work/time") s CPU, $(awk '{print $3}' "$work/time") s wall"
+  joint=$(median_cpu 1 "$cli" fit "$work/$model.csv" --model "$model" $extra --shared auto --threads 1 -o "$work/joint.json")
+  echo "-- joint fit (--shared auto), whole command: ${joint% *} s CPU, ${joint#* } s wall"
   $python - "$work/joint.json" <<'PY'
 import json, sys
 f = json.load(open(sys.argv[1]))["fits"][0]

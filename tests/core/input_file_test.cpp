@@ -69,6 +69,52 @@ TEST(InputFile, LinesOfAnyLengthAndNoFinalNewline) {
   EXPECT_FALSE(in.read_line(line));
 }
 
+// Lines of every length around the 64 kB block (and far beyond it) are read as views into the
+// buffer; each must equal what std::getline reads from the same file.
+TEST(InputFile, ViewsAcrossBlockBoundariesEqualGetline) {
+  const std::string path = test::scratch_path("views.txt");
+  {
+    std::ofstream out(path, std::ios::binary);
+    unsigned state = 12345;
+    for (int k = 0; k < 400; ++k) {
+      state = state * 1103515245u + 12345u;
+      const std::size_t length = k % 50 == 7 ? 200000 + k : (state >> 8) % 70000;
+      out << std::string(length, static_cast<char>('a' + k % 26)) << (k % 3 == 0 ? "\r\n" : "\n");
+    }
+    out << "tail";
+  }
+  std::ifstream reference(path, std::ios::binary);
+  InputFile in(path);
+  std::string_view view;
+  std::string expected;
+  long lines = 0;
+  while (std::getline(reference, expected)) {
+    ASSERT_TRUE(in.read_line(view)) << "line " << lines + 1;
+    ASSERT_EQ(view, expected) << "line " << lines + 1;
+    ++lines;
+  }
+  EXPECT_EQ(lines, 401);
+  EXPECT_EQ(in.line_number(), 401);
+  EXPECT_FALSE(in.read_line(view));
+  EXPECT_FALSE(in.read_line(view));
+}
+
+TEST(InputFile, EmptyFileAndLoneNewline) {
+  const std::string empty = test::scratch_path("empty.txt");
+  std::ofstream(empty) << "";
+  InputFile a(empty);
+  std::string_view view;
+  EXPECT_FALSE(a.read_line(view));
+  EXPECT_EQ(a.line_number(), 0);
+  const std::string newline = test::scratch_path("newline.txt");
+  std::ofstream(newline) << "\n";
+  InputFile b(newline);
+  ASSERT_TRUE(b.read_line(view));
+  EXPECT_EQ(view, "");
+  EXPECT_FALSE(b.read_line(view));
+  EXPECT_EQ(b.line_number(), 1);
+}
+
 TEST(InputFile, ReadAllAfterSomeLines) {
   const std::string path = test::scratch_path("all.txt");
   std::ofstream(path) << "head\nrest of\nthe file";

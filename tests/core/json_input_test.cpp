@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
 #include "roadbrdf/core/error.h"
@@ -77,6 +78,30 @@ TEST(JsonInput, DumpsReplaceInvalidUtf8) {
   Json j;
   j["path"] = std::string("bad\xff.csv");
   EXPECT_EQ(dump_json(j), "{\"path\":\"bad\xef\xbf\xbd.csv\"}");
+}
+
+// write_json streams in 64 kB blocks: the text must be that of dump_json, for documents smaller and
+// much larger than a block, compact and indented, with invalid UTF-8 replaced the same way.
+TEST(JsonInput, WriteJsonEqualsDumpJson) {
+  Json big;
+  big["path"] = std::string("bad\xff.csv");
+  for (int k = 0; k < 20000; ++k) {
+    big["values"].push_back(1.0 / (k + 3));
+    big["nested"]["names"].push_back("n" + std::to_string(k));
+  }
+  nlohmann::ordered_json ordered;
+  ordered["z"] = 1;
+  ordered["a"] = big["values"];
+  for (const int indent : {-1, 0, 1, 2}) {
+    for (const Json& j : {Json{{"a", 1}}, big}) {
+      std::ostringstream out;
+      write_json(out, j, indent);
+      EXPECT_EQ(out.str(), dump_json(j, indent)) << "indent " << indent;
+    }
+    std::ostringstream out;
+    write_json(out, ordered, indent);
+    EXPECT_EQ(out.str(), dump_json(ordered, indent)) << "indent " << indent;
+  }
 }
 
 }  // namespace

@@ -36,7 +36,8 @@ void run(CheckArgs& a) {
     nlohmann::json j = quality_report_json(d, r);
     j["file"] = a.data;
     AtomicFile out("-");
-    out.stream() << roadbrdf::dump_json(j, 2) << '\n';
+    roadbrdf::write_json(out.stream(), j, 2);
+    out.stream() << '\n';
     out.commit();
   } else {
     AtomicFile out("-");

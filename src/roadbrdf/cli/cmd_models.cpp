@@ -67,7 +67,8 @@ void run(bool as_json) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& name : model_names()) all.push_back(description_to_json(make_model(name)->description()));
     AtomicFile out("-");
-    out.stream() << roadbrdf::dump_json(all, 2) << '\n';
+    roadbrdf::write_json(out.stream(), all, 2);
+    out.stream() << '\n';
     out.commit();
     return;
   }

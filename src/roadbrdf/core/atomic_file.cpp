@@ -37,7 +37,9 @@ constexpr std::size_t kSlotPath = 4096;
 
 struct Slot {
   std::atomic<int> state{0};
-  char path[kSlotPath];
+  // Zero-initialised, so that the registry is constant-initialised: no page of it is touched at
+  // start-up (a dynamic initialiser would fault in all 64 slots of every command).
+  char path[kSlotPath]{};
 };
 
 Slot g_slots[kSlots];

@@ -58,18 +58,19 @@ CsvReader::CsvReader(const std::string& path)
     : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
 
 bool CsvReader::next_line(std::string_view& line) {
-  while (in_->read_line(line_)) {
+  std::string_view raw;
+  while (in_->read_line(raw)) {
     ++line_number_;
-    if (line_number_ == 1 && line_.compare(0, 3, "\xEF\xBB\xBF") == 0) line_.erase(0, 3);
+    if (line_number_ == 1 && raw.substr(0, 3) == "\xEF\xBB\xBF") raw.remove_prefix(3);
     std::size_t offset = 0;
-    const std::string_view text = trim(line_, offset);
+    const std::string_view text = trim(raw, offset);
     if (text.empty()) continue;
     if (text.front() == '#') {
       comments_.emplace_back(text.substr(1));
       comment_lines_.push_back(line_number_);
       continue;
     }
-    line = line_;
+    line = raw;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     return true;
   }

@@ -61,7 +61,6 @@ class CsvReader {
  private:
   std::string path_;
   std::unique_ptr<InputFile> in_;
-  std::string line_;
   long line_number_ = 0;
   std::size_t cell_limit_ = std::numeric_limits<std::size_t>::max() - 1;
   std::size_t cell_count_ = 0;

@@ -43,9 +43,15 @@ InputFile::~InputFile() {
 }
 
 bool InputFile::fill() {
-  begin_ = 0;
-  end_ = std::fread(buffer_.data(), 1, buffer_.size(), file_);
-  if (end_ > 0) return true;
+  if (begin_ > 0) {
+    std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
+  }
+  if (end_ == buffer_.size()) buffer_.resize(2 * buffer_.size());
+  const std::size_t n = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
+  end_ += n;
+  if (n > 0) return true;
   if (std::ferror(file_)) {
     const int error = errno;
     throw FileError(name_, line_number_ + 1, 0,
@@ -54,35 +60,49 @@ bool InputFile::fill() {
   return false;
 }
 
-bool InputFile::read_line(std::string& line) {
-  line.clear();
-  bool any = false;
+bool InputFile::read_line(std::string_view& line) {
   while (true) {
-    if (begin_ == end_ && !fill()) {
-      if (any) ++line_number_;
-      return any;
-    }
-    any = true;
     const char* start = buffer_.data() + begin_;
-    const auto* newline = static_cast<const char*>(std::memchr(start, '\n', end_ - begin_));
+    const std::size_t unread = end_ - begin_;
+    const auto* newline = static_cast<const char*>(std::memchr(start + scanned_, '\n', unread - scanned_));
     if (newline) {
-      line.append(start, static_cast<std::size_t>(newline - start));
-      begin_ += static_cast<std::size_t>(newline - start) + 1;
+      const auto length = static_cast<std::size_t>(newline - start);
+      line = std::string_view(start, length);
+      begin_ += length + 1;
+      scanned_ = 0;
       ++line_number_;
       return true;
     }
-    line.append(start, end_ - begin_);
-    begin_ = end_;
+    scanned_ = unread;
+    if (!fill()) {
+      if (unread == 0) return false;
+      // The last line, without a final newline.
+      line = std::string_view(buffer_.data() + begin_, unread);
+      begin_ = end_;
+      scanned_ = 0;
+      ++line_number_;
+      return true;
+    }
   }
+}
+
+bool InputFile::read_line(std::string& line) {
+  std::string_view view;
+  if (!read_line(view)) {
+    line.clear();
+    return false;
+  }
+  line.assign(view);
+  return true;
 }
 
 std::string InputFile::read_all() {
   std::string text(buffer_.data() + begin_, end_ - begin_);
-  begin_ = end_;
+  begin_ = end_ = scanned_ = 0;
   if (size_hint_ > text.size()) text.reserve(static_cast<std::size_t>(size_hint_));
   while (fill()) {
     text.append(buffer_.data(), end_);
-    begin_ = end_;
+    begin_ = end_ = 0;
   }
   return text;
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace roadbrdf {
@@ -29,8 +30,11 @@ class InputFile {
   InputFile& operator=(const InputFile&) = delete;
 
   // The next line without its '\n' (a '\r' before it is kept; callers trim); false at the end of the
-  // file. Lines of any length are read in blocks (memory: the line itself). Throws FileError on a
-  // read error, naming the line.
+  // file. Lines of any length are read in blocks (memory: a block, or the longest line). Throws
+  // FileError on a read error, naming the line. The view points into the reader's buffer and is
+  // valid until the next read: a line is never copied (a wide CSV row is tens of kB).
+  bool read_line(std::string_view& line);
+  // The same, copied into `line`.
   bool read_line(std::string& line);
   // Everything not read yet. Throws FileError on a read error.
   std::string read_all();
@@ -43,12 +47,15 @@ class InputFile {
   std::uintmax_t size_hint() const { return size_hint_; }
 
  private:
-  bool fill();  // false at the end of the file
+  // Reads more of the file after the unread bytes (moved to the front of the buffer first, which
+  // grows when one line fills it); false at the end of the file.
+  bool fill();
   std::string name_;
   std::FILE* file_ = nullptr;
   bool owned_ = false;
   std::vector<char> buffer_;
-  std::size_t begin_ = 0, end_ = 0;
+  std::size_t begin_ = 0, end_ = 0;  // the unread bytes of buffer_
+  std::size_t scanned_ = 0;          // how far from begin_ there is no newline
   long line_number_ = 0;
   std::uintmax_t size_hint_ = 0;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -181,6 +182,51 @@ std::string dump_json(const Json& j, int indent) { return j.dump(indent, ' ', fa
 std::string dump_json(const nlohmann::ordered_json& j, int indent) {
   return j.dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
+
+namespace {
+
+// nlohmann's serializer writes a character or a short run at a time; this adapter gathers them into
+// 64 KiB blocks for the stream, so that a large document is never held whole as a string (a 1 MB
+// fit file would otherwise cost its string's repeated growth and the page faults of 2-3 MB).
+class BlockStreamAdapter : public nlohmann::detail::output_adapter_protocol<char> {
+ public:
+  explicit BlockStreamAdapter(std::ostream& out) : out_(out) { block_.reserve(kBlock); }
+  BlockStreamAdapter(const BlockStreamAdapter&) = delete;
+  BlockStreamAdapter& operator=(const BlockStreamAdapter&) = delete;
+  ~BlockStreamAdapter() override = default;
+
+  void write_character(char c) override {
+    block_.push_back(c);
+    if (block_.size() >= kBlock) flush();
+  }
+  void write_characters(const char* s, std::size_t length) override {
+    block_.append(s, length);
+    if (block_.size() >= kBlock) flush();
+  }
+  void flush() {
+    out_.write(block_.data(), static_cast<std::streamsize>(block_.size()));
+    block_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kBlock = std::size_t{1} << 16;
+  std::ostream& out_;
+  std::string block_;
+};
+
+template <typename Document>
+void write_document(std::ostream& out, const Document& j, int indent) {
+  auto adapter = std::make_shared<BlockStreamAdapter>(out);
+  nlohmann::detail::serializer<Document> serializer(adapter, ' ', Document::error_handler_t::replace);
+  serializer.dump(j, indent >= 0, false, static_cast<unsigned int>(std::max(indent, 0)));
+  adapter->flush();
+}
+
+}  // namespace
+
+void write_json(std::ostream& out, const Json& j, int indent) { write_document(out, j, indent); }
+
+void write_json(std::ostream& out, const nlohmann::ordered_json& j, int indent) { write_document(out, j, indent); }
 
 std::vector<double> read_parameter_table(const JsonNode& parameters, const ModelDescription& description,
                                          std::size_t rows, const std::vector<double>& wavelengths) {

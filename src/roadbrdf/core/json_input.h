@@ -5,7 +5,8 @@
 // last one silently) and numbers outside the double range (1e400), and locates every error by file,
 // line, column and key path. JsonNode then reads values out of the document with the key path in
 // every message ("fits[0].parameters.albedo[3]: must be a number"), and without copying subtrees.
-// dump_json() writes any document, replacing bytes that are not UTF-8 (a file name) instead of throwing.
+// dump_json() and write_json() write any document, replacing bytes that are not UTF-8 (a file name)
+// instead of throwing.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +15,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,9 @@ Json parse_json_file(const std::string& path, int max_depth = kMaxJsonDepth);
 // Serialises with invalid UTF-8 replaced by U+FFFD (never throws on strings).
 std::string dump_json(const Json& j, int indent = -1);
 std::string dump_json(const nlohmann::ordered_json& j, int indent = -1);
+// The same text as dump_json(), written to `out` in blocks (a large document is never held whole).
+void write_json(std::ostream& out, const Json& j, int indent = -1);
+void write_json(std::ostream& out, const nlohmann::ordered_json& j, int indent = -1);
 
 // A value inside a parsed document, with its file and key path. Cheap to copy (holds a reference;
 // the document must outlive it).

@@ -329,7 +329,8 @@ void write_fit_file(const std::string& path, const std::vector<FitResult>& fits,
                     const std::vector<std::string>& notes) {
   const nlohmann::json j = fit_file_json(fits, notes);
   AtomicFile out(path);
-  out.stream() << dump_json(j, 1) << '\n';
+  write_json(out.stream(), j, 1);
+  out.stream() << '\n';
   out.commit();
 }
 

@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/fitting/fit.h"
-#include "roadbrdf/fitting/large_arrays.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf::fitting {
@@ -23,6 +23,7 @@ struct FitData {
   // Geometry-only data of `geometries` (Model::prepare), built once and shared by every wavelength,
   // iteration and thread.
   std::shared_ptr<const PreparedGeometries> prepared_geometries;
+  // The M x N arrays are filled completely by fit_data() (LargeArray: not zeroed first).
   LargeArray<double> y;           // M x N (wavelength-major: y[w * n + g]) for contiguous access
   LargeArray<double> mult;        // M x N multiplier of the loss residual
   std::vector<double> cos_i;      // N

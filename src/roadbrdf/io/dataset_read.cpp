@@ -17,6 +17,7 @@
 
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -292,7 +293,7 @@ class WideRows {
 };
 
 // Reserve for the whole file from the length of the first row (memory proportional to the data,
-// without the copies of repeated growth).
+// without the copies of repeated growth), in huge pages where the system offers them.
 void WideRows::reserve(std::string_view first_row) {
   reserved_ = true;
   const auto size = r_.reader.size_hint();
@@ -300,8 +301,12 @@ void WideRows::reserve(std::string_view first_row) {
     const std::size_t rows = static_cast<std::size_t>(size / (first_row.size() + 1)) + 1;
     if (rows < (std::size_t{1} << 26) / std::max<std::size_t>(m_, 1)) {
       d_.brdf.reserve(rows * m_);
+      advise_huge_pages(d_.brdf.data(), d_.brdf.capacity() * sizeof(double));
       d_.geometries.reserve(rows);
-      if (with_sigma_) d_.sigma.reserve(rows * m_);
+      if (with_sigma_) {
+        d_.sigma.reserve(rows * m_);
+        advise_huge_pages(d_.sigma.data(), d_.sigma.capacity() * sizeof(double));
+      }
     }
   }
 }

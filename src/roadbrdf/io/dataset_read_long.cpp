@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/dataset_read_support.h"
 
@@ -426,8 +427,14 @@ void check_completeness(Reading& r, const RecordTable& t, std::size_t n, const s
 void fill_table(Reading& r, const RecordTable& t, bool with_sigma, SpectralDataset& d) {
   const std::size_t n = d.geometries.size(), m = t.wavelengths.size();
   d.wavelengths = t.wavelengths;
+  d.brdf.reserve(n * m);
+  advise_huge_pages(d.brdf.data(), n * m * sizeof(double));
   d.brdf.assign(n * m, 0.0);
-  if (with_sigma) d.sigma.assign(n * m, 0.0);
+  if (with_sigma) {
+    d.sigma.reserve(n * m);
+    advise_huge_pages(d.sigma.data(), n * m * sizeof(double));
+    d.sigma.assign(n * m, 0.0);
+  }
   std::vector<std::uint32_t> rows(n * m, 0), count(n * m, 0);
   for (std::size_t k = 0; k < t.records.size(); ++k) {
     const auto& rec = t.records[k];

@@ -62,7 +62,8 @@ void write_cross_section_file(const std::string& path, const CrossSectionFile& c
   j["iterations"] = c.iterations;
   j["notes"] = c.notes;
   AtomicFile out(path);
-  out.stream() << dump_json(j, 1) << '\n';
+  write_json(out.stream(), j, 1);
+  out.stream() << '\n';
   out.commit();
 }
 

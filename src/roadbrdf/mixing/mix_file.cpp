@@ -187,7 +187,8 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
 void write_mix_file(const std::string& path, const MixFileContent& content) {
   const nlohmann::ordered_json j = mix_file_json(content);
   AtomicFile out(path);
-  out.stream() << dump_json(j, 1) << '\n';
+  write_json(out.stream(), j, 1);
+  out.stream() << '\n';
   out.commit();
 }
 

@@ -262,7 +262,8 @@ void write_surface(const HeightField& f, const std::string& path, const TextureS
   j["heights_mm"] = rounded;
   j["material"] = f.material;
   AtomicFile out(path);
-  out.stream() << dump_json(j) << '\n';
+  write_json(out.stream(), j);
+  out.stream() << '\n';
   out.commit();
 }
 
