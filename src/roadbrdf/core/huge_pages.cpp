@@ -32,6 +32,11 @@ void advise_huge_pages(const void* data, std::size_t bytes) {
   if (last > first) advise(reinterpret_cast<void*>(first), last - first);
 }
 
+void reserve_on_huge_pages(std::vector<double>& v, std::size_t count) {
+  v.reserve(count);
+  advise_huge_pages(v.data(), v.capacity() * sizeof(double));
+}
+
 void* allocate_huge(std::size_t bytes) {
   if (bytes < kHugePageBytes) return ::operator new(bytes);
   const std::size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;

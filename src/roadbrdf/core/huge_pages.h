@@ -21,6 +21,8 @@ inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 // For storage that must stay a std::vector<double> (SpectralDataset): call it after reserve() and
 // before the first write.
 void advise_huge_pages(const void* data, std::size_t bytes);
+// Reserves `count` elements of the empty `v` and advises their pages, before anything is written.
+void reserve_on_huge_pages(std::vector<double>& v, std::size_t count);
 
 // Storage on 2 MB-aligned huge pages for arrays of 2 MB and more (operator new below that).
 void* allocate_huge(std::size_t bytes);

@@ -187,7 +187,8 @@ namespace {
 
 // nlohmann's serializer writes a character or a short run at a time; this adapter gathers them into
 // 64 KiB blocks for the stream, so that a large document is never held whole as a string (a 1 MB
-// fit file would otherwise cost its string's repeated growth and the page faults of 2-3 MB).
+// fit file would otherwise cost its string's repeated growth and the page faults of 2-3 MB), and
+// the stream is not called (with its sentry) for every character, as nlohmann's own adapter does.
 class BlockStreamAdapter : public nlohmann::detail::output_adapter_protocol<char> {
  public:
   explicit BlockStreamAdapter(std::ostream& out) : out_(out) { block_.reserve(kBlock); }

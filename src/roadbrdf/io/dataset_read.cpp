@@ -300,13 +300,9 @@ void WideRows::reserve(std::string_view first_row) {
   if (size > 0 && !first_row.empty()) {
     const std::size_t rows = static_cast<std::size_t>(size / (first_row.size() + 1)) + 1;
     if (rows < (std::size_t{1} << 26) / std::max<std::size_t>(m_, 1)) {
-      d_.brdf.reserve(rows * m_);
-      advise_huge_pages(d_.brdf.data(), d_.brdf.capacity() * sizeof(double));
+      reserve_on_huge_pages(d_.brdf, rows * m_);
       d_.geometries.reserve(rows);
-      if (with_sigma_) {
-        d_.sigma.reserve(rows * m_);
-        advise_huge_pages(d_.sigma.data(), d_.sigma.capacity() * sizeof(double));
-      }
+      if (with_sigma_) reserve_on_huge_pages(d_.sigma, rows * m_);
     }
   }
 }

@@ -427,12 +427,10 @@ void check_completeness(Reading& r, const RecordTable& t, std::size_t n, const s
 void fill_table(Reading& r, const RecordTable& t, bool with_sigma, SpectralDataset& d) {
   const std::size_t n = d.geometries.size(), m = t.wavelengths.size();
   d.wavelengths = t.wavelengths;
-  d.brdf.reserve(n * m);
-  advise_huge_pages(d.brdf.data(), n * m * sizeof(double));
+  reserve_on_huge_pages(d.brdf, n * m);
   d.brdf.assign(n * m, 0.0);
   if (with_sigma) {
-    d.sigma.reserve(n * m);
-    advise_huge_pages(d.sigma.data(), n * m * sizeof(double));
+    reserve_on_huge_pages(d.sigma, n * m);
     d.sigma.assign(n * m, 0.0);
   }
   std::vector<std::uint32_t> rows(n * m, 0), count(n * m, 0);
