@@ -314,14 +314,17 @@ struct Hapke {
   // Fixed parameter sets (model.h, FixedSetEvaluator; the path tracer's one set per wavelength). With
   // the exact H, each set whose w is in the table keeps the table reduced to its albedo
   // (hapke::h_table_series), so an evaluation computes T_a(t) once per cosine for all sets and then 12
-  // multiply-adds per H and set, instead of a full two-variable table evaluation per H and set.
-  // Values equal operator() to rounding (see hapke_h_table.h); other sets and cosines outside the
-  // table (e.g. exactly 0) use operator() itself.
+  // multiply-adds per H and set, instead of a full two-variable table evaluation per H and set. The
+  // sets are stored as a structure of arrays (the series coefficient-major, series[c * n_sets + s]) so
+  // that each step is one loop over the sets, which the compiler vectorises; every set's sums are
+  // taken in the order of hapke::h_series_evaluate. Values equal operator() to rounding (see
+  // hapke_h_table.h); other sets and cosines outside the table (e.g. exactly 0) use operator() itself.
   struct FixedSets {
     std::size_t n_sets = 0, n_params = 0;
-    std::vector<double> params;   // n_sets x n_params
-    std::vector<char> tabulated;  // per set: its series is in `series`
-    std::vector<double> series;   // n_sets x hapke::kHTableSeriesSize
+    std::vector<double> params;              // n_sets x n_params
+    std::vector<double> w, b0, h, p1, p2;    // per set: w, b0, h and the phase parameters (p2: two-parameter phases)
+    std::vector<std::size_t> by_operator;    // sets evaluated by operator() (w outside the table)
+    std::vector<double> series;              // hapke::kHTableSeriesSize x n_sets, coefficient-major
   };
 
   FixedSets fix(const double* p, std::size_t n) const {
@@ -329,13 +332,21 @@ struct Hapke {
     f.n_sets = n;
     f.n_params = phase_ == Phase::kHenyeyGreenstein ? 4 : 5;
     f.params.assign(p, p + n * f.n_params);
-    f.tabulated.assign(n, 0);
     f.series.assign(n * hapke::kHTableSeriesSize, 0.0);
+    std::vector<double> one(hapke::kHTableSeriesSize);
     for (std::size_t s = 0; s < n; ++s) {
-      const double w = f.params[s * f.n_params + kW];
-      if (h_function_ != HFunction::kExact || !(w >= 0.0 && w <= 1.0)) continue;
-      hapke::h_table_series(std::sqrt(1.0 - w), f.series.data() + s * hapke::kHTableSeriesSize);
-      f.tabulated[s] = 1;
+      const double* q = f.params.data() + s * f.n_params;
+      f.w.push_back(q[kW]);
+      f.b0.push_back(q[kB0]);
+      f.h.push_back(q[kH]);
+      f.p1.push_back(q[3]);
+      f.p2.push_back(f.n_params > 4 ? q[4] : 0.0);
+      if (h_function_ != HFunction::kExact || !(q[kW] >= 0.0 && q[kW] <= 1.0)) {
+        f.by_operator.push_back(s);
+        continue;
+      }
+      hapke::h_table_series(std::sqrt(1.0 - q[kW]), one.data());
+      for (int c = 0; c < hapke::kHTableSeriesSize; ++c) f.series[c * n + s] = one[c];
     }
     return f;
   }
@@ -343,22 +354,55 @@ struct Hapke {
   void evaluate_fixed(const FixedSets& f, const Geometry& geometry, double* out) const {
     const Prepared q = prepare(geometry);
     hapke::HTablePoint point_i, point_r;
-    const bool inside = h_function_ == HFunction::kExact && q.mu0 > 0.0 && q.mu > 0.0 &&
-                        hapke::h_table_point(q.mu0, point_i) && hapke::h_table_point(q.mu, point_r);
-    for (std::size_t s = 0; s < f.n_sets; ++s) {
-      const double* p = f.params.data() + s * f.n_params;
-      if (!inside || !f.tabulated[s]) {
-        out[s] = (*this)(p, q);
-        continue;
-      }
-      const double* series = f.series.data() + s * hapke::kHTableSeriesSize;
-      const double w = p[kW];
-      const double b = opposition(p[kB0], p[kH], q.tan_half_g);
-      const double phase = phase_function(p, q.cos_g);
-      const double multiple =
-          hapke::h_series_evaluate(series, point_i) * hapke::h_series_evaluate(series, point_r) - 1.0;
-      out[s] = w * q.scale * ((1.0 + b) * phase + multiple);
+    const bool inside = h_function_ == HFunction::kExact && f.by_operator.size() < f.n_sets && q.mu0 > 0.0 &&
+                        q.mu > 0.0 && hapke::h_table_point(q.mu0, point_i) && hapke::h_table_point(q.mu, point_r);
+    if (!inside) {
+      for (std::size_t s = 0; s < f.n_sets; ++s) out[s] = (*this)(f.params.data() + s * f.n_params, q);
+      return;
     }
+    constexpr std::size_t kChunk = 16;
+    const std::size_t n = f.n_sets;
+    const double* rows_i = f.series.data() + static_cast<std::size_t>(point_i.octave) * hapke::kHTableNodesX * n;
+    const double* rows_r = f.series.data() + static_cast<std::size_t>(point_r.octave) * hapke::kHTableNodesX * n;
+    for (std::size_t first = 0; first < n; first += kChunk) {
+      const std::size_t m = std::min(kChunk, n - first);
+      double h_i[kChunk] = {}, h_r[kChunk] = {}, phase[kChunk];
+      for (int a = 0; a < hapke::kHTableNodesX; ++a) {
+        const double* row_i = rows_i + a * n + first;
+        const double* row_r = rows_r + a * n + first;
+        const double t_i = point_i.tx[a], t_r = point_r.tx[a];
+        for (std::size_t s = 0; s < m; ++s) {
+          h_i[s] += row_i[s] * t_i;
+          h_r[s] += row_r[s] * t_r;
+        }
+      }
+      const double* p1 = f.p1.data() + first;
+      const double* p2 = f.p2.data() + first;
+      switch (phase_) {
+        case Phase::kLegendre:
+          for (std::size_t s = 0; s < m; ++s) phase[s] = legendre(p1[s], p2[s], q.cos_g);
+          break;
+        case Phase::kDoubleHenyeyGreenstein:
+          for (std::size_t s = 0; s < m; ++s) phase[s] = double_henyey_greenstein(p1[s], p2[s], q.cos_g);
+          break;
+        case Phase::kHenyeyGreenstein:
+          for (std::size_t s = 0; s < m; ++s) phase[s] = henyey_greenstein(p1[s], q.cos_g);
+          break;
+      }
+      const double* w = f.w.data() + first;
+      const double* b0 = f.b0.data() + first;
+      const double* h = f.h.data() + first;
+      double* o = out + first;
+      if (q.tan_half_g < std::numeric_limits<double>::infinity()) {
+        for (std::size_t s = 0; s < m; ++s) {
+          const double b = b0[s] * h[s] / (h[s] + q.tan_half_g);  // opposition(), written out to vectorise
+          o[s] = w[s] * q.scale * ((1.0 + b) * phase[s] + (h_i[s] * h_r[s] - 1.0));
+        }
+      } else {
+        for (std::size_t s = 0; s < m; ++s) o[s] = w[s] * q.scale * (phase[s] + (h_i[s] * h_r[s] - 1.0));  // B = 0 at g = pi
+      }
+    }
+    for (std::size_t s : f.by_operator) out[s] = (*this)(f.params.data() + s * f.n_params, q);
   }
 
   // Values (bit for bit those of operator()) and, if `jacobian` is not null, the analytic gradient

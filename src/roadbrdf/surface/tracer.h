@@ -8,8 +8,24 @@
 // first zero is found exactly (up to rounding). Every ray starts above the surface (primary rays above
 // the highest point, secondary rays raised vertically above a surface point), so the first piece with
 // g <= 0 at its end holds the hit.
+//
+// Empty space is skipped with a two-level maximum-height pyramid (a "max-mip" of one coarse level):
+// the grid is cut into blocks of kBlock x kBlock cells (the last block of a row or column is narrower
+// when the period is not a multiple of kBlock), and a block whose highest corner is below the ray all
+// the way through it is crossed in one step. Inside a block, a cell whose highest corner is below
+// the ray is skipped without reading its corners. The tops of blocks and cells are kept as floats
+// rounded up (never below the true height, so a skip is always right) in arrays small enough for the
+// caches: the 600 x 600 grid of a 60 mm sample has 1.4 MB of cell tops and 22 kB of block tops
+// against 17 MB of cells. Grazing rays, which cross many cells above the texture, are where the
+// walk spends its time.
+//
+// Every boundary crossing is computed from the boundary's integer position, t = (x_boundary - a_x) / b_x
+// with the reciprocal of b_x taken once, never accumulated; a block's exit and its last cell's exit
+// are therefore the same number, and the hits do not depend on whether blocks were skipped.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "roadbrdf/core/geometry.h"
@@ -25,15 +41,17 @@ struct SurfaceHit {
 
 namespace detail {
 // One cell of the tracer's grid: the heights of its corners (i, j), (i+1, j), (i, j+1), (i+1, j+1)
-// [mm], the highest of them, and its material.
+// [mm]; two cells to a cache line.
 struct TracerCell {
-  double z00, z10, z01, z11, zmax;
-  int material;
+  double z00, z10, z01, z11;
 };
 }  // namespace detail
 
 class HeightFieldTracer {
  public:
+  // Cells per side of a block of the coarse level.
+  static constexpr int kBlock = 8;
+
   explicit HeightFieldTracer(const HeightField& field);
 
   // First intersection of the ray o + t d (t > 0, d unit) with the surface; false if it escapes.
@@ -47,11 +65,28 @@ class HeightFieldTracer {
 
  private:
   using Cell = detail::TracerCell;
+  // The first hit in the cell (iw, jw) of the period, met as cell (i, j) of the plane, between ray
+  // parameters t and t_exit.
+  struct Ray;
+  bool hit_cell(const Ray& ray, long i, long j, std::size_t index, double t, double t_exit, SurfaceHit& hit) const;
+  // Storage index of the period's cell (iw, jw): blocks one after the other, row by row, and the
+  // cells of a block row by row inside it, so that a block's cells are near each other in memory.
+  std::size_t cell_index(long iw, long jw) const {
+    const auto block = static_cast<std::size_t>(jw / kBlock) * blocks_x_ + static_cast<std::size_t>(iw / kBlock);
+    return block * (kBlock * kBlock) + static_cast<std::size_t>(jw % kBlock) * kBlock + static_cast<std::size_t>(iw % kBlock);
+  }
+
   int nx_ = 0, ny_ = 0;
+  int blocks_x_ = 0, blocks_y_ = 0;
   double h_ = 0.1, inv_h_ = 10.0;
   double hmax_ = 0.0, hmin_ = 0.0;
   double eps_ = 1e-6;
+  // Per cell, at cell_index(): its corners, its material (read only at a hit) and its highest corner
+  // rounded up to a float.
   std::vector<Cell> cells_;
+  std::vector<std::uint16_t> material_;
+  std::vector<float> cell_top_;
+  std::vector<float> block_top_;  // per block: the highest of its cells' tops
 };
 
 }  // namespace roadbrdf::surface
