@@ -168,6 +168,77 @@ TEST(RayTraversal, MatchesBruteForceMarching) {
   EXPECT_FALSE(r.intersect(Vec3{1.0, 1.0, zmax + 0.01}, roadbrdf::normalize(Vec3{0.3, 0.2, 0.1}), hit));
 }
 
+// The traversal's empty-space skipping (blocks of HeightFieldTracer::kBlock cells) on periods that
+// are not a multiple of the block (45: a narrower last block; 5: one block narrower than kBlock, which
+// a ray re-enters as it wraps around), for rays starting outside the period, nearly horizontal ones,
+// and secondary rays going up from just above a surface point (they hit a neighbouring slope or escape): the
+// same first hit as brute-force marching along the ray, or none where marching escapes.
+TEST(RayTraversal, MatchesBruteForceOnAnyPeriodAndDirection) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const int n : {45, 5}) {
+    rs::HeightField f = rs::make_flat(lambert(0.8), n, 0.1);
+    if (n >= 32) {
+      f = rs::make_gaussian_slope_surface(lambert(0.8), 0.6, n, 0.1, 5, 64);
+    } else {  // a small period of random heights (the generator needs 32 cells)
+      for (double& z : f.heights) z = 0.2 * u(rng);
+    }
+    const rs::Renderer r(f, rs::load_materials(f, {550.0}), 1);
+    double zmax = -1e9;
+    for (double z : f.heights) zmax = std::max(zmax, z);
+    const double period = n * 0.1;
+    // First t where the ray is below the surface (steps of 1e-4 mm, then bisection), or -1 when it
+    // climbs above the highest point first.
+    auto march = [&](const Vec3& o, const Vec3& d) {
+      auto below = [&](double tt) {
+        const Vec3 p = o + tt * d;
+        return p.z <= f.height_at(p.x, p.y);
+      };
+      const double step = 1e-4;
+      double t = 0.0;
+      while (!below(t + step)) {
+        t += step;
+        if (d.z > 0.0 && o.z + t * d.z > zmax) return -1.0;
+      }
+      double lo = t, hi = t + step;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (below(mid) ? hi : lo) = mid;
+      }
+      return hi;
+    };
+    int down = 0, up_hits = 0, up_escapes = 0;
+    for (int k = 0; k < 200; ++k) {
+      // Downward rays, zenith angles up to 89.4 deg, from anywhere in [-3, 4) periods.
+      const double theta = std::acos(u(rng)) * 0.993, phi = 2 * kPi * u(rng);
+      const Vec3 d{-std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), -std::cos(theta)};
+      const Vec3 o{(7.0 * u(rng) - 3.0) * period, (7.0 * u(rng) - 3.0) * period, zmax + 0.01};
+      rs::Renderer::Hit hit;
+      ASSERT_TRUE(r.intersect(o, d, hit)) << "n " << n << " ray " << k;
+      EXPECT_NEAR(hit.t, march(o, d), 1e-9) << "n " << n << " ray " << k;
+      ++down;
+      // From that hit, a ray going up at a random direction of the upper hemisphere.
+      const double theta_up = std::acos(u(rng)) * 0.95, phi_up = 2 * kPi * u(rng);
+      const Vec3 d_up{std::sin(theta_up) * std::cos(phi_up), std::sin(theta_up) * std::sin(phi_up), std::cos(theta_up)};
+      // Raised 0.01 mm: marching by 1e-4 mm cannot resolve a ray grazing the facet it starts on.
+      const Vec3 o_up{hit.p.x, hit.p.y, hit.p.z + 0.01};
+      rs::Renderer::Hit up;
+      const double t_up = march(o_up, d_up);
+      if (r.intersect(o_up, d_up, up)) {
+        EXPECT_NEAR(up.t, t_up, 1e-9) << "n " << n << " up ray " << k;
+        ++up_hits;
+      } else {
+        EXPECT_EQ(t_up, -1.0) << "n " << n << " up ray " << k;
+        ++up_escapes;
+      }
+    }
+    EXPECT_EQ(down, 200);
+    // Both outcomes occur, so both paths of the traversal are compared.
+    EXPECT_GT(up_hits, 10) << n;
+    EXPECT_GT(up_escapes, 10) << n;
+  }
+}
+
 TEST(Generator, InvariantsDeterminismAndTargetMpd) {
   rs::SampleRecipe recipe;
   recipe.name = "test mix";
