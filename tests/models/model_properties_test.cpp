@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -218,8 +219,61 @@ std::vector<Variant> variants_where(bool ModelDescription::*claim) {
   return chosen;
 }
 
+// The variants whose model declares that it reads only the direction vectors (Model::reads_angles).
+std::vector<Variant> variants_reading_only_vectors() {
+  std::vector<Variant> chosen;
+  for (const Variant& v : all_variants()) {
+    if (!make_model(v.model, v.options)->reads_angles()) chosen.push_back(v);
+  }
+  return chosen;
+}
+
 class NonNegativeModels : public ModelProperties {};
 class EnergyConservingModels : public ModelProperties {};
+class VectorOnlyModels : public ModelProperties {};
+
+// A model that declares it does not read the angle fields of a geometry (the path tracer then leaves
+// them out) gives the same values and gradients, bit for bit, with those fields NaN: through every
+// evaluation path (single, with gradient, batch, fixed sets).
+TEST_P(VectorOnlyModels, ValuesDoNotDependOnTheAngleFields) {
+  const ModelDescription& d = model_->description();
+  std::mt19937_64 rng(4242);
+  std::vector<Geometry> geometries = edge_geometries();
+  for (int k = 0; k < 40; ++k) geometries.push_back(random_geometry(rng));
+  std::vector<Geometry> poisoned = geometries;
+  for (Geometry& g : poisoned) g.theta_i = g.theta_r = g.phi_i = g.phi_r = std::numeric_limits<double>::quiet_NaN();
+  const std::size_t n = model_->parameter_count(), n_sets = 3;
+  std::vector<double> params;
+  for (std::size_t s = 0; s < n_sets; ++s) {
+    const std::vector<double> p = s == 0 ? d.default_parameters() : random_parameters(d, rng, 0.05);
+    params.insert(params.end(), p.begin(), p.end());
+  }
+  const auto fixed = model_->fixed_sets(params.data(), n_sets);
+  std::vector<double> grad(n), grad_poisoned(n), batch(n_sets), batch_poisoned(n_sets);
+  for (std::size_t k = 0; k < geometries.size(); ++k) {
+    for (std::size_t s = 0; s < n_sets; ++s) {
+      const double* p = params.data() + s * n;
+      EXPECT_EQ(model_->evaluate(p, poisoned[k]), model_->evaluate(p, geometries[k])) << d.name << " geometry " << k;
+      model_->evaluate_with_gradient(p, geometries[k], grad.data());
+      model_->evaluate_with_gradient(p, poisoned[k], grad_poisoned.data());
+      for (std::size_t q = 0; q < n; ++q) EXPECT_EQ(grad_poisoned[q], grad[q]) << d.name << " geometry " << k;
+    }
+    model_->evaluate_batch(&geometries[k], 1, params.data(), n_sets, batch.data());
+    model_->evaluate_batch(&poisoned[k], 1, params.data(), n_sets, batch_poisoned.data());
+    for (std::size_t s = 0; s < n_sets; ++s) EXPECT_EQ(batch_poisoned[s], batch[s]) << d.name << " geometry " << k;
+    fixed->evaluate(geometries[k], batch.data());
+    fixed->evaluate(poisoned[k], batch_poisoned.data());
+    for (std::size_t s = 0; s < n_sets; ++s) EXPECT_EQ(batch_poisoned[s], batch[s]) << d.name << " geometry " << k;
+  }
+}
+
+// Oren-Nayar reads theta_i and theta_r, and says so: the claim above is not vacuous.
+TEST(ModelAngles, OrenNayarAndItsCompositesReadTheAngles) {
+  EXPECT_TRUE(make_model("oren-nayar")->reads_angles());
+  EXPECT_TRUE(make_model("oren-nayar+torrance-sparrow")->reads_angles());
+  EXPECT_FALSE(make_model("hapke")->reads_angles());
+  EXPECT_FALSE(make_model("lambert+torrance-sparrow")->reads_angles());
+}
 
 TEST_P(NonNegativeModels, NonNegative) {
   const ModelDescription& d = model_->description();
@@ -424,6 +478,7 @@ TEST_P(ModelProperties, BatchEqualsSingleEvaluation) {
 INSTANTIATE_TEST_SUITE_P(AllModels, ModelProperties, testing::ValuesIn(all_variants()), test_name);
 INSTANTIATE_TEST_SUITE_P(Declaring, NonNegativeModels,
                          testing::ValuesIn(variants_where(&ModelDescription::non_negative)), test_name);
+INSTANTIATE_TEST_SUITE_P(Declaring, VectorOnlyModels, testing::ValuesIn(variants_reading_only_vectors()), test_name);
 INSTANTIATE_TEST_SUITE_P(Declaring, EnergyConservingModels,
                          testing::ValuesIn(variants_where(&ModelDescription::energy_conserving)), test_name);
 

@@ -186,6 +186,10 @@ void CompositeModel::evaluate_prepared_with_gradient(const PreparedGeometries& p
   }
 }
 
+bool CompositeModel::reads_angles() const {
+  return std::any_of(components_.begin(), components_.end(), [](const auto& c) { return c->reads_angles(); });
+}
+
 double CompositeModel::delta_reflectance(const double* params, double cos_theta_i) const {
   double r = 0.0;
   for (std::size_t k = 0; k < components_.size(); ++k) {

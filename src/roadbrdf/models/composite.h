@@ -33,6 +33,7 @@ class CompositeModel final : public Model {
   void evaluate_prepared_with_gradient(const PreparedGeometries& prepared, const double* params, double* values,
                                        double* jacobian) const override;
   double delta_reflectance(const double* params, double cos_theta_i) const override;
+  bool reads_angles() const override;  // whether any component does
 
   std::size_t component_count() const { return components_.size(); }
   const Model& component(std::size_t k) const { return *components_[k]; }

@@ -154,6 +154,15 @@ class Model {
   // Reflectance R(theta_i) of the ideal specular part (0 when the model has none).
   virtual double delta_reflectance(const double* /*params*/, double /*cos_theta_i*/) const { return 0.0; }
 
+  // Whether the evaluations read the angle fields of a Geometry (theta_i, phi_i, theta_r, phi_r) rather
+  // than only its direction vectors and cos_delta_phi. A caller that builds geometries from vectors
+  // (the path tracer's facet frames) may leave the angles out for a model that does not read them,
+  // saving two acos and two atan2 per evaluation. A model struct reads only the vectors unless it
+  // declares `static constexpr bool kReadsAngles = true;` (Oren-Nayar); model_properties_test checks
+  // every model by evaluating it with the angle fields set to NaN. Classes other than the adapter
+  // answer true unless they know better.
+  virtual bool reads_angles() const { return true; }
+
   // `n_sets` parameter sets (as for evaluate_batch) fixed for repeated single-geometry evaluation
   // (FixedSetEvaluator). The default evaluates through evaluate_batch.
   virtual std::unique_ptr<FixedSetEvaluator> fixed_sets(const double* params, std::size_t n_sets) const {
@@ -357,6 +366,14 @@ class ModelAdapter final : public Model {
       return model_.delta_reflectance(params, cos_theta_i);
     } else {
       return 0.0;
+    }
+  }
+
+  bool reads_angles() const override {
+    if constexpr (requires { M::kReadsAngles; }) {
+      return M::kReadsAngles;
+    } else {
+      return false;
     }
   }
 

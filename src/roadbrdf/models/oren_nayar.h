@@ -20,6 +20,7 @@ namespace roadbrdf {
 
 struct OrenNayar {
   static constexpr const char* kName = "oren-nayar";
+  static constexpr bool kReadsAngles = true;  // alpha, beta = max, min(theta_i, theta_r) (model.h)
   static constexpr int kMaxParameters = 2;
   enum Parameter { kAlbedo = 0, kSigma = 1 };
 

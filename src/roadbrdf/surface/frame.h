@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
@@ -25,16 +26,22 @@ inline Vec3 to_local(const Vec3& w, const Vec3& t, const Vec3& b, const Vec3& n)
 }
 
 // Geometry from two local unit vectors (z = facet normal); both must be in the upper hemisphere.
-inline Geometry local_geometry(Vec3 wi, Vec3 wr) {
+// With `angles` false the angle fields are left NaN, for a material whose model reads only the
+// vectors and cos_delta_phi (Model::reads_angles).
+inline Geometry local_geometry(Vec3 wi, Vec3 wr, bool angles) {
   wi.z = std::clamp(wi.z, 0.0, 1.0);
   wr.z = std::clamp(wr.z, 0.0, 1.0);
   Geometry g;
   g.wi = wi;
   g.wr = wr;
-  g.theta_i = std::acos(wi.z);
-  g.theta_r = std::acos(wr.z);
-  g.phi_i = std::atan2(wi.y, wi.x);
-  g.phi_r = std::atan2(wr.y, wr.x);
+  if (angles) {
+    g.theta_i = std::acos(wi.z);
+    g.theta_r = std::acos(wr.z);
+    g.phi_i = std::atan2(wi.y, wi.x);
+    g.phi_r = std::atan2(wr.y, wr.x);
+  } else {
+    g.theta_i = g.theta_r = g.phi_i = g.phi_r = std::numeric_limits<double>::quiet_NaN();
+  }
   const double si = std::sqrt(wi.x * wi.x + wi.y * wi.y), sr = std::sqrt(wr.x * wr.x + wr.y * wr.y);
   g.cos_delta_phi = (si > 1e-12 && sr > 1e-12) ? std::clamp((wi.x * wr.x + wi.y * wr.y) / (si * sr), -1.0, 1.0) : 0.0;
   return g;

@@ -73,6 +73,7 @@ MaterialSet::MaterialSet(std::vector<RenderMaterial> materials, std::size_t wave
     any_delta_ = any_delta_ || mat.has_delta;
     samplers_.emplace_back(*mat.model, mat.parameters, wavelength_count);
     evaluators_.push_back(mat.model->fixed_sets(mat.parameters.data(), wavelength_count));
+    reads_angles_.push_back(mat.model->reads_angles() ? 1 : 0);
   }
 }
 

@@ -44,6 +44,8 @@ class MaterialSet {
   bool any_delta() const { return any_delta_; }
   bool has_delta(int material) const { return materials_[material].has_delta; }
   const BrdfSampler& sampler(int material) const { return samplers_[material]; }
+  // Whether the material's model reads the angle fields of a geometry (Model::reads_angles).
+  bool reads_angles(int material) const { return reads_angles_[material] != 0; }
 
   // Smooth BRDF [sr^-1] of `material` at a geometry in the facet's frame: out[w], w < wavelength_count().
   // Through the model's evaluator of its fixed per-wavelength parameter sets (model.h,
@@ -62,6 +64,7 @@ class MaterialSet {
   std::vector<RenderMaterial> materials_;
   std::vector<BrdfSampler> samplers_;
   std::vector<std::unique_ptr<FixedSetEvaluator>> evaluators_;
+  std::vector<char> reads_angles_;
   std::size_t m_ = 0;
   bool any_delta_ = false;
 };

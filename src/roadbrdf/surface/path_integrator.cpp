@@ -70,7 +70,7 @@ void PathIntegrator::source_delta_paths(const PathJob& job, const RenderSettings
       const Vec3 wd_l = to_local(w_det, t, b, hit.n);
       SurfaceHit shadow;
       if (wd_l.z > 0.0 && !tracer_.intersect(p, w_det, shadow)) {
-        materials_.evaluate(hit.material, local_geometry(wi_l, wd_l), f);
+        materials_.evaluate(hit.material, local_geometry(wi_l, wd_l, materials_.reads_angles(hit.material)), f);
         const double k = det_scale * wd_l.z / w_det.z;
         for (std::size_t w = 0; w < m_; ++w) contrib[w] += beta[w] * f[w] * k;
       }
@@ -91,7 +91,7 @@ void PathIntegrator::source_delta_paths(const PathJob& job, const RenderSettings
       const Vec3 wl = cosine_direction(u1, u2);
       if (!(wl.z > 0.0)) return;
       w_new = wl.x * t + wl.y * b + wl.z * hit.n;
-      materials_.evaluate(hit.material, local_geometry(wi_l, wl), f);
+      materials_.evaluate(hit.material, local_geometry(wi_l, wl, materials_.reads_angles(hit.material)), f);
       for (std::size_t w = 0; w < m_; ++w) beta[w] *= branch_weight * kPi * f[w];
     }
     if (vertex >= s.rr_start_bounce && !russian_roulette(beta, m_, rng)) return;
@@ -187,7 +187,8 @@ void PathIntegrator::sample(const PathJob& job, const RenderSettings& s, Rng& rn
     if (cos_src > 0.0) {
       SurfaceHit shadow;
       if (!tracer_.intersect(p, job.wi, shadow)) {
-        materials_.evaluate(hit.material, local_geometry(to_local(job.wi, t, b, hit.n), wo_l), f);
+        materials_.evaluate(hit.material,
+                            local_geometry(to_local(job.wi, t, b, hit.n), wo_l, materials_.reads_angles(hit.material)), f);
         const double k = cos_src * job.inv_cos_i;
         for (std::size_t w = 0; w < m_; ++w) contrib[w] += beta[w] * f[w] * k;
       }
@@ -211,7 +212,7 @@ void PathIntegrator::sample(const PathJob& job, const RenderSettings& s, Rng& rn
       double weight = 0.0;
       if (!continue_direction(hit.material, wo_l, s, rng, wl, weight)) break;
       w_new = wl.x * t + wl.y * b + wl.z * hit.n;
-      materials_.evaluate(hit.material, local_geometry(wl, wo_l), f);
+      materials_.evaluate(hit.material, local_geometry(wl, wo_l, materials_.reads_angles(hit.material)), f);
       for (std::size_t w = 0; w < m_; ++w) beta[w] *= branch_weight * weight * f[w];
     }
     if (bounce >= s.rr_start_bounce && !russian_roulette(beta, m_, rng)) break;
