@@ -139,7 +139,11 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
                     axis.axhspan(c["white_sky"] - c["white_sky_u"], c["white_sky"] + c["white_sky_u"], color=colour,
                                  alpha=0.12, lw=0)
             if any(c["black_sky_u"] is not None for c in curves.values()):
-                axis.text(0.01, 0.01, "bars: standard uncertainty from the fit's covariance (k = 1)",
+                # The largest bar is named: a well-determined albedo's bars hide behind the markers.
+                largest = np.nanmax([np.nanmax(np.r_[c[k]]) for c in curves.values()
+                                     for k in ("black_sky_u", "blue_sky_u") if c[k] is not None] or [np.nan])
+                axis.text(0.01, 0.01, "bars: standard uncertainty from the parameter covariance (k = 1)"
+                          + (f", largest {largest:.2g}" if np.isfinite(largest) else ""),
                           transform=axis.transAxes, fontsize=6, va="bottom")
             axis.set_xlabel("sun zenith angle [deg]")
             axis.set_ylabel("albedo [1]")
@@ -158,7 +162,7 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
             white_u = None if u.get("white_sky") is None else _u(u["white_sky"])
             if white_u is not None:
                 axis.fill_between(wl, white - white_u, white + white_u, color="k", alpha=0.15, lw=0,
-                                  label="± standard uncertainty (fit covariance)")
+                                  label="± standard uncertainty (parameter covariance)")
             blues = {}
             for k, (label, r) in enumerate(results):
                 if r.get("blue_sky") is not None:

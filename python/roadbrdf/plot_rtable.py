@@ -3,6 +3,7 @@ the sample's (S1, Q0) among the CIE R classes, the class diagram's range followi
 
 from __future__ import annotations
 
+import math
 import os
 import textwrap
 
@@ -26,6 +27,14 @@ def class_diagram_range(s1, q0):
     s1_top = max(2.5, 1.15 * float(s1)) if s1 is not None and np.isfinite(s1) else 2.5
     q0_top = max(0.15, 1.3 * float(q0)) if q0 is not None and np.isfinite(q0) else 0.15
     return s1_top, q0_top
+
+
+def _pm(value, u, decimals):
+    """``value ± u`` with u to two significant digits and the value to the same decimal place (GUM 7.2.6);
+    ``decimals`` when u is zero or not finite."""
+    if u is not None and math.isfinite(u) and u > 0:
+        decimals = min(max(decimals, 1 - math.floor(math.log10(u))), 8)
+    return f"{value:.{decimals}f} ± {u:.{decimals}f}"
 
 
 def _error_bars(t):
@@ -116,7 +125,7 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
         label = f"this surface: S1 = {s1:.2f}, Q0 = {q0:.3f} sr$^{{-1}}$" + (
             f", class {t['class']}" if t.get("class") else "")
         if bars:
-            label = (f"this surface: S1 = {s1:.2f} ± {bars['S1']:.2f}, Q0 = {q0:.3f} ± {bars['Q0']:.3f} sr$^{{-1}}$"
+            label = (f"this surface: S1 = {_pm(s1, bars['S1'], 2)}, Q0 = {_pm(q0, bars['Q0'], 3)} sr$^{{-1}}$"
                      + (f", class {t['class']}" if t.get("class") else ""))
             axis.errorbar([s1], [q0], xerr=[bars["S1"]], yerr=[bars["Q0"]], fmt="none", ecolor="red", capsize=3,
                           elinewidth=1.0)

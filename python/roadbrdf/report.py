@@ -19,6 +19,7 @@ import contextlib
 import datetime
 import hashlib
 import io
+import math
 import os
 import sys
 import tempfile
@@ -173,7 +174,10 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
                 r.formulation = json.load(fh)
             r.formulation_name = os.path.basename(formulation)
             with steps.step("mix", f"mixing predictions of {r.formulation_name}"), _collect(r, "mix"):
-                r.mix = mix(formulation, data=r.path, method="all", folds=r.folds, reference=r.fit_all_path)
+                # With the end-members' covariances (cheap for the mixing itself; the r-table of one method is
+                # propagated below, the albedo's propagation would take minutes and is left to the commands).
+                r.mix = mix(formulation, data=r.path, method="all", folds=r.folds, reference=r.fit_all_path,
+                            uncertainty=True)
         band_index = int(np.argmin(np.abs(d.wavelengths - r.wavelength_asked)))
         r.band = float(d.wavelengths[band_index])
         r.all_params = params(r.fit_all_path, wavelengths=[r.band])
@@ -188,6 +192,10 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
             r.albedo = albedo_of(best_model, sun_zenith=zeniths, atmosphere=atmosphere or None)
         with steps.step("rtable", f"r-table of {r.best.model}"), _collect(r, "rtable"):
             r.rtable = rtable_of(best_model, illuminant=illuminant)
+        if r.mix is not None:
+            with steps.step("mix-rtable", "r-table of the mixing prediction with its uncertainty"), \
+                    _collect(r, "mix-rtable"):
+                _mixture_uncertainty(r, rtable_of)
         r.all_caveats = list(dict.fromkeys(
             [n[len("WARNING: "):] if n.startswith("WARNING: ") else n for n in r.albedo.get("notes", [])
              if n.startswith(("WARNING", "coverage"))] + list(r.rtable.get("warnings") or []) +
@@ -199,6 +207,37 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
         if own:
             own.cleanup()
     return r
+
+
+#: The mixing methods whose prediction carries the end-members' parameter covariance (docs/mixing.md,
+#: "Uncertainty of a mixture"); ``fitted`` and ``shadowed`` fit weights to the measured sample and carry none.
+COVARIANCE_METHODS = ("areal", "mastic", "hapke")
+
+
+def _mixture_uncertainty(r, rtable_of):
+    """The r-table (Q0, S1, S2, Qd, class probabilities with their standard uncertainties) of one mixing
+    prediction: the method with the lowest held-out RMSE among those that carry a covariance, skipping one
+    whose uncertainty is undefined (an end-member fit without a covariance at a wavelength the weighting
+    uses). Sets ``r.mix_u_method`` (None when no method has one), ``r.mix_rtable`` and ``r.mix_u_skipped``
+    {method: reason}. Only the r-table: a mixture's albedo uncertainty differentiates the black-sky integrals
+    by every end-member parameter (minutes of CPU), too slow for a report."""
+    r.mix_u_method, r.mix_rtable, r.mix_u_skipped = None, None, {}
+    candidates = sorted((m for m in r.mix.methods if m.method in COVARIANCE_METHODS),
+                        key=lambda m: (m.comparison or {}).get("rmse", math.inf))
+    for m in candidates:
+        t = rtable_of(m.spectral_model(), illuminant=r.illuminant)
+        u = t.get("uncertainty")
+        if u is None:
+            r.mix_u_skipped[m.method] = "no parameter covariance" + "".join(f" ({n})" for n in m.notes[:1])
+        elif u.get("Q0") is None or u.get("S1") is None:
+            r.mix_u_skipped[m.method] = ("undefined: an end-member's fit has no covariance at a wavelength the "
+                                         "r-table's weighting uses")
+        else:
+            r.mix_u_method, r.mix_rtable = m.method, t
+            return
+    missing = [m for m in COVARIANCE_METHODS if m not in {c.method for c in candidates}]
+    for m in missing:
+        r.mix_u_skipped[m] = "not applied to this formulation"
 
 
 def _fit_groups(r, folder, band_index, fit, params, model_catalogue):

@@ -370,6 +370,16 @@ def albedo(r) -> Section:
 
 
 # ---- 8. r-table ---------------------------------------------------------------------------------
+def _with_u(t, name, key):
+    """An r-table figure ``t[name]`` ± its standard uncertainty (``t["uncertainty"][name]``, from the fit's or
+    the mixture's covariance: photometry/rtable_uncertainty.h) where defined; ``data-value`` is the figure."""
+    u = t.get("uncertainty") or {}
+    text = number(t[name], 4)
+    if u.get(name) is not None and np.isfinite(u[name]):
+        text += f" ± {number(u[name], 2)}"
+    return Cell(text, key, float(t[name]), True)
+
+
 def rtable(r) -> Section:
     t = r.rtable
     if t is None:
@@ -383,18 +393,10 @@ def rtable(r) -> Section:
             "(<code>roadbrdf rtable</code> / <code>roadbrdf.rtable</code>).</p>")
     cls = t["classes"]
     u = t.get("uncertainty") or {}
-
-    def with_u(name, key):
-        # The figure ± its standard uncertainty from the fit's covariance (photometry/rtable_uncertainty.h).
-        text = number(t[name], 4)
-        if u.get(name) is not None and np.isfinite(u[name]):
-            text += f" ± {number(u[name], 2)}"
-        return Cell(text, key, float(t[name]), True)
-
-    items = [("Q0 (average luminance coefficient) [sr⁻¹]", with_u("Q0", "rtable.Q0")),
-             ("S1 = r(0, 2) / r(0, 0)", with_u("S1", "rtable.S1")),
-             ("S2", with_u("S2", "rtable.S2")),
-             ("Qd [sr⁻¹]", with_u("Qd", "rtable.Qd")),
+    items = [("Q0 (average luminance coefficient) [sr⁻¹]", _with_u(t, "Q0", "rtable.Q0")),
+             ("S1 = r(0, 2) / r(0, 0)", _with_u(t, "S1", "rtable.S1")),
+             ("S2", _with_u(t, "S2", "rtable.S2")),
+             ("Qd [sr⁻¹]", _with_u(t, "Qd", "rtable.Qd")),
              ("class (R system)", Cell(esc(t["class"]), "rtable.class")),
              ("classes N / C", esc(f"{cls.get('N', '–')} / {cls.get('C', '–')}"))]
     if u.get("class_probabilities"):
@@ -414,6 +416,46 @@ def rtable(r) -> Section:
 
 
 # ---- 9. mixing ----------------------------------------------------------------------------------
+def _mixture_uncertainty(r) -> str:
+    """The r-table of one mixing prediction with the standard uncertainties propagated from its end-members'
+    fits (report._mixture_uncertainty chose the method), and what is not shown."""
+    method = getattr(r, "mix_u_method", None)
+    html = "<h3>Uncertainty of the prediction</h3>"
+    covariance_methods = "<code>areal</code>, <code>mastic</code> and <code>hapke</code>"
+    none_text = ("<code>fitted</code> and <code>shadowed</code> carry none: their weights are fitted to this "
+                 "measured sample, and the uncertainty of those weights is not propagated")
+    if method is None:
+        skipped = "; ".join(f"{esc(k)}: {esc(v)}" for k, v in (getattr(r, "mix_u_skipped", None) or {}).items())
+        return html + (f"<p>No mixing prediction here carries a standard uncertainty. Only {covariance_methods} "
+                       f"propagate their end-members' fit covariances ({skipped or 'none applied'}); "
+                       f"{none_text}.</p>")
+    t = r.mix_rtable
+    html += (f'<p>Shown for <strong data-key="mix.uncertainty.method">{esc(method)}</strong>, the method with the '
+             f"lowest held-out RMSE among those that carry an uncertainty ({covariance_methods}: the covariances "
+             "of their end-members' fits propagated into the mixture, <code>roadbrdf mix --uncertainty</code>, "
+             f"docs/mixing.md); {none_text}, so the best method above may have none. The r-table of the "
+             f"prediction (illuminant {esc(r.illuminant)}), ± the standard uncertainty, as "
+             f"<code>roadbrdf rtable MIX.json --fit {esc(method)}</code> gives it:</p>")
+    cls = t["classes"]
+    u = t.get("uncertainty") or {}
+    items = [("Q0 [sr⁻¹]", _with_u(t, "Q0", "mix.rtable.Q0")), ("S1", _with_u(t, "S1", "mix.rtable.S1")),
+             ("S2", _with_u(t, "S2", "mix.rtable.S2")), ("Qd [sr⁻¹]", _with_u(t, "Qd", "mix.rtable.Qd")),
+             ("class (R system)", Cell(esc(t["class"]), "mix.rtable.class")),
+             ("classes N / C", esc(f"{cls.get('N', '–')} / {cls.get('C', '–')}"))]
+    if u.get("class_probabilities"):
+        items.append(("class probability (S1 normal with its uncertainty; ≥ 1 %)",
+                      Cell(esc(", ".join(f"{c['class']} {c['probability']:.2f}" for c in u["class_probabilities"])),
+                           "mix.rtable.class_probabilities")))
+    html += definition_list(items)
+    html += ("<p>This uncertainty comes from the components' measurements only (their fits' covariances, "
+             "wavelengths independent); it says nothing of how well the method describes the mixture, which is "
+             "what the held-out RMSE above measures and which is usually far larger. The albedo of a mixture with "
+             "its uncertainty is not computed here because of its cost (two black-sky integrals per end-member "
+             "parameter and sun zenith: minutes of CPU): <code>roadbrdf mix F.json --uncertainty -o F.mix.json"
+             f"</code>, then <code>roadbrdf albedo F.mix.json --fit {esc(method)}</code>.</p>")
+    return html
+
+
 def mixing(r) -> Section:
     title = "9. Mixing prediction"
     if r.mix is None:
@@ -447,6 +489,7 @@ def mixing(r) -> Section:
                    "albedo − this sample's"], rows, classes)
     if best:
         html += f'<p>Best (lowest held-out RMSE): <strong data-key="mix.best">{esc(best)}</strong>.</p>'
+    html += _mixture_uncertainty(r)
     html += caveats(m.notes, info=True)
     html += _figure(r, "mixing")
     return Section("mixing", title, html)

@@ -81,6 +81,12 @@ def test_plot_rtable_draws_the_uncertainty_of_the_figures(mixture, tmp_path):
     diagram = next(a for a in fig.axes if a.get_xlabel().startswith("S1"))
     drawn = [c for c in diagram.containers if getattr(c, "has_yerr", False) and c.has_xerr]
     assert len(drawn) == 1
+    # The legend gives each figure ± its uncertainty to two significant digits, the value to the same place.
+    from roadbrdf.plot_rtable import _pm
+    legend = diagram.get_legend().get_texts()[0].get_text()
+    assert f"S1 = {_pm(table['S1'], bars['S1'], 2)}" in legend
+    assert _pm(1.16287, 0.00294, 2) == "1.1629 ± 0.0029" and _pm(0.272508, 0.0451, 2) == "0.273 ± 0.045"
+    assert _pm(0.0732614, 8.59e-5, 3) == "0.073261 ± 0.000086" and _pm(0.5, 0.0, 3) == "0.500 ± 0.000"
     # The r-table of a model given by its parameters has none, and no bars are drawn.
     fig = rplot.rtable(roadbrdf.Model("lambert"), {"albedo": 0.3})
     assert fig.roadbrdf_data["error_bars"] is None

@@ -293,15 +293,29 @@ def test_single_band_and_an_incidence_too_small_to_fit(tmp_path):
 
 
 # ---- mixing --------------------------------------------------------------------------------------------
-def _formulation(folder):
-    """F1's formulation with its components' fits (oren-nayar, made here) where it looks for them."""
+COMPONENT_FIT = {"models": ["oren-nayar+torrance-sparrow"], "multistart": 8,  # the demo's best model of each
+                 "fixed": {"oren-nayar.weight": 1.0, "torrance-sparrow.weight": 1.0}}
+
+
+def _formulation(folder, **fit_options):
+    """F1's formulation with its components' fits (made here; default oren-nayar+torrance-sparrow, which has
+    a covariance at every wavelength) where it looks for them."""
+    options = dict(COMPONENT_FIT, **fit_options)
     (folder / "fits").mkdir()
     (folder / "formulations").mkdir()
     for name, path in [("bitumen", "single/bitumen.csv"), ("garonne", "single/garonne.csv"),
                        ("mastic-garonne-bitumen", "mastics/mastic-garonne-bitumen.csv")]:
-        roadbrdf.fit(ROOT / "data" / "examples" / path, ["oren-nayar"], output=folder / "fits" / f"{name}.fit.json")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # parameters on a bound: the covariance is still computed
+            roadbrdf.fit(ROOT / "data" / "examples" / path, output=folder / "fits" / f"{name}.fit.json", **options)
     shutil.copy(ROOT / "data" / "examples" / "formulations" / "F1.json", folder / "formulations" / "F1.json")
     return folder / "formulations" / "F1.json"
+
+
+def _rtable_quietly(model, illuminant="A"):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return roadbrdf.rtable(model, illuminant=illuminant)
 
 
 def test_mixing_section_and_output_file(tmp_path):
@@ -310,22 +324,68 @@ def test_mixing_section_and_output_file(tmp_path):
     result = _run(DATA, "--model", "oren-nayar", "--formulation", formulation, "--quiet", "-o", out, umask=0o027)
     assert result.returncode == 0, result.stderr
     assert "roadbrdf report:" not in result.stderr  # --quiet
-    page = _Page(out.read_text(encoding="utf-8"))
+    text = out.read_text(encoding="utf-8")
+    page = _Page(text)
     assert "mixing" in page.figures
     # The same comparison made here: the report's reference is its fit of the sample (oren-nayar).
     reference = tmp_path / "F1.fit.json"
     roadbrdf.fit(DATA, ["oren-nayar"], multistart=8, output=reference)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # skipped methods, as the report lists them
-        m = roadbrdf.mix(formulation, data=DATA, method="all", folds=5, reference=reference)
+        m = roadbrdf.mix(formulation, data=DATA, method="all", folds=5, reference=reference, uncertainty=True)
     assert _value(page, "mix.best")[1] == m.best.method
     assert len(m.methods) >= 3
     for method in m.methods:
         _same(page, f"mix.{method.method}.rmse", method.comparison["rmse"])
         _same(page, f"mix.{method.method}.albedo_difference", method.comparison["albedo_difference"], digits=3)
+    # The uncertainty of the prediction: the r-table of the method with the lowest held-out RMSE among those
+    # whose mixture carries the end-members' covariance, computed here from the MixResult; fitted and
+    # shadowed carry none, as the page says.
+    for name in ("fitted", "shadowed"):
+        assert _rtable_quietly(m.method(name).spectral_model())["uncertainty"] is None
+    carrying = []
+    for method in sorted(m.methods, key=lambda x: x.comparison["rmse"]):
+        t = _rtable_quietly(method.spectral_model())
+        if t["uncertainty"] is not None and t["uncertainty"]["Q0"] is not None:
+            carrying.append((method.method, t))
+    assert carrying, "no method carries an uncertainty with these component fits"
+    name, t = carrying[0]
+    assert name in ("areal", "mastic", "hapke")
+    assert _value(page, "mix.uncertainty.method")[1] == name
+    u = t["uncertainty"]
+    for figure in ("Q0", "S1", "S2", "Qd"):
+        _same(page, f"mix.rtable.{figure}", t[figure])
+        shown = _value(page, f"mix.rtable.{figure}")[1]
+        assert float(shown.split("±")[1]) == pytest.approx(u[figure], rel=0.06), (figure, shown, u[figure])
+    assert _value(page, "mix.rtable.class")[1] == t["class"]
+    assert _value(page, "mix.rtable.class_probabilities")[1] == ", ".join(
+        f"{c['class']} {c['probability']:.2f}" for c in u["class_probabilities"])
+    assert "fitted</code> and <code>shadowed</code> carry none" in text
+    assert f"roadbrdf albedo F.mix.json --fit {name}" in text  # where the mixture's albedo ± u comes from
     # Written atomically with the permissions of a new file (0666 & ~umask), no temporary file left.
     assert (out.stat().st_mode & 0o777) == 0o640
     assert sorted(p.name for p in tmp_path.iterdir()) == ["F1-mix.html", "F1.fit.json", "fits", "formulations"]
+
+
+def test_mixing_section_says_when_no_prediction_carries_an_uncertainty(tmp_path):
+    """With single-start oren-nayar component fits, no areal, mastic or hapke r-table has a defined
+    uncertainty (the bitumen fit has no covariance at all, the mastic's none at 350 and 370 nm, which the
+    photometric weighting uses): the section says so instead of showing numbers."""
+    from types import SimpleNamespace
+    from roadbrdf import report, report_sections
+    formulation = _formulation(tmp_path, models=["oren-nayar"], multistart=1, fixed={})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        m = roadbrdf.mix(formulation, data=DATA, method="all", uncertainty=True)
+    for name in ("areal", "mastic", "hapke"):
+        u = _rtable_quietly(m.method(name).spectral_model())["uncertainty"]
+        assert u is None or u["Q0"] is None, name
+    r = SimpleNamespace(mix=m, illuminant="A")
+    report._mixture_uncertainty(r, _rtable_quietly)
+    assert r.mix_u_method is None and set(r.mix_u_skipped) == {"areal", "mastic", "hapke"}
+    text = report_sections._mixture_uncertainty(r)
+    assert "No mixing prediction here carries a standard uncertainty" in text
+    assert "mix.rtable" not in text
 
 
 def test_formulation_without_its_component_fits_is_an_error(tmp_path):
