@@ -321,10 +321,10 @@ struct Hapke {
   // hapke_h_table.h); other sets and cosines outside the table (e.g. exactly 0) use operator() itself.
   struct FixedSets {
     std::size_t n_sets = 0, n_params = 0;
-    std::vector<double> params;              // n_sets x n_params
-    std::vector<double> w, b0, h, p1, p2;    // per set: w, b0, h and the phase parameters (p2: two-parameter phases)
-    std::vector<std::size_t> by_operator;    // sets evaluated by operator() (w outside the table)
-    std::vector<double> series;              // hapke::kHTableSeriesSize x n_sets, coefficient-major
+    std::vector<double> params;            // n_sets x n_params
+    std::vector<double> w, b0, h, p1, p2;  // per set: w, b0, h and the phase parameters (p2: two-parameter phases)
+    std::vector<std::size_t> by_operator;  // sets evaluated by operator() (w outside the table)
+    std::vector<double> series;            // hapke::kHTableSeriesSize x n_sets, coefficient-major
   };
 
   FixedSets fix(const double* p, std::size_t n) const {
@@ -399,7 +399,8 @@ struct Hapke {
           o[s] = w[s] * q.scale * ((1.0 + b) * phase[s] + (h_i[s] * h_r[s] - 1.0));
         }
       } else {
-        for (std::size_t s = 0; s < m; ++s) o[s] = w[s] * q.scale * (phase[s] + (h_i[s] * h_r[s] - 1.0));  // B = 0 at g = pi
+        for (std::size_t s = 0; s < m; ++s)
+          o[s] = w[s] * q.scale * (phase[s] + (h_i[s] * h_r[s] - 1.0));  // B = 0 at g = pi
       }
     }
     for (std::size_t s : f.by_operator) out[s] = (*this)(f.params.data() + s * f.n_params, q);

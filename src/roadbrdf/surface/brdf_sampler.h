@@ -10,9 +10,9 @@
 // evaluated at the centre theta_o of the bin. Each table defines a piecewise-constant density in
 // (cos theta, |delta phi|), made symmetric in the sign of delta phi:
 //     pdf(w | w_o) = P_cell / (d_cos * d_phi) / 2   [sr^-1]  (d omega = d cos(theta) d phi),
-// with P_cell the cell's share of the table's sum (stored as its row's and column's CDF interval widths). sample() draws the cell from the marginal
-// (cos-theta rows) and conditional (delta-phi columns) cumulative tables, a uniform point inside
-// the cell and a random sign of delta phi: pdf() is then exactly the density of sample() (inverse
+// with P_cell the cell's share of the table's sum (stored as its row's and column's CDF interval widths). sample()
+// draws the cell from the marginal (cos-theta rows) and conditional (delta-phi columns) cumulative tables, a uniform
+// point inside the cell and a random sign of delta phi: pdf() is then exactly the density of sample() (inverse
 // transform sampling of a piecewise-constant 2-D density, e.g. Pharr, Jakob & Humphreys, PBRT 3rd
 // ed. sec. 13.6.7; written from that description). Nothing in the estimator assumes that the table
 // matches f (isotropy, reciprocity, resolution only affect the variance): the renderer combines

@@ -188,7 +188,8 @@ void PathIntegrator::sample(const PathJob& job, const RenderSettings& s, Rng& rn
       SurfaceHit shadow;
       if (!tracer_.intersect(p, job.wi, shadow)) {
         materials_.evaluate(hit.material,
-                            local_geometry(to_local(job.wi, t, b, hit.n), wo_l, materials_.reads_angles(hit.material)), f);
+                            local_geometry(to_local(job.wi, t, b, hit.n), wo_l, materials_.reads_angles(hit.material)),
+                            f);
         const double k = cos_src * job.inv_cos_i;
         for (std::size_t w = 0; w < m_; ++w) contrib[w] += beta[w] * f[w] * k;
       }

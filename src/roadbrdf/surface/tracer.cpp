@@ -179,10 +179,8 @@ bool HeightFieldTracer::intersect(const Vec3& o, const Vec3& d, SurfaceHit& hit)
   for (long steps = 0; steps < kMaxSteps; ++steps) {
     // The block of cell (iw, jw), and the grid lines (in the plane) where the ray leaves it.
     const long bi = iw / kBlock, bj = jw / kBlock;
-    const long block_x_line =
-        i - iw + (ray.step_x > 0 ? std::min<long>((bi + 1) * kBlock, nx_) : bi * kBlock);
-    const long block_y_line =
-        j - jw + (ray.step_y > 0 ? std::min<long>((bj + 1) * kBlock, ny_) : bj * kBlock);
+    const long block_x_line = i - iw + (ray.step_x > 0 ? std::min<long>((bi + 1) * kBlock, nx_) : bi * kBlock);
+    const long block_y_line = j - jw + (ray.step_y > 0 ? std::min<long>((bj + 1) * kBlock, ny_) : bj * kBlock);
     const double t_block_x = ray.t_x(block_x_line), t_block_y = ray.t_y(block_y_line);
     const double t_block = std::min(t_block_x, t_block_y);
     const double z_block = ray.z(t_block);
@@ -215,7 +213,8 @@ bool HeightFieldTracer::intersect(const Vec3& o, const Vec3& d, SurfaceHit& hit)
     Visit visits[kMaxVisits];
     int count = 0;
     {
-      const long width_x = std::min<long>(kBlock, nx_ - bi * kBlock), width_y = std::min<long>(kBlock, ny_ - bj * kBlock);
+      const long width_x = std::min<long>(kBlock, nx_ - bi * kBlock),
+                 width_y = std::min<long>(kBlock, ny_ - bj * kBlock);
       long lx = iw - bi * kBlock, ly = jw - bj * kBlock;
       std::size_t index = cell_index(iw, jw);
       double t_x = ray.t_x(Ray::line_ahead(i, ray.step_x)), t_y = ray.t_y(Ray::line_ahead(j, ray.step_y));
