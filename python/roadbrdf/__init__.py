@@ -28,7 +28,7 @@ from .io import Dataset, check, read_alta, read_curet, read_dataset, write_datas
 from .fitting import FitResult, ModelFit, fit, params, read_fit, spectral_model_from_fit
 from .photometry import RTable, read_rtable, rtable
 from .mixing import mix, mix_calibrate
-from .albedos import albedo
+from .albedos import AlbedoResult, albedo
 from .surfaces import (Surface, flat_surface, gaussian_slope_surface, read_surface, render, render_albedo,
                       surface)
 from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dataset, read_instrument,
@@ -39,7 +39,7 @@ from .studies import study
 __all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "FitResult", "ModelFit", "models",
            "model_names", "model_aliases", "read_fit", "read_dataset", "write_dataset", "read_curet", "read_alta",
            "rtable", "read_rtable", "check", "fit", "params", "spectral_model_from_fit", "mix", "mix_calibrate",
-           "albedo", "road_to_zenith_azimuth",
+           "albedo", "AlbedoResult", "road_to_zenith_azimuth",
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
            "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study"]

@@ -2,17 +2,105 @@
 
 from __future__ import annotations
 
+import os
 import warnings
+from typing import Sequence, Union
 
+import numpy as np
 
 from . import _roadbrdf
 from .core import InputError
 from .fitting import read_fit
-from typing import Sequence
-
 from .model import Model, SpectralModel
 
-__all__ = ["albedo"]
+__all__ = ["albedo", "AlbedoResult"]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+class AlbedoResult(dict):
+    """The result of :func:`albedo`: the report ``roadbrdf albedo --json`` prints, as a dict (keys below),
+    with its numbers also as NumPy arrays (``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky``
+    [zenith, wavelength], ``white_sky`` [wavelength], ``blue_sky`` [zenith, wavelength] or None, and their
+    ``*_error`` estimates), :attr:`summary` (the table ``roadbrdf albedo`` prints), :meth:`write` (the
+    command line's writer) and :meth:`to_dataframe`. Albedos are dimensionless reflectances."""
+
+    def __init__(self, report):
+        super().__init__(report.content())
+        self._report = report
+
+    def _array(self, key: str) -> np.ndarray | None:
+        value = self.get(key)
+        return None if value is None else np.asarray(value, dtype=float)
+
+    @property
+    def wavelengths(self) -> np.ndarray:
+        return np.asarray(self["wavelengths"], dtype=float)
+
+    @property
+    def sun_zenith_deg(self) -> np.ndarray:
+        return np.asarray(self["sun_zenith_deg"], dtype=float)
+
+    @property
+    def black_sky(self) -> np.ndarray:
+        return np.asarray(self["black_sky"], dtype=float)
+
+    @property
+    def black_sky_error(self) -> np.ndarray:
+        return np.asarray(self["black_sky_error"], dtype=float)
+
+    @property
+    def white_sky(self) -> np.ndarray:
+        return np.asarray(self["white_sky"], dtype=float)
+
+    @property
+    def white_sky_error(self) -> np.ndarray:
+        return np.asarray(self["white_sky_error"], dtype=float)
+
+    @property
+    def blue_sky(self) -> np.ndarray | None:
+        return self._array("blue_sky")
+
+    @property
+    def blue_sky_error(self) -> np.ndarray | None:
+        return self._array("blue_sky_error")
+
+    @property
+    def notes(self) -> list:
+        return list(self["notes"])
+
+    @property
+    def summary(self) -> str:
+        """The table ``roadbrdf albedo`` prints without ``--json``."""
+        return self._report.table()
+
+    def write(self, path: PathLike, format: str = "json") -> None:
+        """Write as ``roadbrdf albedo -o PATH`` does (``format`` "json": with ``--json``; "table": the
+        table), atomically."""
+        if format not in ("json", "table"):
+            raise InputError(f"format must be 'json' or 'table', not '{format}'")
+        self._report.write(os.fspath(path), format == "json")
+
+    def to_dataframe(self):
+        """A pandas DataFrame, one row per wavelength (one row without wavelengths for a non-spectral
+        model): ``wavelength_nm``, ``black_sky_<zenith>deg`` (and ``_error``) per sun zenith, ``white_sky``
+        (and ``_error``), ``blue_sky_<zenith>deg`` where defined."""
+        import pandas as pd
+        columns = {}
+        if len(self["wavelengths"]):
+            columns["wavelength_nm"] = self.wavelengths
+        for k, zenith in enumerate(self.sun_zenith_deg):
+            columns[f"black_sky_{zenith:g}deg"] = self.black_sky[k]
+            columns[f"black_sky_{zenith:g}deg_error"] = self.black_sky_error[k]
+        columns["white_sky"] = self.white_sky
+        columns["white_sky_error"] = self.white_sky_error
+        if self.blue_sky is not None:
+            for k, zenith in enumerate(self.sun_zenith_deg):
+                columns[f"blue_sky_{zenith:g}deg"] = self.blue_sky[k]
+        return pd.DataFrame(columns)
+
+    def __repr__(self) -> str:
+        return "roadbrdf.AlbedoResult(\n" + self.summary.rstrip("\n") + "\n)"
 
 
 def albedo(model: Model | SpectralModel | str, params: dict | None = None,
@@ -20,7 +108,7 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
            azimuth_mean: bool = False,
            diffuse_fraction: float | str | None = None, atmosphere: str | None = None,
            spectrum: str | None = None, wavelengths: float | str | Sequence[float] | None = None,
-           illuminant: str | None = None, tolerance: float = 1e-5) -> dict:
+           illuminant: str | None = None, tolerance: float = 1e-5) -> AlbedoResult:
     """Black-sky, white-sky and blue-sky albedo, as ``roadbrdf albedo --json`` computes them.
 
     ``model``: a :class:`Model` (with ``params``), a :class:`SpectralModel`, or a fit / MIX.json file.
@@ -29,7 +117,7 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     ``spectrum``: broadband weighting ``"astm-g173-global"`` (default), ``"astm-g173-direct"`` or a CSV
     file; ``illuminant``: also the luminous albedo under "A", "D65" or a lamp file.
 
-    Returns a dict: ``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky`` [zenith][wavelength],
+    Returns an :class:`AlbedoResult`, a dict: ``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky`` [zenith][wavelength],
     ``white_sky`` [wavelength], ``blue_sky``, ``diffuse_fraction``, their ``*_error`` estimates,
     ``broadband`` (solar-weighted values), ``luminous``, ``coverage`` (a fit's measured directions and
     the fractions of the black- and white-sky integrals outside them, ``None`` when unknown),
@@ -46,11 +134,11 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")
-        return _warn_notes(_roadbrdf.albedo_spectral(model._spectral, *common))
-    return _warn_notes(_roadbrdf.albedo_model(model._model, model.parameter_values(params), *common))
+        return _warn_notes(AlbedoResult(_roadbrdf.albedo_spectral(model._spectral, *common)))
+    return _warn_notes(AlbedoResult(_roadbrdf.albedo_model(model._model, model.parameter_values(params), *common)))
 
 
-def _warn_notes(report: dict) -> dict:
+def _warn_notes(report: AlbedoResult) -> AlbedoResult:
     """The command line's warnings: notes on mostly extrapolated or non-physical results."""
     for note in report.get("notes", []):
         if note.startswith(("WARNING: mostly", "WARNING: non-physical")):

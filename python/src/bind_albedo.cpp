@@ -36,23 +36,36 @@ albedo::AlbedoRequest request_from(const std::vector<double>& sun_zenith, std::o
   return request;
 }
 
-py::object report(const SpectralModel& model, const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth,
-                  bool azimuth_mean, const std::string& diffuse_fraction, const std::string& atmosphere,
-                  const std::string& spectrum, const std::vector<double>& wavelengths, const std::string& illuminant,
-                  double tolerance) {
+// The report of compute_albedo (`roadbrdf albedo --json`), kept as the library's document so that
+// Python writes it with the command line's writer (albedo::write_albedo_report).
+struct AlbedoReport {
+  nlohmann::json json;
+};
+
+std::shared_ptr<AlbedoReport> report(const SpectralModel& model, const std::vector<double>& sun_zenith,
+                                     std::optional<double> sun_azimuth, bool azimuth_mean,
+                                     const std::string& diffuse_fraction, const std::string& atmosphere,
+                                     const std::string& spectrum, const std::vector<double>& wavelengths,
+                                     const std::string& illuminant, double tolerance) {
   const albedo::AlbedoRequest request = request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction,
                                                      atmosphere, spectrum, wavelengths, illuminant, tolerance);
-  nlohmann::json result;
+  auto result = std::make_shared<AlbedoReport>();
   {
     py::gil_scoped_release release;
-    result = albedo::compute_albedo(model, request);
+    result->json = albedo::compute_albedo(model, request);
   }
-  return json_to_python(result);  // the report `roadbrdf albedo --json` prints, as Python objects
+  return result;
 }
 
 }  // namespace
 
 void bind_albedo(py::module_& m) {
+  py::class_<AlbedoReport, std::shared_ptr<AlbedoReport>>(m, "AlbedoReport")
+      .def("content", [](const AlbedoReport& r) { return json_to_python(r.json); })
+      .def("table", [](const AlbedoReport& r) { return albedo::albedo_table(r.json); })
+      .def("write", [](const AlbedoReport& r, const std::string& path, bool as_json) {
+        albedo::write_albedo_report(r.json, path, as_json);
+      });
   m.def("albedo_spectral", &report);
   // The same report for method `index` of a mix run, its end-members' integrals shared through
   // `cache` (mixing/end_member_cache.h; the design studies' fast path).

@@ -64,4 +64,8 @@ nlohmann::json compute_albedo(const SpectralModel& model, const AlbedoRequest& r
 // The CSV table `roadbrdf albedo` prints without --json (per wavelength, then broadband lines).
 std::string albedo_table(const nlohmann::json& report);
 
+// Writes a report as `roadbrdf albedo` does: the JSON document (indent 2) or the table, to `path`
+// atomically ("-": standard output). The one writer of the command line and of Python.
+void write_albedo_report(const nlohmann::json& report, const std::string& path, bool as_json);
+
 }  // namespace roadbrdf::albedo

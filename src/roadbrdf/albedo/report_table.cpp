@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/json_input.h"
 
 namespace roadbrdf::albedo {
 
@@ -133,6 +135,17 @@ std::string albedo_table(const nlohmann::json& j) {
   if (!j.at("broadband").is_null()) write_broadband(j.at("broadband"), c, text);
   if (!j.at("luminous").is_null()) write_luminous(j.at("luminous"), c, text);
   return text.str();
+}
+
+void write_albedo_report(const nlohmann::json& report, const std::string& path, bool as_json) {
+  AtomicFile out(path);
+  if (as_json) {
+    write_json(out.stream(), report, 2);
+    out.stream() << "\n";
+  } else {
+    out.stream() << albedo_table(report);
+  }
+  out.commit();
 }
 
 }  // namespace roadbrdf::albedo

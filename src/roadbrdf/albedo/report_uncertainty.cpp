@@ -113,6 +113,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
       "standard uncertainties from the parameter covariance, per wavelength; the broadband ones "
       "treat the wavelengths as independent ('independent') and give the bound for errors correlated "
       "across wavelengths ('correlated')");
+  if (!sm.shared_parameters().empty()) notes.push_back(shared_parameters_note(sm));
   return u;
 }
 

@@ -77,10 +77,7 @@ void run(const AlbedoArgs& a) {
       fmt::print(stderr, "roadbrdf: warning: {}\n", n.substr(9));
     }
   }
-  const std::string text = a.as_json ? roadbrdf::dump_json(report, 2) + "\n" : albedo::albedo_table(report);
-  AtomicFile out(a.output.empty() ? std::string("-") : a.output);
-  out.stream() << text;
-  out.commit();
+  albedo::write_albedo_report(report, a.output.empty() ? std::string("-") : a.output, a.as_json);
 }
 
 }  // namespace
