@@ -175,3 +175,25 @@ def test_albedo_of_a_fit_result_equals_that_of_its_fit_file(cli, root, tmp_path)
         assert bb_memory["white_sky"][kind] == pytest.approx(bb_file["white_sky"][kind], rel=1e-9)
         assert [b[kind] for b in bb_memory["black_sky"]] == pytest.approx([b[kind] for b in bb_file["black_sky"]],
                                                                           rel=1e-9)
+
+
+def test_uncertainties_of_a_joint_fit_say_what_they_leave_out(cli, root, tmp_path):
+    """A joint fit's shared parameter has one error for every wavelength: the per-wavelength covariance
+    does not carry that correlation, and the albedo and r-table uncertainties say so (from the file and
+    from the result in memory); a per-wavelength fit has no such note."""
+    joint, single = tmp_path / "joint.json", tmp_path / "single.json"
+    cli("fit", root / DATA, "--model", "oren-nayar", "--wavelengths", "400:700:50", "--shared", "sigma", "-o", joint)
+    cli("fit", root / DATA, "--model", "oren-nayar", "--wavelengths", "400:700:50", "-o", single)
+    for path, expected in ((joint, True), (single, False)):
+        albedo = json.loads(cli("albedo", path, "--json", check=True).stdout)
+        rtable = json.loads(cli("rtable", path, "--json").stdout)
+        assert albedo["uncertainty"] is not None and rtable["uncertainty"] is not None
+        for notes in (albedo["notes"], rtable["notes"]):
+            joint_notes = [n for n in notes if n.startswith("joint fit: ")]
+            assert len(joint_notes) == (1 if expected else 0), notes
+            if expected:
+                assert "(oren-nayar.sigma)" in joint_notes[0] or "(sigma)" in joint_notes[0]
+    result = roadbrdf.fit(root / DATA, "oren-nayar", wavelengths="400:700:50", shared=["sigma"])
+    with pytest.warns(UserWarning):
+        in_memory = roadbrdf.albedo(result.spectral_model())
+    assert any(n.startswith("joint fit: ") for n in in_memory["notes"])

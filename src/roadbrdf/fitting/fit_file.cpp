@@ -439,6 +439,7 @@ SpectralModel read_fit_file(const std::string& path, const std::string& selectio
     SpectralModel spectral(model, wavelengths, table);
     if (const auto c = fit.find("coverage")) spectral.set_coverage(read_coverage(*c));
     spectral.set_parameter_covariance(read_parameter_covariance(fit, model->description(), wavelengths.size()));
+    if (const auto shared = fit.find("shared")) spectral.set_shared_parameters(shared->strings());
     return spectral;
   }
   fits.fail("no fit of model '" + wanted + "' in this file");  // select_fits returned none: not reached
@@ -473,6 +474,7 @@ SpectralModel spectral_model_of(const FitResult& fit, std::shared_ptr<const Mode
   SpectralModel spectral(std::move(model), wavelengths, table);
   spectral.set_coverage(fit.coverage);
   spectral.set_parameter_covariance(std::move(covariance));
+  spectral.set_shared_parameters(fit.shared);
   return spectral;
 }
 

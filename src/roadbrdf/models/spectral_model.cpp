@@ -67,4 +67,13 @@ void SpectralModel::set_parameter_covariance(std::vector<double> covariance) {
   covariance_ = std::move(covariance);
 }
 
+std::string shared_parameters_note(const SpectralModel& model) {
+  std::string names;
+  for (const std::string& n : model.shared_parameters()) names += (names.empty() ? "" : ", ") + n;
+  return "joint fit: the errors of the parameters shared across wavelengths (" + names +
+         ") are fully correlated between wavelengths, which the per-wavelength covariance does not carry: "
+         "the uncertainties at each wavelength hold, those of values combined over wavelengths understate "
+         "the shared parameters' part as 'independent' and bound it as 'correlated'";
+}
+
 }  // namespace roadbrdf

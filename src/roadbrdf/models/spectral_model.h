@@ -48,12 +48,23 @@ class SpectralModel {
   // Throws InputError unless `covariance` has wavelengths() x P x P values (or is empty).
   void set_parameter_covariance(std::vector<double> covariance);
 
+  // The parameters a joint fit shared across wavelengths (fit --shared; empty otherwise). A shared
+  // parameter has one value and one error for every wavelength, so its error is fully correlated
+  // between wavelengths, and through it those of the other parameters: the per-wavelength covariance
+  // above holds each wavelength's marginal block only, and the propagated uncertainties say so.
+  const std::vector<std::string>& shared_parameters() const { return shared_; }
+  void set_shared_parameters(std::vector<std::string> names) { shared_ = std::move(names); }
+
  private:
   std::optional<AngularCoverage> coverage_;
   std::vector<double> covariance_;
+  std::vector<std::string> shared_;
   std::shared_ptr<const Model> model_;
   std::vector<double> wavelengths_;
   std::vector<double> parameters_;
 };
+
+// The note that goes with uncertainties propagated from a joint fit's covariance (shared parameters).
+std::string shared_parameters_note(const SpectralModel& model);
 
 }  // namespace roadbrdf

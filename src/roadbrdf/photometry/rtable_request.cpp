@@ -146,6 +146,7 @@ RTableReport rtable_report(const SpectralModel& model, const RTableRequest& requ
   summarize_into(report, request, model.coverage());
   // Cheap (each parameter moves only its neighbouring wavelengths): always, as for albedo.
   report.uncertainty = summary_uncertainty(model, w, report.table, request.region());
+  if (report.uncertainty && !model.shared_parameters().empty()) report.notes.push_back(shared_parameters_note(model));
   if (report.uncertainty && !std::isnan(report.uncertainty->independent.s1)) {
     report.class_probabilities =
         class_probabilities(report.summary.s1, report.uncertainty->independent.s1, request.system());
