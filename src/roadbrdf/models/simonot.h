@@ -91,16 +91,48 @@ struct Simonot {
   }
   explicit Simonot(const OptionSet&) {}
 
+  // Geometry-only data (model.h, "prepared geometry"): the two cosines.
+  struct Prepared {
+    double cos_i = 0.0, cos_r = 0.0;
+  };
+  Prepared prepare(const Geometry& g) const { return {g.cos_theta_i(), g.cos_theta_r()}; }
+
+  // Parameter-only factors (model.h, "coefficients"): the hemispherical Fresnel reflectance r01 is an
+  // integral over the interface's directions, 64 Fresnel terms, so it is computed once per parameter
+  // set rather than at every geometry.
   template <typename T>
-  T operator()(const T* p, const Geometry& g) const {
+  struct Coefficients {
+    T eta;
+    T rho_over_eta2;  // rho (eta_0 / eta_1)^2
+    T denominator;    // pi (1 - rho r10)
+  };
+
+  template <typename T>
+  Coefficients<T> coefficients(const T* p) const {
     const T& rho = p[kAlbedo];
     const T& eta = p[kIor];
     const T inv_eta2 = 1.0 / (eta * eta);  // (eta_0 / eta_1)^2
-    const T ti = 1.0 - fresnel_dielectric(T(g.cos_theta_i()), eta);
-    const T tr = 1.0 - fresnel_dielectric(T(g.cos_theta_r()), eta);
     const T r01 = simonot_detail::hemispherical_fresnel(eta);
     const T r10 = 1.0 - inv_eta2 * (1.0 - r01);
-    return rho * inv_eta2 * ti * tr / (kPi * (1.0 - rho * r10));
+    return {eta, rho * inv_eta2, kPi * (1.0 - rho * r10)};
+  }
+
+  // f = rho (eta_0/eta_1)^2 (1 - R(theta_i)) (1 - R(theta_r)) / (pi (1 - rho r10)).
+  template <typename T>
+  T operator()(const Coefficients<T>& k, const Prepared& g) const {
+    const T ti = 1.0 - fresnel_dielectric(T(g.cos_i), k.eta);
+    const T tr = 1.0 - fresnel_dielectric(T(g.cos_r), k.eta);
+    return k.rho_over_eta2 * ti * tr / k.denominator;
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Prepared& g) const {
+    return (*this)(coefficients(p), g);
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Geometry& g) const {
+    return (*this)(p, prepare(g));
   }
 
   // Ideal specular part: R01(theta_i), the Fresnel reflectance of the flat interface.
