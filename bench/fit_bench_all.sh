@@ -8,10 +8,12 @@
 # bench/fit_bench_cases.py. For each model: the WHOLE command `roadbrdf fit DATA.csv --model M [--fix ...]
 # --threads 1 -o F.json` with its defaults, process CPU, median of 5 runs (bench/cpu_time.py), against
 # scipy's fit CPU (every STRIDE-th wavelength, extrapolated), and the final costs compared at every
-# wavelength scipy fitted (bench/fit_bench_compare.py). A summary line per model at the end.
+# wavelength scipy fitted (bench/fit_bench_compare.py). A summary line per model at the end. The NumPy models
+# are checked against `roadbrdf eval` first (bench/fit_bench_check_models.py).
 #
 # Usage: bench/fit_bench_all.sh [BUILD_DIR] [SCIPY_STRIDE] [MODEL...]   (defaults: build, 1, every model;
-# the stride can be given per model as MODEL:STRIDE, e.g. kelemen-szirmay-kalos:40)
+# the stride can be given per model as MODEL:STRIDE, e.g. kelemen-szirmay-kalos:50: its scipy loop takes
+# ~20 min CPU at stride 1, the others 2-15 s)
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
@@ -25,6 +27,8 @@ trap 'rm -rf "$work"' EXIT
 cli="$build/roadbrdf"
 runs=5
 : > "$work/summary"
+# The NumPy models against `roadbrdf eval` first (bench/fit_bench_check_models.py): a convention mismatch stops here.
+PYTHONPATH="$here" $python "$here/fit_bench_check_models.py" "$cli"
 
 for spec in $models; do
   model=${spec%%:*}
