@@ -4,10 +4,12 @@ significant digits (an instrument file's precision; the noise is at the 3rd digi
   oren-nayar+torrance-sparrow (default): albedo(lambda), sigma 0.35 rad, ks(lambda), roughness 0.25, ior 1.5
   oren-nayar: albedo(lambda), sigma 0.35 rad
   hapke: w(lambda), B0 0.6, h 0.08, xi -0.25 (H function of Hapke 2002)
+  every other model: the parameters of bench/fit_bench_cases.py
 Usage: fit_bench_data.py OUT.csv [N_WAVELENGTHS] [MODEL]"""
 import sys
 import numpy as np
 from fit_bench_model import Geometry, HapkeGeometry, composite, hapke, oren_nayar_only
+from fit_bench_cases import CASES
 
 
 def grid():
@@ -41,6 +43,13 @@ def main():
     elif model == "hapke":
         f_of = lambda w: hapke(hg, (w_ssa[w], 0.6, 0.08, -0.25))
         note = "w(lambda), B0 0.6, h 0.08, xi -0.25, H of Hapke 2002"
+    elif model in CASES:
+        case = CASES[model]
+        pg = case.prepare(g)
+        f_of = lambda w: case.model(pg, case.truth(x[w]))
+        t0, t1 = case.truth(0.0), case.truth(1.0)
+        note = ", ".join("%s %.4g" % (n, a) if a == b else "%s %.4g..%.4g (lambda)" % (n, a, b)
+                         for n, a, b in zip(case.names, t0, t1))
     else:
         raise SystemExit("unknown model " + model)
     table = np.empty((len(ang), m))

@@ -14,6 +14,7 @@ class Geometry:
         """Angles in degrees (arrays)."""
         ti, pi_, tr, pr = (np.radians(np.asarray(a, dtype=float)) for a in (theta_i, phi_i, theta_r, phi_r))
         self.ti, self.tr = ti, tr
+        self.phi_i, self.phi_r = pi_, pr
         self.wi = np.stack([np.sin(ti) * np.cos(pi_), np.sin(ti) * np.sin(pi_), np.cos(ti)])
         self.wr = np.stack([np.sin(tr) * np.cos(pr), np.sin(tr) * np.sin(pr), np.cos(tr)])
         self.cdp = np.where((ti > 0) & (tr > 0), np.cos(pr - pi_), 0.0)

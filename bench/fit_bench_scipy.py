@@ -1,7 +1,7 @@
 """Per-wavelength fit of bench data with scipy.optimize.least_squares (the usual Python loop: a fixed
 start at every wavelength, 2-point finite-difference Jacobian, default 'trf' method), with the
 models of bench/fit_bench_model.py and the free parameters and bounds of `roadbrdf fit` in
-bench/fit_bench.sh.
+bench/fit_bench.sh (bench/fit_bench_cases.py for the models of bench/fit_bench_all.sh).
 Usage: fit_bench_scipy.py DATA.csv OUT.json [STRIDE] [MODEL]   (STRIDE > 1 fits every STRIDE-th wavelength)"""
 import json
 import sys
@@ -9,6 +9,7 @@ import time
 import numpy as np
 from scipy.optimize import least_squares
 from fit_bench_model import Geometry, HapkeGeometry, composite, hapke, oren_nayar_only
+from fit_bench_cases import CASES
 
 # Free parameters: start, lower, upper (the bounds of `roadbrdf models`).
 SETUPS = {
@@ -39,9 +40,14 @@ def main():
         f = lambda q: composite(g, (1.0, q[0], q[1], 1.0, q[2], q[3], 1.5))
     elif model == "oren-nayar":
         f = lambda q: oren_nayar_only(g, q)
-    else:
+    elif model == "hapke":
         hg = HapkeGeometry(g)
         f = lambda q: hapke(hg, q)
+    else:  # bench/fit_bench_cases.py: the free parameters, the others fixed at the data's values
+        case = CASES[model]
+        pg = case.prepare(g)
+        f = lambda q: case.model(pg, case.full(q))
+        SETUPS[model] = (case.start, case.lower, case.upper)
     start, lower, upper = SETUPS[model]
 
     def residual(q, yw):
