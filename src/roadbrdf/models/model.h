@@ -48,6 +48,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "roadbrdf/core/geometry.h"
@@ -275,12 +276,15 @@ class ModelAdapter final : public Model {
       model_.evaluate_shared(model_.share(&q, 1), &q, 1, params, &f, gradient);
       return f;
     }
-    const std::size_t n = parameter_count();
-    Jet p[M::kMaxParameters];
-    for (std::size_t k = 0; k < n; ++k) p[k] = Jet(params[k], static_cast<int>(k));
-    const Jet f = model_(p, g);
-    for (std::size_t k = 0; k < n; ++k) gradient[k] = f.v[static_cast<int>(k)];
-    return f.a;
+    return with_jet_size([&](auto size) {
+      using J = ceres::Jet<double, decltype(size)::value>;
+      const std::size_t n = parameter_count();
+      J p[decltype(size)::value];
+      for (std::size_t k = 0; k < n; ++k) p[k] = J(params[k], static_cast<int>(k));
+      const J f = model_(p, g);
+      for (std::size_t k = 0; k < n; ++k) gradient[k] = f.v[static_cast<int>(k)];
+      return f.a;
+    });
   }
 
   // Each geometry is prepared once and evaluated for all parameter sets.
@@ -304,14 +308,17 @@ class ModelAdapter final : public Model {
                              jacobian);
       return;
     }
-    const std::size_t n_params = parameter_count();
-    Jet p[M::kMaxParameters];
-    for (std::size_t k = 0; k < n_params; ++k) p[k] = Jet(params[k], static_cast<int>(k));
-    for (std::size_t n = 0; n < n_geometries; ++n) {
-      const Jet f = model_(p, prepare_one(geometries[n]));
-      values[n] = f.a;
-      for (std::size_t k = 0; k < n_params; ++k) jacobian[n * n_params + k] = f.v[static_cast<int>(k)];
-    }
+    with_jet_size([&](auto size) {
+      using J = ceres::Jet<double, decltype(size)::value>;
+      const std::size_t n_params = parameter_count();
+      J p[decltype(size)::value];
+      for (std::size_t k = 0; k < n_params; ++k) p[k] = J(params[k], static_cast<int>(k));
+      for (std::size_t n = 0; n < n_geometries; ++n) {
+        const J f = model_(p, prepare_one(geometries[n]));
+        values[n] = f.a;
+        for (std::size_t k = 0; k < n_params; ++k) jacobian[n * n_params + k] = f.v[static_cast<int>(k)];
+      }
+    });
   }
 
   std::unique_ptr<PreparedGeometries> prepare(const Geometry* geometries, std::size_t count) const override {
@@ -346,19 +353,22 @@ class ModelAdapter final : public Model {
       model_.evaluate_shared(own->shared, own->data.data(), own->size(), params, values, jacobian);
       return;
     }
-    const std::size_t n_params = parameter_count();
-    Jet p[M::kMaxParameters];
-    for (std::size_t k = 0; k < n_params; ++k) p[k] = Jet(params[k], static_cast<int>(k));
-    auto store = [&](std::size_t n, const Jet& f) {
-      values[n] = f.a;
-      for (std::size_t k = 0; k < n_params; ++k) jacobian[n * n_params + k] = f.v[static_cast<int>(k)];
-    };
-    if constexpr (HasCoefficients<M>) {
-      const auto coefficients = model_.coefficients(p);
-      for (std::size_t n = 0; n < own->size(); ++n) store(n, model_(coefficients, own->at(n)));
-    } else {
-      for (std::size_t n = 0; n < own->size(); ++n) store(n, model_(p, own->at(n)));
-    }
+    with_jet_size([&](auto size) {
+      using J = ceres::Jet<double, decltype(size)::value>;
+      const std::size_t n_params = parameter_count();
+      J p[decltype(size)::value];
+      for (std::size_t k = 0; k < n_params; ++k) p[k] = J(params[k], static_cast<int>(k));
+      auto store = [&](std::size_t n, const J& f) {
+        values[n] = f.a;
+        for (std::size_t k = 0; k < n_params; ++k) jacobian[n * n_params + k] = f.v[static_cast<int>(k)];
+      };
+      if constexpr (HasCoefficients<M>) {
+        const auto coefficients = model_.coefficients(p);
+        for (std::size_t n = 0; n < own->size(); ++n) store(n, model_(coefficients, own->at(n)));
+      } else {
+        for (std::size_t n = 0; n < own->size(); ++n) store(n, model_(p, own->at(n)));
+      }
+    });
   }
 
   double delta_reflectance(const double* params, double cos_theta_i) const override {
@@ -388,7 +398,20 @@ class ModelAdapter final : public Model {
   const M& model() const { return model_; }
 
  private:
-  using Jet = ceres::Jet<double, M::kMaxParameters>;
+  // The gradient paths differentiate with ceres::Jet<double, N>, every operation of which costs in
+  // proportion to N: N = kSmallJet when the resolved options describe no more parameters (a one-lobe
+  // Lafortune has 5 of its kMaxParameters = 21), else M::kMaxParameters. Each derivative is computed
+  // by the same operations whatever N, so the gradients are the same numbers.
+  static constexpr int kSmallJet = 8;
+  template <typename Body>
+  auto with_jet_size(Body&& body) const {
+    if constexpr (M::kMaxParameters > kSmallJet) {
+      if (parameter_count() <= static_cast<std::size_t>(kSmallJet)) {
+        return body(std::integral_constant<int, kSmallJet>{});
+      }
+    }
+    return body(std::integral_constant<int, M::kMaxParameters>{});
+  }
   using GeometryData = typename PreparedGeometryOf<M>::type;
 
   // M::Prepared by value, or a reference to the geometry itself.
