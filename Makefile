@@ -5,7 +5,7 @@ PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
 
 .PHONY: deps deps-app configure build build-app demo test configure-sanitize test-sanitize test-sanitize-ci fuzz bench install clean \
-  format tidy
+  format tidy docs
 
 # Package sets of packages.txt: the demo needs [build] and [python], the tests every set.
 deps:
@@ -93,6 +93,11 @@ install: build-app
 
 clean:
 	rm -rf $(BUILD)
+
+# docs/models.md from the models' metadata: the build writes $(BUILD)/docs/models.md with the
+# program; this copies it over the committed one (a test fails while they differ).
+docs:
+	cmake --build $(BUILD) --target update_models_reference
 
 # C++ style (.clang-format): `make format` applies it to every C++ file; ctest style.clang_format
 # (part of `make test`) fails when a file differs.

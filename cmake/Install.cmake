@@ -39,6 +39,24 @@ add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/roadbrdf.1
 add_custom_target(roadbrdf_manpage ALL DEPENDS ${CMAKE_BINARY_DIR}/roadbrdf.1)
 install(FILES ${CMAKE_BINARY_DIR}/roadbrdf.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT program)
 
+# The model reference, generated from the models' metadata (`roadbrdf models --markdown`) with every
+# build of the program: build/docs/models.md, installed as the reference. docs/models.md is the
+# same text committed for readers of the repository (the README links it); the test
+# CliModels.MarkdownReferenceIsUpToDate fails when the two differ, and the target
+# update_models_reference (`make docs`) copies the generated file over it.
+set(models_reference ${CMAKE_BINARY_DIR}/docs/models.md)
+add_custom_command(OUTPUT ${models_reference}
+                   COMMAND ${CMAKE_COMMAND} -E make_directory ${CMAKE_BINARY_DIR}/docs
+                   COMMAND ${CMAKE_COMMAND} -DOUTPUT=${models_reference} -P
+                           ${CMAKE_SOURCE_DIR}/cmake/WriteCommandOutput.cmake -- $<TARGET_FILE:roadbrdf> models --markdown
+                   DEPENDS roadbrdf ${CMAKE_SOURCE_DIR}/cmake/WriteCommandOutput.cmake
+                   COMMENT "Generating docs/models.md from the models' metadata" VERBATIM)
+add_custom_target(roadbrdf_models_reference ALL DEPENDS ${models_reference})
+add_custom_target(update_models_reference
+                  COMMAND ${CMAKE_COMMAND} -E copy_if_different ${models_reference} ${CMAKE_SOURCE_DIR}/docs/models.md
+                  DEPENDS ${models_reference} VERBATIM)
+install(FILES ${models_reference} DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT program)
+
 # ---- Debian package (cpack -G DEB) -------------------------------------------------------------
 set(CPACK_PACKAGE_NAME roadbrdf)
 set(CPACK_PACKAGE_VENDOR "roadbrdf developers")

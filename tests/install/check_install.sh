@@ -15,7 +15,8 @@ cmake --install "$build" --prefix "$prefix" > "$scratch/install.log" || { cat "$
 pydir="$prefix/lib/python3/dist-packages"
 for f in bin/roadbrdf lib/libroadbrdf_core.a lib/libroadbrdf_fitting.a include/roadbrdf/models/model.h \
          lib/cmake/roadbrdf/roadbrdfConfig.cmake lib/cmake/roadbrdf/roadbrdfTargets.cmake \
-         share/roadbrdf/data/ATTRIBUTION.md share/man/man1/roadbrdf.1 lib/python3/dist-packages/roadbrdf/__init__.py; do
+         share/roadbrdf/data/ATTRIBUTION.md share/man/man1/roadbrdf.1 share/doc/roadbrdf/models.md \
+         lib/python3/dist-packages/roadbrdf/__init__.py; do
   [ -e "$prefix/$f" ] || fail "missing $f"
 done
 ls "$pydir"/roadbrdf/_roadbrdf*.so > /dev/null || fail "missing the Python extension"

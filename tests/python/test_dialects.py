@@ -34,9 +34,10 @@ def test_same_errors_as_the_command_line(tmp_path, cli):
     path.write_text(spreadsheet(CANONICAL))
     with pytest.raises(roadbrdf.InputError, match="a decimal comma needs another delimiter"):
         roadbrdf.read_dataset(path, delimiter=",", decimal=",")
-    with pytest.raises(roadbrdf.InputError, match="delimiter 'pipe' is not one of auto"):
+    with pytest.raises(roadbrdf.InputError, match="^delimiter: 'pipe' is not one of auto"):
         roadbrdf.read_dataset(path, delimiter="pipe")
-    with pytest.raises(roadbrdf.InputError, match=r"b\.csv:1:.*see --decimal"):
+    # Python names the keyword argument, the command line its flag.
+    with pytest.raises(roadbrdf.InputError, match=r"b\.csv:1:.*see `decimal`"):
         roadbrdf.read_dataset(path, decimal=".")
     r = cli("check", path, "--decimal", ".", check=False)
     assert r.returncode != 0 and "see --decimal" in r.stderr

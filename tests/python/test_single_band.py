@@ -32,7 +32,7 @@ def test_rtable_of_a_single_band_fit_uses_its_band(tmp_path):
     assert "single-band" in t["note"]
     assert roadbrdf.rtable(fit, wavelength=550.0)["note"] is None
     few = lambert_fit(tmp_path / "few.json", [450.0, 550.0, 650.0], [0.2, 0.3, 0.4])
-    with pytest.raises(roadbrdf.InputError, match="--wavelength NM"):
+    with pytest.raises(roadbrdf.InputError, match="choose one band with `wavelength` NM"):
         roadbrdf.rtable(few)
     assert roadbrdf.rtable(few, wavelength=650.0)["Q0"] == pytest.approx(0.4 / math.pi, abs=1e-9)
 

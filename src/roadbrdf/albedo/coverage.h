@@ -1,5 +1,5 @@
-// How much of an albedo lies outside the directions a fit was fitted to (issue 13, item 4), and
-// non-physical albedo values.
+// How much of an albedo lies outside the directions a fit was fitted to, and non-physical albedo
+// values.
 //
 // The fraction outside the coverage (core/coverage.h) of a directional albedo at sun zenith
 // theta_s is  int_{w_r not covered} |f| cos(theta_r) dw_r / int |f| cos(theta_r) dw_r , and of the

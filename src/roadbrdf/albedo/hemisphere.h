@@ -2,7 +2,7 @@
 // (bi-hemispherical) albedo, for many parameter sets (wavelengths) at once.
 //
 // Definitions (report eqs. 2.21 and 2.22; eqs. 2.17/2.18 miss the cos(theta_r) sin(theta_r) factor,
-// see the reference README "known errors"):
+// docs/report-corrections.md):
 //   alpha_bs(theta_s, phi_s) = int_{2pi} f_r(w_s, w_r) cos(theta_r) dw_r  (+ R(theta_s) of an ideal specular part)
 //   alpha_ws = (1/pi) int_{2pi} alpha_bs(w_i) cos(theta_i) dw_i  = 2 int_0^1 alpha_bs(mu) mu dmu  (isotropic)
 //
@@ -16,8 +16,8 @@
 //     (dense nodes at the quarter ends, O(h^6) although Oren-Nayar has kinks at dphi = pi/2). The 15
 //     nodes of a mu panel share one azimuth count (so the azimuth integral is a smooth function of mu
 //     within the panel); doubling it reuses every node; |T_N - T_N/2| is each node's estimate.
-//     (Deviation from the "periodic trapezoid": the plain periodic trapezoid is only O(h^2) at
-//     Oren-Nayar's |cos dphi| kinks and needed 256-1024 intervals at grazing incidence.)
+//     (Not the plain periodic trapezoid: it is only O(h^2) at Oren-Nayar's |cos dphi| kinks and needs
+//     256-1024 intervals at grazing incidence.)
 //   - Adaptivity: while the summed error estimate of the worst parameter set exceeds the tolerance, the
 //     panel contributing most to it is refined in the direction of its larger estimate (its mu error or
 //     one of its nodes' azimuth errors): its mu panel is bisected (children inherit its azimuth count),

@@ -39,7 +39,8 @@ nlohmann::json units() {
           {"uncertainty",
            "standard uncertainties (1) of black_sky, white_sky and blue_sky from the parameter "
            "covariance of a fit, or of a mixture from its end-members' fits, same shapes; null when "
-           "unknown (a model, a mixture fitted to measured data, --wavelengths), null entries where the covariance is "
+           "unknown (a model, a mixture fitted to measured data, wavelengths other than the fit's), null entries where "
+           "the covariance is "
            "undefined; the table's "
            "last columns *_u; broadband: {independent, correlated} per value (albedo/uncertainty.h)"}};
 }
@@ -89,7 +90,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
   std::vector<std::string> notes;
   if (!sets.spectral) {
     notes.emplace_back(
-        "non-spectral model (MODEL -p ...): values are for its constant parameters; the broadband "
+        "non-spectral model (one parameter set, no fit file): values are for its constant parameters; the broadband "
         "values equal them");
   }
   ProgressCounter progress(a.progress, zeniths.size() + 1);

@@ -44,7 +44,7 @@ ParameterSets parameter_sets(const SpectralModel& sm, const AlbedoRequest& a) {
   ParameterSets sets;
   sets.spectral = sm.is_spectral();
   if (!sets.spectral && !a.wavelengths.empty()) {
-    throw FieldError("wavelengths", "needs a fit file: MODEL -p ... has no wavelength axis");
+    throw FieldError("wavelengths", "needs a fit file: a model with one parameter set has no wavelength axis");
   }
   if (sets.spectral && !a.wavelengths.empty()) {
     sets.wavelengths = a.wavelengths;

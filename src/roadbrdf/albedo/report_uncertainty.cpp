@@ -51,7 +51,8 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
   if (covariance.empty()) return nullptr;
   // At the fit's own wavelengths only: an interpolated parameter set has no covariance of its own.
   if (!sets.spectral || !a.wavelengths.empty()) {
-    notes.emplace_back("standard uncertainties are given at the fit's own wavelengths only, not with --wavelengths");
+    notes.emplace_back(
+        "standard uncertainties are given at the fit's own wavelengths only, not at requested wavelengths");
     return nullptr;
   }
   const Model& model = sm.model();

@@ -208,7 +208,7 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
   Spectrl2Input in;
   const std::string head = "spectrl2";
   if (spec.compare(0, head.size(), head) != 0 || (spec.size() > head.size() && spec[head.size()] != ':')) {
-    throw InputError("--atmosphere: expected spectrl2[:aod=...,water=...,ozone=...,pressure=...], got '" + spec + "'");
+    throw FieldError("atmosphere", "expected spectrl2[:aod=...,water=...,ozone=...,pressure=...], got '" + spec + "'");
   }
   if (spec.size() <= head.size() + 1) return in;
   std::string rest = spec.substr(head.size() + 1);
@@ -217,11 +217,11 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
     const std::size_t comma = rest.find(',', start);
     const std::string item = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const auto eq = item.find('=');
-    if (eq == std::string::npos) throw InputError("--atmosphere spectrl2: expected NAME=VALUE, got '" + item + "'");
+    if (eq == std::string::npos) throw FieldError("atmosphere", "spectrl2: expected NAME=VALUE, got '" + item + "'");
     const std::string name = item.substr(0, eq), text = item.substr(eq + 1);
     double v = 0.0;
     if (!parse_finite_double(text, v)) {
-      throw InputError("--atmosphere spectrl2: " + name + " = '" + text + "' is not a number");
+      throw FieldError("atmosphere", "spectrl2: " + name + " = '" + text + "' is not a number");
     }
     if (name == "aod")
       in.aod500 = v;
@@ -240,12 +240,13 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
     else if (name == "day") {
       // Day of year: an integer, checked as a double (casting 1e10 to int is undefined; 81.9 is no day).
       if (!(v >= 1.0 && v <= 366.0) || v != std::floor(v)) {
-        throw InputError("--atmosphere spectrl2: day = '" + text + "' must be an integer day of year in 1..366");
+        throw FieldError("atmosphere", "spectrl2: day = '" + text + "' must be an integer day of year in 1..366");
       }
       in.day_of_year = static_cast<int>(v);
     } else {
-      throw InputError("--atmosphere spectrl2: unknown setting '" + name +
-                       "' (known: aod, water [cm], ozone [atm-cm], pressure [Pa], alpha, asymmetry, ground, day)");
+      throw FieldError("atmosphere",
+                       "spectrl2: unknown setting '" + name +
+                           "' (known: aod, water [cm], ozone [atm-cm], pressure [Pa], alpha, asymmetry, ground, day)");
     }
     if (comma == std::string::npos) break;
     start = comma + 1;

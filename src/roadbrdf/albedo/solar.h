@@ -68,7 +68,7 @@ Spectrl2Output spectrl2(const Spectrl2Input& input);
 double kasten_young_airmass(double zenith_deg);
 
 // Parse "spectrl2[:aod=...,water=...,ozone=...,pressure=...,alpha=...,ground=...,day=...]" (pressure
-// in Pa); the zenith is set separately. Throws InputError.
+// in Pa); the zenith is set separately. Throws FieldError("atmosphere").
 Spectrl2Input parse_spectrl2_spec(const std::string& spec);
 
 // ---- Spectral weighting ---------------------------------------------------------------------

@@ -1,5 +1,4 @@
-// Standard uncertainties of albedos from the covariance of the fitted parameters (issue 17,
-// "uncertainty all the way to albedo").
+// Standard uncertainties of albedos from the covariance of the fitted parameters.
 //
 // The per-wavelength propagation u^2(A) = g^T Sigma g (GUM, JCGM 100:2008, eq. 10) and its step rule
 // are core/propagation.h (parameter_gradient, propagate), shared with the r-tables; the albedo's own

@@ -105,9 +105,9 @@ void run(const FitArgs& a) {
   });
   bar.reset();
   std::FILE* report = report_stream(a.output);
-  for (const auto& note : summary.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
+  for (const auto& note : summary.notes) fmt::print(stderr, "roadbrdf: note: {}\n", name_flags(note));
   fmt::print(report, "{}", summary.table());
-  for (const auto& w : summary.warnings(a.output)) fmt::print(stderr, "roadbrdf: warning: {}\n", w);
+  for (const auto& w : summary.warnings(a.output)) fmt::print(stderr, "roadbrdf: warning: {}\n", name_flags(w));
   write_fit_file(a.output, summary.fits, summary.notes);
   if (!a.residuals.empty()) {
     std::vector<const Model*> ptrs;

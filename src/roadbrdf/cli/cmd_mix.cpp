@@ -73,7 +73,7 @@ void run(const MixArgs& a) {
     return field == "formulation" ? std::string("FORMULATION") : flag_for_field(field);
   });
   bar.finish();
-  for (const auto& note : run.notes) fmt::print(stderr, "roadbrdf: warning: {}\n", note);
+  for (const auto& note : run.notes) fmt::print(stderr, "roadbrdf: warning: {}\n", name_flags(note));
   write_mix_file(a.output, run.content);
   if (!a.residuals.empty()) write_residual_file(a.residuals, *run.data, run.content.comparisons);
   std::FILE* report = report_stream(a.output);

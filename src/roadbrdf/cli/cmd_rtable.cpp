@@ -93,8 +93,8 @@ void run(const RTableArgs& a) {
     source = {{"model", model.model().name()}};
     if (is_fit_file_argument(a.model)) source["fit_file"] = a.model;
   }
-  for (const std::string& note : report.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
-  for (const std::string& warning : report.warnings) fmt::print(stderr, "roadbrdf: warning: {}\n", warning);
+  for (const std::string& note : report.notes) fmt::print(stderr, "roadbrdf: note: {}\n", name_flags(note));
+  for (const std::string& warning : report.warnings) fmt::print(stderr, "roadbrdf: warning: {}\n", name_flags(warning));
   if (!a.compare_file.empty()) {
     report.compare_with(read_rtable(a.compare_file, std::nullopt, a.alpha, kRScale).table, a.compare_file);
   }

@@ -6,7 +6,7 @@
 //                 [--wavelengths A:B:STEP] [--samples N | --target-error E
 //                 [--max-samples N] [--error-floor F]] [--sampling brdf|cosine] [--acceptance DEG]
 //                 [--seed S] [--threads T] [--max-bounces K] -o DATA.csv|ALBEDO.csv
-// Virtual road samples and the virtual gonioreflectometer (issue 9; src/roadbrdf/surface/).
+// Virtual road samples and the virtual gonioreflectometer (src/roadbrdf/surface/).
 #include <fmt/core.h>
 
 #include <algorithm>

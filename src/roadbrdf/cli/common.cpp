@@ -136,6 +136,26 @@ std::string flag_for_field(const std::string& field) {
   return dot == std::string::npos ? flag : flag + " " + field.substr(dot + 1);
 }
 
+std::string name_flags(const std::string& message) {
+  auto is_field_character = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-';
+  };
+  std::string out;
+  std::size_t at = 0;
+  while (at < message.size()) {
+    const std::size_t open = message.find('`', at);
+    const std::size_t close = open == std::string::npos ? std::string::npos : message.find('`', open + 1);
+    if (close == std::string::npos) break;
+    const std::string inside = message.substr(open + 1, close - open - 1);
+    const bool field = !inside.empty() && inside.front() >= 'a' && inside.front() <= 'z' &&
+                       std::all_of(inside.begin(), inside.end(), is_field_character);
+    out += message.substr(at, open - at);
+    out += field ? flag_for_field(inside) : message.substr(open, close - open + 1);
+    at = close + 1;
+  }
+  return out + message.substr(std::min(at, message.size()));
+}
+
 void add_quiet_flag(CLI::App* command, bool& quiet) {
   command->add_flag("--quiet", quiet, "No progress bar (it is only drawn on a terminal anyway)");
 }

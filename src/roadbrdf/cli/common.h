@@ -56,6 +56,10 @@ std::vector<std::string> split_commas(const std::vector<std::string>& items);
 // "fixed.roughness" -> "--fix roughness", "options.distribution" -> "--option distribution".
 // A field that is already a flag ("--sun-zenith") is kept.
 std::string flag_for_field(const std::string& field);
+// A library message with its field references (`field`, core/error.h) replaced by their flags:
+// "pass `delimiter` ';'" -> "pass --delimiter ';'". Backquoted text that is not a field name (it
+// holds a space or a character other than a-z, 0-9, '_', '.', '-') is kept as is.
+std::string name_flags(const std::string& message);
 
 // Adds "--fit NAME": which fit of a fit file (its model name) or which method of a MIX.json, the
 // option name every command uses; the old spelling --fit-model is refused with a message naming --fit.

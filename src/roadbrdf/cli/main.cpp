@@ -54,10 +54,11 @@ int main(int argc, char** argv) {
     }
   } catch (const roadbrdf::FieldError& e) {
     // Library requests name their fields; the command line names its flags.
-    fmt::print(stderr, "roadbrdf: error: {}: {}\n", roadbrdf::cli::flag_for_field(e.field()), e.detail());
+    fmt::print(stderr, "roadbrdf: error: {}: {}\n", roadbrdf::cli::flag_for_field(e.field()),
+               roadbrdf::cli::name_flags(e.detail()));
     status = 2;
   } catch (const roadbrdf::InputError& e) {
-    fmt::print(stderr, "roadbrdf: error: {}\n", e.what());
+    fmt::print(stderr, "roadbrdf: error: {}\n", roadbrdf::cli::name_flags(e.what()));
     status = 2;
   } catch (const std::system_error& e) {
     // fmt::print reports a failed write to standard output this way (e.g. a full disk).

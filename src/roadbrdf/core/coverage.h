@@ -1,4 +1,4 @@
-// The angular coverage of a set of measured geometries (issue 13, item 4): what a fit was fitted to,
+// The angular coverage of a set of measured geometries: what a fit was fitted to,
 // recorded in the fit file, so that albedo and r-tables can say how much of their result lies
 // outside the measured directions (extrapolation by the model).
 //

@@ -15,6 +15,13 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Library messages name request fields, never a front end's spelling of them (no command-line
+// flags): a field that is the subject of the error is FieldError::field; a field mentioned inside a
+// message (a hint such as "pass `delimiter`") is written as field_reference() makes it, between
+// backquotes. The command line replaces each reference by its flag (cli/common.h, name_flags);
+// Python shows it as is, which is the keyword argument's name.
+inline std::string field_reference(const std::string& field) { return "`" + field + "`"; }
+
 // A problem with one named field of a request: "wavelengths", "options.distribution",
 // "fixed.roughness". The message is "FIELD: DETAIL"; the front ends may name the field their own
 // way (the command line maps it to its flag, see cli/common.h), Python shows it as is.

@@ -26,10 +26,16 @@ void advise(void* data, std::size_t bytes) {
 void advise_huge_pages(const void* data, std::size_t bytes) {
   constexpr std::uintptr_t kPage = kHugePageBytes;
   if (data == nullptr || bytes < 2 * kPage) return;
+  // The page boundaries are found on the address as an integer, but the advised pointer is derived
+  // from `data` by an offset (pointer arithmetic keeps its provenance; an integer turned back into a
+  // pointer would not).
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
   const std::uintptr_t first = (begin + kPage - 1) & ~(kPage - 1);
   const std::uintptr_t last = (begin + bytes) & ~(kPage - 1);
-  if (last > first) advise(reinterpret_cast<void*>(first), last - first);
+  if (last <= first) return;
+  // madvise takes a non-const pointer but changes no byte of the range.
+  auto* bytes_begin = static_cast<unsigned char*>(const_cast<void*>(data));
+  advise(bytes_begin + (first - begin), last - first);
 }
 
 void reserve_on_huge_pages(std::vector<double>& v, std::size_t count) {

@@ -1,6 +1,5 @@
-// Propagation of the fitted parameters' covariance to a derived quantity (issue 17, "uncertainty all
-// the way to albedo and Q0"), shared by albedo (albedo/uncertainty.h) and r-tables
-// (photometry/rtable_uncertainty.h).
+// Propagation of the fitted parameters' covariance to a derived quantity (an albedo, Q0), shared by
+// albedo (albedo/uncertainty.h) and r-tables (photometry/rtable_uncertainty.h).
 //
 // Linearised propagation (GUM, JCGM 100:2008, eq. 10): u^2(Y) = g^T Sigma g with g_k = dY/dp_k, per
 // parameter set (one per wavelength of a fit), Sigma the fit's parameter covariance there. Why

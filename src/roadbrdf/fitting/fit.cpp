@@ -170,7 +170,7 @@ void check_enough_data(const SpectralDataset& data, const std::vector<std::size_
                        std::to_string(measured_count[w]) + " of " + std::to_string(N) +
                        " geometries were measured (the others are missing values), for " +
                        std::to_string(joint ? free_params.local : free_params.all) + " free parameters of '" +
-                       model_name + "' (leave that wavelength out with --wavelengths, or fix some parameters)");
+                       model_name + "' (leave that wavelength out with `wavelengths`, or fix some parameters)");
     }
   }
   if (joint && (N < free_params.local || N * M < free_params.local * M + free_params.shared)) {

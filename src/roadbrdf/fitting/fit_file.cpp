@@ -315,7 +315,7 @@ nlohmann::json fit_file_json(const std::vector<FitResult>& fits, const std::vect
       {"chi2", "sum of squared loss residuals (weights applied, no robust function)"},
       {"aic", "n ln(chi2/n) + 2k"},
       {"bic", "n ln(chi2/n) + k ln n"},
-      {"group", "deg, the angles shared by the geometries of a group fit (fit --group-by)"},
+      {"group", "deg, the angles shared by the geometries of a group fit (fit option group_by)"},
       {"cost", "Ceres final cost 1/2 sum rho(r^2)"},
       {"seconds", "s, wall time of the fit"},
       {"cpu_seconds", "s, process CPU time of the fit (all threads)"},

@@ -320,7 +320,7 @@ std::vector<std::string> FitSummary::warnings(const std::string& where) const {
       out.push_back(
           fmt::format("{}: at {} of {} wavelengths the fit reports convergence but its nonlinear parameters "
                       "never left their starting values: the data may not constrain them (look at the "
-                      "geometries with `roadbrdf check`, fix them with --fix, or try --start/--multistart; "
+                      "geometries with `roadbrdf check`, fix them with `fixed`, or try `start`/`multistart`; "
                       "free parameters: {})",
                       name, f.stayed_at_start_count, M, names));
     }

@@ -208,7 +208,7 @@ void AltaParser::data_line(const std::string& line) {
       if (!options_.exclude_grazing) {
         throw FileError(path_, n_, cells[n_in].column,
                         fmt::format("BRDF x cos(theta_v) at grazing view (theta_v = {:.6f} deg) cannot be "
-                                    "converted to a BRDF; exclude such rows explicitly (--exclude-grazing)",
+                                    "converted to a BRDF; exclude such rows explicitly (`exclude_grazing`)",
                                     rad_to_deg(theta_v)));
       }
       if (grazing_++ == 0) first_grazing_ = fmt::format("{}:{}", path_, n_);
@@ -228,8 +228,8 @@ void AltaParser::add_sample(const Geometry& g, double value) {
   if (!inserted) {
     if (!options_.average_duplicates) {
       throw FileError(path_, n_, 1,
-                      fmt::format("duplicate geometry: same directions as line {} (ask for averaging of duplicates, "
-                                  "e.g. --average-duplicates, to average them)",
+                      fmt::format("duplicate geometry: same directions as line {} (ask for averaging of duplicates "
+                                  "(`average_duplicates`) to average them)",
                                   it->second.second));
     }
     if (multiplicity_.empty()) multiplicity_.assign(d_.geometries.size(), 1);

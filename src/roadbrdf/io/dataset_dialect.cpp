@@ -30,19 +30,19 @@ bool ends_with(std::string_view s, std::string_view suffix) {
 
 }  // namespace
 
-char delimiter_from_name(const std::string& name, const std::string& what) {
+char delimiter_from_name(const std::string& name, const std::string& field) {
   if (name.empty() || name == "auto") return 0;
   if (name == "," || name == "comma") return ',';
   if (name == ";" || name == "semicolon") return ';';
   if (name == "tab" || name == "\t" || name == "\\t") return '\t';
-  throw InputError(fmt::format("{} '{}' is not one of auto, ',', ';', tab", what, name));
+  throw FieldError(field, fmt::format("'{}' is not one of auto, ',', ';', tab", name));
 }
 
-char decimal_from_name(const std::string& name, const std::string& what) {
+char decimal_from_name(const std::string& name, const std::string& field) {
   if (name.empty() || name == "auto") return 0;
   if (name == "." || name == "point") return '.';
   if (name == "," || name == "comma") return ',';
-  throw InputError(fmt::format("{} '{}' is not one of auto, '.', ','", what, name));
+  throw FieldError(field, fmt::format("'{}' is not one of auto, '.', ','", name));
 }
 
 std::string delimiter_display(char c) {
@@ -137,8 +137,8 @@ char detect_delimiter(std::string_view line, bool (*known)(std::string_view, cha
   std::string list;
   for (char c : present) list += (list.empty() ? "" : " and ") + delimiter_display(c);
   throw InputError(
-      fmt::format("cannot tell the delimiter of the header line (it holds {}{}): pass --delimiter "
-                  "',' | ';' | tab (and --decimal '.' | ',' for the numbers)",
+      fmt::format("cannot tell the delimiter of the header line (it holds {}{}): pass `delimiter` "
+                  "',' | ';' | tab (and `decimal` '.' | ',' for the numbers)",
                   list, fitting.empty() ? ", and no choice gives known column names" : ""));
 }
 
@@ -184,11 +184,11 @@ std::string NumberParser::hint(std::string_view text) const {
   if (text.find(other) == std::string_view::npos) return "";
   if (decided_line_ > 0) {
     return fmt::format(
-        " (it uses '{}' as the decimal separator, but line {} column {} used '{}': pass --decimal "
-        "'.' or --decimal ',' to say which one the file uses)",
+        " (it uses '{}' as the decimal separator, but line {} column {} used '{}': pass `decimal` "
+        "'.' or `decimal` ',' to say which one the file uses)",
         other, decided_line_, decided_column_, decimal);
   }
-  return fmt::format(" (the decimal separator is '{}'{}; see --decimal)", decimal,
+  return fmt::format(" (the decimal separator is '{}'{}; see `decimal`)", decimal,
                      delimiter_ == ',' ? " in a ','-separated file" : "");
 }
 

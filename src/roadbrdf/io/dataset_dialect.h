@@ -4,7 +4,7 @@
 // - Delimiter ',' (canonical), ';' (French/German spreadsheets, usually with decimal commas) or a
 //   tab. Detected from the header line: the delimiter is the one character of , ; TAB that the line
 //   holds, or, when it holds several, the one that splits it into known column names; when none or
-//   several do, the file is ambiguous and the error names --delimiter / --decimal.
+//   several do, the file is ambiguous and the error names the fields `delimiter` / `decimal`.
 // - Decimal separator '.' or ',' (only with ';' or tab delimiters). Detected from the first number
 //   that has one; a later number with the other separator is an error naming both places.
 // - A UTF-8 byte order mark, CRLF line ends, spaces around cells: ignored.
@@ -20,10 +20,10 @@
 
 namespace roadbrdf {
 
-// "auto" (0), ",", ";", "tab" (or "\t"); throws InputError naming `what`.
-char delimiter_from_name(const std::string& name, const std::string& what = "--delimiter");
-// "auto" (0), ".", ","; throws InputError naming `what`.
-char decimal_from_name(const std::string& name, const std::string& what = "--decimal");
+// "auto" (0), ",", ";", "tab" (or "\t"); throws FieldError(field).
+char delimiter_from_name(const std::string& name, const std::string& field = "delimiter");
+// "auto" (0), ".", ","; throws FieldError(field).
+char decimal_from_name(const std::string& name, const std::string& field = "decimal");
 // Display name of a delimiter / decimal separator for messages ("','", "';'", "tab").
 std::string delimiter_display(char delimiter);
 

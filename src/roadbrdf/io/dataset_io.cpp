@@ -74,7 +74,7 @@ void validate_read_options(const DatasetReadOptions& o) {
     throw InputError("the decimal separator must be '.' or ',' (or detected)");
   }
   if (o.delimiter == ',' && o.decimal == ',') {
-    throw InputError("a decimal comma needs another delimiter: pass --delimiter ';' (or tab) with --decimal ','");
+    throw InputError("a decimal comma needs another delimiter: pass `delimiter` ';' (or tab) with `decimal` ','");
   }
 }
 

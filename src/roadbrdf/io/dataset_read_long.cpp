@@ -174,7 +174,7 @@ void ragged(Reading& r, std::string_view line, std::size_t expected, std::string
       fmt::format("row has {} cells but the header has {} columns (row ends after '{}')", count, expected, text));
 }
 
-std::string duplicates_hint() { return "ask for averaging of duplicates, e.g. --average-duplicates, to average them"; }
+std::string duplicates_hint() { return "ask for averaging of duplicates (`average_duplicates`) to average them"; }
 
 void finish_warnings(Reading& r, const SpectralDataset& d) {
   auto warn = r.options.warn ? r.options.warn : default_warn;

@@ -33,15 +33,14 @@ NoiseModel parse_noise_model(const std::string& spec) {
     const std::string item = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const auto eq = item.find('=');
     if (eq == std::string::npos) {
-      throw InputError(
-          fmt::format("--noise: '{}' is not NAME=VALUE (relative, absolute, edge, edge-width, water, "
-                      "detector-min, detector-max)",
-                      item));
+      throw FieldError("noise", fmt::format("'{}' is not NAME=VALUE (relative, absolute, edge, edge-width, water, "
+                                            "detector-min, detector-max)",
+                                            item));
     }
     const std::string name = item.substr(0, eq), text = item.substr(eq + 1);
     double v = 0.0;
     if (!parse_finite_double(text, v) || v < 0.0) {
-      throw InputError(fmt::format("--noise {}: '{}' is not a non-negative number", name, text));
+      throw FieldError("noise." + name, fmt::format("'{}' is not a non-negative number", text));
     }
     if (name == "relative") {
       n.relative = v;
@@ -58,10 +57,9 @@ NoiseModel parse_noise_model(const std::string& spec) {
     } else if (name == "detector-max") {
       n.detector_max_nm = v;
     } else {
-      throw InputError(
-          fmt::format("--noise: unknown name '{}' (relative, absolute, edge, edge-width, water, "
-                      "detector-min, detector-max)",
-                      name));
+      throw FieldError("noise", fmt::format("unknown name '{}' (relative, absolute, edge, edge-width, water, "
+                                            "detector-min, detector-max)",
+                                            name));
     }
     if (comma == std::string::npos) break;
     start = comma + 1;

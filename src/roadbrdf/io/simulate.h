@@ -37,7 +37,8 @@ struct NoiseModel {
   double shape(double wavelength_nm) const;
 };
 
-// "relative=0.01,absolute=1e-4,edge=4,water=3" (any subset; also "none"). Throws InputError.
+// "relative=0.01,absolute=1e-4,edge=4,water=3" (any subset; also "none"). Throws FieldError("noise"
+// or "noise.NAME").
 NoiseModel parse_noise_model(const std::string& spec);
 
 struct SimulationInput {

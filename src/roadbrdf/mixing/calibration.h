@@ -1,4 +1,4 @@
-// Calibrated intimate mixing (issue 17): effective cross-section factors per end-member, fitted on a
+// Calibrated intimate mixing: effective cross-section factors per end-member, fitted on a
 // set of measured mixtures and then used to predict others (what a lab does with a few mastic
 // dosages before predicting a new formulation).
 //
@@ -17,7 +17,7 @@
 // Only ratios of the c_i enter w_mix, so one end-member (the reference) has k = 1. The factors are
 // fitted by least squares to the measured mixtures:
 //   min over ln k  sum_mixtures sum_geometries sum_wavelengths (R_pred - R_meas)^2,  R = pi f
-// (reflectance factor; unweighted, so the cost is the reflectance RMS the issue's target is stated in),
+// (reflectance factor; unweighted, so the cost is the reflectance RMS the predictions are judged by),
 // R_pred being the library's hapke mixture (MixtureModel kind "hapke", mixture_model.h) with the
 // end-members' single-scattering albedos inverted from their white-sky albedos. Solved with Ceres
 // (Levenberg-Marquardt, central-difference Jacobian) in u = ln k, started from k = 1, bounded to

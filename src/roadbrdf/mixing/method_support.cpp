@@ -214,7 +214,8 @@ std::vector<double> mastic_weights(const MixInputs& inputs, const MixSettings& s
 LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_t>& members,
                            const SpectralDataset& data, const std::vector<std::size_t>* training,
                            const std::vector<double>& grid, bool use_sigma) {
-  if (grid != data.wavelengths) throw InputError("fitted mixing uses the data's wavelengths (no --wavelengths)");
+  if (grid != data.wavelengths)
+    throw InputError("fitted mixing uses the data's wavelengths (leave the settings' wavelengths empty)");
   LinearSystem s;
   if (training) {
     s.rows = *training;
@@ -270,7 +271,7 @@ LinearSystem linear_system(const MixInputs& inputs, const std::vector<std::size_
           std::ostringstream msg;
           msg << "the measured mixture's uncertainty at geometry " << s.rows[r] + 1 << ", wavelength "
               << data.wavelengths[m] << " nm is " << sigma
-              << " (must be > 0 for 1/sigma^2 weighting; or use --no-sigma)";
+              << " (must be > 0 for 1/sigma^2 weighting; or fit unweighted: `use_sigma`)";
           throw InputError(msg.str());
         }
         s.inverse_sigma[r * s.M + m] = 1.0 / sigma;

@@ -159,7 +159,7 @@ std::string MixRun::table() const {
     }
     if (data->has_sigma()) {
       out += fmt::format("fitted methods {} (sigma from the data); chi2/n: held-out reduced chi^2\n",
-                         request.use_sigma ? "weighted by 1/sigma^2" : "unweighted (--no-sigma)");
+                         request.use_sigma ? "weighted by 1/sigma^2" : "unweighted");
     }
     out += fmt::format("{:<9} {:>12} {:>9} {:>8} {:>12} {:>8} {:>9}  {}\n", "method", "RMSE[sr-1]", "relRMSE", "chi2/n",
                        "RMSE(fit)", "albedo", "d_albedo", "weights");

@@ -65,7 +65,7 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
   r.method = method;
   r.description = entry.description;
   if (entry.needs_data && !data) {
-    throw InputError("mixing method '" + std::string(entry.name) + "' is fitted to a measured mixture: give --data");
+    throw InputError("mixing method '" + std::string(entry.name) + "' is fitted to a measured mixture: give `data`");
   }
   std::vector<std::size_t> members = detail::component_members(inputs);
   entry.run(MethodCall{inputs, settings, data, training}, r, members);

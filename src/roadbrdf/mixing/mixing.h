@@ -1,5 +1,5 @@
-// Mixing: predict the BRDF of a road formulation from the fitted BRDFs of its components (issue 6;
-// report sections 1.1, 5.1 and 6.2; domain notes section 2).
+// Mixing: predict the BRDF of a road formulation from the fitted BRDFs of its components (report
+// sections 1.1, 5.1 and 6.2; domain notes section 2).
 //
 // End-members. The optical inputs are the distinct fit files of a formulation (a component's own
 // measured BRDF, or the mastic that contains it, e.g. the filler and the 0/2 fines in "mastic 1").

@@ -1,5 +1,5 @@
-// The parameter covariance of a mixture from its end-members' fits (issue 17: albedo, Q0, S1 and class
-// "of a fit or a mixture" with standard uncertainties).
+// The parameter covariance of a mixture from its end-members' fits, so that the albedo, Q0, S1 and
+// road class of a mixture carry standard uncertainties as those of a fit do.
 //
 // A mixture's parameter table (mixture_model.h) is a function of its end-members' fitted parameters:
 // at each output wavelength l it holds the mixing parameters m(l) and every end-member's parameters

@@ -11,7 +11,7 @@
 // k1 = w_i, k2 = w_r, h the half vector, u = x axis and v = y axis of the surface frame, so
 // (h.u)^2 / (1 - (n.h)^2) = cos^2(phi_h) and (h.v)^2 / (1 - (n.h)^2) = sin^2(phi_h) (report's form).
 //
-// Differences from the report's eq. 3.18 (the paper wins, see the reference README):
+// Differences from the report's eq. 3.18 (the paper wins, docs/report-corrections.md):
 // - The paper has no k_d / k_s weights: R_d and R_s are themselves the amplitudes (a k_s weight would
 //   only rescale the specular term, which the Fresnel factor already sets). We implement the paper.
 // - The diffuse term uses (1 - R_s), R_s = the specular reflectance at normal incidence (the same

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <type_traits>
 
 #include "roadbrdf/core/math.h"
@@ -64,7 +65,7 @@ struct HTablePoint {
 bool h_table_point(double x, HTablePoint& point);
 // H at a point from the series of one albedo.
 inline double h_series_evaluate(const double* series, const HTablePoint& point) {
-  const double* r = series + point.octave * kHTableNodesX;
+  const double* r = series + static_cast<std::ptrdiff_t>(point.octave) * kHTableNodesX;
   double value = 0.0;
   for (int a = 0; a < kHTableNodesX; ++a) value += r[a] * point.tx[a];
   return value;

@@ -15,8 +15,8 @@
 // with the paper's three densities (eqs. 3.21-3.23); the same implicit G is in the wdas/brdf
 // "g_kelemen" reference (domain notes section 5). We could not re-read the paper's own equations
 // here, so the form follows the report, with these densities:
-//   beckmann: report eq. 3.8, i.e. eq. 3.21 with the missing 1/pi restored (reference README
-//             "known errors"): exp(-tan^2/a^2) / (pi a^2 cos^4).
+//   beckmann: report eq. 3.8, i.e. eq. 3.21 with the missing 1/pi restored
+//             (docs/report-corrections.md): exp(-tan^2/a^2) / (pi a^2 cos^4).
 //   ward:     report eq. 3.22 as printed: exp(-tan^2/a^2) / (pi a^2 cos^3); a solid-angle density of h.
 //   phong:    report eq. 3.23 as printed: (m + 1)/(2 pi) cos^m, a solid-angle density of h, with the
 //             exponent from the roughness by Walter 2007 eq. 30's relation m = 2/a^2 - 2 (so that one

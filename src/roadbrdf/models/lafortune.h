@@ -7,7 +7,7 @@
 //
 // with both w_i and w_r pointing away from the surface (library convention, and the paper's u, v).
 // The report's eq. 3.25 is garbled (it writes dot products instead of component products, and its
-// eq. 3.26 clamps the sum instead of each lobe); we follow the paper, as the reference README says:
+// eq. 3.26 clamps the sum instead of each lobe); we follow the paper (docs/report-corrections.md):
 // each lobe is clamped at 0 before the power. C_x = C_y < 0, C_z > 0 gives a forward (off-)specular
 // lobe (C_x = C_y = -1, C_z = 1 peaks at the mirror direction with base exactly 1); C_x = C_y > 0 a
 // retro lobe; C_x = C_y = 0 a generalised diffuse lobe. The paper's (n+2)/(2 pi) normalisation is

@@ -273,7 +273,7 @@ T smith_g2_over_cos(double cos_i, double cos_r, const T& cos_lambda_i, const T& 
 }
 
 // V-cavity G / (cos_i cos_r) (Torrance & Sparrow 1967; Cook & Torrance 1982 eq. for G; report eq. 3.3
-// with the corrected second term, see reference README "known errors"):
+// with the second term corrected, docs/report-corrections.md):
 //   G = min(1, 2 (n.h)(n.v)/(v.h), 2 (n.h)(n.l)/(l.h)),  v.h = l.h for the half vector.
 // With a = 2 (n.h)/(l.h), G/(cos_i cos_r) = min(1/c_min, a) / c_max, finite when one cosine is 0.
 inline double vcavity_g_over_cos(double cos_i, double cos_r, double cos_h, double cos_ih) {

@@ -3,7 +3,8 @@
 //
 // A model struct M provides:
 //   static constexpr const char* kName;                 // CLI name, e.g. "oren-nayar"
-//   static constexpr int kMaxParameters;                // upper bound of the parameter count
+//   static constexpr int kMaxParameters;                // upper bound of the parameter count (checked
+//                                                       // when the model is built: std::logic_error)
 //   static std::vector<OptionInfo> options();           // discrete choices (may be empty)
 //   static ModelDescription describe(const OptionSet&); // parameters for resolved options
 //   explicit M(const OptionSet& resolved_options);
@@ -47,6 +48,7 @@
 #include <concepts>
 #include <cstddef>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -463,6 +465,12 @@ class ModelAdapter final : public Model {
 
   static ModelDescription describe_resolved(const OptionSet& resolved, const std::string& name) {
     ModelDescription d = M::describe(resolved);
+    // The gradient paths hold the parameters in ceres::Jet<double, M::kMaxParameters> arrays of that
+    // size: a description with more parameters is a defect of the model's header, not of the input.
+    if (d.parameters.size() > static_cast<std::size_t>(M::kMaxParameters)) {
+      throw std::logic_error("model '" + name + "' describes " + std::to_string(d.parameters.size()) +
+                             " parameters, more than its kMaxParameters = " + std::to_string(M::kMaxParameters));
+    }
     d.name = name;
     d.options = M::options();
     d.option_values = resolved;

@@ -4,8 +4,8 @@
 // SIGGRAPH 1994, eqs. 30 (direct term with C1, C2, C3) and 37 (two-bounce interreflection term,
 // proportional to albedo^2); report eq. 3.5. Qualitative model: same paper, eq. 32 (A/B form).
 // sigma is the standard deviation of the facet slope angle, in radians (report section 3.1.1).
-// The report's eq. 3.5 matches the paper; the shadowing G term of its eq. 3.3 does not (see README
-// "known errors"), but that term does not enter this closed form.
+// The report's eq. 3.5 matches the paper; the shadowing G term of its eq. 3.3 does not
+// (docs/report-corrections.md), but that term does not enter this closed form.
 #pragma once
 
 #include <cmath>

@@ -12,7 +12,7 @@
 //   1 - r10 = (eta_0/eta_1)^2 (1 - r01),   r01 = int_0^{pi/2} R01(theta) sin(2 theta) d theta
 //
 // R01 is the exact unpolarised Fresnel reflectance (fresnel.h). The report's r01 integral lacks the
-// d theta (reference README "known errors"); it is the hemispherical (Lambertian-illumination)
+// d theta (docs/report-corrections.md); it is the hemispherical (Lambertian-illumination)
 // reflectance of the interface seen from medium 0, r01 = int_0^1 R01(mu) 2 mu d mu, evaluated here by a
 // fixed 64-node Gauss-Legendre rule in mu = cos(theta) so that it is differentiable in eta (Jets pass
 // through). The integrand is analytic on [0, 1] for eta >= 1 (branch points at mu = +-i sqrt(eta^2 - 1)),

@@ -5,7 +5,7 @@
 //
 // Options
 //   profile      v-cavity: G = min(1, 2(n.h)(n.v)/(v.h), 2(n.h)(n.l)/(l.h)) (Cook & Torrance 1982;
-//                report eq. 3.3 with its corrected G2 term, see reference README "known errors");
+//                report eq. 3.3 with its G2 term corrected, docs/report-corrections.md);
 //                smith: G from Lambda (report eq. 3.10; Heitz 2014 eqs. 98-99).
 //   masking      height-correlated (Heitz 2014 eq. 99, report eq. 3.10) | uncorrelated (G1 G1,
 //                Walter 2007 eq. 23); smith only.

@@ -131,8 +131,8 @@ void spectral_grid(const SpectralModel& model, const SpectralWeighting& w, std::
         if (wl.size() > 12) bands += ", ...";
         throw InputError(
             fmt::format("the model's wavelengths ({} nm) hold {:.1f}% of the luminous integral under {} "
-                        "(99% needed for photometric weighting): choose one band with --wavelength NM "
-                        "or a range with --band A:B",
+                        "(99% needed for photometric weighting): choose one band with `wavelength` NM "
+                        "or a range with `band` A:B",
                         bands, 100.0 * luminous_coverage(lo, hi, illuminant), illuminant.name()));
       }
       grid = photometric_grid(lo, hi);

@@ -1,5 +1,5 @@
 // How much of a computed r-table lies outside the directions a fit was fitted to, and its
-// non-physical cells (issue 13, item 4). An r-table needs theta_r = 90 - alpha (89 deg) and gamma
+// non-physical cells. An r-table needs theta_r = 90 - alpha (89 deg) and gamma
 // up to 85 deg, which few gonioreflectometers measure: such cells are the model's extrapolation.
 #pragma once
 

@@ -375,7 +375,7 @@ RTable read_radiance(const std::string& path, double alpha_deg, double scale) {
   }
   if (slice == alpha.size()) {
     throw FileError(path, alpha_token.line, 0,
-                    "the file has no alpha = " + number_text(alpha_deg) + " deg slice (use --alpha to select one)");
+                    "the file has no alpha = " + number_text(alpha_deg) + " deg slice (use `alpha` to select one)");
   }
   RTable table;
   table.name = path;

@@ -1,6 +1,5 @@
 // Standard uncertainties of an r-table's summary figures Q0, S1, S2, Qd from the covariance of the
-// fitted parameters, and the probabilities of the road classes they imply (issue 17, "uncertainty
-// all the way to albedo and Q0").
+// fitted parameters, and the probabilities of the road classes they imply.
 //
 // Propagation (GUM, JCGM 100:2008, eq. 10; core/propagation.h): the r-table of a fit is the
 // weighted BRDF f = sum_l w_l f(p(l)) over the weighting's wavelengths l (1 nm grid for the

@@ -1,4 +1,4 @@
-// Virtual sample generation (issue 9): coarse aggregates of each size class of a formulation as
+// Virtual sample generation: coarse aggregates of each size class of a formulation as
 // random convex grains set in a mastic matrix, rasterised into a periodic height field with a
 // material map (height_field.h). Also simple analytic surfaces for validation.
 //

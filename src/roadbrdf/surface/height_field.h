@@ -1,4 +1,4 @@
-// Virtual road samples: a periodic height field with a material map (issue 9).
+// Virtual road samples: a periodic height field with a material map.
 //
 // Representation. Heights are given at the nodes of an nx x ny grid of spacing `cell_size_mm`;
 // node (i, j) sits at (x, y) = (i h, j h). The sample is PERIODIC in x and y (period nx h by

@@ -1,5 +1,5 @@
-// Dense packing of ellipsoidal grains in a periodic box (issue 9: "placed without overlap at the
-// packing the mass fractions imply"). Used by generate.h.
+// Dense packing of ellipsoidal grains in a periodic box: placed without overlap at the packing the
+// mass fractions imply. Used by generate.h.
 //
 // Box: periodic in x and y with period L, B <= z <= T. The plane z = T is the roller's plane. The
 // targets are grain volumes inside the layer layer_bottom <= z <= T (the part of each grain inside it,

@@ -1,4 +1,4 @@
-// Virtual gonioreflectometer: Monte Carlo path tracing of a virtual road sample (issue 9).
+// Virtual gonioreflectometer: Monte Carlo path tracing of a virtual road sample.
 //
 // Set-up. The sample is a periodic height field (height_field.h) lit by a collimated source in the
 // direction w_i = (theta_i, phi_i) giving irradiance E_perp on a plane perpendicular to the beam,

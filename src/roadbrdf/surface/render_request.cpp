@@ -4,6 +4,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/surface/scheduler.h"
 
 namespace roadbrdf::surface {
 
@@ -22,7 +23,6 @@ RenderSettings render_settings(const RenderRequest& r) {
     }
     s.target_relative_error = *r.target_error;
   }
-  if (r.max_samples < 2) throw FieldError("max_samples", fmt::format("{} is below 2", r.max_samples));
   if (!(r.error_floor >= 0.0 && r.error_floor <= 1.0)) {
     throw FieldError("error_floor", fmt::format("{} is outside [0, 1] sr^-1", r.error_floor));
   }
@@ -51,6 +51,7 @@ RenderSettings render_settings(const RenderRequest& r) {
   s.seed = r.seed;
   s.threads = r.threads;
   s.max_bounces = r.max_bounces;
+  validate_sampling(s);  // the checks of the settings themselves (max_samples), made for every render
   return s;
 }
 

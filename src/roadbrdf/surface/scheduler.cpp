@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include <fmt/core.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -16,6 +17,9 @@
 namespace roadbrdf::surface {
 
 void validate_sampling(const RenderSettings& s) {
+  // Checked whether or not the path count is adaptive, so that a request is refused the same way
+  // in both modes (render_settings checks a request through this function).
+  if (s.max_samples < 2) throw FieldError("max_samples", fmt::format("{} is below 2", s.max_samples));
   if (s.paths_per_block < 1) throw InputError("render: paths_per_block must be >= 1");
   if (!(s.brdf_sampling_fraction >= 0.0 && s.brdf_sampling_fraction < 1.0)) {
     throw InputError("render: brdf_sampling_fraction must be in [0, 1) (cosine sampling keeps the estimator unbiased)");
@@ -24,7 +28,6 @@ void validate_sampling(const RenderSettings& s) {
     throw InputError("render: the target relative error must be >= 0");
   }
   if (s.target_relative_error > 0.0) {
-    if (s.max_samples < 2) throw InputError("render: --max-samples must be >= 2");
     if (s.min_blocks < 1) throw InputError("render: min_blocks must be >= 1");
     if (!(s.absolute_error_floor >= 0.0)) throw InputError("render: the absolute error floor must be >= 0");
   } else {

@@ -40,7 +40,8 @@ class PathSource {
   virtual void path(std::size_t job, Rng& rng, Workspace& workspace, double* values) const = 0;
 };
 
-// Checks the sampling settings (block size, adaptive target, limits); throws InputError.
+// Checks the sampling settings (block size, adaptive target, limits); throws InputError, or
+// FieldError("max_samples").
 void validate_sampling(const RenderSettings& s);
 
 // Estimates (mean and standard error per wavelength) of `job_count` estimates of `source`.

@@ -1,5 +1,5 @@
-// Albedo of a virtual sample measured by the virtual gonioreflectometer (issue 9, "components ->
-// virtual F1 -> mixing prediction vs simulation -> albedo").
+// Albedo of a virtual sample measured by the virtual gonioreflectometer (the last step of the chain
+// components -> virtual sample -> mixing prediction compared with simulation -> albedo).
 //
 // Black-sky albedo (directional-hemispherical reflectance) at sun zenith theta_s:
 //     A(theta_s) = int_hemisphere f(w_s, w) cos(theta) dw,

@@ -1,0 +1,22 @@
+# cmake -DOUTPUT=FILE -P WriteCommandOutput.cmake -- PROGRAM ARG...
+# Runs PROGRAM ARG... and writes its standard output to FILE, replacing FILE only when the command
+# succeeds (a failed run leaves no partial file for the build to take as up to date).
+set(command "")
+set(after_separator FALSE)
+math(EXPR last "${CMAKE_ARGC} - 1")
+foreach(i RANGE 1 ${last})
+  if(after_separator)
+    list(APPEND command "${CMAKE_ARGV${i}}")
+  elseif("${CMAKE_ARGV${i}}" STREQUAL "--")
+    set(after_separator TRUE)
+  endif()
+endforeach()
+if(NOT OUTPUT OR NOT command)
+  message(FATAL_ERROR "usage: cmake -DOUTPUT=FILE -P WriteCommandOutput.cmake -- PROGRAM ARG...")
+endif()
+execute_process(COMMAND ${command} OUTPUT_FILE "${OUTPUT}.part" RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  file(REMOVE "${OUTPUT}.part")
+  message(FATAL_ERROR "'${command}' failed (${status})")
+endif()
+file(RENAME "${OUTPUT}.part" "${OUTPUT}")
