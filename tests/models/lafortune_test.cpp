@@ -156,5 +156,47 @@ TEST(Lafortune, GradientMatchesFiniteDifferences) {
   }
 }
 
+// The adapter differentiates a one-lobe Lafortune (5 parameters) with 8-wide jets and a two-lobe one
+// (9 parameters) with kMaxParameters-wide ones (model.h, with_jet_size). A second lobe of amplitude 0
+// adds exactly 0 to the value and to the first lobe's derivatives, so both give the same numbers, bit
+// for bit, for kd and the first lobe, through every gradient path.
+TEST(Lafortune, GradientsDoNotDependOnTheJetSize) {
+  const auto one = make_model("lafortune", {});
+  const auto two = make_model("lafortune", {{"lobes", "2"}});
+  ASSERT_EQ(one->parameter_count(), 5u);
+  ASSERT_EQ(two->parameter_count(), 9u);
+  std::vector<double> p2 = kDryRoad;
+  p2.insert(p2.end(), {0.0, -0.8, 1.0, 3.0});  // rho2 = 0
+  std::vector<Geometry> geometries;
+  for (double ti : {0.0, 20.0, 60.0, 85.0}) {
+    for (double tr : {5.0, 45.0, 80.0}) {
+      for (double dp : {0.0, 90.0, 180.0}) geometries.push_back(geometry_from_degrees(ti, 0.0, tr, dp));
+    }
+  }
+  const std::size_t n = geometries.size();
+  std::vector<double> g1(5), g2(9);
+  for (const Geometry& g : geometries) {
+    EXPECT_EQ(one->evaluate_with_gradient(kDryRoad.data(), g, g1.data()),
+              two->evaluate_with_gradient(p2.data(), g, g2.data()));
+    for (std::size_t k = 0; k < 5; ++k) EXPECT_EQ(g1[k], g2[k]) << k;
+  }
+  std::vector<double> v1(n), v2(n), j1(n * 5), j2(n * 9);
+  one->evaluate_batch_with_gradient(geometries.data(), n, kDryRoad.data(), v1.data(), j1.data());
+  two->evaluate_batch_with_gradient(geometries.data(), n, p2.data(), v2.data(), j2.data());
+  const auto prepared1 = one->prepare(geometries.data(), n);
+  const auto prepared2 = two->prepare(geometries.data(), n);
+  std::vector<double> pv1(n), pv2(n), pj1(n * 5), pj2(n * 9);
+  one->evaluate_prepared_with_gradient(*prepared1, kDryRoad.data(), pv1.data(), pj1.data());
+  two->evaluate_prepared_with_gradient(*prepared2, p2.data(), pv2.data(), pj2.data());
+  for (std::size_t m = 0; m < n; ++m) {
+    EXPECT_EQ(v1[m], v2[m]);
+    EXPECT_EQ(pv1[m], pv2[m]);
+    for (std::size_t k = 0; k < 5; ++k) {
+      EXPECT_EQ(j1[m * 5 + k], j2[m * 9 + k]) << m << ' ' << k;
+      EXPECT_EQ(pj1[m * 5 + k], pj2[m * 9 + k]) << m << ' ' << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace roadbrdf
