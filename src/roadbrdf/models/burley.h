@@ -72,41 +72,87 @@ struct Burley {
 
   explicit Burley(const OptionSet& options) : dist_(distribution_of(options)) {}
 
-  template <typename T>
-  T operator()(const T* p, const Geometry& g) const {
-    const double ci = g.wi.z;
-    const double cr = g.wr.z;
-    const microfacet::HalfVector h = microfacet::half_vector_of(g);
-    const double lh = h.valid ? h.cos_ih : 0.0;
-    const T& r = p[kRoughness];
+  // Geometry-only terms (model.h, "prepared geometry").
+  struct Prepared {
+    double ci = 0.0, cr = 0.0;  // cos(theta_i), cos(theta_r)
+    double lh = 0.0;            // w_i.h (0 where h is undefined)
+    double cos_h = 1.0;         // n.h
+    bool valid = false;         // h defined (not w_i = -w_r)
+    double mi5 = 0.0, mr5 = 0.0;  // (1 - cos theta_i)^5, (1 - cos theta_r)^5: the diffuse's Schlick weights
+  };
 
+  Prepared prepare(const Geometry& g) const {
+    Prepared q;
+    q.ci = g.wi.z;
+    q.cr = g.wr.z;
+    const microfacet::HalfVector h = microfacet::half_vector_of(g);
+    q.valid = h.valid;
+    q.lh = h.valid ? h.cos_ih : 0.0;
+    q.cos_h = h.cos_h;
+    const double mi = 1.0 - q.ci, mr = 1.0 - q.cr;
+    q.mi5 = (mi * mi) * (mi * mi) * mi;
+    q.mr5 = (mr * mr) * (mr * mr) * mr;
+    return q;
+  }
+
+  // Parameter-only terms (model.h, "coefficients").
+  template <typename T>
+  struct Coefficients {
+    T roughness;
+    T albedo_over_pi;  // rho / pi
+    T alpha;           // microfacet roughness r^2
+    T f0;              // Schlick F0 of the index
+    T specular;
+    T gamma;           // GTR exponent (distribution gtr)
+  };
+
+  template <typename T>
+  Coefficients<T> coefficients(const T* p) const {
+    Coefficients<T> k{};
+    k.roughness = p[kRoughness];
+    k.albedo_over_pi = p[kAlbedo] * kInvPi;
+    k.alpha = p[kRoughness] * p[kRoughness];
+    k.f0 = fresnel_f0(p[kIor]);
+    k.specular = p[kSpecular];
+    if (dist_ == Distribution::kGtr) k.gamma = p[kGamma];
+    return k;
+  }
+
+  template <typename T>
+  T operator()(const Coefficients<T>& k, const Prepared& g) const {
     // Diffuse (Burley 2012 eq. in section 5.3).
-    const T fd90 = 0.5 + 2.0 * r * (lh * lh);
-    const double mi = 1.0 - ci, mr = 1.0 - cr;
-    const double mi5 = (mi * mi) * (mi * mi) * mi;
-    const double mr5 = (mr * mr) * (mr * mr) * mr;
-    T diffuse = p[kAlbedo] * kInvPi * (1.0 + (fd90 - 1.0) * mi5) * (1.0 + (fd90 - 1.0) * mr5);
-    if (!h.valid) return diffuse;
+    const T fd90 = 0.5 + 2.0 * k.roughness * (g.lh * g.lh);
+    T diffuse = k.albedo_over_pi * (1.0 + (fd90 - 1.0) * g.mi5) * (1.0 + (fd90 - 1.0) * g.mr5);
+    if (!g.valid) return diffuse;
 
     // Specular.
-    const T alpha = r * r;
     T d(0.0);
     switch (dist_) {
       case Distribution::kGgx:
-        d = microfacet::ggx_d(h.cos_h, alpha);
+        d = microfacet::ggx_d(g.cos_h, k.alpha);
         break;
       case Distribution::kBerry:
-        d = microfacet::berry_d(h.cos_h, alpha);
+        d = microfacet::berry_d(g.cos_h, k.alpha);
         break;
       case Distribution::kGtr:
-        d = microfacet::gtr_d(h.cos_h, alpha, p[kGamma]);
+        d = microfacet::gtr_d(g.cos_h, k.alpha, k.gamma);
         break;
     }
-    const T li = microfacet::ggx_cos_lambda(ci, alpha);
-    const T lr = microfacet::ggx_cos_lambda(cr, alpha);
-    const T g_over_cos = microfacet::smith_g2_over_cos(ci, cr, li, lr, /*height_correlated=*/false);
-    const T f = fresnel_schlick(T(lh), fresnel_f0(p[kIor]));
-    return diffuse + p[kSpecular] * f * d * g_over_cos * 0.25;
+    const T li = microfacet::ggx_cos_lambda(g.ci, k.alpha);
+    const T lr = microfacet::ggx_cos_lambda(g.cr, k.alpha);
+    const T g_over_cos = microfacet::smith_g2_over_cos(g.ci, g.cr, li, lr, /*height_correlated=*/false);
+    const T f = fresnel_schlick(T(g.lh), k.f0);
+    return diffuse + k.specular * f * d * g_over_cos * 0.25;
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Prepared& g) const {
+    return (*this)(coefficients(p), g);
+  }
+
+  template <typename T>
+  T operator()(const T* p, const Geometry& g) const {
+    return (*this)(p, prepare(g));
   }
 
  private:
