@@ -74,10 +74,10 @@ struct Burley {
 
   // Geometry-only terms (model.h, "prepared geometry").
   struct Prepared {
-    double ci = 0.0, cr = 0.0;  // cos(theta_i), cos(theta_r)
-    double lh = 0.0;            // w_i.h (0 where h is undefined)
-    double cos_h = 1.0;         // n.h
-    bool valid = false;         // h defined (not w_i = -w_r)
+    double ci = 0.0, cr = 0.0;    // cos(theta_i), cos(theta_r)
+    double lh = 0.0;              // w_i.h (0 where h is undefined)
+    double cos_h = 1.0;           // n.h
+    bool valid = false;           // h defined (not w_i = -w_r)
     double mi5 = 0.0, mr5 = 0.0;  // (1 - cos theta_i)^5, (1 - cos theta_r)^5: the diffuse's Schlick weights
   };
 
@@ -103,7 +103,7 @@ struct Burley {
     T alpha;           // microfacet roughness r^2
     T f0;              // Schlick F0 of the index
     T specular;
-    T gamma;           // GTR exponent (distribution gtr)
+    T gamma;  // GTR exponent (distribution gtr)
   };
 
   template <typename T>
