@@ -18,6 +18,14 @@ __all__ = ["albedo", "AlbedoResult"]
 PathLike = Union[str, "os.PathLike[str]"]
 
 
+def _array_of(key: str, doc: str) -> property:
+    """A read-only attribute giving the report's ``key`` as a float array (None where it is null)."""
+    def get(self) -> np.ndarray | None:
+        value = self.get(key)
+        return None if value is None else np.asarray(value, dtype=float)
+    return property(get, doc=doc)
+
+
 class AlbedoResult(dict):
     """The result of :func:`albedo`: the report ``roadbrdf albedo --json`` prints, as a dict (keys below),
     with its numbers also as NumPy arrays (``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky``
@@ -29,41 +37,14 @@ class AlbedoResult(dict):
         super().__init__(report.content())
         self._report = report
 
-    def _array(self, key: str) -> np.ndarray | None:
-        value = self.get(key)
-        return None if value is None else np.asarray(value, dtype=float)
-
-    @property
-    def wavelengths(self) -> np.ndarray:
-        return np.asarray(self["wavelengths"], dtype=float)
-
-    @property
-    def sun_zenith_deg(self) -> np.ndarray:
-        return np.asarray(self["sun_zenith_deg"], dtype=float)
-
-    @property
-    def black_sky(self) -> np.ndarray:
-        return np.asarray(self["black_sky"], dtype=float)
-
-    @property
-    def black_sky_error(self) -> np.ndarray:
-        return np.asarray(self["black_sky_error"], dtype=float)
-
-    @property
-    def white_sky(self) -> np.ndarray:
-        return np.asarray(self["white_sky"], dtype=float)
-
-    @property
-    def white_sky_error(self) -> np.ndarray:
-        return np.asarray(self["white_sky_error"], dtype=float)
-
-    @property
-    def blue_sky(self) -> np.ndarray | None:
-        return self._array("blue_sky")
-
-    @property
-    def blue_sky_error(self) -> np.ndarray | None:
-        return self._array("blue_sky_error")
+    wavelengths = _array_of("wavelengths", "[nm] (empty for a model with constant parameters)")
+    sun_zenith_deg = _array_of("sun_zenith_deg", "[deg]")
+    black_sky = _array_of("black_sky", "[sun zenith, wavelength]")
+    black_sky_error = _array_of("black_sky_error", "quadrature error estimates of black_sky")
+    white_sky = _array_of("white_sky", "[wavelength]")
+    white_sky_error = _array_of("white_sky_error", "quadrature error estimates of white_sky")
+    blue_sky = _array_of("blue_sky", "[sun zenith, wavelength]; None without a diffuse fraction or atmosphere")
+    blue_sky_error = _array_of("blue_sky_error", "error estimates of blue_sky; None with it")
 
     @property
     def notes(self) -> list:
