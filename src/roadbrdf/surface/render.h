@@ -73,8 +73,9 @@
 // fluctuated up looks relatively more precise and stops earlier): the bias is of the order of
 // target^2 relative (1e-4 at 1 %), and the minimum of 1024 paths keeps the error estimate itself
 // from stopping on a lucky first block.
-// Ray traversal: exact, over the periodic grid (2-D DDA), with the two planar triangles of each
-// cell; the height along the ray is piecewise linear in each cell, so hits are found exactly.
+// Ray traversal: exact, over the periodic grid (2-D DDA, skipping blocks of cells the ray passes
+// above; tracer.h), with the two planar triangles of each cell; the height along the ray is piecewise
+// linear in each cell, so hits are found exactly.
 #pragma once
 
 #include <cstdint>
