@@ -200,11 +200,10 @@ def _material_arguments(model_or_fit, params, fit_model):
     if not _is_path(model_or_fit):
         raise InputError("expected a roadbrdf.Model, a model name or a fit file path")
     text = str(model_or_fit)
+    parameters = {str(k): float(v) for k, v in (params or {}).items()}
     if text.endswith(".json"):
-        if params:
-            raise InputError("params cannot be combined with a fit file")
-        return text, fit_model or "", "", {}, {}
-    return "", "", text, {str(k): float(v) for k, v in (params or {}).items()}, {}
+        return text, fit_model or "", "", parameters, {}
+    return "", fit_model or "", text, parameters, {}
 
 
 def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None = None, cells: int = 16,
