@@ -331,15 +331,9 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
 
 def spectral_model_from_fit(fit_result: FitResult | dict, model: str | None = None) -> SpectralModel:
     """The spectral model of a fit result (the best fit, or that of ``model``): a :class:`FitResult`
-    from :func:`fit`, or a fit file's content as a dict."""
+    from :func:`fit`, or a fit file's content as a dict (read as the fit file itself is, errors naming
+    its JSON keys under ``fit_result``)."""
     if isinstance(fit_result, FitResult):
         return fit_result.spectral_model(model)
     import json
-    import tempfile
-    fd, path = tempfile.mkstemp(suffix=".json")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            json.dump(fit_result, fh)
-        return read_fit(path, model)
-    finally:
-        os.remove(path)
+    return SpectralModel(_roadbrdf.parse_fit_file(json.dumps(fit_result), "fit_result", model or ""))
