@@ -130,7 +130,7 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     (CSV path) to compare the methods on held-out geometries (``folds``-fold); ``method``: areal,
     fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
     the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
-    sigma (False = ``--no-sigma``); ``output``: also write MIX.json; ``residuals``: CSV path for the
+    sigma (False = ``--no-sigma-weights``); ``output``: also write MIX.json; ``residuals``: CSV path for the
     held-out residuals (needs ``data``); ``cross_sections``: calibration file of :func:`mix_calibrate`
     (``--cross-sections``, hapke only); ``uncertainty``: carry the components' fit covariances into the
     areal, mastic and hapke mixtures (``--uncertainty``; their albedo is then much slower). Methods skipped with ``method="all"`` are reported as

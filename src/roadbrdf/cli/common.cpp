@@ -118,7 +118,7 @@ std::string flag_for_field(const std::string& field) {
                                                              {"bounds", "--bound"},
                                                              {"bands", "--band"},
                                                              {"methods", "--method"},
-                                                             {"use_sigma", "--no-sigma"},
+                                                             {"use_sigma", "--no-sigma-weights"},
                                                              {"fit", "--fit"},
                                                              {"acceptance_deg", "--acceptance"},
                                                              {"formulation", "FORMULATION"},
