@@ -181,3 +181,12 @@ TEST(CliSurface, MaterialErrorsNameTheFlag) {
   EXPECT_FALSE(std::filesystem::exists(surface));
   std::filesystem::remove(fit);
 }
+
+// --size is read as every number is (core/number.h): a hexadecimal length is refused.
+TEST(CliSurface, SizeIsReadAsEveryNumber) {
+  const std::string surface = temp_path("size_err.json");
+  const Result r = run("surface missing.formulation.json --size 0x3cmm -o " + surface);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--size: expected a length such as 60mm, got '0x3cmm'"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(surface));
+}

@@ -23,6 +23,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/number.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -70,14 +71,8 @@ double parse_length_mm(const std::string& text) {
     t = t.substr(0, t.size() - 2);
     scale = 10.0;
   }
-  std::size_t used = 0;
   double v = 0.0;
-  try {
-    v = std::stod(t, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != t.size() || !(v > 0.0) || !std::isfinite(v))
+  if (!parse_finite_double(t, v) || !(v > 0.0))
     throw InputError("--size: expected a length such as 60mm, got '" + text + "'");
   return v * scale;
 }
