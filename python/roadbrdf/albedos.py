@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import Sequence, Union
+from typing import TYPE_CHECKING, Any, Sequence, Union
 
 import numpy as np
 
@@ -12,6 +12,9 @@ from . import _roadbrdf
 from .core import InputError
 from .fitting import read_fit
 from .model import Model, SpectralModel
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["albedo", "AlbedoResult"]
 
@@ -33,7 +36,7 @@ class AlbedoResult(dict):
     ``*_error`` estimates), :attr:`summary` (the table ``roadbrdf albedo`` prints), :meth:`write` (the
     command line's writer) and :meth:`to_dataframe`. Albedos are dimensionless reflectances."""
 
-    def __init__(self, report):
+    def __init__(self, report: Any) -> None:
         super().__init__(report.content())
         self._report = report
 
@@ -62,7 +65,7 @@ class AlbedoResult(dict):
             raise InputError(f"format must be 'json' or 'table', not '{format}'")
         self._report.write(os.fspath(path), format == "json")
 
-    def to_dataframe(self):
+    def to_dataframe(self) -> pd.DataFrame:
         """A pandas DataFrame, one row per wavelength (one row without wavelengths for a non-spectral
         model): ``wavelength_nm``, ``black_sky_<zenith>deg`` (and ``_error``) per sun zenith, ``white_sky``
         (and ``_error``), ``blue_sky_<zenith>deg`` where defined."""

@@ -9,7 +9,7 @@ line names its flag, ``--option distribution``).
 from __future__ import annotations
 
 import os
-from typing import Any, Iterable, Mapping, Sequence, Union
+from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence, Union
 
 import numpy as np
 
@@ -17,6 +17,9 @@ from . import _roadbrdf
 from .core import InputError, as_float_array
 from .io import Dataset, read_dataset
 from .model import SpectralModel
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["fit", "FitResult", "ModelFit", "read_fit", "spectral_model_from_fit"]
 
@@ -32,7 +35,8 @@ def read_fit(path: str, model: str | None = None) -> SpectralModel:
 
 
 def params(fit_file: PathLike, wavelengths: str | Sequence[float] | None = None,
-           models: str | Sequence[str] = (), format: str | None = None, group_by: str | Sequence[str] = ()):
+           models: str | Sequence[str] = (), format: str | None = None,
+           group_by: str | Sequence[str] = ()) -> pd.DataFrame | str:
     """The fitted parameters of a fit file, as ``roadbrdf params`` prints them.
 
     One row per fit (model, and group in a grouped file) and wavelength: ``model``, the group columns
@@ -93,7 +97,7 @@ class ModelFit:
         ``theta_r_deg`` [min, max], ``azimuth_planes_deg``, ``geometries``), as in the fit file.
     """
 
-    def __init__(self, summary, index: int):
+    def __init__(self, summary: Any, index: int) -> None:
         self._summary = summary
         self._index = index
         s = summary
@@ -126,7 +130,7 @@ class ModelFit:
         """The fitted model as a :class:`SpectralModel` (parameters interpolated in wavelength)."""
         return SpectralModel(self._summary.spectral_model(self._index))
 
-    def to_dataframe(self):
+    def to_dataframe(self) -> pd.DataFrame:
         """A pandas DataFrame with one row per wavelength: ``wavelength_nm``, then each parameter and
         its ``stderr_<name>``, then ``rmse``, ``aic``, ``bic``, ``converged``."""
         import pandas as pd
@@ -156,7 +160,7 @@ class FitResult:
     :meth:`to_dict` gives its content (also reachable as ``result["fits"]``, ``result["best"]``).
     """
 
-    def __init__(self, summary):
+    def __init__(self, summary: Any) -> None:
         self._summary = summary
         self.fits: list = [ModelFit(summary, i) for i in range(summary.count)]
         self.ranking: list = list(summary.ranking)
@@ -219,7 +223,7 @@ class FitResult:
         """Write the fit file (JSON, atomically), byte for byte as ``roadbrdf fit -o`` writes it."""
         self._summary.write(os.fspath(path))
 
-    def to_dataframe(self):
+    def to_dataframe(self) -> pd.DataFrame:
         """A long pandas DataFrame: ``model``, the group columns when grouped (degrees), ``wavelength_nm``,
         ``parameter``, ``value``, ``stderr``."""
         import pandas as pd
@@ -331,15 +335,9 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
 
 def spectral_model_from_fit(fit_result: FitResult | dict, model: str | None = None) -> SpectralModel:
     """The spectral model of a fit result (the best fit, or that of ``model``): a :class:`FitResult`
-    from :func:`fit`, or a fit file's content as a dict."""
+    from :func:`fit`, or a fit file's content as a dict (read as the fit file itself is, errors naming
+    its JSON keys under ``fit_result``)."""
     if isinstance(fit_result, FitResult):
         return fit_result.spectral_model(model)
     import json
-    import tempfile
-    fd, path = tempfile.mkstemp(suffix=".json")
-    try:
-        with os.fdopen(fd, "w") as fh:
-            json.dump(fit_result, fh)
-        return read_fit(path, model)
-    finally:
-        os.remove(path)
+    return SpectralModel(_roadbrdf.parse_fit_file(json.dumps(fit_result), "fit_result", model or ""))

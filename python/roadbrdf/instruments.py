@@ -9,7 +9,15 @@ Warnings (SVC detector overlaps, saturation flags) are :class:`UserWarning`; mal
 
 from __future__ import annotations
 
+import os
+from typing import TYPE_CHECKING, Any, Optional, Union
+
 from . import _roadbrdf
+
+if TYPE_CHECKING:
+    from .io import Dataset
+
+PathLike = Union[str, "os.PathLike[str]"]
 
 __all__ = ["InstrumentSpectrum", "read_instrument", "instrument_dataset", "read_manifest", "calibrate_manifest",
            "read_usgs", "usgs_dataset"]
@@ -38,22 +46,23 @@ class InstrumentSpectrum:
         the header values (keys ``asd.*``, ``sed.*``, ``sig.*``).
     """
 
-    def __init__(self, d):
+    def __init__(self, d: dict[str, Any]) -> None:
         self.__dict__.update(d)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"roadbrdf.InstrumentSpectrum({self.path!r}: {self.format}, {self.wavelengths.size} channels "
                 f"{self.wavelengths[0]:g}-{self.wavelengths[-1]:g} nm, {self.quantity})")
 
 
-def read_instrument(path, overlap="upper") -> InstrumentSpectrum:
+def read_instrument(path: PathLike, overlap: str = "upper") -> InstrumentSpectrum:
     """Read an ``.asd``, ``.sed`` or ``.sig`` file. ``overlap`` (SVC): ``"upper"`` keeps the next
     detector's channels where detectors overlap, ``"lower"`` the previous detector's, ``"error"``
     refuses; nothing is averaged."""
     return InstrumentSpectrum(_roadbrdf.read_instrument(str(path), overlap))
 
 
-def instrument_dataset(path, quantity="target", overlap="upper", **angles):
+def instrument_dataset(path: PathLike, quantity: str = "target", overlap: str = "upper",
+                       **angles: float) -> Dataset:
     """A one-geometry :class:`roadbrdf.Dataset` from one instrument file (``roadbrdf convert FILE
     --geometry ...``). Give the angles [deg] as ``theta_i=, phi_i=, theta_r=, phi_r=`` or
     ``gamma=, alpha=, beta=, delta=``; ``quantity`` is ``"target"``, ``"reference"`` or
@@ -71,7 +80,7 @@ def instrument_dataset(path, quantity="target", overlap="upper", **angles):
     return Dataset._from_dict(_roadbrdf.instrument_dataset(str(path), values, convention, quantity, overlap))
 
 
-def _angles(angles):
+def _angles(angles: dict[str, float]) -> tuple[str, list[float]]:
     names = set(angles)
     if names == set(_ZENITH):
         return "zenith", [float(angles[n]) for n in _ZENITH]
@@ -80,7 +89,7 @@ def _angles(angles):
     raise _roadbrdf.InputError("give the angles theta_i, phi_i, theta_r, phi_r or gamma, alpha, beta, delta [deg]")
 
 
-def read_usgs(path, wavelengths) -> dict:
+def read_usgs(path: PathLike, wavelengths: PathLike) -> dict[str, Any]:
     """A USGS Spectral Library v7 (splib07a) ASCII spectrum and its wavelength file (io/usgs.h):
     a dict with ``record``, ``title``, ``wavelengths`` [nm] and ``reflectance`` [1] (missing
     channels, -1.23e+34, left out; ``missing`` counts them). Malformed files raise
@@ -88,7 +97,7 @@ def read_usgs(path, wavelengths) -> dict:
     return _roadbrdf.read_usgs(str(path), str(wavelengths))
 
 
-def usgs_dataset(path, wavelengths, **angles):
+def usgs_dataset(path: PathLike, wavelengths: PathLike, **angles: float) -> Dataset:
     """A one-geometry :class:`roadbrdf.Dataset` of BRDF = R/pi [sr^-1] from a splib07a spectrum
     (``roadbrdf convert FILE --from usgs --usgs-wavelengths W.txt --geometry ...``); the angles [deg]
     as in :func:`instrument_dataset`. The library does not record the lab geometry per file."""
@@ -98,7 +107,7 @@ def usgs_dataset(path, wavelengths, **angles):
     return Dataset._from_dict(_roadbrdf.usgs_dataset(str(path), str(wavelengths), values, convention))
 
 
-def read_manifest(path, quantity="target", overlap="upper"):
+def read_manifest(path: PathLike, quantity: str = "target", overlap: str = "upper") -> Dataset:
     """The sample rows of a run manifest as a :class:`roadbrdf.Dataset` of instrument signals
     (``roadbrdf convert RUN.csv --from manifest --quantity ...``), in the files' units."""
     from . import Dataset
@@ -106,8 +115,9 @@ def read_manifest(path, quantity="target", overlap="upper"):
     return Dataset._from_dict(_roadbrdf.manifest_dataset(str(path), quantity, overlap))
 
 
-def calibrate_manifest(manifest, panel_reflectance, panel_brf=None, panel_brf_start=None, panel_brf_step=None,
-                       overlap="upper"):
+def calibrate_manifest(manifest: PathLike, panel_reflectance: PathLike, panel_brf: Optional[PathLike] = None,
+                       panel_brf_start: Optional[float] = None, panel_brf_step: Optional[float] = None,
+                       overlap: str = "upper") -> Dataset:
     """The calibrated BRDF [sr^-1] of a run (``roadbrdf calibrate --manifest RUN.csv
     --panel-reflectance RHO.txt``): f = (S - dark)/(white - dark) x rho_panel/pi, with the
     uncertainty of the panel propagated; no extrapolation of the panel file."""

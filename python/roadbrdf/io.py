@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import os
-from typing import Union
+from typing import Any, Iterable, Mapping, Optional, Union
 
 import numpy as np
 
 from . import _roadbrdf
-from .core import as_float_array
+from .core import ArrayLike, as_float_array
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -37,7 +37,9 @@ class Dataset:
         in order and written back.
     """
 
-    def __init__(self, angles, wavelengths, brdf, sigma=None, metadata=None, convention="zenith", comments=None):
+    def __init__(self, angles: ArrayLike, wavelengths: ArrayLike, brdf: ArrayLike, sigma: Optional[ArrayLike] = None,
+                 metadata: Optional[Mapping[str, Any]] = None, convention: str = "zenith",
+                 comments: Optional[Iterable[str]] = None) -> None:
         self.angles = as_float_array(angles, "angles").reshape(-1, 4)
         self.wavelengths = as_float_array(wavelengths, "wavelengths").reshape(-1)
         self.brdf = as_float_array(brdf, "brdf").reshape(self.angles.shape[0], self.wavelengths.size)

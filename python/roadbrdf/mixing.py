@@ -10,11 +10,14 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import Any, Union
+from typing import TYPE_CHECKING, Any, Sequence, Union
 
 from . import _roadbrdf
 from .core import InputError
 from .model import SpectralModel
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["mix", "MixResult", "MethodResult"]
 
@@ -29,7 +32,7 @@ class MethodResult:
     covariance from the end-members' fits where the method has one (areal, mastic, hapke: see ``notes``), so
     that :func:`roadbrdf.albedo` and :func:`roadbrdf.rtable` give its uncertainties."""
 
-    def __init__(self, run, index: int, content: dict):
+    def __init__(self, run: Any, index: int, content: dict) -> None:
         self._run = run
         self._index = index
         self.method: str = content["method"]
@@ -56,7 +59,7 @@ class MixResult:
     report ``roadbrdf mix`` prints); :meth:`write` writes MIX.json with the command line's writer,
     :meth:`to_dict` gives its content (also as ``result["methods"]``, ``result["best"]``, ...)."""
 
-    def __init__(self, run):
+    def __init__(self, run: Any) -> None:
         self._run = run
         content = run.content()
         self.methods: list = [MethodResult(run, i, m) for i, m in enumerate(content["methods"])]
@@ -101,7 +104,7 @@ class MixResult:
         """Write the held-out residuals (CSV), as ``roadbrdf mix --residuals`` does (needs data)."""
         self._run.write_residuals(os.fspath(path))
 
-    def to_dataframe(self):
+    def to_dataframe(self) -> pd.DataFrame:
         """A pandas DataFrame, one row per method: ``method``, the weights ``weight.<end-member>`` and,
         with data, ``rmse``, ``relative_rmse``, ``chi2_reduced``, ``albedo``, ``albedo_difference``."""
         import pandas as pd
@@ -130,7 +133,7 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     (CSV path) to compare the methods on held-out geometries (``folds``-fold); ``method``: areal,
     fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
     the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
-    sigma (False = ``--no-sigma``); ``output``: also write MIX.json; ``residuals``: CSV path for the
+    sigma (False = ``--no-sigma-weights``); ``output``: also write MIX.json; ``residuals``: CSV path for the
     held-out residuals (needs ``data``); ``cross_sections``: calibration file of :func:`mix_calibrate`
     (``--cross-sections``, hapke only); ``uncertainty``: carry the components' fit covariances into the
     areal, mastic and hapke mixtures (``--uncertainty``; their albedo is then much slower). Methods skipped with ``method="all"`` are reported as
@@ -153,7 +156,8 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     return result
 
 
-def mix_calibrate(mixtures, reference: str | None = None, output: PathLike | None = None) -> dict:
+def mix_calibrate(mixtures: Sequence[tuple[PathLike, PathLike]], reference: str | None = None,
+                  output: PathLike | None = None) -> dict:
     """Fit effective cross-section factors of the hapke method's end-members, as ``roadbrdf mix-calibrate``.
 
     ``mixtures``: pairs ``(formulation, data)`` of measured mixtures; ``reference``: the end-member whose

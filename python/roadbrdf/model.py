@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _roadbrdf
-from typing import List
+from typing import Any, List
 
 from .core import ArrayLike, InputError, as_float_array
 
@@ -62,7 +62,7 @@ class Model:
     ``"component.option"`` names or plain names applied to every component that has them.
     """
 
-    def __init__(self, name: str, options: dict | None = None, **more_options):
+    def __init__(self, name: str, options: dict | None = None, **more_options: Any) -> None:
         opts = {str(k): str(v) for k, v in (options or {}).items()}
         opts.update({k: str(v) for k, v in more_options.items()})
         self._model = _roadbrdf.make_model(name, opts)
@@ -136,7 +136,7 @@ class Model:
 
     __call__ = evaluate
 
-    def delta_reflectance(self, theta_i, params: dict | None = None, **kwargs) -> float:
+    def delta_reflectance(self, theta_i: float, params: dict | None = None, **kwargs: float) -> float:
         """Reflectance R(theta_i) of the ideal specular part f = R delta(w_r - mirror(w_i))/cos(theta_r)
         (0 for models without one). theta_i in degrees."""
         given = dict(params or {})
@@ -155,7 +155,7 @@ class SpectralModel:
     wavelengths outside the tabulated range raise InputError (no extrapolation).
     """
 
-    def __init__(self, handle):
+    def __init__(self, handle: Any) -> None:
         self._spectral = handle
 
     @property

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import Optional, Sequence, Tuple, Union
+from typing import Any, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -56,7 +56,7 @@ class Surface:
         ``slab_thickness_mm``, ``matrix_level_mm``, ``notes``.
     """
 
-    def __init__(self, handle, generation=None):
+    def __init__(self, handle: Any, generation: Optional[dict] = None) -> None:
         self._field = handle
         self.generation = generation
         self._statistics = None
@@ -146,11 +146,11 @@ class Surface:
             self._field.write_preview(str(preview))
 
     def render(self, theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike, phi_r: ArrayLike,
-               **options) -> Dataset:
+               **options: Any) -> Dataset:
         """Same as :func:`render` (``render(self, ...)``)."""
         return render(self, theta_i, phi_i, theta_r, phi_r, **options)
 
-    def render_albedo(self, sun_zenith: Union[float, Sequence[float], str], **options) -> dict:
+    def render_albedo(self, sun_zenith: Union[float, Sequence[float], str], **options: Any) -> dict:
         """Same as :func:`render_albedo` (``render_albedo(self, ...)``)."""
         return render_albedo(self, sun_zenith, **options)
 
@@ -200,11 +200,10 @@ def _material_arguments(model_or_fit, params, fit_model):
     if not _is_path(model_or_fit):
         raise InputError("expected a roadbrdf.Model, a model name or a fit file path")
     text = str(model_or_fit)
+    parameters = {str(k): float(v) for k, v in (params or {}).items()}
     if text.endswith(".json"):
-        if params:
-            raise InputError("params cannot be combined with a fit file")
-        return text, fit_model or "", "", {}, {}
-    return "", "", text, {str(k): float(v) for k, v in (params or {}).items()}, {}
+        return text, fit_model or "", "", parameters, {}
+    return "", fit_model or "", text, parameters, {}
 
 
 def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None = None, cells: int = 16,

@@ -9,11 +9,9 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,6 +24,7 @@
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
+#include "roadbrdf/surface/materials.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
 #include "roadbrdf/surface/surface_request.h"
@@ -83,30 +82,6 @@ py::dict statistics_dict(const surface::TextureStatistics& s) {
   d["exposed_area_fraction"] = s.exposed_area_fraction;
   d["exposed_true_area_fraction"] = s.exposed_true_area_fraction;
   return d;
-}
-
-// One material: a fit file (validated by reading it) or a model with fixed parameters (validated
-// like `roadbrdf surface MODEL -p ...`).
-surface::MaterialSpec material_spec(const std::string& fit, const std::string& fit_model, const std::string& model,
-                                    const std::map<std::string, double>& parameters,
-                                    const std::map<std::string, std::string>& options) {
-  surface::MaterialSpec m;
-  if (!fit.empty()) {
-    if (!parameters.empty() || !options.empty()) throw InputError("params/options apply to a model, not to a fit file");
-    read_fit_file(fit, fit_model);  // fail early on a bad file
-    m.name = std::filesystem::path(fit).stem().string();
-    m.fit = fit;
-    m.fit_path = fit;
-    m.fit_model = fit_model;
-  } else {
-    const std::unique_ptr<Model> made = make_model(model, options);
-    parameters_from_assignments(made->description(), parameters);
-    m.name = model;
-    m.model = model;
-    m.parameters = parameters;
-    m.options = options;
-  }
-  return m;
 }
 
 // Render options: validated by the library (surface/render_request.h), as for `roadbrdf render`.
@@ -180,12 +155,8 @@ void bind_surface(py::module_& m) {
     request.target_mpd = target_mpd;
     request.mastic_fraction = mastic_fraction;
     const surface::GeneratorSettings s = request.generator_settings();
-    std::ifstream in(path);
-    if (!in) throw FileError(path, 0, 0, "cannot open the formulation file");
-    std::stringstream text;
-    text << in.rdbuf();
     // As the command line: fit files are needed only to render, they may not exist yet.
-    const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(text.str(), path, false);
+    const roadbrdf::Formulation formulation = roadbrdf::read_formulation(path, false);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratedSample sample;
     {
@@ -215,7 +186,7 @@ void bind_surface(py::module_& m) {
     request.cells = cells;
     request.cell_mm = cell_mm;
     const int n = request.cell_count();
-    Field f = surface::make_flat(material_spec(fit, fit_model, model, parameters, options), n, cell_mm);
+    Field f = surface::make_flat(surface::material_spec(fit, fit_model, model, parameters, options), n, cell_mm);
     surface::validate(f);
     return keep(std::move(f));
   });
@@ -231,7 +202,7 @@ void bind_surface(py::module_& m) {
           request.seed = seed;
           request.sigma_rad = sigma_rad;
           request.validate();
-          const surface::MaterialSpec spec = material_spec(fit, fit_model, model, parameters, options);
+          const surface::MaterialSpec spec = surface::material_spec(fit, fit_model, model, parameters, options);
           Field f;
           {
             py::gil_scoped_release release;

@@ -164,6 +164,7 @@ PYBIND11_MODULE(_roadbrdf, m) {
       .def("parameters_at", &SpectralModel::parameters_at)
       .def("evaluate_flat", &evaluate_spectral_flat);
   m.def("read_fit_file", &read_fit_file, py::arg("path"), py::arg("model") = "");
+  m.def("parse_fit_file", &parse_fit_file, py::arg("json_text"), py::arg("name"), py::arg("model") = "");
   // A plain model with one parameter set, as the wavelength-independent spectral model the
   // command line makes of `MODEL -p ...`.
   m.def(

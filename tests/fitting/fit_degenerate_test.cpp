@@ -141,6 +141,12 @@ TEST(FitDegenerate, OptionParsing) {
   EXPECT_EQ(s, 0.5);
   EXPECT_THROW(robust_loss_from_string("huber", k, s), InputError);
   EXPECT_THROW(robust_loss_from_string("cauchy:-1", k, s), InputError);
+  // The scale is read as every number is (core/number.h): whole text, no hex, no leading space.
+  EXPECT_THROW(robust_loss_from_string("huber:0x1", k, s), InputError);
+  EXPECT_THROW(robust_loss_from_string("huber: 0.5", k, s), InputError);
+  EXPECT_THROW(robust_loss_from_string("huber:nan", k, s), InputError);
+  robust_loss_from_string("cauchy:+0.25", k, s);
+  EXPECT_EQ(s, 0.25);
   EXPECT_THROW(robust_loss_from_string("tukey:1", k, s), InputError);
   EXPECT_THROW(fit_loss_from_string("l1"), InputError);
   const std::vector<double> wl = {400, 410, 420, 430};

@@ -42,3 +42,25 @@ def test_fit_errors_are_input_errors():
     d = roadbrdf.Dataset([[0, 0, 0, 0]], [550.0], [[0.1]])
     with pytest.raises(roadbrdf.InputError):
         roadbrdf.fit(d, "no-such-model")
+
+
+def test_spectral_model_from_a_fit_dict_is_read_as_its_file(root, tmp_path):
+    """A fit file's content as a dict goes to the library's fit file reader directly: the same model,
+    and the same errors (JSON key paths included), the dict named fit_result instead of the file."""
+    path = tmp_path / "l.fit.json"
+    roadbrdf.fit(root / "data/examples/single/lazard.csv", "lambert", wavelengths="510:710:100", output=path)
+    content = json.loads(path.read_text())
+    from_dict, from_file = roadbrdf.spectral_model_from_fit(content), roadbrdf.read_fit(path)
+    np.testing.assert_array_equal(from_dict.wavelengths, from_file.wavelengths)
+    assert from_dict.evaluate(30, 0, 40, 180, 610.0) == from_file.evaluate(30, 0, 40, 180, 610.0)
+    content["fits"][0]["wavelengths"] = [610.0, 510.0]
+    bad = tmp_path / "bad.fit.json"
+    bad.write_text(json.dumps(content))
+    with pytest.raises(roadbrdf.InputError) as from_file_error:
+        roadbrdf.read_fit(bad)
+    with pytest.raises(roadbrdf.InputError) as from_dict_error:
+        roadbrdf.spectral_model_from_fit(content)
+    assert "wavelengths" in str(from_dict_error.value)
+    assert str(from_dict_error.value) == str(from_file_error.value).replace(str(bad), "fit_result")
+    with pytest.raises(roadbrdf.InputError, match="fit"):
+        roadbrdf.spectral_model_from_fit(content, "no-such-model")

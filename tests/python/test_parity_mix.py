@@ -67,7 +67,7 @@ def test_mix_without_data_notes_the_skipped_methods(cli, case):
     (["--method", "fitted", "--folds", "3", "--sum-to-one", "--per-wavelength"],
      dict(method="fitted", folds=3, sum_to_one=True, per_wavelength=True)),
     (["--method", "areal", "--folds", "3", "--binder-coverage", "0.4"], dict(method="areal", folds=3, binder_coverage=0.4)),
-    (["--method", "shadowed", "--folds", "3", "--no-sigma"], dict(method="shadowed", folds=3, use_sigma=False)),
+    (["--method", "shadowed", "--folds", "3", "--no-sigma-weights"], dict(method="shadowed", folds=3, use_sigma=False)),
 ], ids=["all", "fitted", "areal", "shadowed"])
 def test_mix_with_data_is_identical(cli, case, options):
     formulation, data, tmp = case

@@ -166,3 +166,27 @@ TEST(CliSurface, RenderToATargetError) {
   EXPECT_EQ(run("render " + surface + " --grid " + grid + " --samples 64 --target-error 0.02 -o " + data).status, 2);
   for (const auto& p : {surface, grid, data}) std::filesystem::remove(p);
 }
+
+// The material is built by the library (surface/materials.h material_spec), which names its fields.
+TEST(CliSurface, MaterialErrorsNameTheFlag) {
+  const std::string fit = temp_path("mat_err.fit.json"), surface = temp_path("mat_err.json");
+  write_text(fit, "{}");
+  Result r = run("surface " + fit + " --flat -p albedo=0.5 -o " + surface);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("-p: apply to a model, not to a fit file"), std::string::npos) << r.output;
+  r = run("surface lambert --flat --fit lambert -o " + surface);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--fit: selects a fit of a fit file; 'lambert' is a model name"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(surface));
+  std::filesystem::remove(fit);
+}
+
+// --size is read as every number is (core/number.h): a hexadecimal length is refused.
+TEST(CliSurface, SizeIsReadAsEveryNumber) {
+  const std::string surface = temp_path("size_err.json");
+  const Result r = run("surface missing.formulation.json --size 0x3cmm -o " + surface);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--size: expected a length such as 60mm, got '0x3cmm'"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(surface));
+}

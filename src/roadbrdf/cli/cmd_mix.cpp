@@ -1,5 +1,5 @@
 // roadbrdf mix FORMULATION.json [--data MEASURED.csv] [--method areal|fitted|mastic|hapke|shadowed|all]
-//              [--folds K] [--reference FIT.json] [--no-sigma] [--residuals RES.csv]
+//              [--folds K] [--reference FIT.json] [--no-sigma-weights] [--residuals RES.csv]
 //              [--cross-sections CAL.json] [--uncertainty] -o MIX.json
 // Predicts the BRDF of a road formulation from its components' fits (mixing/mixing.h) and, with
 // measured data of the mixed sample, compares the methods with k-fold held-out geometries.
@@ -107,8 +107,10 @@ void register_mix_command(CLI::App& app) {
                       "areal: fraction of the surface covered by binder, overriding the formulation");
   command->add_option("--mastic-fraction", args.mastic_fraction,
                       "mastic: area fraction of the mastic, overriding the formulation");
-  command->add_flag("--no-sigma", args.no_sigma,
+  command->add_flag("--no-sigma-weights", args.no_sigma,
                     "fitted, shadowed: ignore the data's sigma (default: weight residuals by 1/sigma^2 when given)");
+  // The same flag under its shorter name, hidden: the help shows the name `fit` also uses.
+  command->add_flag("--no-sigma", args.no_sigma, "")->group("");
   command->add_option("--residuals", args.residuals,
                       "With --data: write the held-out residuals per method, geometry and wavelength (CSV, "
                       "see docs/mixing.md)");

@@ -23,6 +23,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/number.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -33,6 +34,7 @@
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
+#include "roadbrdf/surface/materials.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
 #include "roadbrdf/surface/surface_request.h"
@@ -69,41 +71,18 @@ double parse_length_mm(const std::string& text) {
     t = t.substr(0, t.size() - 2);
     scale = 10.0;
   }
-  std::size_t used = 0;
   double v = 0.0;
-  try {
-    v = std::stod(t, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != t.size() || !(v > 0.0) || !std::isfinite(v))
+  if (!parse_finite_double(t, v) || !(v > 0.0))
     throw InputError("--size: expected a length such as 60mm, got '" + text + "'");
   return v * scale;
 }
 
+// The material argument: a fit file or a model name with -p/--option (checked by the library).
 surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
-  surface::MaterialSpec m;
-  if (is_fit_file_argument(a.input)) {
-    if (!a.parameter_items.empty() || !a.option_items.empty()) {
-      throw InputError("-p/--option apply to a model, not to a fit file");
-    }
-    read_fit_file(a.input, a.fit);  // fail early on a bad file or an unknown --fit
-    m.name = std::filesystem::path(a.input).stem().string();
-    m.fit = a.input;
-    m.fit_path = a.input;
-    m.fit_model = a.fit;
-  } else if (!a.fit.empty()) {
-    throw InputError("--fit selects a fit of a fit file; '" + a.input + "' is a model name");
-  } else {
-    // Validate the model, its options and parameters now.
-    const ModelWithParameters mp = model_from_command_line(a.input, a.parameter_items, a.option_items);
-    m.name = a.input;
-    m.model = a.input;
-    m.parameters = parse_numeric_assignments(a.parameter_items, "-p");
-    m.options = parse_option_assignments(a.option_items, "--option");
-    (void)mp;
-  }
-  return m;
+  const std::map<std::string, double> parameters = parse_numeric_assignments(a.parameter_items, "-p");
+  const OptionSet options = parse_option_assignments(a.option_items, "--option");
+  if (is_fit_file_argument(a.input)) return surface::material_spec(a.input, a.fit, "", parameters, options);
+  return surface::material_spec("", a.fit, a.input, parameters, options);
 }
 
 void print_statistics(std::FILE* report, const surface::HeightField& f, const surface::TextureStatistics& s) {
@@ -155,7 +134,7 @@ void run_surface(const SurfaceArgs& a) {
       throw InputError("-p/--option/--fit are for --flat and --gaussian-slopes surfaces");
     }
     // Fit files are needed only to render: they may not exist yet (warned below).
-    const roadbrdf::Formulation formulation = roadbrdf::parse_formulation(read_text_file(a.input), a.input, false);
+    const roadbrdf::Formulation formulation = roadbrdf::read_formulation(a.input, false);
     if (formulation.mastic) inputs.push_back({"mastic.fit of " + a.input, formulation.mastic->fit_path});
     for (const auto& c : formulation.components) inputs.push_back({"fit of component '" + c.name + "'", c.fit_path});
     check_distinct_files(inputs, outputs);

@@ -113,11 +113,12 @@ std::string flag_for_field(const std::string& field) {
   // Request fields whose flag is not the field name with dashes.
   static const std::map<std::string, std::string> renamed = {{"models", "--model"},
                                                              {"options", "--option"},
+                                                             {"parameters", "-p"},
                                                              {"fixed", "--fix"},
                                                              {"bounds", "--bound"},
                                                              {"bands", "--band"},
                                                              {"methods", "--method"},
-                                                             {"use_sigma", "--no-sigma"},
+                                                             {"use_sigma", "--no-sigma-weights"},
                                                              {"fit", "--fit"},
                                                              {"acceptance_deg", "--acceptance"},
                                                              {"formulation", "FORMULATION"},

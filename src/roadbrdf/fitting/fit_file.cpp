@@ -407,8 +407,12 @@ FitSelector parse_fit_selector(const std::string& text) {
 }
 
 SpectralModel read_fit_file(const std::string& path, const std::string& selection) {
-  const Json document = parse_json_file(path);
-  const JsonNode root(document, input_display_name(path));
+  return parse_fit_file(read_text_file(path), input_display_name(path), selection);
+}
+
+SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection) {
+  const Json document = parse_json_text(json_text, name);
+  const JsonNode root(document, name);
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
     throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
   }

@@ -53,6 +53,9 @@ FitSelector parse_fit_selector(const std::string& text);
 // file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
 // InputError (FieldError "fit" for a selection matching no fit or several).
 SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
+// The same from a fit file's content held in memory (Python: a fit file as a dict): `name` stands
+// for the file in error messages, which name the JSON key as for a file.
+SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection = "");
 
 // The parameter covariance per wavelength (SpectralModel::parameter_covariance) of a fit object of a
 // fit file, or of a method of a MIX.json (the same keys), from its "stderr" {name: [per wavelength]}

@@ -2,11 +2,11 @@
 
 #include <cctype>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <string>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/number.h"
 
 namespace roadbrdf::fitting {
 
@@ -133,14 +133,8 @@ void robust_loss_from_string(const std::string& text, RobustLoss& kind, double& 
   }
   if (colon == std::string::npos) throw InputError("robust loss '" + text + "' needs a scale, e.g. " + name + ":0.01");
   const std::string number = s.substr(colon + 1);
-  std::size_t used = 0;
-  double v = std::numeric_limits<double>::quiet_NaN();
-  try {
-    v = std::stod(number, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != number.size() || !(v > 0.0) || !std::isfinite(v)) {
+  double v = 0.0;
+  if (!parse_finite_double(number, v) || !(v > 0.0)) {
     throw InputError("robust loss scale '" + number + "' must be a positive number");
   }
   scale = v;

@@ -289,6 +289,8 @@ Formulation parse_formulation(const std::string& text, const std::string& path, 
   return f;
 }
 
-Formulation read_formulation(const std::string& path) { return parse_formulation(read_text_file(path), path, true); }
+Formulation read_formulation(const std::string& path, bool check_files) {
+  return parse_formulation(read_text_file(path), path, check_files);
+}
 
 }  // namespace roadbrdf

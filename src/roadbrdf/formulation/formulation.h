@@ -100,8 +100,9 @@ double effective_diameter_mm(const Formulation& formulation, const Component& co
 bool is_coarse(const Formulation& formulation, const Component& component);
 
 // Read, parse and validate a formulation file. Fit-file paths are resolved relative to the file's
-// folder and must exist. Throws FileError naming the file and the key.
-Formulation read_formulation(const std::string& path);
+// folder; check_files: they must exist (a sample can be generated before its fit files are, they
+// are needed only to render it). Throws FileError naming the file and the key.
+Formulation read_formulation(const std::string& path, bool check_files = true);
 
 // Parse JSON text; `path` is used for error messages and to resolve fit files. check_files: fail
 // when a fit file does not exist.

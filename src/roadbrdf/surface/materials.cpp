@@ -1,6 +1,7 @@
 #include "roadbrdf/surface/materials.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <utility>
 
 #include "roadbrdf/core/error.h"
@@ -9,6 +10,30 @@
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::surface {
+
+MaterialSpec material_spec(const std::string& fit_path, const std::string& fit_model, const std::string& model,
+                           const std::map<std::string, double>& parameters,
+                           const std::map<std::string, std::string>& options) {
+  MaterialSpec m;
+  if (!fit_path.empty()) {
+    if (!parameters.empty()) throw FieldError("parameters", "apply to a model, not to a fit file");
+    if (!options.empty()) throw FieldError("options", "apply to a model, not to a fit file");
+    read_fit_file(fit_path, fit_model);
+    m.name = std::filesystem::path(fit_path).stem().string();
+    m.fit = fit_path;
+    m.fit_path = fit_path;
+    m.fit_model = fit_model;
+    return m;
+  }
+  if (!fit_model.empty()) throw FieldError("fit", "selects a fit of a fit file; '" + model + "' is a model name");
+  const std::unique_ptr<Model> made = make_model(model, options);
+  parameters_from_assignments(made->description(), parameters);
+  m.name = model;
+  m.model = model;
+  m.parameters = parameters;
+  m.options = options;
+  return m;
+}
 
 std::vector<RenderMaterial> load_materials(const HeightField& field, const std::vector<double>& wavelengths) {
   if (wavelengths.empty()) throw InputError("render: no wavelengths");

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +25,17 @@ struct RenderMaterial {
   std::vector<double> parameters;  // wavelengths x parameter_count, row-major
   bool has_delta = false;
 };
+
+// The material of a flat or Gaussian-slopes sample (height_field.h), as both front ends give it:
+// a fit file `fit_path` (its best fit, or the fit `fit_model` selects), or, when fit_path is empty,
+// the model `model` with fixed `parameters` (defaults for the rest) and `options`. It is checked
+// now rather than at the first render: the fit file is read, the model made and its parameters
+// assigned. Throws FieldError("parameters" or "options" with a fit file, "fit" with a model, or the
+// fit file reader's "fit"), FileError (a bad fit file) or InputError (an unknown model, option or
+// parameter).
+MaterialSpec material_spec(const std::string& fit_path, const std::string& fit_model, const std::string& model,
+                           const std::map<std::string, double>& parameters,
+                           const std::map<std::string, std::string>& options);
 
 // Load the materials of a height field at the given wavelengths (fit files are read; model
 // materials use their fixed parameters at every wavelength). Throws InputError / FileError.
