@@ -2,8 +2,9 @@
 # Candidates per second of `roadbrdf study` on the fast path (examples/studies/F1-limestone.json as a Latin
 # hypercube of FAST candidates x 2 mixing methods, about 15 ms of CPU each: enough of them that the start-up, 1-4 s,
 # does not hide the speed-up of a second worker) and the physical path (examples/studies/F4-coarse-physical.json cut
-# to PHYSICAL candidates, about 0.45 s each), with 1 and 2 local workers, and the speed-up of 2 workers; every run
-# starts from an empty results store. Makes the component fits (examples/fit_components.sh) when
+# to PHYSICAL candidates, about 0.45 s each), with 1 and 2 local workers, and the speed-up of 2 workers next to
+# that of a pure CPU loop (what the machine offers two processes at the time); every run starts from an empty
+# results store. Makes the component fits (examples/fit_components.sh) when
 # data/examples/fits/ lacks them.
 # Usage: bench/study_bench.sh [BUILD] [PHYSICAL] [FAST]   (defaults: build, 16, 1000)
 set -euo pipefail
@@ -66,6 +67,28 @@ speedup() {  # LABEL: candidates/s with 2 workers over 1
   awk -v l="$1" '$1 == l { rate[$3] = $10 } END { printf "%-9s speed-up of 2 workers: %.2f\n", l, rate["2:"] / rate["1:"] }' \
     "$work/lines"
 }
+# What the machine gives 2 processes now (a shared machine may give less than 2 cores): the same 1-vs-2 ratio for
+# a pure CPU loop (4 chunks of about 0.5 s on 1, then 2, processes).
+/usr/bin/python3 - <<'PY'
+import multiprocessing, time
+
+
+def spin(n):
+    s = 0
+    for i in range(n):
+        s += i * i
+    return s
+
+
+if __name__ == "__main__":
+    wall = {}
+    for w in (1, 2):
+        with multiprocessing.Pool(w) as pool:
+            t = time.perf_counter()
+            pool.map(spin, [8_000_000] * 4)
+            wall[w] = time.perf_counter() - t
+    print(f"baseline  speed-up of 2 processes on a CPU loop: {wall[1] / wall[2]:.2f}")
+PY
 for w in 1 2; do run "$work/fast.json" "$w" fast; done
 speedup fast
 for w in 1 2; do run "$work/physical.json" "$w" physical; done
