@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
 import tempfile
@@ -14,7 +15,7 @@ ArrayLike = Any
 
 from . import _roadbrdf
 
-__all__ = ["InputError", "data_directory", "road_to_zenith_azimuth"]
+__all__ = ["InputError", "data_directory", "road_to_zenith_azimuth", "build_fingerprint"]
 
 #: Errors in the input: a ValueError with the same message as the command line.
 InputError = _roadbrdf.InputError
@@ -35,6 +36,41 @@ def data_directory() -> str:
     """Folder of the bundled data tables (``share/roadbrdf/data`` of the build or install tree;
     ``$ROADBRDF_DATA`` overrides it)."""
     return _roadbrdf.data_directory()
+
+
+_FINGERPRINT = None
+
+
+def build_fingerprint() -> str:
+    """SHA-256 (hex) of what this process computes with: the loaded ``_roadbrdf`` extension's bytes, the
+    package's Python sources (every ``*.py`` under the package folder, by relative path) and the bundled
+    tables that the library reads (``data_directory()/third-party``). Two processes with the same fingerprint
+    give the same numbers, bit for bit; any rebuild, edit or reinstall changes it (``__version__`` does not).
+    Computed once per process (about 30 ms)."""
+    global _FINGERPRINT
+    if _FINGERPRINT is None:
+        h = hashlib.sha256()
+
+        def add(label, path):
+            with open(path, "rb") as fh:
+                data = fh.read()
+            h.update(f"{label}\0{len(data)}\0".encode())
+            h.update(data)
+
+        add("_roadbrdf", _roadbrdf.__file__)
+        try:
+            data = os.path.join(data_directory(), "third-party")
+        except InputError:
+            data = ""  # no bundled tables: what needs them fails with this error anyway
+        for label, top in (("python", os.path.dirname(os.path.abspath(__file__))), ("data", data)):
+            files = []
+            for folder, dirs, names in os.walk(top, followlinks=True):
+                dirs[:] = [d for d in dirs if d != "__pycache__"]
+                files += [os.path.join(folder, n) for n in names if label == "data" or n.endswith(".py")]
+            for path in sorted(files, key=lambda f: os.path.relpath(f, top)):
+                add(f"{label}/{os.path.relpath(path, top)}", path)
+        _FINGERPRINT = h.hexdigest()
+    return _FINGERPRINT
 
 
 def road_to_zenith_azimuth(gamma: ArrayLike, alpha: ArrayLike, beta: ArrayLike,

@@ -5,6 +5,10 @@
   lower S1) and the R-class bands of S1 (R1 < 0.42 <= R2 < 0.85 <= R3 < 1.35 <= R4, CIE 144 / EN 13201);
 * sensitivity: each variable's effect on each output (the mean of the output over the candidates at each value
   of the variable, with the spread of the other variables as a band).
+
+The rows of several prediction methods (a fast study's ``areal``, ``mastic``, ...) are predictions of the same
+candidates by models that disagree, not more candidates: each method gets its own markers and Pareto front on the
+plane and its own line in the sensitivity panels (``method`` keeps one).
 """
 
 from __future__ import annotations
@@ -18,6 +22,17 @@ from .plot_common import finish as _finish, panels
 
 _CLASS_COLOURS = {"R1": "tab:blue", "R2": "tab:green", "R3": "tab:orange", "R4": "tab:red"}
 _S1_BANDS = [("R1", 0.0, 0.42), ("R2", 0.42, 0.85), ("R3", 0.85, 1.35), ("R4", 1.35, math.inf)]
+_MARKERS = "osD^vP*X"
+_FRONT_STYLES = ["-", "--", ":", "-."]
+
+
+def _by_method(rows, method):
+    """The rows of ``method`` (all when None) and the methods present, in order of appearance."""
+    if method is not None:
+        rows = [r for r in rows if r.get("method") == method]
+    if not rows:
+        raise ValueError("no successful candidates to draw" + (f" with method '{method}'" if method else ""))
+    return rows, list(dict.fromkeys(r.get("method", "") for r in rows))
 
 
 def read_results(path):
@@ -69,15 +84,14 @@ def pareto(x, y, maximise_y=True):
 
 
 def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None, *, ax=None, dpi=None):
-    """Solar albedo against Q0 or S1 with the Pareto front and the R-class regions (``ax``: draw into it).
+    """Solar albedo against Q0 or S1 with the Pareto front of each method and the R-class regions (``ax``: draw
+    into it; ``method``: only its rows).
 
     ``fig.roadbrdf_data``: ``albedo`` and ``lighting`` (N,) with their ``albedo_column``/``lighting_column``,
-    ``classes`` (N,), ``pareto`` (indices of the front, by increasing albedo)."""
+    ``classes`` and ``methods`` (N,), ``fronts`` ({method: indices of its front, by increasing albedo}) and
+    ``pareto`` (the fronts' indices, method after method)."""
     rows, _, header = read_results(results) if isinstance(results, str) else results
-    if method is not None:
-        rows = [r for r in rows if r.get("method") == method]
-    if not rows:
-        raise ValueError("no successful candidates to draw")
+    rows, methods = _by_method(rows, method)
     col = _albedo_column(header, albedo)
     ycol = {"Q0": "Q0 [sr^-1]", "S1": "S1 [1]"}[axis]
     x = np.array([r[col] for r in rows], dtype=float)
@@ -91,31 +105,45 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
             ax.text(1.0, (lo + min(hi, top)) / 2, f" {name}", transform=ax.get_yaxis_transform(), va="center",
                     fontsize=8, color=_CLASS_COLOURS[name])
         ax.set_ylim(0, top)
-    for name in sorted(set(classes)):
-        m = np.array([c == name for c in classes])
-        ax.scatter(x[m], y[m], s=14, color=_CLASS_COLOURS.get(name, "grey"), label=name or "no class", alpha=0.8)
-    front = pareto(x, y, maximise_y=(axis == "Q0"))
-    ax.plot(x[front], y[front], "k-", lw=1.2, label="Pareto front")
-    ax.scatter(x[front], y[front], s=30, facecolors="none", edgecolors="k")
+    of = np.array([r.get("method", "") for r in rows])
+    several = len(methods) > 1
+    for name in sorted(set(classes)):  # colour = class, marker = method
+        for k, meth in enumerate(methods):
+            m = np.array([c == name for c in classes]) & (of == meth)
+            if m.any():
+                ax.scatter(x[m], y[m], s=14, marker=_MARKERS[k % len(_MARKERS)], alpha=0.8,
+                           color=_CLASS_COLOURS.get(name, "grey"), label="_nolegend_" if several else name or "no class")
+    if several:  # the legend's keys: a colour per class, a marker per method
+        for name in sorted(set(classes)):
+            ax.scatter([], [], s=14, color=_CLASS_COLOURS.get(name, "grey"), label=name or "no class")
+        for k, meth in enumerate(methods):
+            ax.scatter([], [], s=14, marker=_MARKERS[k % len(_MARKERS)], color="grey", label=meth)
+    fronts = {}
+    for k, meth in enumerate(methods):
+        where = np.flatnonzero(of == meth)
+        front = [int(where[i]) for i in pareto(x[where], y[where], maximise_y=(axis == "Q0"))]
+        fronts[meth] = front
+        ax.plot(x[front], y[front], color="k", ls=_FRONT_STYLES[k % len(_FRONT_STYLES)], lw=1.2,
+                label=f"Pareto front, {meth}" if several else "Pareto front")
+        ax.scatter(x[front], y[front], s=30, marker=_MARKERS[k % len(_MARKERS)], facecolors="none", edgecolors="k")
     ax.set_xlabel(f"solar albedo ({col.split(' [')[0]})")
     ax.set_ylabel("Q0 [sr$^{-1}$]" if axis == "Q0" else "S1")
     ax.legend(fontsize=8)
-    ax.set_title(title or f"albedo - {axis} trade-off ({len(rows)} candidates)")
+    what = f"{len(rows)} candidates" if not several else f"{len(rows)} predictions by {len(methods)} methods"
+    ax.set_title(title or f"albedo - {axis} trade-off ({what})")
     data = {"albedo": x, "lighting": y, "albedo_column": col, "lighting_column": ycol, "classes": classes,
-            "pareto": front}
+            "methods": list(of), "fronts": fronts, "pareto": [i for f in fronts.values() for i in f]}
     return _finish(fig, output, data, [ax], dpi)
 
 
 def sensitivity(results, outputs=None, method=None, title=None, output=None, *, ax=None, fig=None, dpi=None):
-    """One panel per (output, variable): the output's mean at each value of the variable, min-max band
-    (``ax``: one axis per panel, row by row; ``fig``: a Figure / SubFigure to draw into).
+    """One panel per (output, variable): the output's mean at each value of the variable, min-max band, a line
+    per method (``ax``: one axis per panel, row by row; ``fig``: a Figure / SubFigure to draw into; ``method``:
+    only its rows).
 
-    ``fig.roadbrdf_data``: {output: {variable: {"x", "mean", "min", "max"}}}."""
+    ``fig.roadbrdf_data``: {output: {variable: {method: {"x", "mean", "min", "max"}}}}."""
     rows, variables, header = read_results(results) if isinstance(results, str) else results
-    if method is not None:
-        rows = [r for r in rows if r.get("method") == method]
-    if not rows:
-        raise ValueError("no successful candidates to draw")
+    every, methods = _by_method(rows, method)
     if not variables:
         raise ValueError("the study has no variables")
     outputs = outputs or [_albedo_column(header, None), "Q0 [sr^-1]", "S1 [1]"]
@@ -130,36 +158,47 @@ def sensitivity(results, outputs=None, method=None, title=None, output=None, *, 
         data[out] = {}
         for j, var in enumerate(variables):
             ax = axes[i][j]
-            values = [r[var] for r in rows]
-            numeric = all(isinstance(v, float) for v in values)
-            if numeric and len(set(values)) > 12:  # continuous designs: bin into 8 classes
-                edges = np.linspace(min(values), max(values), 9)
-                keys = [float(np.clip(np.searchsorted(edges, v, side="right") - 1, 0, 7)) for v in values]
-                centres = {float(k): (edges[int(k)] + edges[int(k) + 1]) / 2 for k in range(8)}
-            else:
-                keys = values
-                centres = None
-            groups = {}
-            for k, r in zip(keys, rows):
-                groups.setdefault(k, []).append(r[out])
-            order = sorted(groups)
-            pos = [centres[k] for k in order] if centres else (order if numeric else list(range(len(order))))
-            mean = [float(np.mean(groups[k])) for k in order]
-            lo = [float(np.min(groups[k])) for k in order]
-            hi = [float(np.max(groups[k])) for k in order]
-            data[out][var] = {"x": list(order) if not numeric else np.asarray(pos, dtype=float),
-                              "mean": np.asarray(mean), "min": np.asarray(lo), "max": np.asarray(hi)}
-            ax.fill_between(pos, lo, hi, alpha=0.2)
-            ax.plot(pos, mean, "o-")
-            if not numeric:
-                ax.set_xticks(pos)
-                ax.set_xticklabels(order, fontsize=7, rotation=30)
+            data[out][var] = {}
+            for meth in methods:
+                rows = [r for r in every if r.get("method", "") == meth]
+                data[out][var][meth] = _effect(ax, rows, var, out, meth if len(methods) > 1 else None)
             if i == len(outputs) - 1:
                 ax.set_xlabel(var)
             if j == 0:
                 ax.set_ylabel(out.replace(" [1]", ""))
+    if len(methods) > 1:
+        axes[0][0].legend(fontsize=7, title="method", title_fontsize=7)
     fig.suptitle(title or "sensitivity: mean (line) and range (band) over the other variables")
     return _finish(fig, output, data, flat, dpi)
+
+
+def _effect(ax, rows, var, out, label):
+    """Draw one method's mean and range of ``out`` at each value of ``var`` (continuous designs binned in 8);
+    return {"x", "mean", "min", "max"}."""
+    values = [r[var] for r in rows]
+    numeric = all(isinstance(v, float) for v in values)
+    if numeric and len(set(values)) > 12:  # continuous designs: bin into 8 classes
+        edges = np.linspace(min(values), max(values), 9)
+        keys = [float(np.clip(np.searchsorted(edges, v, side="right") - 1, 0, 7)) for v in values]
+        centres = {float(k): (edges[int(k)] + edges[int(k) + 1]) / 2 for k in range(8)}
+    else:
+        keys = values
+        centres = None
+    groups = {}
+    for k, r in zip(keys, rows):
+        groups.setdefault(k, []).append(r[out])
+    order = sorted(groups)
+    pos = [centres[k] for k in order] if centres else (order if numeric else list(range(len(order))))
+    mean = [float(np.mean(groups[k])) for k in order]
+    lo = [float(np.min(groups[k])) for k in order]
+    hi = [float(np.max(groups[k])) for k in order]
+    line, = ax.plot(pos, mean, "o-", label=label)
+    ax.fill_between(pos, lo, hi, alpha=0.2, color=line.get_color())
+    if not numeric:
+        ax.set_xticks(pos)
+        ax.set_xticklabels(order, fontsize=7, rotation=30)
+    return {"x": list(order) if not numeric else np.asarray(pos, dtype=float), "mean": np.asarray(mean),
+            "min": np.asarray(lo), "max": np.asarray(hi)}
 
 
 def add_parser(sub, output):
@@ -168,10 +207,13 @@ def add_parser(sub, output):
     p = sub.add_parser("study", help="design-study results: albedo-Q0/S1 plane with the Pareto front and class "
                                      "regions, or sensitivity panels")
     p.add_argument("result", help="results CSV of `roadbrdf study`")
-    p.add_argument("--figure", choices=["plane", "sensitivity"], default="plane")
+    p.add_argument("--figure", choices=["plane", "sensitivity"], default="plane",
+                   help="plane: solar albedo against Q0 or S1, Pareto fronts, R classes (default); sensitivity: "
+                        "each output's mean and range at each value of each variable")
     p.add_argument("--axis", choices=["Q0", "S1"], default="Q0", help="plane: the lighting axis")
     p.add_argument("--albedo", help="albedo column (default: the first blue-sky, else black-sky column)")
-    p.add_argument("--method", help="only the rows of one prediction method (e.g. mastic)")
+    p.add_argument("--method", help="only the rows of one prediction method (e.g. mastic; default: every method, "
+                                    "each with its own front or line)")
     output(p)
 
 

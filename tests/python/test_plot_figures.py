@@ -279,11 +279,43 @@ def test_study_figures_carry_their_data(tmp_path):
     # (0.15, 0.06) is beaten by (0.20, 0.08); the others trade albedo for Q0.
     assert drawn.roadbrdf_data["pareto"] == [0, 1, 3]
     np.testing.assert_array_equal(drawn.roadbrdf_data["albedo"], [0.10, 0.20, 0.15, 0.30])
+    assert drawn.roadbrdf_data["fronts"] == {"areal": [0, 1, 3]}
     fig = plot_study.sensitivity(str(results), outputs=["Q0 [sr^-1]"])
-    s = fig.roadbrdf_data["Q0 [sr^-1]"]["rock"]
+    s = fig.roadbrdf_data["Q0 [sr^-1]"]["rock"]["areal"]
     assert s["x"] == ["grey", "light"]
     np.testing.assert_allclose(s["mean"], [0.075, 0.065])
     np.testing.assert_allclose(s["min"], [0.060, 0.050])
+
+
+def test_study_figures_draw_each_method_apart(tmp_path):
+    """Two methods predicting the same candidates are not pooled: a front and a sensitivity line each."""
+    results = tmp_path / "r.csv"
+    results.write_text("candidate,status,method,rock,black_sky_30deg [1],white_sky [1],Q0 [sr^-1],S1 [1],class [R]\n"
+                       "1,ok,areal,grey,0.10,0.11,0.090,0.30,R1\n"
+                       "1,ok,mastic,grey,0.30,0.31,0.085,0.20,R1\n"
+                       "2,ok,areal,light,0.20,0.21,0.080,0.50,R2\n"
+                       "2,ok,mastic,light,0.40,0.41,0.082,0.15,R1\n"
+                       "3,failed,,grey,,,,,\n")
+    fig = plot_study.plane(str(results), "Q0")
+    data = fig.roadbrdf_data
+    assert data["methods"] == ["areal", "mastic", "areal", "mastic"]
+    # Pooled, mastic's (0.30, 0.085) would push areal's (0.20, 0.08) off the front: the same candidate predicted
+    # by another method is no competitor.
+    assert plot_study.pareto(data["albedo"], data["lighting"]) == [0, 1, 3]
+    assert data["fronts"] == {"areal": [0, 2], "mastic": [1, 3]}
+    assert data["pareto"] == [0, 2, 1, 3]
+    labels = fig.axes[0].get_legend_handles_labels()[1]
+    # The legend's keys: a colour per class, a marker per method, a front per method.
+    assert labels == ["R1", "R2", "areal", "mastic", "Pareto front, areal", "Pareto front, mastic"]
+    fig = plot_study.plane(str(results), "S1", method="mastic")
+    assert fig.roadbrdf_data["fronts"] == {"mastic": [1]} and fig.roadbrdf_data["methods"] == ["mastic", "mastic"]
+    fig = plot_study.sensitivity(str(results), outputs=["Q0 [sr^-1]"])
+    s = fig.roadbrdf_data["Q0 [sr^-1]"]["rock"]
+    np.testing.assert_allclose(s["areal"]["mean"], [0.090, 0.080])
+    np.testing.assert_allclose(s["mastic"]["mean"], [0.085, 0.082])
+    assert len(fig.axes[0].lines) == 2
+    with pytest.raises(ValueError, match="no successful candidates to draw with method 'hapke'"):
+        plot_study.plane(str(results), "Q0", method="hapke")
 
 
 # ---- 7. albedo, r-table, names, no empty panels, layout -----------------------------------------------------

@@ -7,36 +7,7 @@ import math
 import pytest
 
 import roadbrdf
-from study_support import lambert_fit
-
-
-def two_rock_study(tmp_path, design=None, variables=None):
-    """Two coarse Lambertian rocks (no binder, no mastic): the areal mixture is a Lambertian of albedo
-    sum a_k rho_k with a_k proportional to M_k / (rho_k D_k) (docs/mixing.md)."""
-    (tmp_path / "fits").mkdir(exist_ok=True)
-    lambert_fit(tmp_path / "fits" / "grey.fit.json", 0.3)
-    lambert_fit(tmp_path / "fits" / "dark.fit.json", 0.1)
-    lambert_fit(tmp_path / "fits" / "light.fit.json", 0.6)
-    (tmp_path / "base.json").write_text(json.dumps({
-        "format": "roadbrdf-formulation", "version": 1, "name": "two rocks",
-        "components": [
-            {"name": "Grey 2/6", "kind": "aggregate", "mass_percent": 40, "density_g_cm3": 2.65, "d_min_mm": 2,
-             "d_max_mm": 6, "fit": "fits/grey.fit.json"},
-            {"name": "Other 6/10", "kind": "aggregate", "mass_percent": 60, "density_g_cm3": 2.7, "d_min_mm": 6,
-             "d_max_mm": 10, "fit": "fits/dark.fit.json"}]}))
-    study = {"format": "roadbrdf-study", "version": 1, "name": "two rocks", "base": "base.json",
-             "library": {"dark": {"fit": "fits/dark.fit.json"},
-                         "light": {"fit": "fits/light.fit.json", "density_g_cm3": 2.5}},
-             "variables": variables if variables is not None else [
-                 {"name": "grey", "kind": "mass_percent", "component": "Grey 2/6", "values": [20, 50, 80],
-                  "balance": "Other 6/10"},
-                 {"name": "rock", "kind": "component", "component": "Other 6/10", "choices": ["dark", "light"]}],
-             "design": design or {"type": "grid"},
-             "predictions": {"path": "fast", "methods": ["areal"], "sun_zenith_deg": [0, 60],
-                             "diffuse_fraction": 0.25}}
-    path = tmp_path / "study.json"
-    path.write_text(json.dumps(study))
-    return path
+from study_support import two_rock_study
 
 
 def d_eff(lo, hi):

@@ -89,3 +89,17 @@ def test_dask_equals_local_and_survives_a_lost_worker(cluster, tmp_path, root):
     assert result.returncode == 0, result.stderr
     assert "4 already in the store, 0 to compute" in result.stderr
     assert store_keys(store) == keys and out.read_text() == local.read_text()
+
+
+def test_a_worker_of_another_build_stops_the_study(cluster, tmp_path, monkeypatch):
+    """Tasks submitted by another build (here: a fingerprint made up in the submitting process) are refused by
+    the workers; the study stops with the error, nothing is stored under the other build's keys."""
+    import roadbrdf
+    from roadbrdf.studies import run
+    address, _ = cluster
+    study = physical_study(tmp_path, shares=(0.0,), mastic=(0.3,), rtable=False, samples=4)
+    monkeypatch.setattr(run, "build_fingerprint", lambda: "0" * 64)
+    with pytest.raises(roadbrdf.InputError, match=r"worker .*: its roadbrdf build \(fingerprint [0-9a-f]{16}, .*\) "
+                                                  r"differs from the build that submitted the task"):
+        roadbrdf.study(study, output=tmp_path / "r.csv", scheduler=address, progress=False)
+    assert store_keys(tmp_path / "r.csv.store.jsonl") == []

@@ -1,11 +1,12 @@
 """Campaign fitting: fit every measured sample of a folder or a list with the same models and settings, and
 collect their parameter tables (``"format": "roadbrdf-campaign"``, docs/studies.md "Campaign fitting").
 
-It runs on the machinery of the design studies (run.py, store.py): one task per sample, keyed by the SHA-256 of
-(the dataset's bytes, the fit settings, the roadbrdf version), its result appended to the store as it finishes
-(an interrupted campaign resumes, a finished one re-runs for free), local processes or a Dask cluster, progress
-on standard error, a sample that fails recorded with its error without stopping the others. Each task's result
-is its rows of ``roadbrdf params`` and its fit file, byte for byte what ``roadbrdf fit -o`` writes.
+It runs on the machinery of the design studies (run.py, store.py, worker.py): one task per sample, keyed by the
+SHA-256 of (the dataset's bytes, the fit settings, the roadbrdf version and build fingerprint), its result appended
+to the store as it finishes (an interrupted campaign resumes, a finished one re-runs for free), local processes or
+a Dask cluster, progress on standard error, a sample that fails (bad data, or a bug) recorded with its error
+without stopping the others. Each task's result is its rows of ``roadbrdf params`` and its fit file, byte for
+byte what ``roadbrdf fit -o`` writes.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import os
 import shutil
 import tempfile
 
+from ..core import build_fingerprint
 from .spec import InputError, _fail, _object, _read_json, _string
 
 _TOP_KEYS = {"format", "version", "name", "description", "samples", "fit", "fits_folder"}
@@ -123,14 +125,16 @@ def read_campaign(source) -> Campaign:
     return Campaign(path, name, _samples(where, folder, data["samples"]), _settings(where, data["fit"]), fits_folder)
 
 
-def make_tasks(campaign, version):
-    """(index, sample, key, task) for every sample."""
+def make_tasks(campaign, version, build=None):
+    """(index, sample, key, task) for every sample; ``build``: the build fingerprint in the keys (default: this
+    process's, roadbrdf.core.build_fingerprint)."""
+    build = build or build_fingerprint()
     out = []
     for index, sample in enumerate(campaign.samples):
-        entry = {"data": "sha256:" + sample["sha256"], "fit": campaign.settings, "roadbrdf": version}
+        entry = {"data": "sha256:" + sample["sha256"], "fit": campaign.settings, "roadbrdf": version, "build": build}
         key = hashlib.sha256(json.dumps(entry, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
         task = {"key": key, "name": sample["name"], "path": sample["path"], "sha256": sample["sha256"],
-                "fit": campaign.settings}
+                "fit": campaign.settings, "build": build}
         out.append((index, sample, key, task))
     return out
 
@@ -145,14 +149,19 @@ def _plain(value):
 
 
 def fit_sample(task, texts):
-    """One sample's fit: {"rows": params rows, "fit_file": text, "error": None} or {"rows": [], "error": ...}.
+    """One sample's fit: {"rows": params rows, "fit_file": text, "error": None} or {"rows": [], "error": ...},
+    with its CPU time and build (worker.guarded: a task of another build is refused; an unexpected exception is
+    the sample's recorded ``internal error: ...``).
 
     The dataset is read from its path when its bytes still have the campaign's SHA-256; else (a Dask worker on
     another machine) from ``texts`` (SHA-256 -> bytes), written to a temporary file of the same name. A changed
     dataset is the sample's error."""
-    import time
+    from .worker import guarded
+    return guarded(_fit, task, texts)
+
+
+def _fit(task, texts):
     from .. import fitting
-    start = time.process_time()
     work = tempfile.mkdtemp(prefix="roadbrdf-campaign-task-")
     try:
         path = task["path"]
@@ -163,8 +172,7 @@ def fit_sample(task, texts):
             same = False
         if not same:
             if not texts or task["sha256"] not in texts:
-                return {"rows": [], "error": f"{path}: changed or unreadable since the campaign started",
-                        "seconds": time.process_time() - start}
+                return {"rows": [], "error": f"{path}: changed or unreadable since the campaign started"}
             local = os.path.join(work, os.path.basename(path))
             with open(local, "wb") as f:
                 f.write(texts[task["sha256"]])
@@ -175,12 +183,11 @@ def fit_sample(task, texts):
             result.write(fit_path)
             table = fitting.params(fit_path)
         except InputError as e:
-            return {"rows": [], "error": str(e).replace(path, task["path"]), "seconds": time.process_time() - start}
+            return {"rows": [], "error": str(e).replace(path, task["path"])}
         rows = [{k: _plain(v) for k, v in r.items()} for r in table.to_dict("records")]
         with open(fit_path, encoding="utf-8") as f:
             fit_file = f.read()
-        return {"rows": rows, "units": dict(table.attrs.get("units", {})), "fit_file": fit_file, "error": None,
-                "seconds": time.process_time() - start}
+        return {"rows": rows, "units": dict(table.attrs.get("units", {})), "fit_file": fit_file, "error": None}
     finally:
         shutil.rmtree(work, ignore_errors=True)
 

@@ -1,6 +1,6 @@
 """One study task: a candidate formulation predicted by the fast or the physical path.
 
-:func:`run_task` is a pure function of the task (a dict that ``tasks.make_task`` builds) and of the fit files'
+:func:`run_task` is a pure function of the task (a dict that ``run.make_tasks`` builds) and of the fit files'
 contents (``fits``: SHA-256 -> text): it writes them to a private folder (once per process), writes the
 candidate's formulation there, and returns its result rows. It uses one thread, so a process pool or a Dask
 worker runs one task per core, and the same task gives the same numbers, bit for bit, everywhere.
@@ -251,17 +251,15 @@ def _linear_weights(rows, cols, nr, nc):
 
 
 def run_task(task, fits):
-    """The result of one task: {"rows": [...], "error": None} or {"rows": [], "error": message}.
+    """The result of one task: {"rows": [...], "error": None} or {"rows": [], "error": message}, with its CPU
+    time and build (worker.guarded: a task of another build is refused; an unexpected exception is recorded as
+    ``internal error: ...``).
 
     Input errors of the candidate (a formulation the mixing code refuses, a mastic fraction the generator cannot
-    reach, ...) become the candidate's recorded error; anything else is a bug and propagates (and stops the
-    study, keeping what the store holds).
+    reach, ...) become the candidate's recorded error, as they are.
     """
-    import time
-    start = time.process_time()
-    result = _run(task, fits)
-    result["seconds"] = time.process_time() - start  # CPU time of the task (the store keeps it; not in the CSV)
-    return result
+    from .worker import guarded
+    return guarded(_run, task, fits)
 
 
 def _run(task, fits):

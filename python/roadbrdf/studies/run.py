@@ -1,9 +1,11 @@
 """Running a study: tasks keyed by content, executors (local processes or a Dask cluster), progress, the table.
 
 A task's key is the SHA-256 of the canonical JSON of (the candidate's formulation with every fit file replaced by
-the SHA-256 of its bytes, its mastic exposure, the prediction settings, the replicate, the roadbrdf version).
-The same key means the same computation, so a result in the store is reused whatever study, order, executor or
-machine produced it; the random seed of the physical path is taken from the key.
+the SHA-256 of its bytes, its mastic exposure, the prediction settings, the replicate, the roadbrdf version and
+the build fingerprint: roadbrdf.core.build_fingerprint). The same key means the same computation by the same code,
+so a result in the store is reused whatever study, order, executor or machine produced it, and never one of
+another build. The random seed of the physical path is taken from the same hash without the build. The task
+carries the fingerprint, and a worker of another build refuses it (worker.py).
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import os
 import sys
 import time
 
+from ..core import build_fingerprint
 from .design import apply, candidates
 from .evaluate import run_task
 from .spec import InputError
@@ -23,8 +26,14 @@ def _fit_ref(study, path):
     return "sha256:" + study.fit_hash[os.path.abspath(path)]
 
 
-def make_tasks(study, version):
-    """(index, point, replicate, key, task) for every candidate."""
+def _sha256(entry):
+    return hashlib.sha256(json.dumps(entry, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
+
+
+def make_tasks(study, version, build=None):
+    """(index, point, replicate, key, task) for every candidate; ``build``: the build fingerprint in the keys
+    (default: this process's, roadbrdf.core.build_fingerprint)."""
+    build = build or build_fingerprint()
     out = []
     for index, point, replicate in candidates(study):
         error = None
@@ -40,10 +49,14 @@ def make_tasks(study, version):
                 formulation["mastic"]["fit"] = _fit_ref(study, formulation["mastic"]["fit"])
         entry = {"formulation": formulation, "mastic_fraction": mastic_fraction, "predictions": study.predictions,
                  "replicate": replicate, "error": error, "roadbrdf": version}
-        key = hashlib.sha256(json.dumps(entry, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
+        # The seed comes from the candidate without the build, so that another build draws the same virtual
+        # samples (and a build that changes nothing in the physical path gives the same numbers).
+        seed = int(_sha256(entry)[:12], 16) % 2147483647 + 1
+        entry["build"] = build
+        key = _sha256(entry)
         task = dict(entry)
         task["key"] = key
-        task["seed"] = int(key[:12], 16) % 2147483647 + 1
+        task["seed"] = seed
         out.append((index, point, replicate, key, task))
     return out
 
@@ -54,12 +67,11 @@ class Progress:
     def __init__(self, total, cached, enabled, running="running", label="study"):
         self.total, self.cached, self.enabled, self.running, self.label = total, cached, enabled, running, label
         self.done = self.failed = 0
+        self.bug_reported = False
         self.start = time.monotonic()
         self.last = 0.0
 
-    def update(self, running, failed_now=False, force=False):
-        if failed_now:
-            self.failed += 1
+    def update(self, running, force=False):
         now = time.monotonic()
         if not self.enabled or (not force and now - self.last < 1.0):
             return
@@ -74,6 +86,21 @@ class Progress:
               f"{self.failed} failed, about {eta_text} left", file=sys.stderr, flush=True)
 
 
+def _finished(key, result, store, progress):
+    """A task's result arrived: stored, counted; the first internal error's traceback on standard error (the
+    store keeps every one)."""
+    store.add(key, result)
+    progress.done += 1
+    if result["error"] is not None:
+        progress.failed += 1
+        if result.get("traceback") and not progress.bug_reported:
+            progress.bug_reported = True
+            where = f"; every one's traceback is in {store.path}" if store.path else ""
+            print(f"roadbrdf: warning: task {key[:12]} failed with an internal error (a bug in roadbrdf: please "
+                  f"report it); the study goes on, the candidate is recorded as failed{where}:\n"
+                  f"{result['traceback'].rstrip()}", file=sys.stderr, flush=True)
+
+
 def _local(pending, shared, workers, store, progress, function):
     import concurrent.futures as cf
     import multiprocessing
@@ -85,12 +112,8 @@ def _local(pending, shared, workers, store, progress, function):
             futures[pool.submit(_run_cached, task)] = key
         try:
             for future in cf.as_completed(futures):
-                key = futures[future]
-                result = future.result()
-                store.add(key, result)
-                progress.done += 1
-                running = min(workers, len(futures) - progress.done)
-                progress.update(running, failed_now=result["error"] is not None)
+                _finished(futures[future], future.result(), store, progress)
+                progress.update(min(workers, len(futures) - progress.done))
         except BaseException:
             for f in futures:
                 f.cancel()
@@ -137,14 +160,9 @@ def _dask(pending, shared, scheduler, store, progress, function):
         futures = {}
         for key, task in pending:
             futures[client.submit(function, task, scattered, key=f"roadbrdf-study-{key}", pure=False)] = key
-        done = 0
         for future in as_completed(list(futures)):
-            key = futures[future]
-            result = future.result()
-            store.add(key, result)
-            done += 1
-            progress.done += 1
-            progress.update(len(futures) - done, failed_now=result["error"] is not None)
+            _finished(futures[future], future.result(), store, progress)
+            progress.update(len(futures) - progress.done)
     finally:
         client.close()
 
@@ -219,8 +237,12 @@ def run_pending(title, tasks, shared, function, store, scheduler, workers, progr
     cached = len(seen) - len(todo)
     bar = Progress(len(seen), cached, progress, "running or queued" if scheduler else "running", title.split()[0])
     if progress:
+        build = tasks[0][-1]["build"] if tasks else None
+        other = sum(1 for r in store.results.values() if r.get("build") != build)
         print(f"{title}: {len(tasks)} {noun}, {cached} already in the store, {len(todo)} to compute"
-              f"{' on ' + scheduler if scheduler else ''}", file=sys.stderr, flush=True)
+              f"{' on ' + scheduler if scheduler else ''}"
+              f"{f' ({other} results of other roadbrdf builds in the store are not used)' if other else ''}",
+              file=sys.stderr, flush=True)
     if todo:
         if scheduler:
             _dask(todo, shared if shared_remote is None else shared_remote, scheduler, store, bar, function)

@@ -1,7 +1,8 @@
 """The results store and the results CSV.
 
 The store is an append-only JSON-lines file: a header line, then one line per finished task (its key, its rows
-or its error). A line is written with one ``write`` on an ``O_APPEND`` descriptor and synced before the next
+or its error and, for an internal error, its traceback; the build fingerprint of the worker that computed it, the
+one in the key). A line is written with one ``write`` on an ``O_APPEND`` descriptor and synced before the next
 task's result is taken, so a killed study leaves complete lines plus at most one torn last line; that line is
 reported and removed when the store is opened again (its task runs again). The store is locked while a study
 uses it. Lines of tasks that no longer belong to the study (an edited study file) stay in the store.
@@ -79,7 +80,9 @@ class Store:
     def add(self, key, result):
         record = {"key": key, "error": result["error"], "rows": result["rows"],
                   "cpu_seconds": round(result.get("seconds", 0.0), 6)}
-        for extra in ("units", "fit_file"):  # campaign fitting: parameter units, the fit file's text (campaign.py)
+        # The worker's build fingerprint (worker.py); an internal error's traceback; campaign fitting: parameter
+        # units, the fit file's text (campaign.py).
+        for extra in ("build", "traceback", "units", "fit_file"):
             if extra in result:
                 record[extra] = result[extra]
         if self._fd is not None:

@@ -20,8 +20,11 @@
 //    are kept, and each mixture combines them exactly as evaluate_batch does: the same numbers, bit
 //    for bit, for every method.
 //
-// Uncertainties: a mixture carries no parameter covariance (the albedo and r-table reports give none
-// for it), so none is combined here; the albedo's *_error values are the quadrature error estimates.
+// Uncertainties: the cache shares end-members' values and integrals, not parameter covariances. A
+// mixture carries a covariance only when mixed with `mix --uncertainty` (mixture_covariance.h), which
+// is opt-in because its albedo uncertainty costs minutes of CPU per mixture; a study's fast path mixes
+// without it, so its albedo's *_error values are the quadrature error estimates (sum_k |a_k| e_k for
+// a linear method) and its r-table has none.
 //
 // The cache is safe to share between threads. It keeps every end-member model it has seen alive (its
 // entries are keyed by the model and the exact parameter values and geometries).
