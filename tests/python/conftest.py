@@ -34,3 +34,12 @@ def real_data():
     if not folder.is_dir():
         pytest.skip(f"real third-party data not available ({folder} is absent)")
     return folder
+
+
+def assert_same_error(cli_result, python_error, cli_field: str, py_field: str) -> None:
+    """One library error seen from both front ends: the program exits with status 2 and prints
+    ``roadbrdf: error: FLAG: MESSAGE``; Python raises ``FIELD: MESSAGE``, with the same MESSAGE."""
+    prefix = f"roadbrdf: error: {cli_field}: "
+    assert cli_result.returncode == 2 and cli_result.stderr.startswith(prefix), cli_result.stderr
+    assert str(python_error).startswith(py_field + ": "), str(python_error)
+    assert cli_result.stderr.strip()[len(prefix):] == str(python_error)[len(py_field) + 2:]
