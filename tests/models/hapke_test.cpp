@@ -284,7 +284,8 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
   // The physical ranges of b and c are the extent of the region where p >= 0 (models/hapke.h).
   EXPECT_EQ(dl.physical_range(3), (std::pair<double, double>{-std::sqrt(3.0), std::sqrt(3.0)}));
   EXPECT_EQ(dl.physical_range(4), (std::pair<double, double>{-1.0, 2.0}));
-  const ModelDescription& d2 = make_model("hapke", {{"phase", "hg2"}})->description();
+  const auto hg2 = make_model("hapke", {{"phase", "hg2"}});  // kept alive: d2 refers into it
+  const ModelDescription& d2 = hg2->description();
   ASSERT_EQ(d2.parameters.size(), 5u);
   EXPECT_EQ(d2.parameters[3].name, "hg2_b");
   EXPECT_EQ(d2.parameters[4].name, "hg2_c");
