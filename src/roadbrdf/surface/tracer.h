@@ -16,7 +16,7 @@
 // the ray is skipped without reading its corners. The tops of blocks and cells are kept as floats
 // rounded up (never below the true height, so a skip is always right) in arrays small enough for the
 // caches: the 600 x 600 grid of a 60 mm sample has 1.4 MB of cell tops and 22 kB of block tops
-// against 17 MB of cells. Grazing rays, which cross many cells above the texture, are where the
+// against 12 MB of cell corners. Grazing rays, which cross many cells above the texture, are where the
 // walk spends its time.
 //
 // Every boundary crossing is computed from the boundary's integer position, t = (x_boundary - a_x) / b_x
