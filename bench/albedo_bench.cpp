@@ -1,4 +1,4 @@
-// Albedo speed (issue 5): black-sky at 10 sun zeniths + white-sky of a fitted-like
+// Albedo speed: black-sky at 10 sun zeniths + white-sky of a fitted-like
 // oren-nayar+torrance-sparrow at 2151 wavelengths (350-2500 nm, 1 nm), default tolerance 1e-5, one core.
 // The parameters are synthetic but shaped like a road fit: a spectral diffuse albedo rising from 0.05 to
 // 0.25, a weak specular lobe (k_s 0.03-0.05, GGX roughness 0.3, ior 1.6 -> 1.5), sigma 0.3 (non-spectral).

@@ -11,7 +11,7 @@
 namespace {
 
 // A wide file of 2151 wavelengths x `geometries` rows, values with 6 significant digits as
-// instruments write them (400 rows: the 9 MB file of issue 18).
+// instruments write them (400 rows: a 9 MB file).
 std::string make_file(int geometries) {
   const std::string p =
       (std::filesystem::temp_directory_path() / ("roadbrdf_bench_2151x" + std::to_string(geometries) + ".csv"))
@@ -35,7 +35,7 @@ const std::string& big_file() {
   return path;
 }
 
-// Reading speed in MB/s of file (bytes_per_second); issue 18 asks for >= 300 MB/s.
+// Reading speed in MB/s of file (bytes_per_second); the target is >= 300 MB/s.
 void read(benchmark::State& state, const std::string& path, int geometries) {
   for (auto _ : state) {
     roadbrdf::SpectralDataset d = roadbrdf::read_dataset(path);

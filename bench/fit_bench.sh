@@ -1,5 +1,5 @@
 #!/bin/sh
-# Fitting benchmark (issues 4 and 18): roadbrdf against the per-wavelength scipy.optimize.least_squares
+# Fitting benchmark: roadbrdf against the per-wavelength scipy.optimize.least_squares
 # loop a user writes (Debian's python3-scipy; the models reimplemented in NumPy from the papers in
 # bench/fit_bench_model.py, independently of the C++ code), on synthetic datasets of 2151 wavelengths
 # x 400 geometries (bench/fit_bench_data.py: noise 1 % + 1e-4 sr^-1, 7 significant digits, ~9 MB),
@@ -15,7 +15,7 @@
 # defaults (warm start, amplitude solve, covariance; reading, statistics and writing included), timed
 # as process CPU (user + system; the median of 5 runs), against scipy's fit CPU from a fixed start (the model defaults of
 # `roadbrdf models`, b0 0.3 for Hapke), and the final costs compared at every wavelength scipy fitted.
-# Then the same-start comparison of issue 4 (ON+TS, --no-warm-start --no-amplitude-solve --loss plain)
+# Then the same-start comparison (ON+TS, --no-warm-start --no-amplitude-solve --loss plain)
 # and the joint spectral fits (--shared auto: the parameters declared non-spectral are shared).
 #
 # Usage: bench/fit_bench.sh [BUILD_DIR] [SCIPY_STRIDE]   (defaults: build, 1; STRIDE > 1 fits every
@@ -70,7 +70,7 @@ PY
   fi
 done
 
-echo "==== oren-nayar+torrance-sparrow, same start at every wavelength (issue 4)"
+echo "==== oren-nayar+torrance-sparrow, same start at every wavelength"
 same="--model oren-nayar+torrance-sparrow $onts_fix --start oren-nayar.albedo=0.5 --start oren-nayar.sigma=0.3 \
   --start torrance-sparrow.ks=0.5 --start torrance-sparrow.roughness=0.3 --loss plain --no-covariance"
 # shellcheck disable=SC2086

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Fitting benchmark of every registered model (issue 18: "no model below 10x"): roadbrdf against the
+# Fitting benchmark of every registered model (target: no model below 10x): roadbrdf against the
 # per-wavelength scipy.optimize.least_squares loop a user writes, as bench/fit_bench.sh does for oren-nayar,
 # oren-nayar+torrance-sparrow and hapke, for the other models too. The NumPy models are written from the
 # papers (bench/fit_bench_model.py, bench/fit_bench_model_more.py), independently of the C++ code; the data

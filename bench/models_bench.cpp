@@ -1,4 +1,4 @@
-// Batch evaluation speed of every registered model (issue 2):
+// Batch evaluation speed of every registered model:
 //   <model>/geometries:100000/wavelengths:1   and   <model>/geometries:1000/wavelengths:2151
 // items_per_second = BRDF evaluations per second on one core.
 // Run: build/bench/models_bench --benchmark_min_time=0.2

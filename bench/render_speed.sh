@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Virtual gonioreflectometer speed (issue 9 goal: 400 geometries x 20 wavelength bands at 1 %
+# Virtual gonioreflectometer speed (goal: 400 geometries x 20 wavelength bands at 1 %
 # standard error in under 5 minutes on the 2-core machine).
 # Usage: nice bash bench/render_speed.sh BUILD_DIR [SAMPLING]   (SAMPLING: brdf (default) | cosine)
 #

@@ -98,7 +98,7 @@ for m in garonne-bitumen soreze-bitumen soreze-synthetic; do
 done
 
 # ---- FORMER mixed samples F1-F4 (report Table 5.1): NONLINEAR geometric mixing ---------------------
-# Until issue 17 these were the bundled data/examples/mixed/F1-F4.csv. They are circular for the `shadowed`
+# These used to be the bundled data/examples/mixed/F1-F4.csv. They are circular for the `shadowed`
 # mixing method (it fits the same shadowing form), so the bundled mixtures are now path-traced virtual samples
 # (examples/make_virtual_mixtures.sh, called at the end of this script). These geometric mixtures are still
 # made here, but outside the source tree (not bundled: 644 KB, and reproducible from the bundled components
@@ -194,7 +194,7 @@ awk -F, '/^#/ { next } /^gamma/ { print "# dark signal (arbitrary radiance units
   $E/calibration/sample-radiance.csv > $E/calibration/dark.csv
 "$R" calibrate $E/calibration/sample-radiance.csv --reference $E/calibration/reference-radiance.csv \
   --dark $E/calibration/dark.csv --panel-reflectance $PANEL -o $E/calibration/soreze-limestone-calibrated.csv
-# ---- mixed samples F1-F4: path-traced virtual samples of the formulations (issue 17) ---------------
+# ---- mixed samples F1-F4: path-traced virtual samples of the formulations ---------------
 # made of the fits of the components above; about 45 s CPU (see data/examples/README.md).
 bash examples/make_virtual_mixtures.sh "$(dirname "$R")" "$(dirname "$R")/virtual-mixtures" $E/mixed
 echo "example data written to $E (former geometric mixtures: $GEOMETRIC)"

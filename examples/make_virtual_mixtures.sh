@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the SYNTHETIC "measured" mixtures data/examples/mixed/F1-F4.csv (issue 17) from virtual samples
+# Regenerates the SYNTHETIC "measured" mixtures data/examples/mixed/F1-F4.csv from virtual samples
 # rendered by the path tracer, so that no mixing method's formula made them (data/examples/README.md).
 # Usage: examples/make_virtual_mixtures.sh [BUILD_DIR] [WORK_DIR] [OUT_DIR]
 #   defaults: build, build/virtual-mixtures, data/examples/mixed. Not run by the tests.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Real intimate mixtures of the USGS Spectral Library v7 (splib07a; Kokaly et al. 2017,
-# doi:10.5066/F7RR1WDJ) through the roadbrdf chain, issue 17 (docs/mixing.md, "Real intimate mixtures"):
+# doi:10.5066/F7RR1WDJ) through the roadbrdf chain (docs/mixing.md, "Real intimate mixtures"):
 #   end-member spectrum -> dataset (convert --from usgs, BRDF = R/pi at an assumed geometry)
 #   -> Hapke fit (single-scattering albedo per wavelength) -> one formulation per mixture (wt %)
 #   -> mix --method hapke and --method areal -> RMS reflectance error against the measured mixture;

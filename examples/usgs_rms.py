@@ -16,7 +16,7 @@ those wavelengths (exact for the 1 nm ASD channels): RMS = sqrt(mean (R_pred - R
 The table (written atomically): mixture, the wt % columns, rms_hapke, rms_areal, ratio = rms_areal /
 rms_hapke (> 1: hapke better), then rms_insample and rms_calibrated when present ("n/a": no prediction).
 --check-ratio K exits 1 unless hapke is at least K times better than areal for more than half of the mixtures
-(the target of issue 17), after printing the table either way. --check-loo-mean X exits 1 unless the mean of
+(the target of the validation), after printing the table either way. --check-loo-mean X exits 1 unless the mean of
 rms_calibrated over the mixtures is <= X (every mixture must have a prediction); --check-calibration-improves
 exits 1 unless that mean is below the mean of rms_hapke over the same mixtures.
 """

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The virtual-sample ground truth for the mixing methods (docs/virtual-study.md; issues 9 and 6).
+# The virtual-sample ground truth for the mixing methods (docs/virtual-study.md).
 # Usage: examples/virtual_study.sh BUILD_DIR OUT_DIR
 #   BUILD_DIR: a build with the `roadbrdf` program and the Python module (BUILD_DIR/python).
 # Writes fits/, formulations/, surfaces/, data/, vfits/, vformulations/, mix/ and report.md in OUT_DIR.

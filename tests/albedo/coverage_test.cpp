@@ -1,5 +1,5 @@
-// Angular coverage of a fit's data and how much of an albedo or r-table lies outside it (issue 13,
-// item 4). References: closed forms for a Lambertian surface (the share of int cos(theta) dw beyond
+// Angular coverage of a fit's data and how much of an albedo or r-table lies outside it.
+// References: closed forms for a Lambertian surface (the share of int cos(theta) dw beyond
 // a zenith angle T is cos^2 T; an azimuth sector of width W holds W/360 of it) and hand-made
 // tables; the fit file round trip is checked against the coverage computed here.
 #include <gtest/gtest.h>

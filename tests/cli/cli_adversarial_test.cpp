@@ -1,4 +1,4 @@
-// Adversarial command lines for every class of issue 15 beyond data loss (cli_data_loss_test.cpp):
+// Adversarial command lines for every class of bad input beyond data loss (cli_data_loss_test.cpp):
 // deeply nested and malformed JSON, float-to-int casts of untrusted numbers, parameters outside
 // their declared bounds, silently accepted inputs, errors without a location. Every case asserts a
 // clear message naming the file (and the key path or line where there is one), a non-zero exit

@@ -1,4 +1,4 @@
-// Adversarial command lines that used to lose a user's data (issue 15, items 1-4): an output that
+// Adversarial command lines that used to lose a user's data: an output that
 // is an input, unchecked writes to standard output and full disks, AtomicFile replacing links,
 // FIFOs and read-only files, read errors taken for the end of a file. Every refused case asserts a
 // clear message naming the file, a non-zero exit, no input modified and no temporary file left.

@@ -1,4 +1,4 @@
-// AtomicFile and check_distinct_files (core/atomic_file.h): the rules of issue 15 for output files.
+// AtomicFile and check_distinct_files (core/atomic_file.h): the rules for output files.
 #include "roadbrdf/core/atomic_file.h"
 
 #include <fcntl.h>

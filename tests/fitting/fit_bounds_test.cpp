@@ -1,5 +1,5 @@
 // fit --bounds: a parameter's range may be narrowed or widened inside its physical range, which the
-// model metadata declares once (issue 13, item 4). On the real CEA 3M retroreflective tape
+// model metadata declares once. On the real CEA 3M retroreflective tape
 // (data/third-party/retroreflective, ALTA format) retro-phong's Phong exponent stops at the default
 // upper bound n = 1000; widened, the fit moves beyond it and its cost can only fall.
 #include <gtest/gtest.h>

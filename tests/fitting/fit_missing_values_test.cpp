@@ -1,6 +1,6 @@
 // Missing values (NaN cells: measurements not made) are masked out of the fit at their wavelength:
 // the fit of a dataset with one NaN cell is the fit of the same dataset without that geometry at
-// that wavelength (issue 13, item 2). The reference is an independent fit of the reduced dataset,
+// that wavelength. The reference is an independent fit of the reduced dataset,
 // not a number printed by the code under test.
 #include <gtest/gtest.h>
 

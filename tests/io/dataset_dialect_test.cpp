@@ -1,7 +1,7 @@
-// Files as people write them (issue 13, item 2): every dialect reads to the same dataset as the
+// Files as people write them: every dialect reads to the same dataset as the
 // canonical CSV; the dialect is detected from the header line, --delimiter/--decimal override it,
 // ambiguous or contradictory files are errors that name the options. Long files are checked for
-// shape before the table is allocated (issue 15, item 6).
+// shape before the table is allocated.
 #include <gtest/gtest.h>
 
 #include <cmath>

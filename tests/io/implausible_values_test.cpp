@@ -1,4 +1,4 @@
-// Implausible files are read as they are, with a warning (issue 13, item 2): BRDF values above
+// Implausible files are read as they are, with a warning: BRDF values above
 // 1e3 sr^-1, wavelengths that all look like micrometres, angles that all look like radians; and a
 // fit that reports convergence without leaving its start is warned about.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Single- and few-band fits and mixtures are first class (issue 13, item 1): albedo, rtable and eval
+// Single- and few-band fits and mixtures are first class: albedo, rtable and eval
 // work on a fit or MIX.json with one wavelength (or a few), report the per-wavelength values and omit,
 // with a note, the broadband / luminous values that cannot be formed.
 // References: Lambert closed forms (every albedo equals rho; q = rho / pi, r = q cos^3 gamma,

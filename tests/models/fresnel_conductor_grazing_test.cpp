@@ -1,4 +1,4 @@
-// The exact conductor Fresnel term never goes negative (issue 15, item 15: Torrance-Sparrow with
+// The exact conductor Fresnel term never goes negative (Torrance-Sparrow with
 // fresnel=exact-conductor, k = 0, theta_r = 90 deg gave -4.9e-17), and with k = 0 it is the
 // dielectric Fresnel reflectance, written out here independently (Born & Wolf, s and p amplitudes).
 #include <gtest/gtest.h>

@@ -104,7 +104,7 @@ double directional_albedo(const Model& m, const std::vector<double>& p, double t
 
 TEST(OrenNayar, NotEnergyConservingTowardsGrazingAsDeclared) {
   // The paper's closed forms are fitted approximations: with albedo 1 their directional albedo
-  // exceeds 1 at grazing sun (issue 17's independent re-implementation: 1.044 at sigma = 0.3, 89 deg).
+  // exceeds 1 at grazing sun (an independent re-implementation: 1.044 at sigma = 0.3, 89 deg).
   // The metadata must say so (the model-property test checks albedo <= 1 only where it is declared).
   for (const std::string form : {"full", "qualitative"}) {
     auto m = make_model("oren-nayar", {{"form", form}});

@@ -1,7 +1,7 @@
 // Tests of the Retro-Phong road-marking model (Spieringhs et al., JOSA A 40(3):590, 2023; report eq. 3.27).
 // Reference values: closed forms derived by hand at the exact retro, mirror and normal directions, with
 // the report's three fitted parameter sets (section 3.7; "3M Stamark A650" k2 = 1.53e-12, the report's
-// "0.1.53e-12" being a typo, see the reference README).
+// "0.1.53e-12" being a typo, docs/report-corrections.md).
 #include "roadbrdf/models/retro_phong.h"
 
 #include <gtest/gtest.h>

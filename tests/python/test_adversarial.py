@@ -1,4 +1,4 @@
-"""Bad input from Python (issue 15): every case raises roadbrdf.InputError with the CLI's message,
+"""Bad input from Python: every case raises roadbrdf.InputError with the CLI's message,
 never a crash or a RuntimeError."""
 import json
 

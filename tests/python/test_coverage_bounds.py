@@ -1,5 +1,5 @@
 """Coverage, extrapolation and non-physical flags in Python and on the command line, and fit bounds
-within the physical range (issue 13, item 4). References: closed forms for a Lambertian surface measured
+within the physical range. References: closed forms for a Lambertian surface measured
 in the principal plane only (4 azimuth sectors of 5 deg of 360 are covered) and the model metadata."""
 import json
 import math

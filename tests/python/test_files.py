@@ -1,4 +1,4 @@
-"""Files from Python follow the command line's rules (issue 15): an output is never an input,
+"""Files from Python follow the command line's rules: an output is never an input,
 failed writes raise InputError naming the file, links are written through, nothing is left behind."""
 import errno
 import os

@@ -1,4 +1,4 @@
-"""Missing cells (nan, empty, NA) are measurements not made (issue 13, item 2): the Python readers keep
+"""Missing cells (nan, empty, NA) are measurements not made: the Python readers keep
 them as NaN, the fit masks them out at their wavelength, and the fit of a file with one NaN cell equals
 the fit of the same file with that geometry removed at that wavelength (an independent fit of the
 reduced file is the reference)."""

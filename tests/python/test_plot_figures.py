@@ -1,4 +1,4 @@
-"""The figures of issue 14 (roadbrdf.plot and `roadbrdf plot`): the data behind each figure
+"""The figures (roadbrdf.plot and `roadbrdf plot`): the data behind each figure
 (fig.roadbrdf_data) against values computed here independently - Lambert closed forms (BRDF = rho/pi, every
 albedo = rho, r-table S1 = cos^3(atan 2)), the CSV values of small datasets written in tmp_path, areal mixing
 weights from the formulation's densities - and the properties the issue asks for: axes the caller gives,

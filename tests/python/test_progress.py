@@ -1,4 +1,4 @@
-"""Progress bars of long commands (issue 13, item 5): drawn on standard error only when it is a terminal,
+"""Progress bars of long commands: drawn on standard error only when it is a terminal,
 never with --quiet, and nothing in a pipe or log but the usual summary (core/progress.h)."""
 import os
 import pty

@@ -1,4 +1,4 @@
-"""Single-band fits are first class in Python and the figures (issue 13, item 1). References: Lambert
+"""Single-band fits are first class in Python and the figures. References: Lambert
 closed forms (every albedo equals rho, Q0 = rho / pi)."""
 import json
 import math
