@@ -73,7 +73,7 @@ class HeightFieldTracer {
   // cells of a block row by row inside it, so that a block's cells are near each other in memory.
   std::size_t cell_index(long iw, long jw) const {
     const auto block = static_cast<std::size_t>(jw / kBlock) * blocks_x_ + static_cast<std::size_t>(iw / kBlock);
-    return block * (kBlock * kBlock) + static_cast<std::size_t>(jw % kBlock) * kBlock +
+    return block * static_cast<std::size_t>(kBlock * kBlock) + static_cast<std::size_t>(jw % kBlock) * kBlock +
            static_cast<std::size_t>(iw % kBlock);
   }
 
