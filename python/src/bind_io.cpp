@@ -20,6 +20,7 @@
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/quality.h"
 #include "roadbrdf/io/usgs.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace py = pybind11;
 
@@ -151,9 +152,10 @@ void bind_instruments(py::module_& m) {
       "calibrate_manifest",
       [](const std::string& path, const std::string& panel, const std::string& panel_brf,
          std::optional<double> brf_start, std::optional<double> brf_step, const std::string& overlap) {
-        const std::optional<Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks first
+        const std::optional<spectra::Spectrum> brf =
+            read_panel_brf(panel_brf, brf_start, brf_step);  // its checks first
         return dataset_to_dict(
-            calibrate_manifest(read_manifest(path), read_spectrum(panel), brf, manifest_options(overlap)));
+            calibrate_manifest(read_manifest(path), spectra::read_spectrum(panel), brf, manifest_options(overlap)));
       },
       py::arg("path"), py::arg("panel_reflectance"), py::arg("panel_brf") = "", py::arg("panel_brf_start") = py::none(),
       py::arg("panel_brf_step") = py::none(), py::arg("overlap") = "upper");

@@ -78,17 +78,19 @@ TEST(Spectrl2, ParsesSettingsAndRejectsUnknown) {
 }
 
 TEST(SpectralWeighting, ConstantAlbedoAndOutsideFraction) {
-  const SolarSpectrum g = astm_g173("global");
+  const spectra::Spectrum g = astm_g173("global");
   const WeightedValue w = spectral_weighted_mean({280.0, 4000.0}, {0.3, 0.3}, {}, g);
   EXPECT_NEAR(w.value, 0.3, 1e-12);
   EXPECT_NEAR(w.fraction_outside, 0.0, 1e-12);
   // Half the range: the outside fraction is the energy above 1000 nm, computed independently here.
   const WeightedValue h = spectral_weighted_mean({280.0, 1000.0}, {0.2, 0.2}, {}, g);
   double inside = 0.0, total = 0.0;
-  for (std::size_t k = 1; k < g.wavelengths.size(); ++k) {
-    const double seg = 0.5 * (g.irradiance[k] + g.irradiance[k - 1]) * (g.wavelengths[k] - g.wavelengths[k - 1]);
+  const std::vector<double>& wl = g.wavelengths();
+  const std::vector<double>& e = g.values();
+  for (std::size_t k = 1; k < wl.size(); ++k) {
+    const double seg = 0.5 * (e[k] + e[k - 1]) * (wl[k] - wl[k - 1]);
     total += seg;
-    if (g.wavelengths[k] <= 1000.0) inside += seg;
+    if (wl[k] <= 1000.0) inside += seg;
   }
   EXPECT_NEAR(h.fraction_outside, 1.0 - inside / total, 1e-9);
   EXPECT_NEAR(h.value, 0.2, 1e-12);

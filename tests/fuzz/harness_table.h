@@ -34,6 +34,7 @@ inline const std::map<std::string, Harness>& harnesses() {
       {"selection", selection_one_input},
       {"sig", sig_one_input},
       {"solar", solar_one_input},
+      {"spectrum", spectrum_one_input},
       {"surface", surface_one_input},
       {"usgs", usgs_one_input},
   };

@@ -1,7 +1,7 @@
 // libFuzzer entry points of the file parsers (datasets, geometry tables, CUReT, ALTA, formulations,
-// fit and MIX files, r-tables, solar spectra, surfaces, USGS splib07a spectra), as inline functions shared by the
-// harness programs (*_fuzz.cpp, one LLVMFuzzerTestOneInput each). Rejecting an input with InputError or FileError is
-// the expected outcome; any other exception, a crash or a sanitizer report is a bug.
+// fit and MIX files, r-tables, spectrum files and solar spectra, surfaces, USGS splib07a spectra), as inline functions
+// shared by the harness programs (*_fuzz.cpp, one LLVMFuzzerTestOneInput each). Rejecting an input with InputError or
+// FileError is the expected outcome; any other exception, a crash or a sanitizer report is a bug.
 //
 // Parsers that read a path get the input in a per-process scratch file. Warnings are swallowed.
 // Built two ways (tests/fuzz/CMakeLists.txt): with -DROADBRDF_FUZZ=ON as libFuzzer programs
@@ -35,6 +35,7 @@
 #include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/photometry/rtable_io.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 #include "roadbrdf/surface/height_field.h"
 
 namespace roadbrdf::fuzz {
@@ -184,6 +185,53 @@ inline int rtable_rtb_one_input(const std::uint8_t* data, std::size_t size) {
 inline int solar_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("solar.csv", bytes(data, size));
   return refusing([&] { albedo::read_solar_spectrum(file.path()); });
+}
+
+// The spectrum reader (spectra/spectrum_file.h) under three sets of options: the permissive default
+// (one to three columns, a grid for one-column files), a wide table's named column, and the strict
+// solar checks. Beyond refusing bad input, an accepted spectrum must keep the reader's promises:
+// finite, strictly increasing wavelengths, finite values, as many uncertainties as values or none,
+// >= 0 where asked; a broken promise aborts.
+inline void check_spectrum(const spectra::Spectrum& s, bool non_negative) {
+  const auto& w = s.wavelengths();
+  const auto& v = s.values();
+  bool kept = !w.empty() && w.size() == v.size() && (s.sigma().empty() || s.sigma().size() == v.size());
+  for (std::size_t k = 0; kept && k < w.size(); ++k) {
+    kept = std::isfinite(w[k]) && std::isfinite(v[k]) && (k == 0 || w[k] > w[k - 1]) && (!non_negative || v[k] >= 0.0);
+  }
+  if (!kept) {
+    std::fprintf(stderr, "spectrum: accepted a spectrum that breaks the reader's promises\n");
+    std::abort();
+  }
+}
+
+inline int spectrum_one_input(const std::uint8_t* data, std::size_t size) {
+  const ScratchFile file("spectrum.txt", bytes(data, size));
+  spectra::SpectrumReadOptions permissive;
+  permissive.first_wavelength = 350.0;
+  permissive.step = 1.0;
+  spectra::SpectrumReadOptions wide;
+  wide.value_column = "value";
+  spectra::SpectrumReadOptions strict;
+  strict.uncertainties = false;
+  strict.one_column = false;
+  strict.non_negative = true;
+  strict.min_points = 2;
+  strict.positive_integral = true;
+  strict.interpolation = spectra::Interpolation::kSprague;
+  for (const auto* o : {&permissive, &wide, &strict}) {
+    refusing([&] {
+      const spectra::Spectrum s = spectra::read_spectrum(file.path(), *o);
+      check_spectrum(s, o->non_negative);
+      // Interpolation anywhere inside the range gives a finite value.
+      const double mid = 0.5 * (s.min_wavelength() + s.max_wavelength());
+      if (!std::isfinite(s.value(mid))) {
+        std::fprintf(stderr, "spectrum: interpolated value is not finite\n");
+        std::abort();
+      }
+    });
+  }
+  return 0;
 }
 
 inline int surface_one_input(const std::uint8_t* data, std::size_t size) {

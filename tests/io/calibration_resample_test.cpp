@@ -12,13 +12,14 @@
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/resample.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf {
 namespace {
 
 const std::string kSpectralon = roadbrdf::data_directory() + "/third-party/spectralon/Spectralon_Num4.txt";
 
-// The calibration file parsed here, independently of read_spectrum.
+// The calibration file parsed here, independently of spectra::read_spectrum.
 std::map<int, std::pair<double, double>> spectralon_table() {
   std::ifstream in(kSpectralon);
   std::map<int, std::pair<double, double>> t;
@@ -49,7 +50,7 @@ TEST(Calibration, LambertianPanelAgainstItselfGivesRhoOverPi) {
   SpectralDataset dark = radiances(wl, 0.0, 1);  // one dark row for every geometry
   for (auto& v : dark.brdf) v = 3.0;
   in.dark = dark;
-  in.panel_reflectance = read_spectrum(kSpectralon);
+  in.panel_reflectance = spectra::read_spectrum(kSpectralon);
   const SpectralDataset f = calibrate(in);
   ASSERT_EQ(f.geometry_count(), 4u);
   ASSERT_TRUE(f.has_sigma());  // the panel's calibration uncertainty propagates
@@ -72,8 +73,8 @@ TEST(Calibration, InterpolatesTheReferenceAndPropagatesRadianceUncertainty) {
   in.reference = radiances(wl, 0.0, 1);
   in.reference.brdf = {200.0};
   in.reference.sigma = {4.0};
-  in.panel_reflectance = read_spectrum(kSpectralon);
-  in.panel_reflectance.sigma.clear();
+  const spectra::Spectrum panel = spectra::read_spectrum(kSpectralon);
+  in.panel_reflectance = spectra::Spectrum(panel.name(), panel.wavelengths(), panel.values());  // without sigma
   const double rho = 0.5 * (table.at(500).first + table.at(501).first);  // linear interpolation at 500.5 nm
   const double c = rho / std::numbers::pi;
   const SpectralDataset f = calibrate(in);
@@ -87,7 +88,7 @@ TEST(Calibration, RefusesExtrapolationAndBadReference) {
   CalibrationInput in;
   in.sample = radiances({340.0, 400.0}, 1.0, 1);
   in.reference = in.sample;
-  in.panel_reflectance = read_spectrum(kSpectralon);
+  in.panel_reflectance = spectra::read_spectrum(kSpectralon);
   try {
     calibrate(in);
     FAIL();
@@ -106,13 +107,13 @@ TEST(Calibration, RefusesExtrapolationAndBadReference) {
 
 TEST(Calibration, OneColumnPanelBrf) {
   const std::string path = roadbrdf::data_directory() + "/third-party/spectralon/BRF_i10_e0.txt";
-  SpectrumReadOptions o;
+  spectra::SpectrumReadOptions o;
   o.first_wavelength = 350;
   o.step = 1;
-  const Spectrum brf = read_spectrum(path, o);
-  ASSERT_EQ(brf.values.size(), 2151u);
-  EXPECT_EQ(brf.wavelengths.back(), 2500.0);
-  EXPECT_THROW(read_spectrum(path), FileError);  // the grid must be stated
+  const spectra::Spectrum brf = spectra::read_spectrum(path, o);
+  ASSERT_EQ(brf.values().size(), 2151u);
+  EXPECT_EQ(brf.wavelengths().back(), 2500.0);
+  EXPECT_THROW(spectra::read_spectrum(path), FileError);  // the grid must be stated
 }
 
 TEST(Resample, BandAveragesMatchHandComputedIntegrals) {
@@ -151,7 +152,7 @@ TEST(MissingValues, CalibrationKeepsAMissingRadianceMissing) {
   in.reference = radiances(wl, 2000.0, 1);
   in.sample.value(1, 2) = std::numeric_limits<double>::quiet_NaN();     // sample not measured
   in.reference.value(0, 0) = std::numeric_limits<double>::quiet_NaN();  // reference not measured at 500 nm
-  in.panel_reflectance = read_spectrum(kSpectralon);
+  in.panel_reflectance = spectra::read_spectrum(kSpectralon);
   const SpectralDataset out = calibrate(in);
   const auto table = spectralon_table();
   EXPECT_TRUE(std::isnan(out.value(0, 0)));

@@ -7,6 +7,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 #include "support/cli.h"
 #include "support/paths.h"
 #include "support/scratch.h"
@@ -22,7 +23,8 @@ TEST(InstrumentCli, CalibrateManifestEqualsTheLibrary) {
       test::run_cli("calibrate --manifest " + dir() + "run.csv --panel-reflectance " + dir() + "rho.txt -o " + out);
   ASSERT_EQ(r.status, 0) << r.output;
   const SpectralDataset cli = read_dataset(out);
-  const SpectralDataset lib = calibrate_manifest(read_manifest(dir() + "run.csv"), read_spectrum(dir() + "rho.txt"));
+  const SpectralDataset lib =
+      calibrate_manifest(read_manifest(dir() + "run.csv"), spectra::read_spectrum(dir() + "rho.txt"));
   EXPECT_EQ(cli.brdf, lib.brdf);
   EXPECT_EQ(cli.convention, AngleConvention::kRoad);
   EXPECT_EQ(cli.metadata.at("white_reference"), "run_white.asd");

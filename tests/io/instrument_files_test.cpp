@@ -11,6 +11,7 @@
 #include "roadbrdf/io/asd.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 #include "support/paths.h"
 #include "support/scratch.h"
 
@@ -226,7 +227,7 @@ TEST(Manifest, AsdRunWithWhiteAndDarkGivesClosedForm) {
   const Manifest m = read_manifest(dir() + "run.csv");
   EXPECT_EQ(m.entries.size(), 5u);
   EXPECT_EQ(m.convention, AngleConvention::kRoad);
-  Spectrum panel = read_spectrum(dir() + "rho.txt");
+  spectra::Spectrum panel = spectra::read_spectrum(dir() + "rho.txt");
   const SpectralDataset f = calibrate_manifest(m, panel);
   ASSERT_EQ(f.geometry_count(), 3u);
   ASSERT_EQ(f.wavelength_count(), 21u);
@@ -251,7 +252,7 @@ TEST(Manifest, AsdRunWithWhiteAndDarkGivesClosedForm) {
 
 TEST(Manifest, EmbeddedReferencesEqualTheTwoStepPath) {
   const Manifest m = read_manifest(dir() + "run_sed.csv");
-  const Spectrum panel = read_spectrum(dir() + "rho.txt");
+  const spectra::Spectrum panel = spectra::read_spectrum(dir() + "rho.txt");
   const SpectralDataset f = calibrate_manifest(m, panel);
   EXPECT_EQ(f.metadata.at("white_reference"), "embedded (the reference stored in each sample file)");
   EXPECT_EQ(f.metadata.at("dark"), "none");

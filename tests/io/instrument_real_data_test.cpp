@@ -13,6 +13,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 #include "support/paths.h"
 #include "support/scratch.h"
 
@@ -231,7 +232,7 @@ TEST(InstrumentRealData, ManifestOfRealFilesCalibrates) {
   std::ofstream(manifest) << "file,role,theta_i,phi_i,theta_r,phi_r\n" << asd << ",sample,0,0,45,180\n";
   const std::string panel = test::scratch_path("flat_panel.txt");
   std::ofstream(panel) << "300 0.99\n2600 0.99\n";
-  const SpectralDataset f = calibrate_manifest(read_manifest(manifest), read_spectrum(panel));
+  const SpectralDataset f = calibrate_manifest(read_manifest(manifest), spectra::read_spectrum(panel));
   ASSERT_EQ(f.wavelength_count(), 2151u);
   EXPECT_NEAR(f.value(0, 500 - 350) * std::numbers::pi / 0.99, 0.843, 0.0005);
   EXPECT_NEAR(f.value(0, 1000 - 350) * std::numbers::pi / 0.99, 0.893, 0.0005);

@@ -166,9 +166,7 @@ TEST(Quality, FlagsNoisyWaterBandsOnly) {
 
 TEST(Quality, PanelValidationAgainstRhoOverPi) {
   SpectralDataset d = simulate("lambert", {{"albedo", 0.9}}, {});
-  Spectrum rho;
-  rho.wavelengths = {300, 2500};
-  rho.values = {0.9, 0.9};
+  const spectra::Spectrum rho("rho", {300, 2500}, {0.9, 0.9});
   QualityOptions o;
   o.panel_reflectance = rho;
   const QualityReport clean = check_dataset(d, o);

@@ -123,7 +123,7 @@ TEST(Cie, CoverageOfTheWholeRangeIsOne) {
 TEST(Cie, LampFile) {
   // Equal-energy lamp: the weighted mean of V over it is int V^2 / int V.
   const std::string path = temp_file("flat.csv", "# flat lamp\nwavelength_nm,power\n360,2\n830,2\n");
-  const TabulatedSpectrum lamp = read_spectrum_file(path);
+  const spectra::Spectrum lamp = read_lamp_spectrum(path);
   EXPECT_DOUBLE_EQ(lamp.value(555.0), 2.0);
   EXPECT_FALSE(lamp.uses_sprague());
   std::vector<double> grid;
@@ -142,18 +142,18 @@ TEST(Cie, LampFile) {
 TEST(Cie, LampFileErrorsNameLineAndColumn) {
   const std::string bad = temp_file("bad.csv", "wavelength_nm,power\n400,1\n500,x\n");
   try {
-    read_spectrum_file(bad);
+    read_lamp_spectrum(bad);
     FAIL() << "no error";
   } catch (const FileError& e) {
     EXPECT_EQ(e.line(), 3);
     EXPECT_EQ(e.column(), 5);
   }
   const std::string narrow = temp_file("narrow.csv", "500,1\n600,1\n");
-  EXPECT_THROW(read_spectrum_file(narrow), FileError);  // covers too little of V(lambda)
+  EXPECT_THROW(read_lamp_spectrum(narrow), FileError);  // covers too little of V(lambda)
   const std::string negative = temp_file("negative.csv", "380,1\n500,-1\n780,1\n");
-  EXPECT_THROW(read_spectrum_file(negative), FileError);
+  EXPECT_THROW(read_lamp_spectrum(negative), FileError);
   const std::string order = temp_file("order.csv", "380,1\n500,1\n490,1\n780,1\n");
-  EXPECT_THROW(read_spectrum_file(order), FileError);
+  EXPECT_THROW(read_lamp_spectrum(order), FileError);
   for (const auto& p : {bad, narrow, negative, order}) std::filesystem::remove(p);
 }
 

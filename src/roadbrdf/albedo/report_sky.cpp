@@ -7,15 +7,18 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/number.h"
+#include "roadbrdf/spectra/interpolation.h"
 
 namespace roadbrdf::albedo::detail {
 
 namespace {
 
+constexpr spectra::Extrapolation kRefuse = spectra::Extrapolation::kRefuse;
+
 // Diffuse-fraction table: CSV wavelength_nm, diffuse_fraction.
-SolarSpectrum read_diffuse_table(const std::string& path) {
-  SolarSpectrum t = read_solar_spectrum(path);  // same two-column format and checks
-  for (double d : t.irradiance) {
+spectra::Spectrum read_diffuse_table(const std::string& path) {
+  spectra::Spectrum t = read_solar_spectrum(path);  // same two-column format and checks
+  for (double d : t.values()) {
     if (d > 1.0) throw FileError(path, 0, 0, "a diffuse fraction must be in [0, 1]");
   }
   return t;
@@ -25,8 +28,9 @@ SolarSpectrum read_diffuse_table(const std::string& path) {
 // model without wavelengths (trapezoid over SPECTRL2's own grid).
 double spectrl2_diffuse_fraction(const Spectrl2Output& o, const ParameterSets& sets, std::size_t s) {
   if (sets.spectral) {
-    const double dif = interpolate(o.wavelengths, o.diffuse, sets.wavelengths[s], "SPECTRL2 (300-4000 nm)");
-    const double glo = interpolate(o.wavelengths, o.global, sets.wavelengths[s], "SPECTRL2 (300-4000 nm)");
+    const double wl = sets.wavelengths[s];
+    const double dif = spectra::interpolate_linear(o.wavelengths, o.diffuse, wl, kRefuse, "SPECTRL2 (300-4000 nm)");
+    const double glo = spectra::interpolate_linear(o.wavelengths, o.global, wl, kRefuse, "SPECTRL2 (300-4000 nm)");
     return glo > 0.0 ? dif / glo : 1.0;
   }
   double dif = 0.0, glo = 0.0;
@@ -92,7 +96,7 @@ Sky sky_conditions(const ParameterSets& sets, const AlbedoRequest& a, const Hemi
 
   // A number is a constant D; anything else names a table file.
   std::optional<double> constant;
-  SolarSpectrum table;
+  spectra::Spectrum table;
   if (!a.diffuse_fraction.empty()) {
     double v = 0.0;
     if (parse_finite_double(a.diffuse_fraction, v)) {
@@ -119,7 +123,7 @@ Sky sky_conditions(const ParameterSets& sets, const AlbedoRequest& a, const Hemi
       } else if (sky.atmosphere) {
         sky.diffuse[z][s] = spectrl2_diffuse_fraction(sky.spectra.back(), sets, s);
       } else {
-        sky.diffuse[z][s] = interpolate(table.wavelengths, table.irradiance, sets.wavelengths[s], a.diffuse_fraction);
+        sky.diffuse[z][s] = table.value(sets.wavelengths[s], a.diffuse_fraction);
       }
     }
   }

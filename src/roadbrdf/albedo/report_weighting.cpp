@@ -5,6 +5,8 @@
 #include "roadbrdf/albedo/report_stages.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/spectra/cie.h"
+#include "roadbrdf/spectra/interpolation.h"
+#include "roadbrdf/spectra/spectrum.h"
 
 namespace roadbrdf::albedo::detail {
 
@@ -13,14 +15,15 @@ namespace {
 // The three SPECTRL2 weights at one sun zenith: direct horizontal (on black-sky), diffuse (on
 // white-sky) and global (on black-sky alone and on white-sky alone).
 struct Spectrl2Weights {
-  SolarSpectrum direct_horizontal, diffuse, global;
+  spectra::Spectrum direct_horizontal, diffuse, global;
 };
 Spectrl2Weights spectrl2_weights(const Spectrl2Output& o) {
+  std::vector<double> direct_horizontal;
+  for (double v : o.direct_normal) direct_horizontal.push_back(v * o.cos_zenith);
   Spectrl2Weights w;
-  w.direct_horizontal = {"spectrl2-direct-horizontal", o.wavelengths, {}};
-  for (double v : o.direct_normal) w.direct_horizontal.irradiance.push_back(v * o.cos_zenith);
-  w.diffuse = {"spectrl2-diffuse", o.wavelengths, o.diffuse};
-  w.global = {"spectrl2-global", o.wavelengths, o.global};
+  w.direct_horizontal = spectra::Spectrum("spectrl2-direct-horizontal", o.wavelengths, std::move(direct_horizontal));
+  w.diffuse = spectra::Spectrum("spectrl2-diffuse", o.wavelengths, o.diffuse);
+  w.global = spectra::Spectrum("spectrl2-global", o.wavelengths, o.global);
   return w;
 }
 
@@ -43,7 +46,7 @@ Broadband unweighted(const Hemispherical& albedos, const Sky& sky) {
 
 // Whether the luminous values can be formed from these wavelengths: at least two, covering 99% of
 // the luminous integral (photometry::photometric_weights). Otherwise a note says why not.
-bool luminous_possible(const std::vector<double>& wavelengths, const photometry::TabulatedSpectrum& illuminant,
+bool luminous_possible(const std::vector<double>& wavelengths, const spectra::Spectrum& illuminant,
                        std::vector<std::string>& notes) {
   if (wavelengths.size() < 2) {
     notes.push_back(
@@ -86,14 +89,14 @@ Broadband broadband_albedos(const ParameterSets& sets, const AlbedoRequest& a, c
     return b;
   }
   // One fixed weight for everything, or SPECTRL2's spectra at each sun zenith.
-  std::optional<SolarSpectrum> fixed;
+  std::optional<spectra::Spectrum> fixed;
   if (!a.spectrum.empty()) fixed = solar_spectrum_from_name(a.spectrum);
   if (!fixed && !sky.atmosphere) fixed = astm_g173("global");
-  b.weighting = fixed ? fixed->name : "spectrl2 (direct horizontal on black-sky, diffuse on white-sky)";
+  b.weighting = fixed ? fixed->name() : "spectrl2 (direct horizontal on black-sky, diffuse on white-sky)";
   const Hemispherical& h = albedos;
   for (std::size_t z = 0; z < h.black.size(); ++z) {
     const Spectrl2Weights w = fixed ? Spectrl2Weights{} : spectrl2_weights(sky.spectra[z]);
-    const SolarSpectrum& e = fixed ? *fixed : w.global;
+    const spectra::Spectrum& e = fixed ? *fixed : w.global;
     b.black_means.push_back(spectral_weighted_mean(wavelengths, h.black[z], h.black_error[z], e));
     b.black.push_back(b.black_means.back().value);
     b.black_error.push_back(b.black_means.back().error);
@@ -125,7 +128,7 @@ Broadband broadband_albedos(const ParameterSets& sets, const AlbedoRequest& a, c
 nlohmann::json luminous_albedos(const ParameterSets& sets, const AlbedoRequest& a, const Hemispherical& albedos,
                                 std::vector<std::string>& notes) {
   if (a.illuminant.empty()) return nullptr;
-  const photometry::TabulatedSpectrum illuminant = photometry::illuminant_from_name(a.illuminant);
+  const spectra::Spectrum illuminant = photometry::illuminant_from_name(a.illuminant);
   std::vector<double> black;
   double white = albedos.white.value[0];
   if (!sets.spectral) {
@@ -137,7 +140,10 @@ nlohmann::json luminous_albedos(const ParameterSets& sets, const AlbedoRequest& 
     const std::vector<double> w = photometry::photometric_weights(grid, illuminant);
     auto weigh = [&](const std::vector<double>& v) {
       double sum = 0.0;
-      for (std::size_t k = 0; k < grid.size(); ++k) sum += w[k] * interpolate(sets.wavelengths, v, grid[k], "albedo");
+      for (std::size_t k = 0; k < grid.size(); ++k) {
+        sum +=
+            w[k] * spectra::interpolate_linear(sets.wavelengths, v, grid[k], spectra::Extrapolation::kRefuse, "albedo");
+      }
       return sum;
     };
     for (const auto& bs : albedos.black) black.push_back(weigh(bs));

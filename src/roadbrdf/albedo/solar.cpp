@@ -1,119 +1,90 @@
 #include "roadbrdf/albedo/solar.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <map>
+#include <string_view>
 
-#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/number.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::albedo {
 
 namespace {
 
-// Reads a numeric table. Header rows (every cell text, none a number) may come before the data; the
-// last one gives the column names. A row with any number in it is data, so a typo such as "4OO,1"
-// is an error at its cell instead of a silently dropped "header". A UTF-8 byte order mark at the
-// start of the file is not part of the first cell. With `non_negative`, the value columns (all but
-// the first) must be >= 0.
-struct Table {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> columns;
+// A column of a bundled table (wavelength in the first column, the value named in the header).
+spectra::Spectrum bundled_column(const std::string& file, const std::string& column, const std::string& name,
+                                 bool non_negative) {
+  spectra::SpectrumReadOptions o;
+  o.name = name;
+  o.quantity = column;
+  o.value_column = column;
+  o.non_negative = non_negative;
+  o.min_points = 2;
+  o.outside = spectra::Extrapolation::kRefuse;
+  return spectra::read_spectrum(data_file(file), o);
+}
+
+spectra::Spectrum astm_column(const std::string& which) {
+  return bundled_column("third-party/solar/astm-g173-03.csv", which, "astm-g173-" + which, true);
+}
+
+// SPECTRL2's extraterrestrial spectrum and absorption coefficients, on one grid.
+struct Spectrl2Coefficients {
+  spectra::Spectrum extraterrestrial, water, ozone, mixed_gas;
 };
 
-constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
-
-Table read_table(const std::string& path, std::size_t min_columns, bool non_negative) {
-  CsvReader reader(path);
-  std::vector<CsvCell> cells;
-  Table table;
-  bool data_started = false, first_row = true;
-  while (reader.next_row(cells)) {
-    if (first_row && !cells.empty() && cells[0].text.substr(0, kByteOrderMark.size()) == kByteOrderMark) {
-      cells[0].text = cells[0].text.substr(kByteOrderMark.size());
-    }
-    first_row = false;
-    const bool any_number =
-        std::any_of(cells.begin(), cells.end(), [](const CsvCell& c) { return is_number_text(c.text); });
-    if (!data_started && !cells.empty() && !any_number) {
-      table.names.clear();
-      for (const auto& c : cells) table.names.emplace_back(c.text);
-      continue;
-    }
-    if (cells.size() < min_columns) {
-      reader.fail(
-          0, "expected at least " + std::to_string(min_columns) + " columns, found " + std::to_string(cells.size()));
-    }
-    if (!data_started) {
-      data_started = true;
-      table.columns.resize(cells.size());
-    }
-    if (cells.size() != table.columns.size()) {
-      reader.fail(
-          0, "expected " + std::to_string(table.columns.size()) + " columns, found " + std::to_string(cells.size()));
-    }
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const double v = reader.number(cells[k]);
-      if (non_negative && k > 0 && v < 0.0)
-        reader.fail(cells[k].column, "negative irradiance '" + std::string(cells[k].text) + "'");
-      table.columns[k].push_back(v);
-    }
-    const auto& w = table.columns[0];
-    if (w.size() >= 2 && !(w.back() > w[w.size() - 2])) {
-      reader.fail(cells[0].column, "wavelengths must be strictly increasing");
-    }
-  }
-  if (table.columns.empty() || table.columns[0].size() < 2) {
-    throw FileError(path, 0, 0, "needs at least two data rows");
-  }
-  return table;
+const Spectrl2Coefficients& spectrl2_coefficients() {
+  static const Spectrl2Coefficients c = [] {
+    const auto column = [](const std::string& name) {
+      return bundled_column("third-party/solar/spectrl2-coefficients.csv", name, "SPECTRL2 " + name, false);
+    };
+    return Spectrl2Coefficients{column("et_irradiance_W_m2_nm"), column("water_vapor_absorption"),
+                                column("ozone_absorption"), column("mixed_gas_absorption")};
+  }();
+  return c;
 }
 
 }  // namespace
 
-SolarSpectrum astm_g173(const std::string& which) {
-  static const Table table = read_table(data_file("third-party/solar/astm-g173-03.csv"), 4, true);
-  std::size_t column = 0;
-  if (which == "extraterrestrial") column = 1;
-  if (which == "global") column = 2;
-  if (which == "direct") column = 3;
-  if (column == 0) throw InputError("ASTM G173 spectrum '" + which + "': use global, direct or extraterrestrial");
-  return {"astm-g173-" + which, table.columns[0], table.columns[column]};
+spectra::Spectrum astm_g173(const std::string& which) {
+  if (which == "extraterrestrial") {
+    static const spectra::Spectrum s = astm_column(which);
+    return s;
+  }
+  if (which == "global") {
+    static const spectra::Spectrum s = astm_column(which);
+    return s;
+  }
+  if (which == "direct") {
+    static const spectra::Spectrum s = astm_column(which);
+    return s;
+  }
+  throw InputError("ASTM G173 spectrum '" + which + "': use global, direct or extraterrestrial");
 }
 
-SolarSpectrum read_solar_spectrum(const std::string& path) {
-  const Table table = read_table(path, 2, true);
-  if (table.columns.size() != 2) {
-    throw FileError(path, 0, 0, "a solar spectrum file has two columns: wavelength [nm], irradiance [W m^-2 nm^-1]");
-  }
-  SolarSpectrum e{path, table.columns[0], table.columns[1]};
-  // The spectrum weights by E / integral(E): the integral must be finite and positive (1e308
-  // irradiances overflow it, an all-zero spectrum has no weights).
-  const double total = integrate_spectrum(e);
-  if (!(std::isfinite(total) && total > 0.0)) {
-    throw FileError(path, 0, 0,
-                    "the irradiance integrates to " + std::to_string(total) +
-                        " (must be finite and > 0: values too large, or all zero)");
-  }
-  return e;
+spectra::Spectrum read_solar_spectrum(const std::string& path) {
+  spectra::SpectrumReadOptions o;
+  o.quantity = "irradiance";
+  o.uncertainties = false;
+  o.one_column = false;
+  o.non_negative = true;
+  o.min_points = 2;
+  o.positive_integral = true;
+  o.outside = spectra::Extrapolation::kRefuse;
+  return spectra::read_spectrum(path, o);
 }
 
-SolarSpectrum solar_spectrum_from_name(const std::string& name) {
+spectra::Spectrum solar_spectrum_from_name(const std::string& name) {
   if (name == "astm-g173-global") return astm_g173("global");
   if (name == "astm-g173-direct") return astm_g173("direct");
   return read_solar_spectrum(name);
 }
 
-double integrate_spectrum(const SolarSpectrum& e) {
-  double sum = 0.0;
-  for (std::size_t k = 1; k < e.wavelengths.size(); ++k) {
-    sum += 0.5 * (e.irradiance[k] + e.irradiance[k - 1]) * (e.wavelengths[k] - e.wavelengths[k - 1]);
-  }
-  return sum;
-}
+double integrate_spectrum(const spectra::Spectrum& e) { return spectra::trapezoid_integral(e); }
 
 // ---- SPECTRL2 ---------------------------------------------------------------------------------
 
@@ -135,12 +106,12 @@ Spectrl2Output spectrl2(const Spectrl2Input& in) {
   if (!(in.day_of_year >= 1 && in.day_of_year <= 366)) throw InputError("SPECTRL2: day must be in 1..366");
 
   // Extraterrestrial spectrum and absorption coefficients (Bird & Riordan table, in W m^-2 nm^-1).
-  static const Table coefficients = read_table(data_file("third-party/solar/spectrl2-coefficients.csv"), 5, false);
-  const auto& wl = coefficients.columns[0];
-  const auto& h0 = coefficients.columns[1];
-  const auto& aw = coefficients.columns[2];
-  const auto& ao = coefficients.columns[3];
-  const auto& au = coefficients.columns[4];
+  const Spectrl2Coefficients& coefficients = spectrl2_coefficients();
+  const auto& wl = coefficients.extraterrestrial.wavelengths();
+  const auto& h0 = coefficients.extraterrestrial.values();
+  const auto& aw = coefficients.water.values();
+  const auto& ao = coefficients.ozone.values();
+  const auto& au = coefficients.mixed_gas.values();
 
   // Earth-Sun distance factor (Spencer 1971; report eq. 2-2/2-3), day angle 2 pi (doy - 1)/365.
   const double b = 2.0 * kPi * (in.day_of_year - 1) / 365.0;
@@ -256,19 +227,6 @@ Spectrl2Input parse_spectrl2_spec(const std::string& spec) {
 
 // ---- weighting ------------------------------------------------------------------------------
 
-double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x, const std::string& what) {
-  if (xs.size() == 1 && x == xs[0]) return ys[0];
-  if (xs.empty() || !(x >= xs.front() && x <= xs.back())) {
-    throw InputError(what + ": " + std::to_string(x) + " nm is outside its range");
-  }
-  auto it = std::upper_bound(xs.begin(), xs.end(), x);
-  std::size_t k = static_cast<std::size_t>(it - xs.begin());
-  if (k >= xs.size()) k = xs.size() - 1;
-  if (k == 0) k = 1;
-  const double t = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
-  return (1.0 - t) * ys[k - 1] + t * ys[k];
-}
-
 namespace {
 
 std::vector<double> union_grid(double lo, double hi, const std::vector<double>& a, const std::vector<double>& b) {
@@ -282,35 +240,36 @@ std::vector<double> union_grid(double lo, double hi, const std::vector<double>& 
   return g;
 }
 
-double range_integral(const SolarSpectrum& e, double lo, double hi) {
-  const double a = std::max(lo, e.wavelengths.front()), b = std::min(hi, e.wavelengths.back());
+double range_integral(const spectra::Spectrum& e, double lo, double hi) {
+  const double a = std::max(lo, e.min_wavelength()), b = std::min(hi, e.max_wavelength());
   if (!(b > a)) return 0.0;
-  const std::vector<double> g = union_grid(a, b, e.wavelengths, {});
+  const std::vector<double> g = union_grid(a, b, e.wavelengths(), {});
   double sum = 0.0;
-  for (std::size_t k = 1; k < g.size(); ++k) {
-    sum += 0.5 *
-           (interpolate(e.wavelengths, e.irradiance, g[k], e.name) +
-            interpolate(e.wavelengths, e.irradiance, g[k - 1], e.name)) *
-           (g[k] - g[k - 1]);
-  }
+  for (std::size_t k = 1; k < g.size(); ++k) sum += 0.5 * (e.value(g[k]) + e.value(g[k - 1])) * (g[k] - g[k - 1]);
   return sum;
+}
+
+// A tabulated albedo (or its error) at x inside the tabulated range.
+double albedo_at(const std::vector<double>& wavelengths, const std::vector<double>& values, double x,
+                 std::string_view what) {
+  return spectra::interpolate_linear(wavelengths, values, x, spectra::Extrapolation::kRefuse, what);
 }
 
 }  // namespace
 
 WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, const std::vector<double>& values1,
-                                      const std::vector<double>& errors1, const SolarSpectrum& weight1,
+                                      const std::vector<double>& errors1, const spectra::Spectrum& weight1,
                                       const std::vector<double>& values2, const std::vector<double>& errors2,
-                                      const SolarSpectrum& weight2) {
+                                      const spectra::Spectrum& weight2) {
   if (wavelengths.size() < 2) throw InputError("spectral weighting needs at least two wavelengths");
-  const double lo = std::max({wavelengths.front(), weight1.wavelengths.front(), weight2.wavelengths.front()});
-  const double hi = std::min({wavelengths.back(), weight1.wavelengths.back(), weight2.wavelengths.back()});
+  const double lo = std::max({wavelengths.front(), weight1.min_wavelength(), weight2.min_wavelength()});
+  const double hi = std::min({wavelengths.back(), weight1.max_wavelength(), weight2.max_wavelength()});
   if (!(hi > lo)) {
     throw InputError("the model's wavelengths [" + std::to_string(wavelengths.front()) + ", " +
                      std::to_string(wavelengths.back()) + "] nm do not overlap the solar spectrum");
   }
-  std::vector<double> g = union_grid(lo, hi, wavelengths, weight1.wavelengths);
-  if (&weight1 != &weight2) g = union_grid(lo, hi, g, weight2.wavelengths);
+  std::vector<double> g = union_grid(lo, hi, wavelengths, weight1.wavelengths());
+  if (&weight1 != &weight2) g = union_grid(lo, hi, g, weight2.wavelengths());
   const bool two = !values2.empty();
   WeightedValue result;
   result.first.assign(wavelengths.size(), 0.0);
@@ -331,17 +290,17 @@ WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, co
   };
   double num = 0.0, den = 0.0, err = 0.0;
   auto at = [&](double x, double& n, double& dd, double& e) {
-    const double w1 = interpolate(weight1.wavelengths, weight1.irradiance, x, weight1.name);
-    const double a1 = interpolate(wavelengths, values1, x, "albedo");
-    const double e1 = errors1.empty() ? 0.0 : interpolate(wavelengths, errors1, x, "error");
+    const double w1 = weight1.value(x);
+    const double a1 = albedo_at(wavelengths, values1, x, "albedo");
+    const double e1 = errors1.empty() ? 0.0 : albedo_at(wavelengths, errors1, x, "error");
     n = w1 * a1;
     dd = w1;
     e = w1 * e1;
     if (two) {
-      const double w2 = interpolate(weight2.wavelengths, weight2.irradiance, x, weight2.name);
-      n += w2 * interpolate(wavelengths, values2, x, "albedo");
+      const double w2 = weight2.value(x);
+      n += w2 * albedo_at(wavelengths, values2, x, "albedo");
       dd += w2;
-      e += w2 * (errors2.empty() ? 0.0 : interpolate(wavelengths, errors2, x, "error"));
+      e += w2 * (errors2.empty() ? 0.0 : albedo_at(wavelengths, errors2, x, "error"));
     }
   };
   double n0 = 0.0, d0 = 0.0, e0 = 0.0;
@@ -351,8 +310,8 @@ WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, co
     at(g[k], n1, d1, e1);
     const double dx = g[k] - g[k - 1];
     for (const double x : {g[k - 1], g[k]}) {
-      const double w1 = interpolate(weight1.wavelengths, weight1.irradiance, x, weight1.name);
-      const double w2 = two ? interpolate(weight2.wavelengths, weight2.irradiance, x, weight2.name) : 0.0;
+      const double w1 = weight1.value(x);
+      const double w2 = two ? weight2.value(x) : 0.0;
       spread(x, 0.5 * dx * w1, 0.5 * dx * w2);
     }
     num += 0.5 * (n0 + n1) * dx;
@@ -378,7 +337,7 @@ WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, co
 }
 
 WeightedValue spectral_weighted_mean(const std::vector<double>& wavelengths, const std::vector<double>& values,
-                                     const std::vector<double>& errors, const SolarSpectrum& weight) {
+                                     const std::vector<double>& errors, const spectra::Spectrum& weight) {
   return spectral_weighted_mean2(wavelengths, values, errors, weight, {}, {}, weight);
 }
 

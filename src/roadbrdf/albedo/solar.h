@@ -7,28 +7,27 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/spectra/spectrum.h"
+
 namespace roadbrdf::albedo {
 
-struct SolarSpectrum {
-  std::string name;
-  std::vector<double> wavelengths;  // nm, strictly increasing
-  std::vector<double> irradiance;   // W m^-2 nm^-1 (or any unit: only ratios matter for weighting)
-};
+// A solar spectrum is a spectra::Spectrum of spectral irradiance [W m^-2 nm^-1] (or any unit: only
+// ratios matter for weighting), linearly interpolated, with no value outside its range.
 
 // ASTM G173-03 (data/third-party/solar/astm-g173-03.csv): "global" (hemispherical on a 37 deg
 // sun-facing tilt), "direct" (direct normal + circumsolar) or "extraterrestrial", 280-4000 nm.
-SolarSpectrum astm_g173(const std::string& which);
+spectra::Spectrum astm_g173(const std::string& which);
 
-// A user's spectrum: CSV ('#' comments) with two columns, wavelength [nm] and spectral irradiance
-// [W m^-2 nm^-1]; an optional header row (first cell not a number) is skipped. Wavelengths strictly
-// increasing, irradiance finite and >= 0. Throws FileError with line and column.
-SolarSpectrum read_solar_spectrum(const std::string& path);
+// A user's spectrum (spectra/spectrum_file.h) with two columns, wavelength [nm] and spectral
+// irradiance [W m^-2 nm^-1]: at least two rows, irradiance >= 0 with a finite, positive integral.
+// Throws FileError with line and column.
+spectra::Spectrum read_solar_spectrum(const std::string& path);
 
 // "astm-g173-global", "astm-g173-direct" or a file path.
-SolarSpectrum solar_spectrum_from_name(const std::string& name_or_file);
+spectra::Spectrum solar_spectrum_from_name(const std::string& name_or_file);
 
-// Trapezoid integral of E over its own grid [W m^-2].
-double integrate_spectrum(const SolarSpectrum& e);
+// Trapezoid integral of E over its own grid [W m^-2] (spectra::trapezoid_integral).
+double integrate_spectrum(const spectra::Spectrum& e);
 
 // ---- SPECTRL2 -------------------------------------------------------------------------------
 // Bird & Riordan (1986), "Simple solar spectral model for direct and diffuse irradiance on horizontal
@@ -72,9 +71,6 @@ double kasten_young_airmass(double zenith_deg);
 Spectrl2Input parse_spectrl2_spec(const std::string& spec);
 
 // ---- Spectral weighting ---------------------------------------------------------------------
-// Linear interpolation of a table at x (x inside the table's range, else throws InputError naming `what`).
-double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x, const std::string& what);
-
 struct WeightedValue {
   double value = 0.0;             // int_{lo}^{hi} E a dl / int_{lo}^{hi} E dl
   double error = 0.0;             // same weighting of the per-wavelength error estimates
@@ -89,13 +85,13 @@ struct WeightedValue {
 // linearly interpolated (trapezoid). `errors` may be empty. Throws InputError if the ranges do not
 // overlap or the weight integrates to 0 there.
 WeightedValue spectral_weighted_mean(const std::vector<double>& wavelengths, const std::vector<double>& values,
-                                     const std::vector<double>& errors, const SolarSpectrum& weight);
+                                     const std::vector<double>& errors, const spectra::Spectrum& weight);
 
 // Same with two weights (blue-sky with SPECTRL2: direct horizontal on the black-sky values, diffuse
 // on the white-sky values):  int (E1 a1 + E2 a2) / int (E1 + E2).
 WeightedValue spectral_weighted_mean2(const std::vector<double>& wavelengths, const std::vector<double>& values1,
-                                      const std::vector<double>& errors1, const SolarSpectrum& weight1,
+                                      const std::vector<double>& errors1, const spectra::Spectrum& weight1,
                                       const std::vector<double>& values2, const std::vector<double>& errors2,
-                                      const SolarSpectrum& weight2);
+                                      const spectra::Spectrum& weight2);
 
 }  // namespace roadbrdf::albedo

@@ -15,6 +15,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::cli {
 
@@ -54,7 +55,7 @@ void run(const CalibrateArgs& a) {
   in.sample = read_dataset(a.sample, radiance);
   in.reference = read_dataset(a.reference, radiance);
   if (!a.dark.empty()) in.dark = read_dataset(a.dark, radiance);
-  in.panel_reflectance = read_spectrum(a.panel);
+  in.panel_reflectance = spectra::read_spectrum(a.panel);
   in.panel_brf = read_panel_brf(a.panel_brf, a.brf_start, a.brf_step);
   SpectralDataset out = calibrate(in);
   out.metadata["sample_radiance"] = a.sample;

@@ -11,6 +11,7 @@
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/quality.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::cli {
 
@@ -30,7 +31,7 @@ void run(CheckArgs& a) {
   read.allow_missing = true;  // counted in the report
   const SpectralDataset d = read_dataset(a.data, read);
   QualityOptions o = a.options;
-  if (!a.panel.empty()) o.panel_reflectance = read_spectrum(a.panel);
+  if (!a.panel.empty()) o.panel_reflectance = spectra::read_spectrum(a.panel);
   const QualityReport r = check_dataset(d, o);
   if (a.json) {
     nlohmann::json j = quality_report_json(d, r);

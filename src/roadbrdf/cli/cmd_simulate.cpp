@@ -13,6 +13,7 @@
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/resample.h"
 #include "roadbrdf/io/simulate.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::cli {
 
@@ -61,7 +62,7 @@ void run(const SimulateArgs& a) {
                      [&](const std::string& p) { return p.rfind(name + "=", 0) == 0; }) != a.parameters.end()) {
       throw InputError("parameter " + name + " is given both by -p and by --spectral");
     }
-    in.spectral_parameters[name] = read_spectrum(item.substr(eq + 1));
+    in.spectral_parameters[name] = spectra::read_spectrum(item.substr(eq + 1));
   }
   in.noise = parse_noise_model(a.noise);
   in.seed = a.seed;

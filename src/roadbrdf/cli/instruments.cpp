@@ -11,6 +11,7 @@
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/usgs.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::cli {
 
@@ -111,8 +112,8 @@ SpectralDataset convert_instrument_input(const std::string& from, const std::str
 SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
                                                      const std::string& panel_brf, std::optional<double> brf_start,
                                                      std::optional<double> brf_step, const InstrumentArgs& args) {
-  const std::optional<Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks come first
-  return calibrate_manifest(read_manifest(manifest), read_spectrum(panel), brf, manifest_options(args));
+  const std::optional<spectra::Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks come first
+  return calibrate_manifest(read_manifest(manifest), spectra::read_spectrum(panel), brf, manifest_options(args));
 }
 
 }  // namespace roadbrdf::cli

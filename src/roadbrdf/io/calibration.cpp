@@ -6,90 +6,24 @@
 #include <cmath>
 #include <limits>
 
-#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/dataset_io.h"
-#include "roadbrdf/io/resample.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf {
 
-std::optional<Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
-                                       std::optional<double> step) {
+std::optional<spectra::Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
+                                                std::optional<double> step) {
   if (path.empty()) {
     if (first_wavelength) throw FieldError("panel_brf_start", "needs the panel BRF file (panel_brf)");
     if (step) throw FieldError("panel_brf_step", "needs the panel BRF file (panel_brf)");
     return std::nullopt;
   }
-  SpectrumReadOptions o;
+  spectra::SpectrumReadOptions o;
   o.first_wavelength = first_wavelength;
   o.step = step;
-  return read_spectrum(path, o);
-}
-
-Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& options) {
-  InputFile in(path);
-  Spectrum s;
-  s.source = path;
-  std::string line;
-  long n = 0;
-  std::size_t columns = 0;
-  bool first_row = true;
-  while (in.read_line(line)) {
-    ++n;
-    const auto b = line.find_first_not_of(" \t\r");
-    if (b == std::string::npos || line[b] == '#') continue;
-    std::string normalized = line;
-    std::replace(normalized.begin(), normalized.end(), ',', ' ');
-    std::replace(normalized.begin(), normalized.end(), ';', ' ');
-    const auto cells = split_whitespace(normalized);
-    double v0 = 0.0;
-    if (first_row && !parse_finite_double(cells[0].text, v0)) {
-      first_row = false;  // a header line
-      continue;
-    }
-    first_row = false;
-    if (columns == 0) {
-      columns = cells.size();
-      if (columns > 3) throw FileError(path, n, cells[3].column, "expected 1 to 3 columns: [wavelength] value [sigma]");
-      if (columns == 1 && !(options.first_wavelength && options.step)) {
-        throw FileError(path, n, 0, "one-column spectrum: give the wavelength of the first line and the step [nm]");
-      }
-    }
-    if (cells.size() != columns) {
-      throw FileError(path, n, cells.size() > columns ? cells[columns].column : cells.back().column,
-                      fmt::format("row has {} values, the first row had {}", cells.size(), columns));
-    }
-    double v[3];
-    for (std::size_t k = 0; k < columns; ++k) {
-      if (!parse_finite_double(cells[k].text, v[k])) {
-        throw FileError(path, n, cells[k].column, fmt::format("'{}' is not a finite number", cells[k].text));
-      }
-    }
-    double wl = 0.0, value = 0.0;
-    if (columns == 1) {
-      wl = *options.first_wavelength + static_cast<double>(s.values.size()) * *options.step;
-      value = v[0];
-    } else {
-      wl = v[0];
-      value = v[1];
-      if (!s.wavelengths.empty() && wl <= s.wavelengths.back()) {
-        throw FileError(path, n, cells[0].column,
-                        fmt::format("wavelength '{}' nm is not above the previous {} nm (must be strictly increasing)",
-                                    cells[0].text, s.wavelengths.back()));
-      }
-      if (columns == 3) {
-        if (v[2] < 0)
-          throw FileError(path, n, cells[2].column, fmt::format("'{}': negative uncertainty", cells[2].text));
-        s.sigma.push_back(v[2]);
-      }
-    }
-    s.wavelengths.push_back(wl);
-    s.values.push_back(value);
-  }
-  if (s.values.empty()) throw FileError(path, n, 0, "file is empty (no values)");
-  return s;
+  return spectra::read_spectrum(path, o);
 }
 
 namespace {
@@ -155,19 +89,16 @@ SpectralDataset calibrate(const CalibrationInput& in) {
   }
   const std::size_t n = in.sample.geometries.size(), m = in.sample.wavelengths.size();
   // Panel factor c(lambda) = rho/pi (or BRF/pi) and its uncertainty, on the sample wavelengths.
-  const Spectrum& panel = in.panel_brf ? *in.panel_brf : in.panel_reflectance;
+  const spectra::Spectrum& panel = in.panel_brf ? *in.panel_brf : in.panel_reflectance;
   const std::string panel_what = in.panel_brf ? "panel BRF" : "panel reflectance";
   std::vector<double> c(m), c_sigma(m, 0.0);
   double correction_sum = 0.0;
   for (std::size_t j = 0; j < m; ++j) {
     const double wl = in.sample.wavelengths[j];
-    c[j] = interpolate_linear(panel.wavelengths, panel.values, wl, panel_what + " (" + panel.source + ")") / kPi;
-    if (!panel.sigma.empty()) {
-      c_sigma[j] = interpolate_linear(panel.wavelengths, panel.sigma, wl, panel_what) / kPi;
-    }
+    c[j] = panel.value(wl, panel_what + " (" + panel.name() + ")") / kPi;
+    if (!panel.sigma().empty()) c_sigma[j] = panel.sigma_at(wl, panel_what) / kPi;
     if (in.panel_brf) {
-      const double rho = interpolate_linear(in.panel_reflectance.wavelengths, in.panel_reflectance.values, wl,
-                                            "panel reflectance (" + in.panel_reflectance.source + ")");
+      const double rho = in.panel_reflectance.value(wl, "panel reflectance (" + in.panel_reflectance.name() + ")");
       correction_sum += c[j] * kPi / rho;
     }
   }
@@ -179,7 +110,7 @@ SpectralDataset calibrate(const CalibrationInput& in) {
   out.metadata["units"] = "sr^-1";
   out.brdf.assign(n * m, 0.0);
   const bool any_sigma =
-      in.sample.has_sigma() || in.reference.has_sigma() || (in.dark && in.dark->has_sigma()) || !panel.sigma.empty();
+      in.sample.has_sigma() || in.reference.has_sigma() || (in.dark && in.dark->has_sigma()) || !panel.sigma().empty();
   if (any_sigma) out.sigma.assign(n * m, 0.0);
   for (std::size_t g = 0; g < n; ++g) {
     for (std::size_t j = 0; j < m; ++j) {
@@ -215,7 +146,7 @@ SpectralDataset calibrate(const CalibrationInput& in) {
     }
   }
   out.metadata["calibration"] = fmt::format("f = (L_sample - L_dark)/(L_ref - L_dark) * {}/pi; {} from {}",
-                                            in.panel_brf ? "BRF_panel" : "rho_ref", panel_what, panel.source);
+                                            in.panel_brf ? "BRF_panel" : "rho_ref", panel_what, panel.name());
   if (in.panel_brf) {
     out.metadata["panel_brf_correction_mean"] = fmt::format("{:.6g} (mean of BRF_panel / rho_ref over the wavelengths)",
                                                             correction_sum / static_cast<double>(m));

@@ -3,7 +3,8 @@
 // optionally with the panel's measured reflectance factor instead of the Lambertian rho_ref:
 //   f = (L_sample - L_dark) / (L_ref - L_dark) * BRF_panel(lambda) / pi
 // (the correction factor BRF_panel / rho_ref is recorded in the metadata).
-// rho_ref (and BRF_panel) are interpolated linearly onto the sample wavelengths; extrapolation is refused.
+// rho_ref (and BRF_panel) are interpolated onto the sample wavelengths as their spectra say (files:
+// linearly, extrapolation refused beyond rounding; spectra/spectrum_file.h).
 // First-order uncertainty propagation with independent inputs, written with c = rho/pi, N = L_s - L_d,
 // D = L_ref - L_d:  df/dL_s = c/D,  df/dL_ref = -c N/D^2,  df/dL_d = c (N - D)/D^2,  df/drho = N/(pi D).
 #pragma once
@@ -13,39 +14,26 @@
 #include <vector>
 
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/spectra/spectrum.h"
 
 namespace roadbrdf {
 
-// A tabulated spectrum: wavelength [nm], value, optional standard uncertainty.
-struct Spectrum {
-  std::vector<double> wavelengths;
-  std::vector<double> values;
-  std::vector<double> sigma;  // empty or same size
-  std::string source;
-};
-
-struct SpectrumReadOptions {
-  // For one-column files (values only, e.g. BRF_i10_e0.txt): wavelength of the first line and step [nm].
-  std::optional<double> first_wavelength;
-  std::optional<double> step;
-};
-
-// Read "wavelength value [sigma]" lines, separated by spaces, tabs or commas; '#' comments; an
-// optional non-numeric header line. Wavelengths must be strictly increasing. Throws FileError.
-Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& options = {});
+// A panel's reflectance (or BRF) file is a spectrum file (spectra::read_spectrum with its default
+// options): "wavelength value [sigma]" lines, or values alone on a stated grid.
 
 // The optional measured BRF of the reference panel (CalibrationInput::panel_brf) as the front ends
-// give it: a file (`path`, "" = none) and, for a one-column file, its first wavelength and step [nm].
-// A first wavelength or step without a file is FieldError("panel_brf_start" / "panel_brf_step").
-std::optional<Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
-                                       std::optional<double> step);
+// give it: a file (`path`, "" = none) and, for a one-column file (e.g. BRF_i10_e0.txt), its first
+// wavelength and step [nm]. A first wavelength or step without a file is
+// FieldError("panel_brf_start" / "panel_brf_step").
+std::optional<spectra::Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
+                                                std::optional<double> step);
 
 struct CalibrationInput {
   SpectralDataset sample;               // sample radiances (any unit), N geometries
   SpectralDataset reference;            // reference-panel radiances: same geometries, or a single row used for all
   std::optional<SpectralDataset> dark;  // dark signal: same geometries, or a single row; none = 0
-  Spectrum panel_reflectance;           // rho_ref(lambda), dimensionless (e.g. Spectralon 8deg/h calibration)
-  std::optional<Spectrum> panel_brf;    // optional measured BRF of the panel at the measurement geometry
+  spectra::Spectrum panel_reflectance;  // rho_ref(lambda), dimensionless (e.g. Spectralon 8deg/h calibration)
+  std::optional<spectra::Spectrum> panel_brf;  // optional measured BRF of the panel at the measurement geometry
 };
 
 // The calibrated BRDF [sr^-1] with propagated uncertainties. Throws InputError (mismatched

@@ -328,8 +328,8 @@ CalibrationInput manifest_calibration_input(const Manifest& m, const ManifestOpt
   return in;
 }
 
-SpectralDataset calibrate_manifest(const Manifest& m, const Spectrum& panel_reflectance,
-                                   const std::optional<Spectrum>& panel_brf, const ManifestOptions& options) {
+SpectralDataset calibrate_manifest(const Manifest& m, const spectra::Spectrum& panel_reflectance,
+                                   const std::optional<spectra::Spectrum>& panel_brf, const ManifestOptions& options) {
   CalibrationInput in = manifest_calibration_input(m, options);
   in.panel_reflectance = panel_reflectance;
   in.panel_brf = panel_brf;

@@ -73,8 +73,8 @@ CalibrationInput manifest_calibration_input(const Manifest& manifest, const Mani
 
 // The calibrated BRDF of the run: manifest_calibration_input + calibrate(), with the run's
 // description in the metadata. `panel_brf` as in CalibrationInput.
-SpectralDataset calibrate_manifest(const Manifest& manifest, const Spectrum& panel_reflectance,
-                                   const std::optional<Spectrum>& panel_brf = std::nullopt,
+SpectralDataset calibrate_manifest(const Manifest& manifest, const spectra::Spectrum& panel_reflectance,
+                                   const std::optional<spectra::Spectrum>& panel_brf = std::nullopt,
                                    const ManifestOptions& options = {});
 
 }  // namespace roadbrdf

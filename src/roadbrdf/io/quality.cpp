@@ -11,7 +11,6 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/dataset_io.h"
-#include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
 
@@ -313,13 +312,11 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
   flag_outliers(residual, in.specular, o, r);
 }
 
-void check_panel(const SpectralDataset& d, const Spectrum& rho, QualityReport& r) {
+void check_panel(const SpectralDataset& d, const spectra::Spectrum& rho, QualityReport& r) {
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
   std::vector<double> expected(m);
   for (std::size_t j = 0; j < m; ++j) {
-    expected[j] =
-        interpolate_linear(rho.wavelengths, rho.values, d.wavelengths[j], "panel reflectance (" + rho.source + ")") /
-        kPi;
+    expected[j] = rho.value(d.wavelengths[j], "panel reflectance (" + rho.name() + ")") / kPi;
   }
   PanelValidation p;
   double total = 0.0;

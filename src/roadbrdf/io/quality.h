@@ -32,8 +32,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/spectra/spectrum.h"
 
 namespace roadbrdf {
 
@@ -50,7 +50,7 @@ struct QualityOptions {
   // Geometries whose w_r is within this angle of the mirror direction of w_i: a bright value there
   // is reported as a specular peak, not an outlier, and they are not used to predict the others.
   double specular_cone_deg = 25.0;
-  std::optional<Spectrum> panel_reflectance;  // validate a reference panel measured as a sample
+  std::optional<spectra::Spectrum> panel_reflectance;  // validate a reference panel measured as a sample
 };
 
 struct ReciprocityPair {

@@ -94,20 +94,4 @@ SpectralDataset resample_dataset(const SpectralDataset& d, const WavelengthBands
   return out;
 }
 
-double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double xq,
-                          const std::string& what) {
-  if (x.empty()) throw InputError(what + ": empty table");
-  const double tol = 1e-9 * std::max(1.0, std::fabs(x.back()));
-  if (xq < x.front() - tol || xq > x.back() + tol) {
-    throw InputError(fmt::format("{}: {} is outside the tabulated range [{}, {}] (no extrapolation)", what, xq,
-                                 x.front(), x.back()));
-  }
-  if (x.size() == 1) return y[0];
-  auto it = std::upper_bound(x.begin(), x.end(), xq);
-  std::size_t k = it == x.begin() ? 0 : static_cast<std::size_t>(it - x.begin()) - 1;
-  if (k + 1 >= x.size()) k = x.size() - 2;
-  const double u = std::clamp((xq - x[k]) / (x[k + 1] - x[k]), 0.0, 1.0);
-  return y[k] * (1 - u) + y[k + 1] * u;
-}
-
 }  // namespace roadbrdf

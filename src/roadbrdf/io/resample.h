@@ -1,4 +1,4 @@
-// Spectral resampling of datasets: band averages, linear interpolation of tabulated spectra.
+// Spectral resampling of datasets: band averages of the linearly interpolated spectra.
 #pragma once
 
 #include <string>
@@ -28,10 +28,5 @@ std::vector<std::pair<std::size_t, double>> band_average_weights(const std::vect
 // a band reaches outside the measured range.
 SpectralDataset resample_dataset(const SpectralDataset& dataset, const WavelengthBands& bands,
                                  const std::vector<std::pair<double, double>>& drop = {});
-
-// Linear interpolation of (x, y) at xq; throws InputError outside [x_0, x_last] (no
-// extrapolation), naming `what`.
-double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double xq,
-                          const std::string& what);
 
 }  // namespace roadbrdf

@@ -84,7 +84,7 @@ double NormalStream::next() {
 
 namespace {
 
-using Overrides = std::vector<std::pair<std::size_t, const Spectrum*>>;
+using Overrides = std::vector<std::pair<std::size_t, const spectra::Spectrum*>>;
 
 // The model's parameters replaced by spectra (SimulationInput::spectral_parameters), by index.
 Overrides spectral_overrides(const SimulationInput& in, const ModelDescription& desc) {
@@ -111,8 +111,7 @@ std::vector<double> parameter_table(const SimulationInput& in, const ModelDescri
     std::vector<double> p = in.model->parameters_at(wl);
     for (const auto& [idx, spectrum] : overrides) {
       p[idx] =
-          interpolate_linear(spectrum->wavelengths, spectrum->values, wl,
-                             fmt::format("spectral parameter {} ({})", desc.parameters[idx].name, spectrum->source));
+          spectrum->value(wl, fmt::format("spectral parameter {} ({})", desc.parameters[idx].name, spectrum->name()));
     }
     try {
       check_parameters(desc, p);
@@ -186,7 +185,7 @@ SpectralDataset simulate_dataset(const SimulationInput& in) {
   }
   if (in.model->is_spectral()) params_text += fmt::format("{}(from a fit, spectral)", params_text.empty() ? "" : " ");
   d.metadata["parameters"] = params_text;
-  for (const auto& [name, sp] : in.spectral_parameters) d.metadata["spectrum_" + name] = sp.source;
+  for (const auto& [name, sp] : in.spectral_parameters) d.metadata["spectrum_" + name] = sp.name();
   d.metadata["noise"] =
       noisy ? fmt::format("relative={} absolute={} edge={} edge-width={} water={} detector={}-{} nm", in.noise.relative,
                           in.noise.absolute, in.noise.edge_factor, in.noise.edge_width_nm, in.noise.water_factor,

@@ -48,7 +48,7 @@ struct SimulationInput {
   std::vector<double> wavelengths;  // nm, strictly increasing
   // Parameters given as spectra (wavelength -> value, linearly interpolated, no extrapolation),
   // overriding the model's value at every wavelength (e.g. a spectral albedo).
-  std::map<std::string, Spectrum> spectral_parameters;
+  std::map<std::string, spectra::Spectrum> spectral_parameters;
   NoiseModel noise;
   std::uint64_t seed = 1;
   bool write_sigma = true;  // store the noise standard deviation as sigma

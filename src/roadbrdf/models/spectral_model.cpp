@@ -1,9 +1,11 @@
 #include "roadbrdf/models/spectral_model.h"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/spectra/interpolation.h"
 
 namespace roadbrdf {
 
@@ -29,19 +31,10 @@ SpectralModel::SpectralModel(std::shared_ptr<const Model> model, std::vector<dou
 
 std::vector<std::pair<std::size_t, double>> SpectralModel::interpolation_weights(double wavelength_nm) const {
   if (wavelengths_.empty()) return {{0, 1.0}};  // one parameter set for every wavelength
-  const double lo = wavelengths_.front();
-  const double hi = wavelengths_.back();
-  if (!(wavelength_nm >= lo && wavelength_nm <= hi)) {
-    throw InputError("wavelength " + std::to_string(wavelength_nm) + " nm is outside the model's range [" +
-                     std::to_string(lo) + ", " + std::to_string(hi) + "] nm (no extrapolation)");
-  }
-  if (wavelengths_.size() == 1) return {{0, 1.0}};
-  const auto it = std::upper_bound(wavelengths_.begin(), wavelengths_.end(), wavelength_nm);
-  std::size_t k = static_cast<std::size_t>(it - wavelengths_.begin());
-  if (k == wavelengths_.size()) k = wavelengths_.size() - 1;
-  const std::size_t j = k - 1;
-  const double t = (wavelength_nm - wavelengths_[j]) / (wavelengths_[k] - wavelengths_[j]);
-  return {{j, 1.0 - t}, {k, t}};
+  const std::optional<spectra::LinearStencil> s = spectra::linear_stencil(
+      wavelengths_, wavelength_nm, spectra::Extrapolation::kRefuse, "the spectral model's wavelengths");
+  if (s->upper == s->lower) return {{0, 1.0}};
+  return {{s->lower, 1.0 - s->t}, {s->upper, s->t}};
 }
 
 std::vector<double> SpectralModel::parameters_at(double wavelength_nm) const {

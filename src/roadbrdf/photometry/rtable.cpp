@@ -124,7 +124,7 @@ void spectral_grid(const SpectralModel& model, const SpectralWeighting& w, std::
         weights = {1.0};
         return;
       }
-      const TabulatedSpectrum& illuminant = w.illuminant ? *w.illuminant : illuminant_a();
+      const spectra::Spectrum& illuminant = w.illuminant ? *w.illuminant : illuminant_a();
       if (luminous_coverage(lo, hi, illuminant) < 0.99) {
         std::string bands;
         for (std::size_t k = 0; k < wl.size() && k < 12; ++k) bands += fmt::format("{}{:g}", k ? ", " : "", wl[k]);

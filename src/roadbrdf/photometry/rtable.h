@@ -72,7 +72,7 @@ struct SpectralWeighting {
   // photometric: f = int f(l) V(l) S(l) dl / int V(l) S(l) dl over the model's wavelength range
   // (1 nm trapezoid, parameters interpolated linearly between the fit's wavelengths as
   // SpectralModel::parameters_at does; the range must hold >= 99% of int V S dl).
-  std::optional<TabulatedSpectrum> illuminant;  // default: CIE illuminant A
+  std::optional<spectra::Spectrum> illuminant;  // default: CIE illuminant A
   double wavelength_nm = 0.0;                   // wavelength: the BRDF at that wavelength
   double band_lo_nm = 0.0, band_hi_nm = 0.0;    // band: unweighted mean over [lo, hi] (1 nm trapezoid)
 };

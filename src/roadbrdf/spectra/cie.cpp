@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
-#include <mutex>
 
-#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::photometry {
 
@@ -17,52 +15,18 @@ namespace {
 constexpr double kVMin = 340.0;
 constexpr double kVMax = 830.0;
 
-// Sprague (1880) quintic through f[-2..3] at fraction x in [0, 1] of the interval [f0, f1]
-// (coefficients as given in CIE 167:2005 / Westland, Ripamonti & Cheung, "Computational Colour
-// Science", eq. for Sprague interpolation). At x = 1/2 it reduces to
-// (3 f-2 - 25 f-1 + 150 f0 + 150 f1 - 25 f2 + 3 f3) / 256.
-double sprague(const double* f, double x) {
-  const double fm2 = f[0], fm1 = f[1], f0 = f[2], f1 = f[3], f2 = f[4], f3 = f[5];
-  const double a0 = f0;
-  const double a1 = (2 * fm2 - 16 * fm1 + 16 * f1 - 2 * f2) / 24.0;
-  const double a2 = (-fm2 + 16 * fm1 - 30 * f0 + 16 * f1 - f2) / 24.0;
-  const double a3 = (-9 * fm2 + 39 * fm1 - 70 * f0 + 66 * f1 - 33 * f2 + 7 * f3) / 24.0;
-  const double a4 = (13 * fm2 - 64 * fm1 + 126 * f0 - 124 * f1 + 61 * f2 - 12 * f3) / 24.0;
-  const double a5 = (-5 * fm2 + 25 * fm1 - 50 * f0 + 50 * f1 - 25 * f2 + 5 * f3) / 24.0;
-  return a0 + x * (a1 + x * (a2 + x * (a3 + x * (a4 + x * a5))));
-}
-
-bool uniformly_spaced(const std::vector<double>& w, double& step) {
-  step = w[1] - w[0];
-  for (std::size_t k = 2; k < w.size(); ++k) {
-    if (std::abs((w[k] - w[k - 1]) - step) > 1e-9 * std::max(1.0, std::abs(step))) return false;
-  }
-  return true;
-}
-
-TabulatedSpectrum load_bundled_column(const std::string& column, const std::string& name, bool zero_outside) {
-  const std::string path = data_file("third-party/photometry/cie-1931-v-lambda-illuminants.csv");
-  CsvReader reader(path);
-  std::vector<CsvCell> cells;
-  if (!reader.next_row(cells)) throw FileError(path, 0, 0, "empty file");
-  std::size_t index = cells.size();
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    if (cells[k].text == column) index = k;
-  }
-  if (index == cells.size()) reader.fail(0, "no column '" + column + "'");
-  std::vector<double> w, v;
-  while (reader.next_row(cells)) {
-    if (cells.size() <= index) reader.fail(0, "missing column '" + column + "'");
-    w.push_back(reader.number(cells[0], "wavelength [nm]"));
-    v.push_back(reader.number(cells[index], column));
-  }
-  try {
-    return TabulatedSpectrum(name, std::move(w), std::move(v), zero_outside);
-  } catch (const FileError&) {
-    throw;
-  } catch (const InputError& e) {
-    throw FileError(path, 0, 0, e.what());
-  }
+// A column of the bundled CIE table: Sprague-interpolated, values >= 0.
+spectra::Spectrum load_bundled_column(const std::string& column, const std::string& name,
+                                      spectra::Extrapolation outside) {
+  spectra::SpectrumReadOptions o;
+  o.name = name;
+  o.quantity = column;
+  o.value_column = column;
+  o.non_negative = true;
+  o.min_points = 6;
+  o.interpolation = spectra::Interpolation::kSprague;
+  o.outside = outside;
+  return spectra::read_spectrum(data_file("third-party/photometry/cie-1931-v-lambda-illuminants.csv"), o);
 }
 
 std::string lower(std::string s) {
@@ -84,116 +48,33 @@ double integrate_1nm(double lo, double hi, F g) {
 
 }  // namespace
 
-TabulatedSpectrum::TabulatedSpectrum(std::string name, std::vector<double> wavelengths, std::vector<double> values,
-                                     bool zero_outside)
-    : name_(std::move(name)),
-      wavelengths_(std::move(wavelengths)),
-      values_(std::move(values)),
-      zero_outside_(zero_outside) {
-  if (wavelengths_.size() != values_.size()) {
-    throw InputError("spectrum '" + name_ + "': " + std::to_string(wavelengths_.size()) + " wavelengths but " +
-                     std::to_string(values_.size()) + " values");
-  }
-  if (wavelengths_.size() < 2) throw InputError("spectrum '" + name_ + "' needs at least 2 wavelengths");
-  for (std::size_t k = 0; k < wavelengths_.size(); ++k) {
-    if (!std::isfinite(wavelengths_[k]) || !std::isfinite(values_[k])) {
-      throw InputError("spectrum '" + name_ + "': value " + std::to_string(k + 1) + " is not finite");
-    }
-    if (values_[k] < 0.0) {
-      throw InputError("spectrum '" + name_ + "': negative value " + std::to_string(values_[k]) + " at " +
-                       std::to_string(wavelengths_[k]) + " nm");
-    }
-    if (k > 0 && !(wavelengths_[k] > wavelengths_[k - 1])) {
-      throw InputError("spectrum '" + name_ + "': wavelengths must be strictly increasing (at " +
-                       std::to_string(wavelengths_[k]) + " nm)");
-    }
-  }
-  double step = 0.0;
-  sprague_ = wavelengths_.size() >= 6 && uniformly_spaced(wavelengths_, step);
-  if (sprague_) {
-    step_ = step;
-    // Sprague end-point extrapolation (CIE 167:2005): two points before the first and after the last.
-    const std::vector<double>& f = values_;
-    const std::size_t n = f.size();
-    auto ext = [](double c0, double c1, double c2, double c3, double c4, double c5, const double* p) {
-      return (c0 * p[0] + c1 * p[1] + c2 * p[2] + c3 * p[3] + c4 * p[4] + c5 * p[5]) / 209.0;
-    };
-    const double head[6] = {f[0], f[1], f[2], f[3], f[4], f[5]};
-    const double tail[6] = {f[n - 1], f[n - 2], f[n - 3], f[n - 4], f[n - 5], f[n - 6]};
-    padded_.reserve(n + 4);
-    padded_.push_back(ext(884, -1960, 3033, -2648, 1080, -180, head));
-    padded_.push_back(ext(508, -540, 488, -367, 144, -24, head));
-    padded_.insert(padded_.end(), f.begin(), f.end());
-    padded_.push_back(ext(508, -540, 488, -367, 144, -24, tail));
-    padded_.push_back(ext(884, -1960, 3033, -2648, 1080, -180, tail));
-  }
-}
-
-double TabulatedSpectrum::value(double wavelength_nm) const {
-  if (!std::isfinite(wavelength_nm)) throw InputError("spectrum '" + name_ + "': wavelength is not finite");
-  if (!covers(wavelength_nm)) {
-    if (zero_outside_) return 0.0;
-    throw InputError("spectrum '" + name_ + "' is not defined at " + std::to_string(wavelength_nm) + " nm (tabulated " +
-                     std::to_string(min_wavelength()) + "-" + std::to_string(max_wavelength()) + " nm)");
-  }
-  const std::size_t n = wavelengths_.size();
-  if (sprague_) {
-    const double u = (wavelength_nm - wavelengths_.front()) / step_;
-    std::size_t j = static_cast<std::size_t>(std::floor(u));
-    if (j >= n - 1) j = n - 2;
-    const double x = u - static_cast<double>(j);
-    if (x <= 0.0) return values_[j];
-    if (x >= 1.0) return values_[j + 1];
-    // padded_[j + 2] is values_[j]; the six points are values_[j-2 .. j+3].
-    const double y = sprague(&padded_[j], x);
-    return y > 0.0 ? y : 0.0;
-  }
-  const auto it = std::upper_bound(wavelengths_.begin(), wavelengths_.end(), wavelength_nm);
-  std::size_t k = static_cast<std::size_t>(it - wavelengths_.begin());
-  if (k >= n) k = n - 1;
-  const std::size_t j = k - 1;
-  const double t = (wavelength_nm - wavelengths_[j]) / (wavelengths_[k] - wavelengths_[j]);
-  return (1.0 - t) * values_[j] + t * values_[k];
-}
-
-const TabulatedSpectrum& v_lambda() {
-  static const TabulatedSpectrum table = load_bundled_column("v_lambda", "V(lambda)", true);
+const spectra::Spectrum& v_lambda() {
+  static const spectra::Spectrum table = load_bundled_column("v_lambda", "V(lambda)", spectra::Extrapolation::kZero);
   return table;
 }
 
-const TabulatedSpectrum& illuminant_a() {
-  static const TabulatedSpectrum table = load_bundled_column("illuminant_A", "CIE illuminant A", false);
+const spectra::Spectrum& illuminant_a() {
+  static const spectra::Spectrum table =
+      load_bundled_column("illuminant_A", "CIE illuminant A", spectra::Extrapolation::kRefuse);
   return table;
 }
 
-const TabulatedSpectrum& illuminant_d65() {
-  static const TabulatedSpectrum table = load_bundled_column("illuminant_D65", "CIE illuminant D65", false);
+const spectra::Spectrum& illuminant_d65() {
+  static const spectra::Spectrum table =
+      load_bundled_column("illuminant_D65", "CIE illuminant D65", spectra::Extrapolation::kRefuse);
   return table;
 }
 
-TabulatedSpectrum read_spectrum_file(const std::string& path) {
-  CsvReader reader(path);
-  std::vector<CsvCell> cells;
-  std::vector<double> w, v;
-  bool first = true;
-  while (reader.next_row(cells)) {
-    if (first) {
-      first = false;
-      if (!is_number_text(cells[0].text)) continue;  // header row
-    }
-    if (cells.size() != 2) {
-      reader.fail(cells.size() > 2 ? cells[2].column : 0,
-                  "expected 2 columns (wavelength [nm], relative spectral power), got " + std::to_string(cells.size()));
-    }
-    const double wl = reader.number(cells[0], "wavelength [nm]");
-    const double p = reader.number(cells[1], "spectral power");
-    if (p < 0.0) reader.fail(cells[1].column, "negative spectral power");
-    if (!w.empty() && !(wl > w.back())) reader.fail(cells[0].column, "wavelengths must be strictly increasing");
-    w.push_back(wl);
-    v.push_back(p);
-  }
-  if (w.size() < 2) throw FileError(path, 0, 0, "a lamp spectrum needs at least 2 rows");
-  TabulatedSpectrum s(path, std::move(w), std::move(v), true);
+spectra::Spectrum read_lamp_spectrum(const std::string& path) {
+  spectra::SpectrumReadOptions o;
+  o.quantity = "spectral power";
+  o.uncertainties = false;
+  o.one_column = false;
+  o.non_negative = true;
+  o.min_points = 2;
+  o.interpolation = spectra::Interpolation::kSprague;
+  o.outside = spectra::Extrapolation::kZero;
+  const spectra::Spectrum s = spectra::read_spectrum(path, o);
   const double total = integrate_1nm(kVMin, kVMax, [](double l) { return v_lambda().value(l); });
   const double lo = std::max(kVMin, s.min_wavelength());
   const double hi = std::min(kVMax, s.max_wavelength());
@@ -210,11 +91,11 @@ TabulatedSpectrum read_spectrum_file(const std::string& path) {
   return s;
 }
 
-TabulatedSpectrum illuminant_from_name(const std::string& name_or_file) {
+spectra::Spectrum illuminant_from_name(const std::string& name_or_file) {
   const std::string l = lower(name_or_file);
   if (l == "a") return illuminant_a();
   if (l == "d65") return illuminant_d65();
-  return read_spectrum_file(name_or_file);
+  return read_lamp_spectrum(name_or_file);
 }
 
 std::vector<double> photometric_grid(double lo_nm, double hi_nm) {
@@ -230,7 +111,7 @@ std::vector<double> photometric_grid(double lo_nm, double hi_nm) {
   return grid;
 }
 
-double luminous_coverage(double lo_nm, double hi_nm, const TabulatedSpectrum& illuminant) {
+double luminous_coverage(double lo_nm, double hi_nm, const spectra::Spectrum& illuminant) {
   const auto vs = [&](double l) {
     const double v = v_lambda().value(l);
     if (v == 0.0 || !illuminant.covers(l)) return 0.0;
@@ -244,7 +125,7 @@ double luminous_coverage(double lo_nm, double hi_nm, const TabulatedSpectrum& il
   return part / total;
 }
 
-std::vector<double> photometric_weights(const std::vector<double>& wavelengths, const TabulatedSpectrum& illuminant,
+std::vector<double> photometric_weights(const std::vector<double>& wavelengths, const spectra::Spectrum& illuminant,
                                         double min_coverage) {
   const std::size_t n = wavelengths.size();
   if (n < 2) throw InputError("photometric weights need at least 2 wavelengths");

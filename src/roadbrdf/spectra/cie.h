@@ -4,12 +4,12 @@
 // wavelength grid.
 //
 // Interpolation. The bundled tables are on a uniform 10 nm grid; between grid points they are
-// interpolated with Sprague's fifth-order polynomial (CIE 167:2005 recommends it for interpolating
-// 10 nm colorimetric data; two extra points are extrapolated at each end with Sprague's end-point
-// formulae). It reproduces V(555 nm) = 1.0002 from the 10 nm table (linear interpolation would give
-// 0.9950; the 1 nm CIE table has 1.0000). Tables that are not uniformly spaced (lamp files) or have
-// fewer than 6 points are interpolated linearly. Every quantity here is non-negative: Sprague
-// overshoot below zero in the near-zero tails of V (|value| < 1e-6) is set to 0.
+// interpolated with Sprague's fifth-order polynomial (spectra/interpolation.h; CIE 167:2005
+// recommends it for 10 nm colorimetric data). It reproduces V(555 nm) = 1.0002 from the 10 nm table
+// (linear interpolation would give 0.9950; the 1 nm CIE table has 1.0000). Lamp files are
+// interpolated the same way when uniformly spaced with >= 6 points, else linearly. Every quantity
+// here is non-negative: Sprague overshoot below zero in the near-zero tails of V (|value| < 1e-6)
+// is 0.
 //
 // Range. V(lambda) is 0 outside 340-830 nm (its tabulated values are below 1e-6 at both ends).
 // An illuminant has no value outside its tabulated range: value() throws there.
@@ -18,59 +18,26 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/spectra/spectrum.h"
+
 namespace roadbrdf::photometry {
 
-// A tabulated non-negative function of wavelength [nm].
-class TabulatedSpectrum {
- public:
-  TabulatedSpectrum() = default;
-  // Wavelengths strictly increasing (>= 2 points), values finite and >= 0; throws InputError.
-  // `name` is used in messages; `zero_outside` makes value() return 0 outside the range instead of throwing.
-  TabulatedSpectrum(std::string name, std::vector<double> wavelengths, std::vector<double> values,
-                    bool zero_outside = false);
-
-  const std::string& name() const { return name_; }
-  const std::vector<double>& wavelengths() const { return wavelengths_; }
-  const std::vector<double>& values() const { return values_; }
-  double min_wavelength() const { return wavelengths_.front(); }
-  double max_wavelength() const { return wavelengths_.back(); }
-  bool covers(double wavelength_nm) const {
-    return wavelength_nm >= wavelengths_.front() && wavelength_nm <= wavelengths_.back();
-  }
-  // True when interpolated with Sprague's polynomial (uniform spacing, >= 6 points), else linear.
-  bool uses_sprague() const { return sprague_; }
-
-  // Interpolated value; outside the range 0 if zero_outside, else throws InputError.
-  double value(double wavelength_nm) const;
-  double operator()(double wavelength_nm) const { return value(wavelength_nm); }
-
- private:
-  std::string name_;
-  std::vector<double> wavelengths_;
-  std::vector<double> values_;
-  bool zero_outside_ = false;
-  bool sprague_ = false;
-  double step_ = 0.0;
-  std::vector<double> padded_;  // values with two Sprague end points added on each side
-};
-
 // CIE 1931 2-degree V(lambda) (photopic luminous efficiency, peak 1 at 555 nm), 0 outside 340-830 nm.
-const TabulatedSpectrum& v_lambda();
+const spectra::Spectrum& v_lambda();
 // Relative spectral power of CIE illuminant A (tungsten, 2856 K) and D65 (daylight), 100 at 560 nm,
 // tabulated 340-830 nm.
-const TabulatedSpectrum& illuminant_a();
-const TabulatedSpectrum& illuminant_d65();
+const spectra::Spectrum& illuminant_a();
+const spectra::Spectrum& illuminant_d65();
 
-// A lamp spectrum file: CSV (see io/csv.h: '#' comments, ',' separated) with two columns,
-// wavelength [nm] and relative spectral power (any unit: only ratios matter). An optional first
-// row of column names is skipped if its first cell is not a number. Wavelengths strictly
-// increasing, powers >= 0. Interpolated linearly (Sprague if uniformly spaced with >= 6 points).
-// The lamp spectrum counts as 0 outside its range, so the file must cover at least 99% of the
-// integral of V(lambda); otherwise FileError. Other errors: FileError with line and column.
-TabulatedSpectrum read_spectrum_file(const std::string& path);
+// A lamp spectrum file (spectra/spectrum_file.h) with two columns, wavelength [nm] and relative
+// spectral power (any unit: only ratios matter), >= 0, at least 2 rows. Interpolated linearly
+// (Sprague if uniformly spaced with >= 6 points). The lamp spectrum counts as 0 outside its range,
+// so the file must cover at least 99% of the integral of V(lambda); otherwise FileError. Other
+// errors: FileError with line and column.
+spectra::Spectrum read_lamp_spectrum(const std::string& path);
 
 // "A", "D65" (case-insensitive) or the path of a lamp spectrum file.
-TabulatedSpectrum illuminant_from_name(const std::string& name_or_file);
+spectra::Spectrum illuminant_from_name(const std::string& name_or_file);
 
 // Photometric (luminous) weights of a wavelength grid under an illuminant S:
 //   w_k = V(l_k) S(l_k) dl_k / sum_j V(l_j) S(l_j) dl_j,
@@ -80,12 +47,12 @@ TabulatedSpectrum illuminant_from_name(const std::string& name_or_file);
 // illuminant is not tabulated count as S = 0. The grid must be strictly increasing with >= 2 points.
 // Throws InputError if the grid covers less than `min_coverage` of int V S dl (see luminous_coverage),
 // e.g. a grid that stops at 500 nm.
-std::vector<double> photometric_weights(const std::vector<double>& wavelengths, const TabulatedSpectrum& illuminant,
+std::vector<double> photometric_weights(const std::vector<double>& wavelengths, const spectra::Spectrum& illuminant,
                                         double min_coverage = 0.99);
 
 // Fraction of int V(l) S(l) dl (over the whole range where both are defined) that lies in
 // [lo, hi] nm; 1 nm trapezoid of the interpolated tables.
-double luminous_coverage(double lo_nm, double hi_nm, const TabulatedSpectrum& illuminant);
+double luminous_coverage(double lo_nm, double hi_nm, const spectra::Spectrum& illuminant);
 
 // The 1 nm integration grid used for photometric weighting of a spectral model whose wavelengths
 // span [lo, hi]: every integer nm in [max(lo, 340), min(hi, 830)] (plus the ends if not integers).
