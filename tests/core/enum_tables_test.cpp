@@ -15,6 +15,7 @@
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/params_table.h"
 #include "roadbrdf/formulation/formulation.h"
+#include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/instrument.h"
@@ -98,6 +99,15 @@ std::string_view expected(AngleConvention v) {
       return "zenith";
     case AngleConvention::kRoad:
       return "road";
+  }
+  return "";
+}
+std::string_view expected(AltaOutput v) {
+  switch (v) {
+    case AltaOutput::kInvSteradian:
+      return "INV_STERADIAN";
+    case AltaOutput::kInvSteradianCosine:
+      return "INV_STERADIAN_COSINE_FACTOR";
   }
   return "";
 }
@@ -271,6 +281,7 @@ TEST(EnumTables, EveryTableNamesEveryValueOnceAndNothingElse) {
   expect_complete_table<ParamsFormat>("ParamsFormat");
   expect_complete_table<DatasetFormat>("DatasetFormat");
   expect_complete_table<AngleConvention>("AngleConvention");
+  expect_complete_table<AltaOutput>("AltaOutput");
   expect_complete_table<InstrumentFormat>("InstrumentFormat");
   expect_complete_table<OverlapRule>("OverlapRule");
   expect_complete_table<InstrumentQuantity>("InstrumentQuantity");

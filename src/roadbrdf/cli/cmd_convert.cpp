@@ -88,7 +88,7 @@ void register_convert_command(CLI::App& app) {
   c->add_option("--wavelength", args.wavelength,
                 "Wavelength [nm] to store single-channel data at (ALTA: required; CUReT: default 550)");
   c->add_option("--alta-output", args.alta_output,
-                "ALTA output unit when the file lacks #PARAM_OUT: INV_STERADIAN or INV_STERADIAN_COSINE_FACTOR");
+                "ALTA output unit when the file lacks #PARAM_OUT: " + described_names_text<AltaOutput>());
   c->add_flag("--exclude-grazing", args.exclude_grazing,
               "ALTA BRDF x cos(theta_v): leave out (and report) rows at grazing view, which cannot be converted");
   add_dataset_read_flags(c, args.read);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <span>
 #include <utility>
 
@@ -21,7 +22,7 @@ namespace roadbrdf {
 
 namespace {
 
-// The parametrisations and output units read (kUnknown: not stated yet), named as ALTA names them.
+// The input parametrisations (kUnknown: not stated yet), named as ALTA names them.
 enum class AltaInput { kUnknown, kTlTvProjDphi, kSphericalTlPlTvPv };
 constexpr EnumName<AltaInput> kAltaInputNames[] = {
     {AltaInput::kTlTvProjDphi, "ISOTROPIC_TL_TV_PROJ_DPHI", ""},
@@ -29,16 +30,6 @@ constexpr EnumName<AltaInput> kAltaInputNames[] = {
 };
 constexpr std::span<const EnumName<AltaInput>> enum_names(AltaInput) { return kAltaInputNames; }
 static_assert(entries_are_distinct(kAltaInputNames));
-
-enum class AltaOutput { kUnknown, kInvSteradian, kInvSteradianCosine };
-constexpr EnumName<AltaOutput> kAltaOutputNames[] = {
-    {AltaOutput::kInvSteradian, "INV_STERADIAN", "BRDF"},
-    {AltaOutput::kInvSteradianCosine, "INV_STERADIAN_COSINE_FACTOR", "BRDF x cos(theta_v)"},
-};
-constexpr std::span<const EnumName<AltaOutput>> enum_names(AltaOutput) { return kAltaOutputNames; }
-static_assert(entries_are_distinct(kAltaOutputNames));
-
-AltaOutput parse_output(const std::string& name) { return find_name<AltaOutput>(name).value_or(AltaOutput::kUnknown); }
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\"");
@@ -96,7 +87,7 @@ class AltaParser {
   const AltaReadOptions& options_;
   SpectralDataset d_;
   AltaInput input_ = AltaInput::kUnknown;
-  AltaOutput output_ = AltaOutput::kUnknown;
+  std::optional<AltaOutput> output_;  // not stated yet
   int dim_in_ = -1, dim_out_ = -1;
   bool header_done_ = false;
   long n_ = 0;  // line number
@@ -142,8 +133,8 @@ void AltaParser::header_line(const std::string& line, std::size_t b) {
                                   fmt::join(names_of<AltaInput>(), ", ")));
     }
   } else if (key == "PARAM_OUT") {
-    output_ = parse_output(rest);
-    if (output_ == AltaOutput::kUnknown) {
+    output_ = find_name<AltaOutput>(rest);
+    if (!output_) {
       throw FileError(
           path_, n_, col,
           fmt::format("output unit '{}' is not supported ({})", rest, fmt::join(names_of<AltaOutput>(), ", ")));
@@ -165,9 +156,9 @@ void AltaParser::begin_data() {
     throw FileError(path_, n_, 0,
                     fmt::format("#DIM gives {} inputs but the parametrisation has {}", dim_in_, expected_in));
   }
-  if (output_ == AltaOutput::kUnknown) {
-    output_ = parse_output(options_.assumed_output);
-    if (output_ == AltaOutput::kUnknown) {
+  if (!output_) {
+    output_ = find_name<AltaOutput>(options_.assumed_output);
+    if (!output_) {
       throw FileError(path_, n_, 0,
                       "file has no #PARAM_OUT line: state the output unit (" + names_text<AltaOutput>() + ")");
     }
@@ -210,7 +201,7 @@ void AltaParser::data_line(const std::string& line) {
   theta_l = zenith(theta_l, cells[0], "theta_l");
   theta_v = zenith(theta_v, cells[input_ == AltaInput::kTlTvProjDphi ? 1 : 2], "theta_v");
   const Geometry g = geometry_from_radians(theta_l, phi_l, theta_v, phi_v);
-  if (output_ == AltaOutput::kInvSteradianCosine) {
+  if (*output_ == AltaOutput::kInvSteradianCosine) {
     const double c = g.cos_theta_r();
     if (c < 1e-6) {
       if (!options_.exclude_grazing) {
@@ -266,9 +257,9 @@ SpectralDataset AltaParser::finish() {
   d.wavelengths = {options_.wavelength_nm};
   d.metadata["units"] = "sr^-1";
   d.metadata["source"] = "ALTA text format";
-  d.metadata["alta_conversion"] = output_ == AltaOutput::kInvSteradianCosine
-                                      ? name_of(output_) + " divided by cos(theta_v) (viewing zenith)"
-                                      : name_of(output_) + " (BRDF as stored)";
+  d.metadata["alta_conversion"] = *output_ == AltaOutput::kInvSteradianCosine
+                                      ? name_of(*output_) + " divided by cos(theta_v) (viewing zenith)"
+                                      : name_of(*output_) + " (BRDF as stored)";
   if (grazing_ > 0) {
     d.metadata["alta_grazing_rows_excluded"] = std::to_string(grazing_);
     warn(
