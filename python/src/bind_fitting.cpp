@@ -226,7 +226,7 @@ void bind_fitting(py::module_& m) {
         for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
           out["units"][py::str(t.parameter_names[k])] = t.parameter_units[k];
         }
-        if (!format.empty()) out["text"] = t.render(params_format_from_string(format));
+        if (!format.empty()) out["text"] = t.render(parse_name<ParamsFormat>(format, "format"));
         // Columns of csv_columns(), in its order.
         py::list columns;
         for (const auto& c : t.csv_columns()) columns.append(c);

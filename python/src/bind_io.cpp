@@ -53,7 +53,7 @@ py::dict dataset_to_dict(const SpectralDataset& d) {
   out["brdf"] = matrix(d.brdf, n, d.wavelength_count());
   out["sigma"] = d.has_sigma() ? py::object(matrix(d.sigma, n, d.wavelength_count())) : py::object(py::none());
   out["metadata"] = d.metadata;
-  out["convention"] = d.convention == AngleConvention::kRoad ? "road" : "zenith";
+  out["convention"] = name_of(d.convention);
   out["comments"] = d.comments;
   return out;
 }
@@ -70,7 +70,7 @@ py::object optional_array(const std::vector<double>& v) { return v.empty() ? py:
 
 ManifestOptions manifest_options(const std::string& overlap) {
   ManifestOptions o;
-  o.read.overlap = overlap_rule_from_string(overlap);
+  o.read.overlap = parse_name<OverlapRule>(overlap, "overlap");
   o.warn = python_warning();
   return o;
 }
@@ -86,7 +86,7 @@ void bind_instruments(py::module_& m) {
         for (const auto& note : s.notes) o.warn(note);
         py::dict out;
         out["path"] = s.path;
-        out["format"] = to_string(s.format);
+        out["format"] = name_of(s.format);
         out["wavelengths"] = vector_array(s.wavelengths);
         out["target"] = optional_array(s.target);
         out["reference"] = optional_array(s.reference);
@@ -104,12 +104,12 @@ void bind_instruments(py::module_& m) {
       [](const std::string& path, const std::vector<double>& angles, const std::string& convention,
          const std::string& quantity, const std::string& overlap) {
         if (angles.size() != 4) throw InputError("give four angles (degrees)");
-        const AngleConvention c = convention == "road" ? AngleConvention::kRoad : AngleConvention::kZenithAzimuth;
+        const AngleConvention c = parse_name<AngleConvention>(convention, "convention");
         const ManifestOptions o = manifest_options(overlap);
         const InstrumentSpectrum s = read_instrument_file(path, o.read);
         for (const auto& note : s.notes) o.warn(note);
         return dataset_to_dict(instrument_dataset(s, geometry_from_angle_values(c, angles.data()), c,
-                                                  instrument_quantity_from_string(quantity)));
+                                                  parse_name<InstrumentQuantity>(quantity, "quantity")));
       },
       py::arg("path"), py::arg("angles"), py::arg("convention"), py::arg("quantity") = "target",
       py::arg("overlap") = "upper");
@@ -136,7 +136,7 @@ void bind_instruments(py::module_& m) {
       [](const std::string& path, const std::string& wavelengths, const std::vector<double>& angles,
          const std::string& convention) {
         if (angles.size() != 4) throw InputError("give four angles (degrees)");
-        const AngleConvention c = convention == "road" ? AngleConvention::kRoad : AngleConvention::kZenithAzimuth;
+        const AngleConvention c = parse_name<AngleConvention>(convention, "convention");
         return dataset_to_dict(
             usgs_dataset(read_usgs_spectrum(path, wavelengths), geometry_from_angle_values(c, angles.data()), c));
       },
@@ -144,8 +144,8 @@ void bind_instruments(py::module_& m) {
   m.def(
       "manifest_dataset",
       [](const std::string& path, const std::string& quantity, const std::string& overlap) {
-        return dataset_to_dict(manifest_dataset(read_manifest(path), instrument_quantity_from_string(quantity),
-                                                manifest_options(overlap)));
+        return dataset_to_dict(manifest_dataset(
+            read_manifest(path), parse_name<InstrumentQuantity>(quantity, "quantity"), manifest_options(overlap)));
       },
       py::arg("path"), py::arg("quantity") = "target", py::arg("overlap") = "upper");
   m.def(
@@ -186,13 +186,7 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
     d.sigma.assign(s.data(), s.data() + n * m);
   }
   d.metadata = metadata;
-  if (convention == "road") {
-    d.convention = AngleConvention::kRoad;
-  } else if (convention == "zenith") {
-    d.convention = AngleConvention::kZenithAzimuth;
-  } else {
-    throw InputError("convention must be 'zenith' or 'road', got '" + convention + "'");
-  }
+  d.convention = parse_name<AngleConvention>(convention, "convention");
   validate_dataset(d);
   return d;
 }
@@ -241,7 +235,7 @@ void bind_io(py::module_& m) {
            const std::vector<std::string>& comments, const std::string& path, const std::string& format) {
           SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
           d.comments = comments;
-          write_dataset(d, path, dataset_format_from_string(format));
+          write_dataset(d, path, parse_name<DatasetFormat>(format, "format"));
         });
   m.def(
       "read_curet",

@@ -32,7 +32,7 @@ void bind_mixing(py::module_& m) {
   py::class_<MixRun, std::shared_ptr<MixRun>>(m, "MixRun")
       .def_property_readonly("notes", [](const MixRun& r) { return r.notes; })
       .def_property_readonly("count", [](const MixRun& r) { return r.content.results.size(); })
-      .def("method", [](const MixRun& r, std::size_t i) { return mixing::to_string(r.content.results.at(i).method); })
+      .def("method", [](const MixRun& r, std::size_t i) { return name_of(r.content.results.at(i).method); })
       .def("spectral_model", [](const MixRun& r, std::size_t i) { return *r.content.results.at(i).model; })
       .def(
           "content", [](const MixRun& r) { return json_to_python(mixing::mix_file_json(r.content)); },
@@ -119,6 +119,18 @@ void bind_mixing(py::module_& m) {
       },
       py::arg("formulations"), py::arg("data"), py::arg("reference") = "", py::arg("output") = "");
   m.def("read_spectral_model_file", &mixing::read_spectral_model_file, py::arg("path"), py::arg("selection") = "");
+  // The mixing methods in the library's order, with what the studies need to know of each.
+  m.def("mixing_methods", [] {
+    py::list methods;
+    for (const auto& entry : mixing::kMethodNames) {
+      py::dict d;
+      d["name"] = std::string(entry.name);
+      d["description"] = std::string(entry.description);
+      d["needs_data"] = mixing::method_needs_data(entry.value);
+      methods.append(d);
+    }
+    return methods;
+  });
 }
 
 }  // namespace roadbrdf::python

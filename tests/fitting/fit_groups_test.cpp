@@ -237,7 +237,7 @@ TEST(FitGroups, GroupedFitFileSelectorsAndParameterTable) {
   // Markdown and LaTeX carry the values with their standard errors.
   EXPECT_NE(t.render(ParamsFormat::kMarkdown).find("| oren-nayar | 40 "), std::string::npos);
   EXPECT_NE(t.render(ParamsFormat::kLatex).find("\\begin{tabular}"), std::string::npos);
-  EXPECT_EQ(field_error([] { params_format_from_string("latx"); }),
+  EXPECT_EQ(field_error([] { parse_name<ParamsFormat>("latx", "format"); }),
             "format: 'latx' is not one of table, csv, markdown, latex (did you mean 'latex'?)");
 }
 

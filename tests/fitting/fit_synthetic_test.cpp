@@ -179,12 +179,12 @@ TEST(FitSynthetic, JointSchurSolversAgree) {
   std::vector<double> sigma;
   // iterative-schur is left out: on this small problem Ceres 2.1's CG reported "Numerical failure,
   // rho = r'z = 0" and stopped (see fit.h).
-  for (const char* solver : {"dense-schur", "sparse-schur"}) {
+  for (const JointSolver solver : {JointSolver::kDenseSchur, JointSolver::kSparseSchur}) {
     FitOptions o;
     o.shared = {"sigma"};
     o.joint_solver = solver;
     const FitResult r = fit_model(*model, data, o);
-    EXPECT_TRUE(r.wavelengths[0].converged) << solver << ": " << r.joint_status;
+    EXPECT_TRUE(r.wavelengths[0].converged) << name_of(solver) << ": " << r.joint_status;
     sigma.push_back(r.wavelengths[0].parameters[1]);
   }
   EXPECT_NEAR(sigma[1], sigma[0], 1e-6);

@@ -59,8 +59,8 @@ TEST(LinearMixtureAlbedo, LambertianEndMembersGiveTheWeightedAlbedos) {
         const auto [r0, r1] = rho.at(r.end_members[k]);
         expected += r.weights[k] * (r0 + r1 * x);
       }
-      EXPECT_NEAR(a["white_sky"][q].get<double>(), expected, 1e-9) << to_string(m) << " " << wavelengths[q];
-      EXPECT_NEAR(a["black_sky"][1][q].get<double>(), expected, 1e-9) << to_string(m) << " " << wavelengths[q];
+      EXPECT_NEAR(a["white_sky"][q].get<double>(), expected, 1e-9) << name_of(m) << " " << wavelengths[q];
+      EXPECT_NEAR(a["black_sky"][1][q].get<double>(), expected, 1e-9) << name_of(m) << " " << wavelengths[q];
     }
   }
 }
@@ -80,7 +80,7 @@ TEST(LinearMixtureAlbedo, AgreesWithTheMixtureQuadratureWithinBothErrorEstimates
         for (std::size_t q = 0; q < test_wavelengths().size(); ++q) {
           const double bound = fast[error][z][q].get<double>() + direct[error][z][q].get<double>();
           EXPECT_LE(std::fabs(fast[key][z][q].get<double>() - direct[key][z][q].get<double>()), bound)
-              << to_string(m) << " " << key;
+              << name_of(m) << " " << key;
           EXPECT_GT(fast[key][z][q].get<double>(), 0.01);
         }
         const double bound = fast["broadband"][error][z].get<double>() + direct["broadband"][error][z].get<double>();
@@ -122,7 +122,7 @@ TEST(MixtureRTable, SameNumbersAsTheMixtureBitForBit) {
     for (std::size_t c = 0; c < fast.table.scaled.size(); ++c) {
       ASSERT_TRUE(fast.table.scaled[c] == direct.table.scaled[c] ||
                   (std::isnan(fast.table.scaled[c]) && std::isnan(direct.table.scaled[c])))
-          << to_string(m) << " cell " << c;
+          << name_of(m) << " cell " << c;
     }
     EXPECT_EQ(fast.summary.q0, direct.summary.q0);
     EXPECT_EQ(fast.summary.s1, direct.summary.s1);
@@ -141,9 +141,9 @@ TEST(MethodLinearity, DeclaredLinearMethodsBuildLinearMixtures) {
   const MixInputs in = glossy_inputs();
   const MixResult truth = mix(in, Method::kAreal, {});
   const SpectralDataset data = make_dataset([&](const Geometry& g, double w) { return value_at(*truth.model, g, w); });
-  for (Method m : all_methods()) {
+  for (Method m : values_of<Method>()) {
     const MixResult r = mix(in, m, {}, method_needs_data(m) ? &data : nullptr);
-    EXPECT_EQ(method_is_linear(m), r.mixture->kind() == MixtureKind::kLinear) << to_string(m);
+    EXPECT_EQ(method_is_linear(m), r.mixture->kind() == MixtureKind::kLinear) << name_of(m);
   }
   EXPECT_TRUE(method_is_linear(Method::kAreal));
   EXPECT_FALSE(method_is_linear(Method::kHapke));

@@ -48,7 +48,7 @@ TEST(HapkeInversion, MixtureAlbedoFromEndMemberAlbedosEqualsFullQuadrature) {
     const std::vector<double> fast = mixture_white_sky_albedo(in, r, test_wavelengths());
     const std::vector<double> full = spectral_white_sky_albedo(*r.model, test_wavelengths());
     ASSERT_EQ(fast.size(), full.size());
-    for (std::size_t q = 0; q < full.size(); ++q) EXPECT_NEAR(fast[q], full[q], 1e-13) << to_string(method) << " " << q;
+    for (std::size_t q = 0; q < full.size(); ++q) EXPECT_NEAR(fast[q], full[q], 1e-13) << name_of(method) << " " << q;
   }
 }
 

@@ -180,7 +180,7 @@ TEST(Identities, OneComponentFormulationReturnsThatComponent) {
     const MixResult r = mix(in, method, {}, &data);
     for (const Geometry& g : test_geometries()) {
       for (double w : {400.0, 470.0, 700.0}) {
-        EXPECT_NEAR(value_at(*r.model, g, w), value_at(m, g, w), 1e-9) << to_string(method);
+        EXPECT_NEAR(value_at(*r.model, g, w), value_at(m, g, w), 1e-9) << name_of(method);
       }
     }
   }
@@ -193,13 +193,13 @@ TEST(Identities, MixingIdenticalComponentsChangesNothing) {
   const MixInputs in = load_mix_inputs(three_component_formulation("b", "f", "c", "m"),
                                        memory_loader({{"b", m}, {"f", m}, {"c", m}, {"m", m}}));
   const SpectralDataset data = make_dataset([&](const Geometry& g, double w) { return value_at(m, g, w); });
-  for (Method method : all_methods()) {
+  for (Method method : values_of<Method>()) {
     MixSettings s;
     s.sum_to_one = method == Method::kFitted;  // identical end-members: only the sum is identifiable
     const MixResult r = mix(in, method, s, &data);
     for (const Geometry& g : test_geometries()) {
       for (double w : {400.0, 650.0}) {
-        EXPECT_NEAR(value_at(*r.model, g, w), value_at(m, g, w), 1e-6 * value_at(m, g, w) + 1e-9) << to_string(method);
+        EXPECT_NEAR(value_at(*r.model, g, w), value_at(m, g, w), 1e-6 * value_at(m, g, w) + 1e-9) << name_of(method);
       }
     }
   }

@@ -65,7 +65,7 @@ TEST(MixtureModel, GradientMatchesCentralDifferences) {
         down[q] -= h;
         const double numeric = (m->evaluate(up.data(), g) - m->evaluate(down.data(), g)) / (2 * h);
         EXPECT_NEAR(gradient[q], numeric, 1e-6 * std::max(1.0, std::fabs(numeric)))
-            << to_string(kind) << " " << m->description().parameters[q].name;
+            << name_of(kind) << " " << m->description().parameters[q].name;
       }
     }
   }
@@ -102,7 +102,7 @@ TEST(MixtureModel, ReciprocalAndBatchConsistent) {
     m->evaluate_batch(gs.data(), gs.size(), p.data(), 1, batch.data());
     for (std::size_t n = 0; n < gs.size(); ++n) {
       EXPECT_NEAR(batch[n], m->evaluate(p.data(), gs[n]), 1e-15);
-      EXPECT_NEAR(m->evaluate(p.data(), gs[n]), m->evaluate(p.data(), gs[n].swapped()), 1e-12) << to_string(kind);
+      EXPECT_NEAR(m->evaluate(p.data(), gs[n]), m->evaluate(p.data(), gs[n].swapped()), 1e-12) << name_of(kind);
     }
   }
 }
@@ -123,7 +123,7 @@ TEST(MixFile, RoundTripOfEveryPredictionMethod) {
   write_mix_file(path, content);
   EXPECT_TRUE(is_mix_file(path));
   for (const MixResult& r : content.results) {
-    const SpectralModel back = read_spectral_model_file(path, to_string(r.method));
+    const SpectralModel back = read_spectral_model_file(path, name_of(r.method));
     for (const Geometry& g : test_geometries()) {
       for (double w : {400.0, 555.0, 700.0}) EXPECT_NEAR(value_at(back, g, w), value_at(*r.model, g, w), 1e-12);
     }

@@ -222,7 +222,7 @@ TEST(RTableFiles, RoundTripInEveryFormat) {
   computed.name = "oren-nayar test";
   const RTable r3 = standard("r3-table.dat");
   for (RTableFormat f : {RTableFormat::csv, RTableFormat::rtb, RTableFormat::radiance}) {
-    SCOPED_TRACE(rtable_format_name(f));
+    SCOPED_TRACE(name_of(f));
     for (const RTable* t : {static_cast<const RTable*>(&computed), &r3}) {
       const std::string ext = f == RTableFormat::csv ? ".csv" : f == RTableFormat::rtb ? ".rtb" : ".dat";
       const std::string path = temp_path(std::string("roundtrip") + ext).string();

@@ -17,7 +17,8 @@ InputError = _roadbrdf.InputError
 
 KINDS = ("mass_percent", "component", "share", "mastic_fraction")
 DESIGNS = ("grid", "random", "lhs")
-FAST_METHODS = ("areal", "mastic", "hapke")  # the mixing methods that need no measured mixture
+# The mixing methods that need no measured mixture (areal, mastic, hapke).
+FAST_METHODS = tuple(m["name"] for m in _roadbrdf.mixing_methods() if not m["needs_data"])
 PATHS = ("fast", "physical")
 
 _TOP_KEYS = {"format", "version", "name", "description", "base", "library", "variables", "design", "replicates",

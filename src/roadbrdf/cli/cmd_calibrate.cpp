@@ -86,7 +86,7 @@ void register_calibrate_command(CLI::App& app) {
                 "Measured BRF of the panel at the measurement geometry (replaces rho_ref: non-Lambertian correction)");
   c->add_option("--panel-brf-start", args.brf_start, "First wavelength of a one-column --panel-brf file [nm]");
   c->add_option("--panel-brf-step", args.brf_step, "Wavelength step of a one-column --panel-brf file [nm]");
-  c->add_option("--format", args.format, "Output format: wide (default) or long");
+  c->add_option("--format", args.format, "Output format: " + names_text<DatasetFormat>() + " (default wide)");
   c->add_option("-o,--output", args.output, "Output BRDF dataset CSV (default: standard output)");
   c->callback([] { run(args); });
 }

@@ -1,4 +1,4 @@
-// roadbrdf convert INPUT [--from wide|long|curet|alta|asd|sed|sig|manifest|usgs] [--to wide|long] -o OUT.csv
+// roadbrdf convert INPUT [--from SOURCE] [--to wide|long] -o OUT.csv
 // (instrument files and manifests: cli/instruments.h)
 #include <fmt/core.h>
 
@@ -38,12 +38,11 @@ struct ConvertArgs {
 
 void run(const ConvertArgs& a) {
   check_distinct_files({{"INPUT", a.input}, {"--curet-table", a.curet_table}}, {{"-o", a.output}});
+  const ConvertSource from = parse_name<ConvertSource>(a.from, "from");
   SpectralDataset d;
-  if (is_instrument_input(a.from, a.input)) {
-    d = convert_instrument_input(a.from, a.input, a.instrument);
-  } else if (a.from == "auto" || a.from == "wide" || a.from == "long") {
-    d = read_dataset(a.input, dataset_read_options(a.read));
-  } else if (a.from == "curet") {
+  if (is_instrument_input(from, a.input)) {
+    d = convert_instrument_input(from, a.input, a.instrument);
+  } else if (from == ConvertSource::kCuret) {
     if (a.sample < 0) {
       std::string list;
       for (int s : curet_sample_numbers(a.input)) list += fmt::format("{}{}", list.empty() ? "" : " ", s);
@@ -60,25 +59,18 @@ void run(const ConvertArgs& a) {
       o.nominal_wavelength_nm = *a.wavelength;
     }
     d = read_curet(a.input, table, a.sample, o);
-  } else if (a.from == "alta") {
+  } else if (from == ConvertSource::kAlta) {
     AltaReadOptions o;
     o.wavelength_nm = a.wavelength.value_or(0.0);
     o.assumed_output = a.alta_output;
     o.exclude_grazing = a.exclude_grazing;
     o.average_duplicates = a.read.average_duplicates;
     d = read_alta(a.input, o);
-  } else {
-    throw InputError("--from: unknown format '" + a.from +
-                     "' (auto, wide, long, curet, alta, asd, sed, sig, manifest, usgs)");
+  } else {  // auto (not an instrument file), wide or long: the CSV reader tells wide from long
+    d = read_dataset(a.input, dataset_read_options(a.read));
   }
-  if (a.convention == "road") {
-    d.convention = AngleConvention::kRoad;
-  } else if (a.convention == "zenith") {
-    d.convention = AngleConvention::kZenithAzimuth;
-  } else if (!a.convention.empty()) {
-    throw InputError("--convention: expected zenith or road, got '" + a.convention + "'");
-  }
-  write_dataset_output(d, a.output, a.to);
+  if (!a.convention.empty()) d.convention = parse_name<AngleConvention>(a.convention, "convention");
+  write_dataset_output(d, a.output, a.to, "to");
 }
 
 }  // namespace
@@ -89,22 +81,19 @@ void register_convert_command(CLI::App& app) {
                                "Convert a dataset between wide/long CSV, and from CUReT, ALTA, instrument (.asd, .sed, "
                                ".sig), manifest and USGS splib07a files");
   c->add_option("input", args.input, "Input file (for CUReT: abrdf.dat)")->required();
-  c->add_option("--from", args.from,
-                "Input format: auto (wide or long CSV, or an instrument file by its extension), wide, long, curet, "
-                "alta, asd, sed, "
-                "sig, manifest (a run of instrument files: docs/data.md), usgs (a USGS splib07a ASCII spectrum: "
-                "needs --usgs-wavelengths and --geometry; stored as BRDF = R/pi)");
-  c->add_option("--to", args.to, "Output format: wide (default) or long");
+  c->add_option("--from", args.from, "Input format: " + described_names_text<ConvertSource>());
+  c->add_option("--to", args.to, "Output format: " + names_text<DatasetFormat>() + " (default wide)");
   c->add_option("--curet-table", args.curet_table, "CUReT geometry table (default: table.txt next to the input)");
   c->add_option("--sample", args.sample, "CUReT sample number (first column of abrdf.dat)");
   c->add_option("--wavelength", args.wavelength,
                 "Wavelength [nm] to store single-channel data at (ALTA: required; CUReT: default 550)");
   c->add_option("--alta-output", args.alta_output,
-                "ALTA output unit when the file lacks #PARAM_OUT: INV_STERADIAN or INV_STERADIAN_COSINE_FACTOR");
+                "ALTA output unit when the file lacks #PARAM_OUT: " + described_names_text<AltaOutput>());
   c->add_flag("--exclude-grazing", args.exclude_grazing,
               "ALTA BRDF x cos(theta_v): leave out (and report) rows at grazing view, which cannot be converted");
   add_dataset_read_flags(c, args.read);
-  c->add_option("--convention", args.convention, "Angle columns of the output: zenith or road (default: as read)");
+  c->add_option("--convention", args.convention,
+                "Angle columns of the output: " + described_names_text<AngleConvention>() + " (default: as read)");
   add_instrument_flags(c, args.instrument, true);
   c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");
   c->callback([] { run(args); });

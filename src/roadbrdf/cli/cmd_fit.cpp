@@ -13,6 +13,7 @@
 #include "roadbrdf/cli/dataset_flags.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/range.h"
@@ -146,11 +147,9 @@ void register_fit_command(CLI::App& app) {
                 "physical range (`roadbrdf models --json`: physical_bounds) (repeatable); a default start outside "
                 "them moves to their middle")
       ->allow_extra_args(false);
-  c->add_option("--loss", args.loss,
-                "plain: f-y | relative: (f-y)/y | log: ln(1+f cos)-ln(1+y cos) (Loew 2012) | cosine: (f-y) cos "
-                "(Ngan 2005)")
-      ->capture_default_str();
-  c->add_option("--robust", args.robust, "Robust loss huber:SCALE or cauchy:SCALE (SCALE in residual units), or none")
+  c->add_option("--loss", args.loss, "Residual: " + described_names_text<FitLoss>())->capture_default_str();
+  c->add_option("--robust", args.robust,
+                "Robust loss, none or NAME:SCALE (SCALE in residual units): " + described_names_text<RobustLoss>())
       ->capture_default_str();
   c->add_flag("--solid-angle-weights", args.solid_angle,
               "Weight each geometry by its solid-angle cell (nearest-neighbour estimate, fitting/fit.h)");
@@ -173,9 +172,9 @@ void register_fit_command(CLI::App& app) {
       ->allow_extra_args(false);
   c->add_option("--threads", args.threads, "Threads (per-wavelength mode; the results do not depend on it)")
       ->capture_default_str();
-  c->add_option("--joint-solver", args.joint_solver,
-                "Joint mode linear solver: dense-schur | sparse-schur | iterative-schur (per-wavelength blocks "
-                "eliminated by a Schur complement)")
+  c->add_option(
+       "--joint-solver", args.joint_solver,
+       "Joint mode linear solver (per-wavelength blocks eliminated first): " + described_names_text<JointSolver>())
       ->capture_default_str();
   c->add_option("--max-iterations", args.max_iterations, "Iteration limit per problem")->capture_default_str();
   c->add_flag("--no-covariance", args.no_covariance, "Skip standard errors and correlations");

@@ -1,4 +1,4 @@
-// roadbrdf mix FORMULATION.json [--data MEASURED.csv] [--method areal|fitted|mastic|hapke|shadowed|all]
+// roadbrdf mix FORMULATION.json [--data MEASURED.csv] [--method METHOD|all]
 //              [--folds K] [--reference FIT.json] [--no-sigma-weights] [--residuals RES.csv]
 //              [--cross-sections CAL.json] [--uncertainty] -o MIX.json
 // Predicts the BRDF of a road formulation from its components' fits (mixing/mixing.h) and, with
@@ -94,7 +94,7 @@ void register_mix_command(CLI::App& app) {
       ->required();
   command->add_option("--data", args.data, "Measured BRDF of the mixed sample (CSV): compare the methods on it");
   add_dataset_read_flags(command, args.read);
-  command->add_option("--method", args.method, "areal | fitted | mastic | hapke | shadowed | all (default all)");
+  command->add_option("--method", args.method, "Mixing method: " + names_text<mixing::Method>() + ", or all (default)");
   command->add_option("--folds", args.folds, "Cross-validation folds over geometries (default 5)");
   command->add_option("--seed", args.seed, "Seed of the geometry shuffle for the folds (default 1)");
   command->add_flag("--per-wavelength", args.per_wavelength,

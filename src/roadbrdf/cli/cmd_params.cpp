@@ -31,7 +31,7 @@ void run(const ParamsArgs& a) {
   if (!a.wavelengths.empty()) request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths");
   request.models = a.models;
   request.group_by = split_commas(a.group_by);
-  const ParamsFormat format = params_format_from_string(a.format);
+  const ParamsFormat format = parse_name<ParamsFormat>(a.format, "format");
   request.validate();
   check_distinct_files({{"FIT", a.fit}}, {{"-o", a.output}});
   const ParamsTable table = read_params_table(request);
@@ -63,8 +63,7 @@ void register_params_command(CLI::App& app) {
                 "the fit file such as theta_i), each headed e.g. 'theta_i = 40 deg'; CSV stays one table in that "
                 "order")
       ->allow_extra_args(false);
-  c->add_option("--format", args.format,
-                "table (aligned text) | csv (every number, separate stderr columns) | markdown | latex")
+  c->add_option("--format", args.format, "Table format: " + described_names_text<ParamsFormat>())
       ->capture_default_str();
   c->add_option("-o,--output", args.output, "Write the table to this file (atomically; default: standard output)");
   c->callback([] { run(args); });

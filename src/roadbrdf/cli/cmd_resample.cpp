@@ -68,7 +68,7 @@ void register_resample_command(CLI::App& app) {
       ->allow_extra_args(false);
   c->add_flag("--drop-noisy", args.drop_noisy, "Leave out the bands overlapping the noisy bands found by `check`");
   c->add_option("--snr-threshold", args.snr_threshold, "Signal-to-noise threshold of --drop-noisy");
-  c->add_option("--format", args.format, "Output format: wide (default) or long");
+  c->add_option("--format", args.format, "Output format: " + names_text<DatasetFormat>() + " (default wide)");
   c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");
   c->callback([] { run(args); });
 }

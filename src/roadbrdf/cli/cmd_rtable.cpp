@@ -46,7 +46,7 @@ struct RTableArgs {
 
 std::optional<RTableFormat> import_format(const std::string& name) {
   if (name.empty()) return std::nullopt;
-  return rtable_format_from_name(name);
+  return rtable_format_from_name(name, "import_format");
 }
 
 // The flags translated into the library's request (photometry/rtable_request.h owns the rules).
@@ -82,7 +82,7 @@ void run(const RTableArgs& a) {
     }
     request.validate_for_import();
     RTableFile file = read_rtable(a.import_file, import_format(a.import_format), a.alpha, a.scale);
-    source = {{"import", a.import_file}, {"format", rtable_format_name(file.format)}, {"scale", a.scale}};
+    source = {{"import", a.import_file}, {"format", name_of(file.format)}, {"scale", a.scale}};
     report = rtable_report(std::move(file), request);
   } else {
     if (a.scale != kRScale) throw InputError("--scale applies to --import only");
@@ -110,7 +110,7 @@ void run(const RTableArgs& a) {
   if (a.json) {
     nlohmann::json j = report.to_json();
     j["source"] = source;
-    if (!a.output.empty()) j["output"] = {{"file", a.output}, {"format", rtable_format_name(out_format)}};
+    if (!a.output.empty()) j["output"] = {{"file", a.output}, {"format", name_of(out_format)}};
     std::cout << roadbrdf::dump_json(j, 2) << '\n';
     return;
   }
@@ -141,7 +141,7 @@ void register_rtable_command(CLI::App& app) {
   command->add_option("--import", args.import_file,
                       "Read an r-table file instead of computing one (.csv, .rtb, .dat Radiance; 0 = missing cell)");
   command->add_option("--import-format", args.import_format,
-                      "Format of --import when the extension does not tell: csv|rtb|radiance");
+                      "Format of --import when the extension does not tell: " + names_text<RTableFormat>());
   command->add_option("--scale", args.scale, "Imported file values are r times this (default 1e4; e.g. 1 for plain r)");
   command->add_option("--alpha", args.alpha, "Observation angle above the road plane [deg] (default 1)");
   command->add_option("--illuminant", args.illuminant,
@@ -150,7 +150,7 @@ void register_rtable_command(CLI::App& app) {
   command->add_option("--wavelength", args.wavelength, "Use the spectral model at one wavelength [nm] instead");
   command->add_option("--band", args.band, "Use the unweighted mean over a band A:B [nm] instead");
   command->add_option("--format", args.format,
-                      "Table format: csv (default), rtb (DIALux), radiance (Radiance data file); all store 1e4 r");
+                      "Table format: " + described_names_text<RTableFormat>() + " (default csv); all store 1e4 r");
   command->add_option("-o,--output", args.output, "Write the table here (atomically); default: standard output");
   command->add_flag("--json", args.json,
                     "Print JSON: Q0, S1, S2, Qd, class, beta_deg, tan_gamma, r (plain r in sr^-1, null = missing), "
@@ -158,10 +158,10 @@ void register_rtable_command(CLI::App& app) {
   command->add_option(
       "--compare", args.compare_file,
       "Compare with another r-table file (reference): max/mean relative difference, Q0 and S1 differences");
-  command->add_option(
-      "--q0-region", args.q0_region,
-      "Q0 averaging region: standard (cells of the CIE standard tables, default) or table (all defined cells)");
-  command->add_option("--class-system", args.class_system, "Class reported as 'class': R (default), N or C");
+  command->add_option("--q0-region", args.q0_region,
+                      "Q0 averaging region: " + described_names_text<Q0Region>() + " (default standard)");
+  command->add_option("--class-system", args.class_system,
+                      "Class reported as 'class': " + names_text<ClassSystem>() + " (default R)");
   command->callback([] { run(args); });
 }
 

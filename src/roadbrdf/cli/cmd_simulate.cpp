@@ -102,7 +102,7 @@ void register_simulate_command(CLI::App& app) {
   c->add_flag("--no-sigma", args.no_sigma, "Do not write the noise standard deviation as sigma_<nm> columns");
   c->add_option("--metadata", args.metadata, "Extra metadata KEY=VALUE written as '# key: value' (repeatable)")
       ->allow_extra_args(false);
-  c->add_option("--format", args.format, "Output format: wide (default) or long");
+  c->add_option("--format", args.format, "Output format: " + names_text<DatasetFormat>() + " (default wide)");
   c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");
   c->callback([] { run(args); });
 }

@@ -195,6 +195,7 @@ void run_render(const RenderArgs& a) {
   if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
   const surface::RenderSettings settings = render_settings(a);  // validated before any file is read
   (void)settings;
+  const DatasetFormat format = parse_name<DatasetFormat>(a.format, "format");
   if (a.grid.empty() == a.albedo.empty()) throw InputError("give either --grid GRID.csv or --albedo ZENITHS");
   std::vector<FileArgument> inputs = {{"SURFACE", a.surface}, {"--grid", a.grid}};
   check_distinct_files(inputs, {{"-o", a.output}});
@@ -214,7 +215,7 @@ void run_render(const RenderArgs& a) {
   bar.finish();
   std::FILE* report = report_stream(a.output);
   data.convention = grid.convention;
-  write_dataset(data, a.output, dataset_format_from_string(a.format));
+  write_dataset(data, a.output, format);
   long total_paths = 0;
   std::vector<double> worst;
   for (const auto& e : estimates) {
@@ -369,13 +370,12 @@ void register_surface_command(CLI::App& app) {
   r->add_option("--error-floor", rargs.error_floor,
                 "Adaptive sampling: absolute standard error [sr^-1] accepted for BRDF values near 0 (default 1e-5)");
   r->add_option("--sampling", rargs.sampling,
-                "Continuation directions: brdf (tabulated BRDF mixed with cosine, MIS; default) | cosine");
+                "Continuation directions: " + described_names_text<surface::Sampling>() + " (default brdf)");
   r->add_option("--acceptance", rargs.acceptance, "Detector acceptance half-angle [deg] (1 or 5 typical; default 1)");
   r->add_option("--seed", rargs.seed, "Random seed (default 1); each geometry has its own streams");
   r->add_option("--threads", rargs.threads, "Threads (default: all cores)");
   r->add_option("--max-bounces", rargs.max_bounces, "Limit the number of surface interactions (0 = unlimited)");
-  r->add_option("--format", rargs.format, "Output CSV layout: wide | long (default wide)")
-      ->check(CLI::IsMember({"wide", "long"}));
+  r->add_option("--format", rargs.format, "Output CSV layout: " + names_text<DatasetFormat>() + " (default wide)");
   r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")
       ->required();
   add_quiet_flag(r, rargs.quiet);

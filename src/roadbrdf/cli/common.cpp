@@ -171,8 +171,9 @@ void add_fit_flag(CLI::App* command, std::string& fit) {
   });
 }
 
-void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format) {
-  write_dataset(data, path.empty() ? std::string("-") : path, dataset_format_from_string(format));
+void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format,
+                          const std::string& format_field) {
+  write_dataset(data, path.empty() ? std::string("-") : path, parse_name<DatasetFormat>(format, format_field));
   if (const std::size_t missing = missing_value_count(data); missing > 0) {
     fmt::print(stderr,
                "roadbrdf: warning: {}: {} of {} BRDF values are missing (written as nan: not measured, never "

@@ -37,8 +37,9 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
                                                const std::string& fit_model = "");
 
 // Write a dataset to `path` (atomically), or to standard output when `path` is empty or "-";
-// `format` is "wide" or "long".
-void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format);
+// `format` is a name of kDatasetFormatNames (io/dataset_io.h), read as the request field `format_field`.
+void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format,
+                          const std::string& format_field = "format");
 
 // Where a command's report (tables, notes) goes: standard error when its output file is standard
 // output ("-"), so that the two never mix; standard output otherwise.

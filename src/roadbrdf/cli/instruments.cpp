@@ -47,7 +47,7 @@ Geometry parse_geometry(const std::string& text, AngleConvention& convention) {
 
 ManifestOptions manifest_options(const InstrumentArgs& args) {
   ManifestOptions o;
-  o.read.overlap = overlap_rule_from_string(args.overlap);
+  o.read.overlap = parse_name<OverlapRule>(args.overlap, "overlap");
   o.warn = warn;
   return o;
 }
@@ -60,37 +60,49 @@ void add_instrument_flags(CLI::App* c, InstrumentArgs& args, bool convert) {
                   "Geometry of a single instrument file: theta_i=D,phi_i=D,theta_r=D,phi_r=D or "
                   "gamma=D,alpha=D,beta=D,delta=D [deg]");
     c->add_option("--quantity", args.quantity,
-                  "Instrument signal to store: target (default), reference (the panel signal stored in the file) or "
-                  "reflectance (the file's reflectance, or ASD target/reference)");
+                  "Instrument signal to store: " + described_names_text<InstrumentQuantity>() + " (default target)");
     c->add_option("--usgs-wavelengths", args.usgs_wavelengths,
                   "--from usgs: the splib07a wavelength file of the spectrum's instrument, e.g. "
                   "splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt (micrometres)");
   }
   c->add_option("--overlap", args.overlap,
-                "SVC .sig detector overlap: upper (default: keep the next detector's channels), lower (keep the "
-                "previous detector's) or error; nothing is averaged, dropped channels are reported");
+                "SVC .sig detector overlap: " + described_names_text<OverlapRule>() +
+                    " (default upper); nothing is averaged, dropped channels are reported");
 }
 
-bool is_instrument_input(const std::string& from, const std::string& input) {
-  if (from == "asd" || from == "sed" || from == "sig" || from == "instrument" || from == "manifest" || from == "usgs")
-    return true;
-  return from == "auto" && has_instrument_extension(input);
+bool is_instrument_input(ConvertSource from, const std::string& input) {
+  switch (from) {
+    case ConvertSource::kAsd:
+    case ConvertSource::kSed:
+    case ConvertSource::kSig:
+    case ConvertSource::kInstrument:
+    case ConvertSource::kManifest:
+    case ConvertSource::kUsgs:
+      return true;
+    case ConvertSource::kAuto:
+      return has_instrument_extension(input);
+    case ConvertSource::kWide:
+    case ConvertSource::kLong:
+    case ConvertSource::kCuret:
+    case ConvertSource::kAlta:
+      return false;
+  }
+  return false;
 }
 
-SpectralDataset convert_instrument_input(const std::string& from, const std::string& input,
-                                         const InstrumentArgs& args) {
-  const InstrumentQuantity quantity = instrument_quantity_from_string(args.quantity);
+SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args) {
+  const InstrumentQuantity quantity = parse_name<InstrumentQuantity>(args.quantity, "quantity");
   const ManifestOptions options = manifest_options(args);
-  if (from == "manifest") {
+  if (from == ConvertSource::kManifest) {
     if (!args.geometry.empty())
       throw InputError("--geometry is for a single instrument file: a manifest gives its own");
     return manifest_dataset(read_manifest(input), quantity, options);
   }
-  if (from == "usgs") {
+  if (from == ConvertSource::kUsgs) {
     if (args.usgs_wavelengths.empty())
       throw InputError("--from usgs needs --usgs-wavelengths FILE (the splib07a wavelength file of the spectrum)");
     // The file holds the reflectance only (target and reflectance mean the same here); no panel signal.
-    if (args.quantity == "reference")
+    if (quantity == InstrumentQuantity::kReference)
       throw InputError("--quantity reference: a USGS splib07a file holds no reference signal");
     AngleConvention convention = AngleConvention::kZenithAzimuth;
     const Geometry geometry = parse_geometry(args.geometry, convention);
@@ -102,8 +114,8 @@ SpectralDataset convert_instrument_input(const std::string& from, const std::str
   AngleConvention convention = AngleConvention::kZenithAzimuth;
   const Geometry geometry = parse_geometry(args.geometry, convention);
   InstrumentSpectrum s = read_instrument_file(input, options.read);
-  if (from != "auto" && from != "instrument" && to_string(s.format) != from) {
-    throw InputError(fmt::format("{}: --from {} but the file is a .{} file", input, from, to_string(s.format)));
+  if (from != ConvertSource::kAuto && from != ConvertSource::kInstrument && name_of(s.format) != name_of(from)) {
+    throw InputError(fmt::format("{}: --from {} but the file is a .{} file", input, name_of(from), name_of(s.format)));
   }
   for (const auto& note : s.notes) warn(note);
   return instrument_dataset(s, geometry, convention, quantity);

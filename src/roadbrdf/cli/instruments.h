@@ -4,8 +4,10 @@
 
 #include <CLI/CLI.hpp>
 #include <optional>
+#include <span>
 #include <string>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
 
 namespace roadbrdf::cli {
@@ -17,15 +19,35 @@ struct InstrumentArgs {
   std::string usgs_wavelengths;  // --from usgs: the splib07a wavelength file of the spectrum
 };
 
+// What `convert` reads (its --from). The instrument formats are named as InstrumentFormat names them
+// (io/instrument.h), which the file read must then be.
+enum class ConvertSource { kAuto, kWide, kLong, kCuret, kAlta, kAsd, kSed, kSig, kInstrument, kManifest, kUsgs };
+inline constexpr EnumName<ConvertSource> kConvertSourceNames[] = {
+    {ConvertSource::kAuto, "auto", "wide or long CSV, or an instrument file by its extension"},
+    {ConvertSource::kWide, "wide", ""},
+    {ConvertSource::kLong, "long", ""},
+    {ConvertSource::kCuret, "curet", ""},
+    {ConvertSource::kAlta, "alta", ""},
+    {ConvertSource::kAsd, "asd", ""},
+    {ConvertSource::kSed, "sed", ""},
+    {ConvertSource::kSig, "sig", ""},
+    {ConvertSource::kInstrument, "instrument", "any of the three, by its content"},
+    {ConvertSource::kManifest, "manifest", "a run of instrument files: docs/data.md"},
+    {ConvertSource::kUsgs, "usgs",
+     "a USGS splib07a ASCII spectrum: needs --usgs-wavelengths and --geometry; stored as BRDF = R/pi"},
+};
+constexpr std::span<const EnumName<ConvertSource>> enum_names(ConvertSource) { return kConvertSourceNames; }
+static_assert(entries_are_distinct(kConvertSourceNames));
+
 // --geometry and --quantity (convert only) and --overlap.
 void add_instrument_flags(CLI::App* command, InstrumentArgs& args, bool convert);
 
-// True when `from` names an instrument format, a manifest or "usgs", or is "auto" and the input has an
+// True when `from` is an instrument format, a manifest or USGS, or is auto and the input has an
 // instrument file extension (.asd, .sed, .sig).
-bool is_instrument_input(const std::string& from, const std::string& input);
+bool is_instrument_input(ConvertSource from, const std::string& input);
 
 // `convert` of an instrument file (one row at --geometry) or of a manifest (one row per sample).
-SpectralDataset convert_instrument_input(const std::string& from, const std::string& input, const InstrumentArgs& args);
+SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args);
 
 // `calibrate --manifest`: the calibrated BRDF of the run.
 SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,

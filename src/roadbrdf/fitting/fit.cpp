@@ -40,11 +40,6 @@ void check_request(const SpectralDataset& data, const FitOptions& options) {
     throw InputError("cannot fit: dataset sigma table has the wrong size");
   if (options.multistart < 1) throw FieldError("multistart", "must be at least 1");
   if (options.threads < 1) throw FieldError("threads", "must be at least 1");
-  if (options.joint_solver != "dense-schur" && options.joint_solver != "sparse-schur" &&
-      options.joint_solver != "iterative-schur") {
-    throw FieldError("joint_solver",
-                     "unknown solver '" + options.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)");
-  }
   if (options.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
 }
 

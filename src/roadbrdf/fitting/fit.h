@@ -39,25 +39,56 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "roadbrdf/core/coverage.h"
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf {
 
+// The residual r of a measured value y and the model's value f (see the header comment).
 enum class FitLoss { kPlain, kRelative, kLog, kCosine };
-enum class RobustLoss { kNone, kHuber, kCauchy };
+inline constexpr EnumName<FitLoss> kFitLossNames[] = {
+    {FitLoss::kPlain, "plain", "f-y"},
+    {FitLoss::kRelative, "relative", "(f-y)/y"},
+    {FitLoss::kLog, "log", "ln(1+f cos)-ln(1+y cos), Loew 2012"},
+    {FitLoss::kCosine, "cosine", "(f-y) cos, Ngan 2005"},
+};
+constexpr std::span<const EnumName<FitLoss>> enum_names(FitLoss) { return kFitLossNames; }
 
-// "plain" | "relative" | "log" | "cosine"; throws InputError.
-FitLoss fit_loss_from_string(const std::string& name);
-std::string to_string(FitLoss loss);
-// "huber:S" | "cauchy:S" (S > 0, in residual units) or "none"; throws InputError.
-void robust_loss_from_string(const std::string& text, RobustLoss& kind, double& scale);
-std::string to_string(RobustLoss loss);
+// The function of the residuals that is minimised: their squares, or a robust function of them
+// that grows slower beyond a scale (Huber: linearly; Cauchy: logarithmically).
+enum class RobustLoss { kNone, kHuber, kCauchy };
+inline constexpr EnumName<RobustLoss> kRobustLossNames[] = {
+    {RobustLoss::kNone, "none", "least squares"},
+    {RobustLoss::kHuber, "huber", "quadratic within the scale, linear beyond"},
+    {RobustLoss::kCauchy, "cauchy", "logarithmic beyond the scale"},
+};
+constexpr std::span<const EnumName<RobustLoss>> enum_names(RobustLoss) { return kRobustLossNames; }
+
+// The linear solver of a joint fit (Schur complement, per-wavelength blocks eliminated first). Dense
+// is the default: the reduced system has the size of the shared block. Iterative is EXPERIMENTAL: on
+// a small test problem Ceres 2.1 stopped with "Numerical failure, rho = r'z = 0".
+enum class JointSolver { kDenseSchur, kSparseSchur, kIterativeSchur };
+inline constexpr EnumName<JointSolver> kJointSolverNames[] = {
+    {JointSolver::kDenseSchur, "dense-schur", "dense Schur complement"},
+    {JointSolver::kSparseSchur, "sparse-schur", "sparse Schur complement"},
+    {JointSolver::kIterativeSchur, "iterative-schur",
+     "conjugate gradients on the Schur complement, Jacobi preconditioner"},
+};
+constexpr std::span<const EnumName<JointSolver>> enum_names(JointSolver) { return kJointSolverNames; }
+
+// A name of kFitLossNames, in any letter case; throws FieldError(field, ...).
+FitLoss fit_loss_from_string(const std::string& name, const std::string& field = "loss");
+// "huber:S" | "cauchy:S" (S > 0, in residual units) or "none" (or ""), in any letter case; throws
+// FieldError(field, ...).
+void robust_loss_from_string(const std::string& text, RobustLoss& kind, double& scale,
+                             const std::string& field = "robust");
 
 struct FitOptions {
   FitLoss loss = FitLoss::kPlain;
@@ -82,11 +113,7 @@ struct FitOptions {
   unsigned seed = 1;
   bool solve_linear = true;  // bounded linear least squares for the amplitudes of every start
   bool warm_start = true;    // per wavelength: start from the previous wavelength's solution
-  // Joint mode linear solver (Schur complement, per-wavelength blocks eliminated first):
-  // "dense-schur" (default: the reduced system has the size of the shared block), "sparse-schur",
-  // "iterative-schur" (conjugate gradients on the Schur complement, Jacobi preconditioner;
-  // EXPERIMENTAL: on a small test problem Ceres 2.1 stopped with "Numerical failure, rho = r'z = 0").
-  std::string joint_solver = "dense-schur";
+  JointSolver joint_solver = JointSolver::kDenseSchur;  // joint mode
   int threads = 1;  // per-wavelength mode (the results do not depend on it); joint mode: 1
   int max_iterations = 200;
   double function_tolerance = 1e-10;

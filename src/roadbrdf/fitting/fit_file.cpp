@@ -210,8 +210,8 @@ nlohmann::json fit_to_json(const FitResult& fit) {
   });
   j["fixed"] = fit.fixed;
   j["shared"] = fit.shared;
-  j["loss"] = to_string(fit.settings.loss);
-  j["robust"] = to_string(fit.settings.robust);
+  j["loss"] = name_of(fit.settings.loss);
+  j["robust"] = name_of(fit.settings.robust);
   j["robust_scale"] = fit.settings.robust == RobustLoss::kNone ? json(nullptr) : json(fit.settings.robust_scale);
   j["sigma_weights"] = fit.settings.use_sigma;
   j["solid_angle_weights"] = fit.settings.solid_angle_weights;

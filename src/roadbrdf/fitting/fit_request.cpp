@@ -52,24 +52,11 @@ std::vector<std::string> parameter_names(const std::vector<std::shared_ptr<const
 
 FitOptions settings_of(const FitRequest& r) {
   FitOptions o;
-  try {
-    o.loss = fit_loss_from_string(r.loss);
-  } catch (const InputError& e) {
-    throw FieldError("loss", e.what());
-  }
-  try {
-    robust_loss_from_string(r.robust.empty() ? std::string("none") : r.robust, o.robust, o.robust_scale);
-  } catch (const InputError& e) {
-    throw FieldError("robust", e.what());
-  }
+  o.loss = fit_loss_from_string(r.loss, "loss");
+  robust_loss_from_string(r.robust, o.robust, o.robust_scale, "robust");
   if (r.multistart < 1) throw FieldError("multistart", "must be at least 1");
   if (r.threads < 1) throw FieldError("threads", "must be at least 1");
   if (r.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
-  if (r.joint_solver != "dense-schur" && r.joint_solver != "sparse-schur" && r.joint_solver != "iterative-schur") {
-    throw FieldError("joint_solver",
-                     "unknown solver '" + r.joint_solver + "' (dense-schur, sparse-schur, iterative-schur)" +
-                         did_you_mean(r.joint_solver, {"dense-schur", "sparse-schur", "iterative-schur"}));
-  }
   o.use_sigma = r.use_sigma;
   o.solid_angle_weights = r.solid_angle_weights;
   o.multistart = r.multistart;
@@ -79,7 +66,7 @@ FitOptions settings_of(const FitRequest& r) {
   o.compute_covariance = r.covariance;
   o.warm_start = r.warm_start;
   o.solve_linear = r.solve_amplitudes;
-  o.joint_solver = r.joint_solver;
+  o.joint_solver = parse_name<JointSolver>(r.joint_solver, "joint_solver");
   return o;
 }
 
@@ -376,8 +363,8 @@ FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, co
   s.group_by = request.group_by;
   s.group_count = groups.size();
   s.wavelengths = data->wavelengths;
-  s.loss = to_string(plan.front().options.loss);
-  s.robust = to_string(plan.front().options.robust);
+  s.loss = name_of(plan.front().options.loss);
+  s.robust = name_of(plan.front().options.robust);
   s.sigma_weights = data->has_sigma() && request.use_sigma;
   const std::size_t total = groups.size() * plan.size();
   for (const GeometryGroup& group : groups) {

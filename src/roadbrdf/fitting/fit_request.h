@@ -45,8 +45,8 @@ struct FitRequest {
   // group of equal angles separately ({"theta_i"}: one fit per incidence angle).
   std::string where;
   std::vector<std::string> group_by;
-  std::string loss = "plain";   // plain | relative | log | cosine
-  std::string robust = "none";  // none | huber:SCALE | cauchy:SCALE
+  std::string loss = "plain";   // a name of kFitLossNames (fitting/fit.h)
+  std::string robust = "none";  // "none" or NAME:SCALE, NAME of kRobustLossNames (fitting/fit.h)
   bool use_sigma = true;
   bool solid_angle_weights = false;
   int multistart = 1;

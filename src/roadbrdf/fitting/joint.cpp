@@ -99,16 +99,22 @@ void fit_joint(const FitData& d, const ParameterLayout& L, const FitOptions& o, 
     ceres::Solver::Options so = solver_options(o);
     // Schur complement: the per-wavelength blocks (group 0) are eliminated; the reduced system has
     // the size of the shared block, so a dense Schur solver is the right choice.
-    if (o.joint_solver == "sparse-schur") {
-      so.linear_solver_type = ceres::SPARSE_SCHUR;
-    } else if (o.joint_solver == "iterative-schur") {
-      so.linear_solver_type = ceres::ITERATIVE_SCHUR;
-      so.preconditioner_type = ceres::JACOBI;
-    } else {
-      so.linear_solver_type = ceres::DENSE_SCHUR;
+    switch (o.joint_solver) {
+      case JointSolver::kDenseSchur:
+        so.linear_solver_type = ceres::DENSE_SCHUR;
+        break;
+      case JointSolver::kSparseSchur:
+        so.linear_solver_type = ceres::SPARSE_SCHUR;
+        break;
+      case JointSolver::kIterativeSchur:
+        so.linear_solver_type = ceres::ITERATIVE_SCHUR;
+        so.preconditioner_type = ceres::JACOBI;
+        break;
     }
     std::string why;
-    if (!so.IsValid(&why)) throw InputError("joint solver '" + o.joint_solver + "' is not available: " + why);
+    if (!so.IsValid(&why)) {
+      throw InputError("joint solver '" + name_of(o.joint_solver) + "' is not available: " + why);
+    }
     so.linear_solver_ordering.reset(ordering);
     // One thread: Ceres' multi-threaded Schur elimination sums the blocks in a thread-dependent
     // order, which changed the last digits of the result with the thread count.

@@ -168,15 +168,6 @@ std::size_t display_width(const std::string& s) {
 
 }  // namespace
 
-ParamsFormat params_format_from_string(const std::string& name) {
-  if (name == "table") return ParamsFormat::kTable;
-  if (name == "csv") return ParamsFormat::kCsv;
-  if (name == "markdown") return ParamsFormat::kMarkdown;
-  if (name == "latex") return ParamsFormat::kLatex;
-  const std::vector<std::string> names = {"table", "csv", "markdown", "latex"};
-  throw FieldError("format", "'" + name + "' is not one of table, csv, markdown, latex" + did_you_mean(name, names));
-}
-
 void ParamsRequest::validate() const {
   if (fit_file.empty()) throw FieldError("fit_file", "give the fit file");
   for (std::size_t i = 0; i < group_by.size(); ++i) {

@@ -8,14 +8,22 @@
 // ("600 nm: nearest band 610 nm"); two wavelengths answered by the same band give one row.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
+
+#include "roadbrdf/core/enum_names.h"
 
 namespace roadbrdf {
 
 enum class ParamsFormat { kTable, kCsv, kMarkdown, kLatex };
-// "table" | "csv" | "markdown" | "latex"; throws FieldError("format", ...).
-ParamsFormat params_format_from_string(const std::string& name);
+inline constexpr EnumName<ParamsFormat> kParamsFormatNames[] = {
+    {ParamsFormat::kTable, "table", "aligned text"},
+    {ParamsFormat::kCsv, "csv", "every number, separate stderr columns"},
+    {ParamsFormat::kMarkdown, "markdown", ""},
+    {ParamsFormat::kLatex, "latex", ""},
+};
+constexpr std::span<const EnumName<ParamsFormat>> enum_names(ParamsFormat) { return kParamsFormatNames; }
 
 struct ParamsRequest {
   std::string fit_file;

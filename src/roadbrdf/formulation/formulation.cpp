@@ -77,28 +77,6 @@ void check_fit_exists(const std::string& path, const std::string& key, const std
 
 }  // namespace
 
-ComponentKind component_kind_from_string(const std::string& text) {
-  if (text == "binder") return ComponentKind::kBinder;
-  if (text == "aggregate") return ComponentKind::kAggregate;
-  if (text == "filler") return ComponentKind::kFiller;
-  if (text == "pigment") return ComponentKind::kPigment;
-  throw InputError("unknown component kind '" + text + "' (binder, aggregate, filler, pigment)");
-}
-
-std::string to_string(ComponentKind kind) {
-  switch (kind) {
-    case ComponentKind::kBinder:
-      return "binder";
-    case ComponentKind::kAggregate:
-      return "aggregate";
-    case ComponentKind::kFiller:
-      return "filler";
-    case ComponentKind::kPigment:
-      return "pigment";
-  }
-  return "?";
-}
-
 double effective_diameter_mm(const Formulation& f, const Component& c) {
   if (c.d_eff) return *c.d_eff;
   if (!c.d_max) {
@@ -163,7 +141,7 @@ void validate_formulation(const Formulation& f) {
              "d_min_mm " + number_text(*c.d_min) + " exceeds d_max_mm " + number_text(*c.d_max));
       }
     } else if ((c.kind == ComponentKind::kAggregate || c.kind == ComponentKind::kFiller) && !c.d_eff) {
-      fail(path, key + ".d_max_mm", "an " + to_string(c.kind) + " needs its size class d_min_mm/d_max_mm");
+      fail(path, key + ".d_max_mm", "an " + name_of(c.kind) + " needs its size class d_min_mm/d_max_mm");
     }
     if (c.d_eff && !(*c.d_eff > 0.0)) fail(path, key + ".d_eff_mm", "must be > 0 (got " + number_text(*c.d_eff) + ")");
     if (c.fit.empty() && c.fit_path.empty()) fail(path, key + ".fit", "every component needs a fit file");
@@ -212,11 +190,9 @@ Component parse_component(const json& cj, std::size_t i, const std::string& path
   }
   c.name = get_string(cj, "name", path, key + ".");
   try {
-    c.kind = component_kind_from_string(get_string(cj, "kind", path, key + "."));
-  } catch (const FileError&) {
-    throw;
-  } catch (const InputError& e) {
-    fail(path, key + ".kind", e.what());
+    c.kind = parse_name<ComponentKind>(get_string(cj, "kind", path, key + "."), key + ".kind");
+  } catch (const FieldError& e) {
+    fail(path, e.field(), e.detail());
   }
   c.mass_percent = get_number(cj, "mass_percent", path, key + ".");
   c.density = get_number(cj, "density_g_cm3", path, key + ".");

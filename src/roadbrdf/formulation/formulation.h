@@ -20,7 +20,7 @@
 //                                                   // optional; needed by the mastic method
 //   "components": [                                 // required, at least one
 //     { "name": "Bitumen",                          // required, unique
-//       "kind": "binder",                           // binder | aggregate | filler | pigment
+//       "kind": "binder",                           // binder, aggregate, filler or pigment (below)
 //       "mass_percent": 5.2,                        // > 0, percent of the total mass
 //       "density_g_cm3": 1.03,                      // > 0, solid (particle) density [g/cm^3]
 //       "d_min_mm": 0, "d_max_mm": 2,               // grain size class [mm] (e.g. Garonne 0/2);
@@ -39,16 +39,22 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "roadbrdf/core/enum_names.h"
 
 namespace roadbrdf {
 
 enum class ComponentKind { kBinder, kAggregate, kFiller, kPigment };
-
-// "binder" | "aggregate" | "filler" | "pigment"; throws InputError.
-ComponentKind component_kind_from_string(const std::string& text);
-std::string to_string(ComponentKind kind);
+inline constexpr EnumName<ComponentKind> kComponentKindNames[] = {
+    {ComponentKind::kBinder, "binder", ""},
+    {ComponentKind::kAggregate, "aggregate", ""},
+    {ComponentKind::kFiller, "filler", ""},
+    {ComponentKind::kPigment, "pigment", ""},
+};
+constexpr std::span<const EnumName<ComponentKind>> enum_names(ComponentKind) { return kComponentKindNames; }
 
 struct Component {
   std::string name;

@@ -1,15 +1,19 @@
 #include "roadbrdf/io/alta.h"
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <span>
 #include <utility>
 
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
@@ -18,14 +22,14 @@ namespace roadbrdf {
 
 namespace {
 
+// The input parametrisations (kUnknown: not stated yet), named as ALTA names them.
 enum class AltaInput { kUnknown, kTlTvProjDphi, kSphericalTlPlTvPv };
-enum class AltaOutput { kUnknown, kInvSteradian, kInvSteradianCosine };
-
-AltaOutput parse_output(const std::string& name) {
-  if (name == "INV_STERADIAN") return AltaOutput::kInvSteradian;
-  if (name == "INV_STERADIAN_COSINE_FACTOR") return AltaOutput::kInvSteradianCosine;
-  return AltaOutput::kUnknown;
-}
+constexpr EnumName<AltaInput> kAltaInputNames[] = {
+    {AltaInput::kTlTvProjDphi, "ISOTROPIC_TL_TV_PROJ_DPHI", ""},
+    {AltaInput::kSphericalTlPlTvPv, "SPHERICAL_TL_PL_TV_PV", ""},
+};
+constexpr std::span<const EnumName<AltaInput>> enum_names(AltaInput) { return kAltaInputNames; }
+static_assert(entries_are_distinct(kAltaInputNames));
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\"");
@@ -83,7 +87,7 @@ class AltaParser {
   const AltaReadOptions& options_;
   SpectralDataset d_;
   AltaInput input_ = AltaInput::kUnknown;
-  AltaOutput output_ = AltaOutput::kUnknown;
+  std::optional<AltaOutput> output_;  // not stated yet
   int dim_in_ = -1, dim_out_ = -1;
   bool header_done_ = false;
   long n_ = 0;  // line number
@@ -122,22 +126,18 @@ void AltaParser::header_line(const std::string& line, std::size_t b) {
       throw FileError(path_, n_, col, fmt::format("'#VS {}': vertical segments are not supported (only #VS 0)", rest));
     }
   } else if (key == "PARAM_IN") {
-    if (rest == "ISOTROPIC_TL_TV_PROJ_DPHI") {
-      input_ = AltaInput::kTlTvProjDphi;
-    } else if (rest == "SPHERICAL_TL_PL_TV_PV") {
-      input_ = AltaInput::kSphericalTlPlTvPv;
-    } else {
+    input_ = find_name<AltaInput>(rest).value_or(AltaInput::kUnknown);
+    if (input_ == AltaInput::kUnknown) {
       throw FileError(path_, n_, col,
-                      fmt::format("input parametrisation '{}' is not supported (ISOTROPIC_TL_TV_PROJ_DPHI, "
-                                  "SPHERICAL_TL_PL_TV_PV)",
-                                  rest));
+                      fmt::format("input parametrisation '{}' is not supported ({})", rest,
+                                  fmt::join(names_of<AltaInput>(), ", ")));
     }
   } else if (key == "PARAM_OUT") {
-    output_ = parse_output(rest);
-    if (output_ == AltaOutput::kUnknown) {
+    output_ = find_name<AltaOutput>(rest);
+    if (!output_) {
       throw FileError(
           path_, n_, col,
-          fmt::format("output unit '{}' is not supported (INV_STERADIAN, INV_STERADIAN_COSINE_FACTOR)", rest));
+          fmt::format("output unit '{}' is not supported ({})", rest, fmt::join(names_of<AltaOutput>(), ", ")));
     }
   } else if (key == "SAMPLE" || key == "ORIGIN" || key == "URL") {
     std::string k = key;
@@ -156,12 +156,11 @@ void AltaParser::begin_data() {
     throw FileError(path_, n_, 0,
                     fmt::format("#DIM gives {} inputs but the parametrisation has {}", dim_in_, expected_in));
   }
-  if (output_ == AltaOutput::kUnknown) {
-    output_ = parse_output(options_.assumed_output);
-    if (output_ == AltaOutput::kUnknown) {
+  if (!output_) {
+    output_ = find_name<AltaOutput>(options_.assumed_output);
+    if (!output_) {
       throw FileError(path_, n_, 0,
-                      "file has no #PARAM_OUT line: state the output unit (INV_STERADIAN or "
-                      "INV_STERADIAN_COSINE_FACTOR)");
+                      "file has no #PARAM_OUT line: state the output unit (" + names_text<AltaOutput>() + ")");
     }
     d_.metadata["alta_output_assumed"] = options_.assumed_output;
   }
@@ -202,7 +201,7 @@ void AltaParser::data_line(const std::string& line) {
   theta_l = zenith(theta_l, cells[0], "theta_l");
   theta_v = zenith(theta_v, cells[input_ == AltaInput::kTlTvProjDphi ? 1 : 2], "theta_v");
   const Geometry g = geometry_from_radians(theta_l, phi_l, theta_v, phi_v);
-  if (output_ == AltaOutput::kInvSteradianCosine) {
+  if (*output_ == AltaOutput::kInvSteradianCosine) {
     const double c = g.cos_theta_r();
     if (c < 1e-6) {
       if (!options_.exclude_grazing) {
@@ -258,9 +257,9 @@ SpectralDataset AltaParser::finish() {
   d.wavelengths = {options_.wavelength_nm};
   d.metadata["units"] = "sr^-1";
   d.metadata["source"] = "ALTA text format";
-  d.metadata["alta_conversion"] = output_ == AltaOutput::kInvSteradianCosine
-                                      ? "INV_STERADIAN_COSINE_FACTOR divided by cos(theta_v) (viewing zenith)"
-                                      : "INV_STERADIAN (BRDF as stored)";
+  d.metadata["alta_conversion"] = *output_ == AltaOutput::kInvSteradianCosine
+                                      ? name_of(*output_) + " divided by cos(theta_v) (viewing zenith)"
+                                      : name_of(*output_) + " (BRDF as stored)";
   if (grazing_ > 0) {
     d.metadata["alta_grazing_rows_excluded"] = std::to_string(grazing_);
     warn(

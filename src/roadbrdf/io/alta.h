@@ -16,16 +16,26 @@
 #pragma once
 
 #include <functional>
+#include <span>
 #include <string>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
 
 namespace roadbrdf {
 
+// The output units of #PARAM_OUT (above), as ALTA names them.
+enum class AltaOutput { kInvSteradian, kInvSteradianCosine };
+inline constexpr EnumName<AltaOutput> kAltaOutputNames[] = {
+    {AltaOutput::kInvSteradian, "INV_STERADIAN", "BRDF"},
+    {AltaOutput::kInvSteradianCosine, "INV_STERADIAN_COSINE_FACTOR", "BRDF x cos(theta_v)"},
+};
+constexpr std::span<const EnumName<AltaOutput>> enum_names(AltaOutput) { return kAltaOutputNames; }
+
 struct AltaReadOptions {
   // ALTA files carry no wavelength: the single channel is stored at this wavelength [nm]. Required.
   double wavelength_nm = 0.0;
-  // Output unit when the file has no #PARAM_OUT line ("" = error).
+  // Output unit (a name of kAltaOutputNames) when the file has no #PARAM_OUT line ("" = error).
   std::string assumed_output;
   bool exclude_grazing = false;
   bool average_duplicates = false;

@@ -207,10 +207,4 @@ std::size_t missing_value_count(const SpectralDataset& d) {
   return static_cast<std::size_t>(std::count_if(d.brdf.begin(), d.brdf.end(), [](double v) { return std::isnan(v); }));
 }
 
-DatasetFormat dataset_format_from_string(const std::string& name) {
-  if (name == "wide") return DatasetFormat::kWide;
-  if (name == "long") return DatasetFormat::kLong;
-  throw InputError("unknown dataset format '" + name + "' (expected wide or long)");
-}
-
 }  // namespace roadbrdf

@@ -26,15 +26,23 @@
 
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
 
 namespace roadbrdf {
 
+// The layouts of a dataset CSV file (see above).
 enum class DatasetFormat { kWide, kLong };
+inline constexpr EnumName<DatasetFormat> kDatasetFormatNames[] = {
+    {DatasetFormat::kWide, "wide", "one row per geometry, one column per wavelength"},
+    {DatasetFormat::kLong, "long", "one row per geometry and wavelength"},
+};
+constexpr std::span<const EnumName<DatasetFormat>> enum_names(DatasetFormat) { return kDatasetFormatNames; }
 
 // How a dataset file is read. The same options, validated by validate_read_options, are offered
 // by every command that reads datasets (cli/dataset_flags.h) and by Python (read_dataset, fit, ...).
@@ -90,9 +98,6 @@ void write_dataset(const SpectralDataset& dataset, const std::string& path,
                    DatasetFormat format = DatasetFormat::kWide);
 // Same to a stream (e.g. standard output).
 void write_dataset(const SpectralDataset& dataset, std::ostream& out, DatasetFormat format = DatasetFormat::kWide);
-
-// Parse "wide" / "long". Throws InputError.
-DatasetFormat dataset_format_from_string(const std::string& name);
 
 // The four angles (degrees) of a geometry in a convention, in the column order of that convention.
 void angle_values_of_geometry(const Geometry& g, AngleConvention convention, double out[4]);

@@ -6,14 +6,21 @@
 #pragma once
 
 #include <ostream>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/geometry.h"
 
 namespace roadbrdf {
 
 enum class AngleConvention { kZenithAzimuth, kRoad };
+inline constexpr EnumName<AngleConvention> kAngleConventionNames[] = {
+    {AngleConvention::kZenithAzimuth, "zenith", "theta_i, phi_i, theta_r, phi_r"},
+    {AngleConvention::kRoad, "road", "gamma, alpha, beta, delta"},
+};
+constexpr std::span<const EnumName<AngleConvention>> enum_names(AngleConvention) { return kAngleConventionNames; }
 
 struct GeometryTable {
   AngleConvention convention = AngleConvention::kZenithAzimuth;

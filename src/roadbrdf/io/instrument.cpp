@@ -14,37 +14,6 @@
 
 namespace roadbrdf {
 
-OverlapRule overlap_rule_from_string(const std::string& name) {
-  if (name == "upper") return OverlapRule::kUpper;
-  if (name == "lower") return OverlapRule::kLower;
-  if (name == "error") return OverlapRule::kError;
-  throw InputError("overlap rule: expected upper, lower or error, got '" + name + "'");
-}
-
-std::string to_string(OverlapRule rule) {
-  switch (rule) {
-    case OverlapRule::kUpper:
-      return "upper";
-    case OverlapRule::kLower:
-      return "lower";
-    case OverlapRule::kError:
-      return "error";
-  }
-  return "";
-}
-
-std::string to_string(InstrumentFormat format) {
-  switch (format) {
-    case InstrumentFormat::kAsd:
-      return "asd";
-    case InstrumentFormat::kSed:
-      return "sed";
-    case InstrumentFormat::kSig:
-      return "sig";
-  }
-  return "";
-}
-
 namespace {
 
 std::string lower_extension(const std::string& path) {
@@ -87,7 +56,7 @@ InstrumentSpectrum read_instrument_bytes(std::string_view bytes, const std::stri
       s = parse_sig(bytes, name, options.overlap);
       break;
   }
-  s.metadata["instrument_file_format"] = to_string(s.format);
+  s.metadata["instrument_file_format"] = name_of(s.format);
   return s;
 }
 
@@ -98,32 +67,13 @@ InstrumentSpectrum read_instrument_file(const std::string& path, const Instrumen
   return read_instrument_bytes(bytes, in.name(), options);
 }
 
-InstrumentQuantity instrument_quantity_from_string(const std::string& name) {
-  if (name == "target") return InstrumentQuantity::kTarget;
-  if (name == "reference") return InstrumentQuantity::kReference;
-  if (name == "reflectance") return InstrumentQuantity::kReflectance;
-  throw InputError("quantity: expected target, reference or reflectance, got '" + name + "'");
-}
-
-std::string to_string(InstrumentQuantity quantity) {
-  switch (quantity) {
-    case InstrumentQuantity::kTarget:
-      return "target";
-    case InstrumentQuantity::kReference:
-      return "reference";
-    case InstrumentQuantity::kReflectance:
-      return "reflectance";
-  }
-  return "";
-}
-
 const std::vector<double>& instrument_signal(const InstrumentSpectrum& s, InstrumentQuantity quantity) {
   const std::vector<double>& v = quantity == InstrumentQuantity::kTarget      ? s.target
                                  : quantity == InstrumentQuantity::kReference ? s.reference
                                                                               : s.reflectance;
   if (v.empty()) {
     throw InputError(
-        fmt::format("{}: the file has no {} {}", s.path, to_string(quantity),
+        fmt::format("{}: the file has no {} {}", s.path, name_of(quantity),
                     quantity == InstrumentQuantity::kReflectance ? "column (nor a reference to form it)" : "signal"));
   }
   return v;
@@ -144,7 +94,7 @@ SpectralDataset instrument_dataset(const InstrumentSpectrum& s, const Geometry& 
   d.convention = convention;
   d.metadata = s.metadata;
   d.metadata["units"] = instrument_signal_units(s, quantity);
-  d.metadata["signal"] = to_string(quantity);
+  d.metadata["signal"] = name_of(quantity);
   d.metadata["instrument_file"] = s.path;
   return d;
 }

@@ -8,15 +8,23 @@
 #pragma once
 
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
 
 namespace roadbrdf {
 
 enum class InstrumentFormat { kAsd, kSed, kSig };
+inline constexpr EnumName<InstrumentFormat> kInstrumentFormatNames[] = {
+    {InstrumentFormat::kAsd, "asd", "ASD binary .asd, versions 6 to 8"},
+    {InstrumentFormat::kSed, "sed", "Spectral Evolution .sed"},
+    {InstrumentFormat::kSig, "sig", "Spectra Vista .sig"},
+};
+constexpr std::span<const EnumName<InstrumentFormat>> enum_names(InstrumentFormat) { return kInstrumentFormatNames; }
 
 // What to do where the detectors of an SVC .sig file overlap (the wavelength goes back at a
 // detector join, e.g. 1016.6 nm followed by 971.8 nm). Nothing is averaged.
@@ -25,8 +33,12 @@ enum class OverlapRule {
   kLower,  // keep the previous detector: drop the next detector's channels at or below its last wavelength
   kError,  // refuse the file
 };
-OverlapRule overlap_rule_from_string(const std::string& name);  // "upper", "lower", "error"; InputError
-std::string to_string(OverlapRule rule);
+inline constexpr EnumName<OverlapRule> kOverlapRuleNames[] = {
+    {OverlapRule::kUpper, "upper", "keep the next detector's channels"},
+    {OverlapRule::kLower, "lower", "keep the previous detector's"},
+    {OverlapRule::kError, "error", "refuse the file"},
+};
+constexpr std::span<const EnumName<OverlapRule>> enum_names(OverlapRule) { return kOverlapRuleNames; }
 
 struct InstrumentReadOptions {
   OverlapRule overlap = OverlapRule::kUpper;
@@ -55,7 +67,6 @@ struct InstrumentSpectrum {
 InstrumentFormat detect_instrument_format(const std::string& path, std::string_view head);
 // True when the path's extension is .asd, .sed or .sig (case-insensitive).
 bool has_instrument_extension(const std::string& path);
-std::string to_string(InstrumentFormat format);
 
 // Read any of the three formats (detected as above). Throws FileError naming the file and the
 // byte offset (binary) or line (text) of the problem.
@@ -66,8 +77,14 @@ InstrumentSpectrum read_instrument_bytes(std::string_view bytes, const std::stri
 
 // Which signal of an instrument file becomes a dataset value.
 enum class InstrumentQuantity { kTarget, kReference, kReflectance };
-InstrumentQuantity instrument_quantity_from_string(const std::string& name);  // "target", "reference", "reflectance"
-std::string to_string(InstrumentQuantity quantity);
+inline constexpr EnumName<InstrumentQuantity> kInstrumentQuantityNames[] = {
+    {InstrumentQuantity::kTarget, "target", "the target signal"},
+    {InstrumentQuantity::kReference, "reference", "the panel signal stored in the file"},
+    {InstrumentQuantity::kReflectance, "reflectance", "the file's reflectance, or ASD target/reference"},
+};
+constexpr std::span<const EnumName<InstrumentQuantity>> enum_names(InstrumentQuantity) {
+  return kInstrumentQuantityNames;
+}
 
 // The chosen signal of the file; throws InputError naming the file when it has none (e.g. a .sed
 // file without a reflectance column asked for its reflectance).

@@ -265,7 +265,7 @@ SpectralDataset manifest_dataset(const Manifest& m, InstrumentQuantity quantity,
   for (const auto& [k, v] : m.metadata) d.metadata[k] = v;
   d.metadata["units"] = instrument_signal_units(*files.front(), quantity);
   d.metadata["manifest"] = m.path;
-  d.metadata["signal"] = to_string(quantity);
+  d.metadata["signal"] = name_of(quantity);
   return d;
 }
 

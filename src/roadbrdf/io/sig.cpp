@@ -81,11 +81,11 @@ std::vector<Row> resolve_overlaps(const std::vector<Row>& rows, OverlapRule rule
                           report.empty() ? "" : "; ", join_line, dropped, from, to,
                           rule == OverlapRule::kUpper ? "lower" : "upper");
   }
-  s.metadata["sig.overlap"] = fmt::format("rule '{}': {}", to_string(rule), report);
+  s.metadata["sig.overlap"] = fmt::format("rule '{}': {}", name_of(rule), report);
   s.notes.push_back(fmt::format(
       "{}: detector overlap, rule '{}' kept {} detector's channels ({} channel(s) dropped, "
       "none averaged): {}",
-      name, to_string(rule), rule == OverlapRule::kUpper ? "the next" : "the previous", dropped_total, report));
+      name, name_of(rule), rule == OverlapRule::kUpper ? "the next" : "the previous", dropped_total, report));
   std::vector<Row> out;
   for (const auto& seg : segments) out.insert(out.end(), seg.begin(), seg.end());
   return out;

@@ -162,8 +162,8 @@ nlohmann::json mixture_albedo(const MixResult& result, const albedo::AlbedoReque
   const MixtureModel& mixture = mixture_of(result);
   if (!method_is_linear(result.method)) return albedo::compute_albedo(*result.model, request);
   if (mixture.kind() != MixtureKind::kLinear) {
-    throw InputError("internal: method '" + to_string(result.method) + "' is declared linear but its mixture is " +
-                     to_string(mixture.kind()));
+    throw InputError("internal: method '" + name_of(result.method) + "' is declared linear but its mixture is " +
+                     name_of(mixture.kind()));
   }
   return albedo::compute_albedo(*result.model, request, LinearMixtureIntegrals(mixture, cache));
 }

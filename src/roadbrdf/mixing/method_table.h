@@ -25,11 +25,10 @@ struct MethodCall {
 // (every fit file used by a component, in order; not the separate mastic fit).
 using MethodFunction = void (*)(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);
 
+// What mix() needs to know of a method besides its name and description (kMethodNames, mixing.h).
 struct MethodEntry {
   Method method;
-  const char* name;         // as on the command line and in MIX.json
-  const char* description;  // one line, in MIX.json and `mix --help`
-  bool needs_data;          // fitted to a measured mixture of the formulation itself
+  bool needs_data;  // fitted to a measured mixture of the formulation itself
   // The mixture is linear in the end-members' BRDFs, f = sum_k a_k f_k with a_k independent of the
   // geometry (MixtureKind::kLinear), so its albedos are the same combination of the end-members'
   // (end_member_cache.h). Declared here only; mixture_albedo checks the mixture's kind agrees.
@@ -37,8 +36,6 @@ struct MethodEntry {
   MethodFunction run;
 };
 
-// Every method, in the order of all_methods().
-const std::vector<MethodEntry>& method_table();
 const MethodEntry& method_entry(Method method);
 
 void mix_areal(const MethodCall& call, MixResult& result, std::vector<std::size_t>& members);

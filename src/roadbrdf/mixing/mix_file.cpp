@@ -102,7 +102,7 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
     } catch (const InputError&) {
     }
     components.push_back({{"name", c.name},
-                          {"kind", to_string(c.kind)},
+                          {"kind", name_of(c.kind)},
                           {"mass_percent", c.mass_percent},
                           {"density_g_cm3", c.density},
                           {"d_eff_mm", d_eff},
@@ -130,7 +130,7 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
     for (std::size_t i = 1; i < content.comparisons.size(); ++i) {
       if (content.comparisons[i].rmse < content.comparisons[b].rmse) b = i;
     }
-    best = to_string(content.comparisons[b].method);
+    best = name_of(content.comparisons[b].method);
   }
   j["best"] = best;
   ordered methods = ordered::array();
@@ -139,7 +139,7 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content) {
     const SpectralModel& model = *res.model;
     const ModelDescription& d = model.model().description();
     ordered m;
-    m["method"] = to_string(res.method);
+    m["method"] = name_of(res.method);
     m["description"] = res.description;
     m["model"] = d.name;
     m["end_members"] = res.end_members;
@@ -240,7 +240,7 @@ SpectralModel read_mix_file(const std::string& path, const std::string& method) 
     const std::string prefix = "mixture-";
     if (model_name.rfind(prefix, 0) != 0) model_node.fail("unknown model '" + model_name + "' (expected mixture-...)");
     const MixtureKind kind =
-        located(model_node, [&] { return mixture_kind_from_string(model_name.substr(prefix.size())); });
+        located(model_node, [&] { return parse_name<MixtureKind>(model_name.substr(prefix.size()), "mixture kind"); });
     std::vector<std::shared_ptr<const Model>> models;
     const JsonNode names_node = m.at("end_members");
     const std::vector<std::string> names = names_node.strings();

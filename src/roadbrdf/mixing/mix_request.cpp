@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -28,9 +29,9 @@ std::string weights_text(const MixResult& r) {
   return s.str();
 }
 
-std::vector<std::string> method_names() {
-  std::vector<std::string> names;
-  for (Method m : all_methods()) names.push_back(to_string(m));
+// The values of MixRequest::method: a method, or every method.
+std::vector<std::string> method_choices() {
+  std::vector<std::string> names = names_of<Method>();
   names.push_back("all");
   return names;
 }
@@ -39,12 +40,9 @@ std::vector<std::string> method_names() {
 
 void MixRequest::validate() const {
   if (formulation.empty()) throw FieldError("formulation", "give the formulation file");
-  if (method != "all") {
-    try {
-      method_from_string(method);
-    } catch (const InputError& e) {
-      throw FieldError("method", e.what() + did_you_mean(method, method_names()));
-    }
+  const std::vector<std::string> choices = method_choices();
+  if (std::find(choices.begin(), choices.end(), method) == choices.end()) {
+    throw FieldError("method", not_one_of(method, choices));
   }
   if (folds < 2) throw FieldError("folds", "must be at least 2");
   for (const auto& [name, value] :
@@ -56,10 +54,10 @@ void MixRequest::validate() const {
   if (!reference.empty() && data.empty()) {
     throw FieldError("reference", "needs data (the albedo is compared at the data's wavelengths)");
   }
-  if (!cross_sections.empty() && method != "all" && method != "hapke") {
+  if (!cross_sections.empty() && method != "all" && method != name_of(Method::kHapke)) {
     throw FieldError("cross_sections", "only the hapke method uses cross-section factors (method is '" + method + "')");
   }
-  if (method != "all" && data.empty() && method_needs_data(method_from_string(method))) {
+  if (method != "all" && data.empty() && method_needs_data(parse_name<Method>(method, "method"))) {
     throw FieldError("method", "'" + method + "' is fitted to a measured mixture: give data");
   }
 }
@@ -100,7 +98,8 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
     }
   }
   const bool all = request.method == "all";
-  const std::vector<Method> methods = all ? all_methods() : std::vector<Method>{method_from_string(request.method)};
+  const std::vector<Method> methods =
+      all ? values_of<Method>() : std::vector<Method>{parse_name<Method>(request.method, "method")};
   if (!request.data.empty()) run.data = read_dataset(request.data, request.data_read);
   std::optional<SpectralModel> reference;
   if (!request.reference.empty()) reference = read_spectral_model_file(request.reference);
@@ -117,7 +116,7 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   for (Method m : methods) {
     if (!run.data && method_needs_data(m)) {
       run.notes.push_back(
-          fmt::format("method '{}' skipped: it is fitted to a measured mixture (give data)", to_string(m)));
+          fmt::format("method '{}' skipped: it is fitted to a measured mixture (give data)", name_of(m)));
       continue;
     }
     try {
@@ -137,7 +136,7 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
       throw;  // a bad request, not a method that does not apply
     } catch (const InputError& e) {
       if (!all) throw;
-      run.notes.push_back(fmt::format("method '{}' skipped: {}", to_string(m), e.what()));
+      run.notes.push_back(fmt::format("method '{}' skipped: {}", name_of(m), e.what()));
     }
   }
   progress.finish();
@@ -168,21 +167,21 @@ std::string MixRun::table() const {
       const Comparison& c = content.comparisons[i];
       if (c.rmse < content.comparisons[best].rmse) best = i;
       out += fmt::format(
-          "{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", to_string(c.method), c.rmse, c.relative_rmse,
+          "{:<9} {:>12.5g} {:>9.4f} {:>8} {:>12.5g} {:>8.4f} {:>9}  {}\n", name_of(c.method), c.rmse, c.relative_rmse,
           std::isfinite(c.chi2_reduced) ? fmt::format("{:.4g}", c.chi2_reduced) : std::string("n/a"), c.rmse_in_sample,
           c.albedo,
           std::isfinite(c.albedo_difference) ? fmt::format("{:+.4f}", c.albedo_difference) : std::string("n/a"),
           weights_text(c.result));
     }
     out += fmt::format("best method for {}: {} (held-out RMSE {:.5g} sr^-1)\n", in.formulation.name,
-                       to_string(content.comparisons[best].method), content.comparisons[best].rmse);
+                       name_of(content.comparisons[best].method), content.comparisons[best].rmse);
   } else {
     out += fmt::format("{:<9} {:>8}  {}\n", "method", "albedo", "weights");
     for (const auto& r : content.results) {
       const std::vector<double> albedo = mixture_white_sky_albedo(in, r, r.model->wavelengths());
       double mean = 0.0;
       for (double x : albedo) mean += x / static_cast<double>(albedo.size());
-      out += fmt::format("{:<9} {:>8.4f}  {}\n", to_string(r.method), mean, weights_text(r));
+      out += fmt::format("{:<9} {:>8.4f}  {}\n", name_of(r.method), mean, weights_text(r));
     }
   }
   return out;

@@ -7,51 +7,18 @@
 
 namespace roadbrdf::mixing {
 
-const std::vector<MethodEntry>& method_table() {
-  static const std::vector<MethodEntry> table{
-      {Method::kAreal, "areal",
-       "areal mixing, area fractions from the formulation (projected area per mass 3/(2 rho D), binder coverage)",
-       false, true, &mix_areal},
-      {Method::kFitted, "fitted", "linear mixing, weights fitted to the measured mixture by non-negative least squares",
-       true, true, &mix_fitted},
-      {Method::kMastic, "mastic", "measured mastic + coarse aggregate classes, areal mixing", false, true, &mix_mastic},
-      {Method::kHapke, "hapke",
-       "intimate Hapke mixing: w from white-sky albedo (IMSA H1), weights M/(rho D), phase terms by c w", false, false,
-       &mix_hapke},
-      {Method::kShadowed, "shadowed",
-       "nonlinear fitted mixing: coarse aggregates shadow the matrix, exp(-s (tan theta_i + tan theta_r))", true, false,
-       &mix_shadowed},
-  };
-  return table;
-}
-
 const MethodEntry& method_entry(Method method) {
-  for (const MethodEntry& e : method_table()) {
+  static const MethodEntry table[] = {
+      {Method::kAreal, false, true, &mix_areal},        // weights from the formulation
+      {Method::kFitted, true, true, &mix_fitted},       // weights fitted to the measured mixture
+      {Method::kMastic, false, true, &mix_mastic},      // measured mastic and coarse aggregates
+      {Method::kHapke, false, false, &mix_hapke},       // intimate: single-scattering albedos mix
+      {Method::kShadowed, true, false, &mix_shadowed},  // shadowing fitted to the measured mixture
+  };
+  for (const MethodEntry& e : table) {
     if (e.method == method) return e;
   }
   throw InputError("internal: mixing method missing from the method table");
-}
-
-std::string to_string(Method method) {
-  for (const MethodEntry& e : method_table()) {
-    if (e.method == method) return e.name;
-  }
-  return "?";
-}
-
-Method method_from_string(const std::string& text) {
-  std::string names;
-  for (const MethodEntry& e : method_table()) {
-    if (text == e.name) return e.method;
-    names += (names.empty() ? "" : ", ") + std::string(e.name);
-  }
-  throw InputError("unknown mixing method '" + text + "' (" + names + ")");
-}
-
-std::vector<Method> all_methods() {
-  std::vector<Method> methods;
-  for (const MethodEntry& e : method_table()) methods.push_back(e.method);
-  return methods;
 }
 
 bool method_needs_data(Method method) { return method_entry(method).needs_data; }
@@ -63,9 +30,9 @@ MixResult mix(const MixInputs& inputs, Method method, const MixSettings& setting
   const MethodEntry& entry = method_entry(method);
   MixResult r;
   r.method = method;
-  r.description = entry.description;
+  r.description = description_of(method);
   if (entry.needs_data && !data) {
-    throw InputError("mixing method '" + std::string(entry.name) + "' is fitted to a measured mixture: give `data`");
+    throw InputError("mixing method '" + name_of(method) + "' is fitted to a measured mixture: give `data`");
   }
   std::vector<std::size_t> members = detail::component_members(inputs);
   entry.run(MethodCall{inputs, settings, data, training}, r, members);

@@ -57,9 +57,11 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/formulation/formulation.h"
@@ -94,10 +96,20 @@ struct MixInputs {
 // Load every distinct fit file of the formulation (errors name the formulation key).
 MixInputs load_mix_inputs(const Formulation& formulation, const FitLoader& loader = {});
 
+// The mixing methods, their names (command line, MIX.json) and the line that describes each (MIX.json).
 enum class Method { kAreal, kFitted, kMastic, kHapke, kShadowed };
-std::string to_string(Method method);
-Method method_from_string(const std::string& text);  // throws InputError
-std::vector<Method> all_methods();
+inline constexpr EnumName<Method> kMethodNames[] = {
+    {Method::kAreal, "areal",
+     "areal mixing, area fractions from the formulation (projected area per mass 3/(2 rho D), binder coverage)"},
+    {Method::kFitted, "fitted", "linear mixing, weights fitted to the measured mixture by non-negative least squares"},
+    {Method::kMastic, "mastic", "measured mastic + coarse aggregate classes, areal mixing"},
+    {Method::kHapke, "hapke",
+     "intimate Hapke mixing: w from white-sky albedo (IMSA H1), weights M/(rho D), phase terms by c w"},
+    {Method::kShadowed, "shadowed",
+     "nonlinear fitted mixing: coarse aggregates shadow the matrix, exp(-s (tan theta_i + tan theta_r))"},
+};
+constexpr std::span<const EnumName<Method>> enum_names(Method) { return kMethodNames; }
+
 bool method_needs_data(Method method);  // fitted, shadowed
 // Linear in the end-members' BRDFs (areal, fitted, mastic; method_table.h MethodEntry::linear).
 bool method_is_linear(Method method);

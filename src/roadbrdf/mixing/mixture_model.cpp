@@ -9,38 +9,17 @@
 
 namespace roadbrdf::mixing {
 
-std::string to_string(MixtureKind kind) {
-  switch (kind) {
-    case MixtureKind::kLinear:
-      return "linear";
-    case MixtureKind::kHapke:
-      return "hapke";
-    case MixtureKind::kShadowed:
-      return "shadowed";
-  }
-  return "?";
-}
-
-MixtureKind mixture_kind_from_string(const std::string& text) {
-  if (text == "linear") return MixtureKind::kLinear;
-  if (text == "hapke") return MixtureKind::kHapke;
-  if (text == "shadowed") return MixtureKind::kShadowed;
-  throw InputError("unknown mixture kind '" + text + "' (linear, hapke, shadowed)");
-}
-
 ModelDescription MixtureModel::make_description(MixtureKind kind,
                                                 const std::vector<std::shared_ptr<const Model>>& components,
                                                 const std::vector<std::string>& names) {
   if (components.empty()) throw InputError("a mixture needs at least one end-member");
   if (names.size() != components.size()) throw InputError("mixture: one name per end-member is needed");
   ModelDescription d;
-  d.name = "mixture-" + to_string(kind);
+  d.name = "mixture-" + name_of(kind);
   d.citation = kind == MixtureKind::kHapke
                    ? "Hapke 1981 (JGR 86:3039) eq. 17 intimate mixing, IMSA with H1; see mixing/mixture_model.h"
                    : "areal mixing; see mixing/mixture_model.h";
-  d.summary = kind == MixtureKind::kLinear  ? "areal (linear) mixture of end-member BRDFs"
-              : kind == MixtureKind::kHapke ? "intimate (Hapke) mixture of end-member BRDFs"
-                                            : "areal mixture with shadowing of the matrix by coarse aggregates";
+  d.summary = description_of(kind);
   const std::size_t K = components.size();
   for (std::size_t k = 0; k < K; ++k) {
     d.parameters.push_back({"weight." + names[k], "1",

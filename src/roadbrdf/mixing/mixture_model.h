@@ -36,18 +36,23 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf::mixing {
 
+// The model's name is "mixture-" and its kind's name, its summary the kind's description.
 enum class MixtureKind { kLinear, kHapke, kShadowed };
-
-std::string to_string(MixtureKind kind);
-// "linear" | "hapke" | "shadowed"; throws InputError.
-MixtureKind mixture_kind_from_string(const std::string& text);
+inline constexpr EnumName<MixtureKind> kMixtureKindNames[] = {
+    {MixtureKind::kLinear, "linear", "areal (linear) mixture of end-member BRDFs"},
+    {MixtureKind::kHapke, "hapke", "intimate (Hapke) mixture of end-member BRDFs"},
+    {MixtureKind::kShadowed, "shadowed", "areal mixture with shadowing of the matrix by coarse aggregates"},
+};
+constexpr std::span<const EnumName<MixtureKind>> enum_names(MixtureKind) { return kMixtureKindNames; }
 
 class MixtureModel final : public Model {
  public:

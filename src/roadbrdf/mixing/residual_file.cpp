@@ -27,7 +27,7 @@ void write_residual_file(const std::string& path, const SpectralDataset& data,
   const bool sigma = data.has_sigma();
   for (const Comparison& c : comparisons) {
     if (c.predicted.size() != N * M || c.fold_of_geometry.size() != N) {
-      throw InputError("residual file: the comparison of method '" + to_string(c.method) +
+      throw InputError("residual file: the comparison of method '" + name_of(c.method) +
                        "' does not match the measured data");
     }
   }
@@ -42,7 +42,7 @@ void write_residual_file(const std::string& path, const SpectralDataset& data,
       << "method,fold,theta_i,phi_i,theta_r,phi_r,wavelength,measured," << (sigma ? "sigma," : "")
       << "predicted,residual,relative_residual" << (sigma ? ",normalized_residual" : "") << '\n';
   for (const Comparison& c : comparisons) {
-    const std::string method = to_string(c.method);
+    const std::string method = name_of(c.method);
     for (std::size_t n = 0; n < N; ++n) {
       const Geometry& g = data.geometries[n];
       const std::string prefix = fmt::format("{},{},{},{},{},{},", method, c.fold_of_geometry[n], angle_text(g.theta_i),

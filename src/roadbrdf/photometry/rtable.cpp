@@ -331,13 +331,10 @@ RoadClass classify(double s1_value, ClassSystem system) {
   return classes.back();
 }
 
-ClassSystem class_system_from_name(const std::string& name) {
-  std::string u = name;
-  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  if (u == "R") return ClassSystem::R;
-  if (u == "N") return ClassSystem::N;
-  if (u == "C") return ClassSystem::C;
-  throw InputError("class system '" + name + "' is not one of R, N, C");
+ClassSystem class_system_from_name(const std::string& name, const std::string& field) {
+  std::string upper = name;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return parse_name<ClassSystem>(upper, field);
 }
 
 RTableSummary summarize(const RTable& table, Q0Region region) {

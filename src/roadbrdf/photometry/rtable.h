@@ -19,9 +19,11 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/models/model.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -112,6 +114,11 @@ enum class Q0Region {
   standard,  // cells defined in the table and inside the CIE standard-table region (default)
   table,     // every defined cell of the table
 };
+inline constexpr EnumName<Q0Region> kQ0RegionNames[] = {
+    {Q0Region::standard, "standard", "cells of the CIE standard tables"},
+    {Q0Region::table, "table", "all defined cells"},
+};
+constexpr std::span<const EnumName<Q0Region>> enum_names(Q0Region) { return kQ0RegionNames; }
 
 // Q0 = (1/Omega0) int_{Omega0} q dOmega. With t = tan(gamma): dOmega = sin(gamma) dgamma dbeta and
 // dgamma = cos^2(gamma) dt, so q dOmega = r t dt dbeta and dOmega = t cos^3(gamma) dt dbeta:
@@ -135,6 +142,12 @@ double s2(const RTable& table, Q0Region region = Q0Region::standard);
 double qd(const RTable& table);
 
 enum class ClassSystem { R, N, C };
+inline constexpr EnumName<ClassSystem> kClassSystemNames[] = {
+    {ClassSystem::R, "R", ""},
+    {ClassSystem::N, "N", ""},
+    {ClassSystem::C, "C", ""},
+};
+constexpr std::span<const EnumName<ClassSystem>> enum_names(ClassSystem) { return kClassSystemNames; }
 struct RoadClass {
   std::string name;          // "R3", "N2", "C1"...
   double standard_q0 = 0.0;  // Q0 of the standard table of the class [sr^-1]
@@ -149,7 +162,8 @@ RoadClass classify(double s1_value, ClassSystem system = ClassSystem::R);
 // The classes of a system in increasing S1, as classify() returns them (the first with s1_lower =
 // -inf, the last with s1_upper = +inf): consecutive classes share their S1 limit.
 const std::vector<RoadClass>& road_classes(ClassSystem system);
-ClassSystem class_system_from_name(const std::string& name);  // "R", "N", "C"
+// A name of kClassSystemNames in either letter case; throws FieldError(field, ...).
+ClassSystem class_system_from_name(const std::string& name, const std::string& field = "class_system");
 
 struct RTableSummary {
   double q0 = 0.0, s1 = 0.0, s2 = 0.0, qd = 0.0;

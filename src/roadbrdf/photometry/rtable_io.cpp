@@ -416,35 +416,20 @@ void write_radiance(std::ostream& out, const RTable& table) {
 
 }  // namespace
 
-RTableFormat rtable_format_from_name(const std::string& name) {
+RTableFormat rtable_format_from_name(const std::string& name, const std::string& field) {
   const std::string l = lower(name);
-  if (l == "csv") return RTableFormat::csv;
-  if (l == "rtb") return RTableFormat::rtb;
-  if (l == "radiance" || l == "dat") return RTableFormat::radiance;
-  throw InputError("r-table format '" + name + "' is not one of csv, rtb, radiance");
+  return l == "dat" ? RTableFormat::radiance : parse_name<RTableFormat>(l, field);
 }
 
 std::optional<RTableFormat> rtable_format_from_path(const std::string& path) {
   const auto dot = path.find_last_of('.');
   const auto slash = path.find_last_of('/');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::nullopt;
-  const std::string ext = lower(path.substr(dot + 1));
-  if (ext == "csv") return RTableFormat::csv;
-  if (ext == "rtb") return RTableFormat::rtb;
-  if (ext == "dat" || ext == "cal") return RTableFormat::radiance;
+  const std::string ext = lower(path.substr(dot));
+  if (ext == ".csv") return RTableFormat::csv;
+  if (ext == ".rtb") return RTableFormat::rtb;
+  if (ext == ".dat" || ext == ".cal") return RTableFormat::radiance;
   return std::nullopt;
-}
-
-const char* rtable_format_name(RTableFormat format) {
-  switch (format) {
-    case RTableFormat::csv:
-      return "csv";
-    case RTableFormat::rtb:
-      return "rtb";
-    case RTableFormat::radiance:
-      return "radiance";
-  }
-  return "?";
 }
 
 RTableFile read_rtable(const std::string& path, std::optional<RTableFormat> format, double alpha_deg, double scale) {

@@ -26,19 +26,26 @@
 
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/photometry/rtable.h"
 
 namespace roadbrdf::photometry {
 
 enum class RTableFormat { csv, rtb, radiance };
+inline constexpr EnumName<RTableFormat> kRTableFormatNames[] = {
+    {RTableFormat::csv, "csv", ""},
+    {RTableFormat::rtb, "rtb", "DIALux"},
+    {RTableFormat::radiance, "radiance", "Radiance data file"},
+};
+constexpr std::span<const EnumName<RTableFormat>> enum_names(RTableFormat) { return kRTableFormatNames; }
 
-// "csv", "rtb", "radiance" (case-insensitive). Throws InputError.
-RTableFormat rtable_format_from_name(const std::string& name);
+// A name of kRTableFormatNames, or "dat" for radiance, in any letter case. Throws FieldError(field, ...).
+RTableFormat rtable_format_from_name(const std::string& name, const std::string& field = "format");
 // From the file extension: .csv -> csv, .rtb -> rtb, .dat/.cal -> radiance; nullopt otherwise.
 std::optional<RTableFormat> rtable_format_from_path(const std::string& path);
-const char* rtable_format_name(RTableFormat format);
 
 struct RTableFile {
   RTable table;

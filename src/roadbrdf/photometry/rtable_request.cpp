@@ -78,19 +78,9 @@ void RTableRequest::validate_for_import() const {
   if (*field) throw FieldError(field, "does not apply to an r-table read from a file (it has no spectrum)");
 }
 
-Q0Region RTableRequest::region() const {
-  if (q0_region == "standard") return Q0Region::standard;
-  if (q0_region == "table") return Q0Region::table;
-  throw FieldError("q0_region", "'" + q0_region + "' is not one of standard, table");
-}
+Q0Region RTableRequest::region() const { return parse_name<Q0Region>(q0_region, "q0_region"); }
 
-ClassSystem RTableRequest::system() const {
-  try {
-    return class_system_from_name(class_system);
-  } catch (const InputError& e) {
-    throw FieldError("class_system", e.what());
-  }
-}
+ClassSystem RTableRequest::system() const { return class_system_from_name(class_system, "class_system"); }
 
 RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request) {
   return rtable_report(model, request, weighted_brdf);
@@ -164,7 +154,7 @@ RTableReport rtable_report(RTableFile imported, const RTableRequest& request) {
 }
 
 void RTableReport::compare_with(const RTable& reference, const std::string& name) {
-  comparison = compare(table, reference, q0_region == "table" ? Q0Region::table : Q0Region::standard);
+  comparison = compare(table, reference, parse_name<Q0Region>(q0_region, "q0_region"));
   compared_with = name;
 }
 

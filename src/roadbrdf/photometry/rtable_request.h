@@ -33,7 +33,7 @@ struct RTableRequest {
   std::optional<double> wavelength;               // [nm]
   std::optional<std::pair<double, double>> band;  // [lo, hi] [nm]
   double alpha = 1.0;                             // observation angle above the road plane, (0, 90) [deg]
-  std::string q0_region = "standard";             // standard | table (Q0Region)
+  std::string q0_region = "standard";             // a name of kQ0RegionNames (rtable.h)
   std::string class_system = "R";                 // R | N | C: the class reported as "class"
 
   // Throws FieldError.

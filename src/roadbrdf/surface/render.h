@@ -80,8 +80,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/io/dataset.h"
@@ -96,6 +98,11 @@ enum class Sampling {
   cosine,  // cosine-weighted about the facet normal (pdf cos/pi)
   brdf,    // one-sample MIS mixture of the material's tabulated BRDF sampler and cosine sampling
 };
+inline constexpr EnumName<Sampling> kSamplingNames[] = {
+    {Sampling::brdf, "brdf", "tabulated BRDF mixed with cosine, MIS"},
+    {Sampling::cosine, "cosine", "cosine-weighted about the facet normal"},
+};
+constexpr std::span<const EnumName<Sampling>> enum_names(Sampling) { return kSamplingNames; }
 
 struct RenderSettings {
   long samples = 4096;                     // paths per geometry (when target_relative_error == 0)

@@ -29,14 +29,7 @@ RenderSettings render_settings(const RenderRequest& r) {
   if (!(r.acceptance_deg >= 0.0 && r.acceptance_deg <= 45.0)) {
     throw FieldError("acceptance_deg", fmt::format("{} is outside [0, 45] deg", r.acceptance_deg));
   }
-  if (r.sampling == "brdf") {
-    s.sampling = Sampling::brdf;
-  } else if (r.sampling == "cosine") {
-    s.sampling = Sampling::cosine;
-  } else {
-    throw FieldError("sampling",
-                     "'" + r.sampling + "' is not brdf or cosine" + did_you_mean(r.sampling, {"brdf", "cosine"}));
-  }
+  s.sampling = parse_name<Sampling>(r.sampling, "sampling");
   if (r.threads < 0 || r.threads > 1024)
     throw FieldError("threads", fmt::format("{} is outside [0, 1024] (0 = all cores)", r.threads));
   if (r.max_bounces < 0 || r.max_bounces > 1000) {

@@ -18,7 +18,7 @@ struct RenderRequest {
   long max_samples = 1L << 20;         // adaptive: at most this many paths per geometry, >= 2
   double error_floor = 1e-5;           // adaptive: absolute standard error [sr^-1] in [0, 1]
   double acceptance_deg = 1.0;         // detector cone half-angle [deg] in [0, 45]
-  std::string sampling = "brdf";       // brdf | cosine
+  std::string sampling = "brdf";       // a name of kSamplingNames (render.h)
   std::uint64_t seed = 1;
   int threads = 0;          // [0, 1024], 0 = all cores
   int max_bounces = 0;      // [0, 1000], 0 = unlimited
