@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,13 +58,13 @@ constexpr bool entries_are_distinct(const EnumName<Enum> (&table)[N]) {
   return true;
 }
 
-// The entry of a value. A value missing from its table is a programming error, reported as such.
+// The entry of a value. A value missing from its table is a programming error (std::logic_error).
 template <typename Enum>
 const EnumName<Enum>& entry_of(Enum value) {
   for (const EnumName<Enum>& entry : names_table<Enum>()) {
     if (entry.value == value) return entry;
   }
-  throw InputError("internal: a value has no name in its enumeration's table");
+  throw std::logic_error("a value has no name in its enumeration's table");
 }
 
 template <typename Enum>
