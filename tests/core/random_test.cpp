@@ -196,7 +196,9 @@ TEST(Random, ShuffleOfAnyLengthIsAPermutation) {
     std::vector<std::size_t> sorted = v;
     std::sort(sorted.begin(), sorted.end());
     for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(sorted[i], i);
-    if (n == 1000) EXPECT_NE(v, sorted);  // an identity shuffle of 1000 elements has probability 1/1000!
+    if (n == 1000) {
+      EXPECT_NE(v, sorted);  // an identity shuffle of 1000 elements has probability 1/1000!
+    }
   }
 }
 
