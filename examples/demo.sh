@@ -52,9 +52,10 @@ cat <<'TXT'
 The "measured" F1-F4 are virtual samples rendered by the path tracer (25 % exposed mastic between
 the grains), made of the fits of the component samples used here: no mixing formula made them.
 Expected (docs/mixing.md): `shadowed` lowest held-out error for F1, F3 and F4, `fitted` for F2 by
-a hair (a tie). Only the two methods with fitted weights come near the data; most of their error is
-at the 80 deg forward (mirror) geometry, where the glossy component fits predict a specular lobe
-that the textured sample hides (shadowing and masking by the grains, tilted facets).
+a hair (a tie). Only the two methods with fitted weights come near the data; for F1 and F4 most of
+the error of `fitted` (and for F4 of `shadowed`) is at the 80 deg forward (mirror) geometry, where
+the glossy component fits predict a specular lobe that the textured sample hides (shadowing and
+masking by the grains, tilted facets).
 TXT
 cp data/examples/formulations/F*.json "$out/formulations/"
 for k in 1 2 3 4; do

@@ -18,6 +18,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/random.h"
 
 namespace roadbrdf {
 
@@ -144,10 +145,14 @@ bool same_file_as_descriptor(const struct stat& st, int fd) {
 std::string random_suffix() {
   static std::atomic<unsigned> counter{0};
   static const char alphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  // Seeded from the system's entropy source, this process and a per-process counter, so that two
+  // writers of the same file (threads or processes) pick different names.
   std::random_device device;
-  std::mt19937 generator(device() ^ (counter.fetch_add(1) * 2654435761u) ^ static_cast<unsigned>(::getpid()));
+  const std::uint64_t entropy = (std::uint64_t{device()} << 32) ^ device();
+  Rng rng(entropy ^ (std::uint64_t{counter.fetch_add(1)} * 0x9e3779b97f4a7c15ull) ^
+          (static_cast<std::uint64_t>(::getpid()) << 17));
   std::string s(6, 'a');
-  for (char& c : s) c = alphabet[generator() % (sizeof(alphabet) - 1)];
+  for (char& c : s) c = alphabet[rng.below(sizeof(alphabet) - 1)];
   return s;
 }
 

@@ -4,7 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <random>
+
+#include "roadbrdf/core/random.h"
 
 namespace roadbrdf::fitting {
 
@@ -68,8 +69,7 @@ std::vector<std::vector<double>> latin_hypercube(const ParameterLayout& L, const
                                                  unsigned seed) {
   std::vector<std::vector<double>> points(static_cast<std::size_t>(std::max(count, 0)), base);
   if (count <= 0) return points;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Rng rng(seed);
   for (std::size_t k : L.free_nonlinear) {
     double lo = L.info[k].lower, hi = L.info[k].upper;
     // Very wide bounds (e.g. 0..1e6 for an exponent): sample up to 10x the start instead.
@@ -77,9 +77,9 @@ std::vector<std::vector<double>> latin_hypercube(const ParameterLayout& L, const
       hi = std::min(hi, lo + std::max(10.0 * std::fabs(base[k]), 1.0));
     std::vector<int> perm(static_cast<std::size_t>(count));
     std::iota(perm.begin(), perm.end(), 0);
-    std::shuffle(perm.begin(), perm.end(), rng);
+    shuffle(perm, rng);
     for (int i = 0; i < count; ++i) {
-      const double t = (perm[static_cast<std::size_t>(i)] + u(rng)) / count;
+      const double t = (perm[static_cast<std::size_t>(i)] + rng.uniform()) / count;
       points[static_cast<std::size_t>(i)][k] = lo + t * (hi - lo);
     }
   }

@@ -3,11 +3,11 @@
 #include <fmt/core.h>
 
 #include <cmath>
-#include <random>
 
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
@@ -65,21 +65,6 @@ NoiseModel parse_noise_model(const std::string& spec) {
     start = comma + 1;
   }
   return n;
-}
-
-double NormalStream::next() {
-  if (has_cached_) {
-    has_cached_ = false;
-    return cached_;
-  }
-  auto& e = engine_;
-  // Uniform in (0, 1] from the top 53 bits, then Box-Muller.
-  const double u1 = (static_cast<double>(e() >> 11) + 1.0) * 0x1.0p-53;
-  const double u2 = static_cast<double>(e() >> 11) * 0x1.0p-53;
-  const double r = std::sqrt(-2.0 * std::log(u1));
-  cached_ = r * std::sin(2.0 * kPi * u2);
-  has_cached_ = true;
-  return r * std::cos(2.0 * kPi * u2);
 }
 
 namespace {

@@ -8,14 +8,12 @@
 //                     + (water_factor - 1) * (exp(-((lambda - 1400)/50)^2) + exp(-((lambda - 1900)/60)^2))
 // with lambda_min/max the detector range (default 350-2500 nm): larger at the detector's spectral
 // edges (weak lamp and detector response) and in the atmospheric water-absorption bands.
-// Values: f + sigma * z, z standard normal from a 64-bit Mersenne Twister (std::mt19937_64,
-// bit-exact across platforms) seeded with `seed`, transformed by Box-Muller (our own code, so the
-// stream does not depend on the standard library's normal_distribution).
+// Values: f + sigma * z, z standard normal from the library's random family seeded with `seed`
+// (core/random.h: xoshiro256**, Box-Muller deviates), the same with every standard library.
 #pragma once
 
 #include <cstdint>
 #include <map>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -60,17 +58,5 @@ struct SimulationInput {
 // Throws InputError (unknown parameter, value outside its bounds at some wavelength, model not
 // tabulated at a wavelength).
 SpectralDataset simulate_dataset(const SimulationInput& input);
-
-// Standard normal deviates, reproducible from a seed.
-class NormalStream {
- public:
-  explicit NormalStream(std::uint64_t seed) : engine_(seed) {}
-  double next();
-
- private:
-  std::mt19937_64 engine_;
-  double cached_ = 0.0;
-  bool has_cached_ = false;
-};
 
 }  // namespace roadbrdf

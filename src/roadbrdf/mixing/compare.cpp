@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <random>
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/mixing.h"
 
@@ -63,8 +63,8 @@ Comparison compare_method(const MixInputs& inputs, Method method, const MixSetti
   } else {
     c.predicted.assign(N * M, std::numeric_limits<double>::quiet_NaN());
     std::vector<std::size_t> order = all;
-    std::mt19937 rng(seed);
-    std::shuffle(order.begin(), order.end(), rng);
+    Rng rng(seed);
+    shuffle(order, rng);
     for (int fold = 0; fold < folds; ++fold) {
       std::vector<std::size_t> train, test;
       for (std::size_t i = 0; i < N; ++i) (static_cast<int>(i % folds) == fold ? test : train).push_back(order[i]);

@@ -6,11 +6,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 
 namespace roadbrdf::surface {
 
@@ -47,15 +47,6 @@ SampleRecipe recipe_from_formulation(const roadbrdf::Formulation& f) {
 }
 
 namespace {
-
-class Uniform {
- public:
-  explicit Uniform(std::uint64_t seed) : engine_(seed) {}
-  double operator()() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-
- private:
-  std::mt19937_64 engine_;
-};
 
 // Height of the top of the ellipsoid above its centre at horizontal offset (dx, dy), if any.
 bool top_offset(const Mat3& Q, double dx, double dy, double& dz) {
@@ -388,7 +379,7 @@ HeightField make_gaussian_slope_surface(const MaterialSpec& material, double sig
       if (k >= kmin && k <= kmax) lattice.emplace_back(p, q);
     }
   }
-  Uniform u(seed);
+  Rng rng(seed);
   HeightField f;
   f.name = "gaussian-slopes " + material.name;
   f.cell_size_mm = cell_size_mm;
@@ -397,8 +388,8 @@ HeightField make_gaussian_slope_surface(const MaterialSpec& material, double sig
   f.material.assign(f.heights.size(), 0);
   f.materials = {material};
   for (int w = 0; w < waves; ++w) {
-    const auto [p, q] = lattice[static_cast<std::size_t>(u() * lattice.size()) % lattice.size()];
-    const double phase = 2.0 * kPi * u();
+    const auto [p, q] = lattice[static_cast<std::size_t>(rng.below(lattice.size()))];
+    const double phase = 2.0 * kPi * rng.uniform();
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         f.heights[static_cast<std::size_t>(j) * n + i] += std::cos(2.0 * kPi * (p * i + q * j) / n + phase);

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <random>
 #include <string>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 
 namespace roadbrdf::surface {
 
@@ -31,18 +31,9 @@ double quad(const Mat3& M, double x, double y, double z) {
          z * (M[6] * x + M[7] * y + M[8] * z);
 }
 
-class Uniform {
- public:
-  explicit Uniform(std::uint64_t seed) : engine_(seed) {}
-  double operator()() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-
- private:
-  std::mt19937_64 engine_;
-};
-
 // Random rotation matrix (uniform quaternion, Shoemake 1992).
-Mat3 random_rotation(Uniform& u) {
-  const double u1 = u(), u2 = u(), u3 = u();
+Mat3 random_rotation(Rng& rng) {
+  const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
   const double qx = a * std::sin(2 * kPi * u2), qy = a * std::cos(2 * kPi * u2);
   const double qz = b * std::sin(2 * kPi * u3), qw = b * std::cos(2 * kPi * u3);
@@ -62,8 +53,9 @@ Mat3 multiply(const Mat3& A, const Mat3& B) {
 }
 
 // Rotation by `angle` about a uniformly random axis (Rodrigues' formula).
-Mat3 small_rotation(Uniform& u, double angle) {
-  const double cz = 2.0 * u() - 1.0, ph = 2.0 * kPi * u(), sz = std::sqrt(std::max(0.0, 1.0 - cz * cz));
+Mat3 small_rotation(Rng& rng, double angle) {
+  const double cz = 2.0 * rng.uniform() - 1.0, ph = 2.0 * kPi * rng.uniform(),
+               sz = std::sqrt(std::max(0.0, 1.0 - cz * cz));
   const double x = sz * std::cos(ph), y = sz * std::sin(ph), z = cz;
   const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
   return {c + t * x * x,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, c + t * y * y,
@@ -285,7 +277,7 @@ double checked_max_bound(const std::vector<PackingClass>& classes, const Packing
 class PackingRun {
  public:
   PackingRun(const std::vector<PackingClass>& classes, const PackingSettings& s, double bin)
-      : classes_(classes), s_(s), L_(s.period_mm), T_(s.thickness_mm), B_(s.bottom_mm), bin_(bin), u_(s.seed) {
+      : classes_(classes), s_(s), L_(s.period_mm), T_(s.thickness_mm), B_(s.bottom_mm), bin_(bin), rng_(s.seed) {
     for (const auto& c : classes) target_total_ += c.layer_volume_mm3;
   }
 
@@ -340,15 +332,15 @@ class PackingRun {
   Item new_grain(int k) {
     const PackingClass& c = classes_[k];
     // Sieve size with the class mass uniform over [d_min, d_max]: number density ~ d^-3.
-    const double v = u_();
+    const double v = rng_.uniform();
     const double d = c.d_max_mm > c.d_min_mm
                          ? 1.0 / std::sqrt(1.0 / (c.d_min_mm * c.d_min_mm) -
                                            v * (1.0 / (c.d_min_mm * c.d_min_mm) - 1.0 / (c.d_max_mm * c.d_max_mm)))
                          : c.d_min_mm;
     Item it;
     it.e.b = 0.5 * d;
-    it.e.a = it.e.b / (s_.elongation_min + (s_.elongation_max - s_.elongation_min) * u_());
-    it.e.c = it.e.b * (s_.flatness_min + (s_.flatness_max - s_.flatness_min) * u_());
+    it.e.a = it.e.b / (s_.elongation_min + (s_.elongation_max - s_.elongation_min) * rng_.uniform());
+    it.e.c = it.e.b * (s_.flatness_min + (s_.flatness_max - s_.flatness_min) * rng_.uniform());
     it.e.cls = k;
     return it;
   }
@@ -372,10 +364,10 @@ class PackingRun {
   // `grain` at a random orientation and x-y position (the random draws of every attempt).
   Item at_random_vertical(const Item& grain) {
     Item it = grain;
-    it.e.rotation = random_rotation(u_);
+    it.e.rotation = random_rotation(rng_);
     refresh(it);
-    it.e.x = u_() * L_;
-    it.e.y = u_() * L_;
+    it.e.x = rng_.uniform() * L_;
+    it.e.y = rng_.uniform() * L_;
     return it;
   }
 
@@ -384,7 +376,7 @@ class PackingRun {
   std::optional<Item> inserted(Packer& packer, const Item& grain) {
     for (long attempt = 0; attempt < s_.insertion_attempts; ++attempt) {
       Item it = at_random_vertical(grain);
-      it.e.z = s_.layer_bottom_mm + it.hz + u_() * std::max(0.0, T_ - s_.layer_bottom_mm - 2.0 * it.hz);
+      it.e.z = s_.layer_bottom_mm + it.hz + rng_.uniform() * std::max(0.0, T_ - s_.layer_bottom_mm - 2.0 * it.hz);
       if (!packer.in_slab(it) || !packer.fits(it, -1)) continue;
       return it;
     }
@@ -439,10 +431,10 @@ class PackingRun {
     for (long m = 0; m < s_.settle_moves; ++m) {
       Item t = best;
       const double delta = step * t.e.c;
-      t.e.x = wrap(t.e.x + delta * (2.0 * u_() - 1.0), L_);
-      t.e.y = wrap(t.e.y + delta * (2.0 * u_() - 1.0), L_);
-      t.e.z += delta * u_();
-      if (m & 1) t.e.rotation = multiply(small_rotation(u_, step * (2.0 * u_() - 1.0)), t.e.rotation);
+      t.e.x = wrap(t.e.x + delta * (2.0 * rng_.uniform() - 1.0), L_);
+      t.e.y = wrap(t.e.y + delta * (2.0 * rng_.uniform() - 1.0), L_);
+      t.e.z += delta * rng_.uniform();
+      if (m & 1) t.e.rotation = multiply(small_rotation(rng_, step * (2.0 * rng_.uniform() - 1.0)), t.e.rotation);
       refresh(t);
       t.e.z = std::min(t.e.z, T_ - t.hz);  // stops at the roller's plane
       if (t.e.z >= best.e.z && t.e.z >= B_ + t.hz && packer.fits(t, -1)) {
@@ -469,7 +461,7 @@ class PackingRun {
   const PackingSettings& s_;
   const double L_, T_, B_;
   const double bin_;
-  Uniform u_;
+  Rng rng_;
   double target_total_ = 0.0;
   ProgressCounter progress_{s_.progress, kProgressUnits};
   std::size_t reported_ = 0;

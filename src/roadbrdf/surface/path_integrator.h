@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/surface/materials.h"
-#include "roadbrdf/surface/random.h"
 #include "roadbrdf/surface/tracer.h"
 
 namespace roadbrdf::surface {

@@ -15,7 +15,7 @@
 #include <memory>
 #include <vector>
 
-#include "roadbrdf/surface/random.h"
+#include "roadbrdf/core/random.h"
 
 namespace roadbrdf::surface {
 
