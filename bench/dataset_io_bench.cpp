@@ -4,8 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
-#include <random>
 
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/io/dataset_io.h"
 
 namespace {
@@ -19,13 +19,12 @@ std::string make_file(int geometries) {
   if (std::filesystem::exists(p)) return p;
   roadbrdf::SpectralDataset d;
   for (int k = 0; k < 2151; ++k) d.wavelengths.push_back(350.0 + k);
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(0.0, 0.3);
+  roadbrdf::Rng rng(1);
   for (int g = 0; g < geometries; ++g) {
     d.geometries.push_back(roadbrdf::geometry_from_degrees(0.5 + 0.8 * (g % 100), 0.0, 0.5 + 0.8 * (g / 100), 180.0));
   }
   d.brdf.resize(d.geometries.size() * d.wavelengths.size());
-  for (auto& v : d.brdf) v = std::round(u(rng) * 1e6) / 1e6;
+  for (auto& v : d.brdf) v = std::round(0.3 * rng.uniform() * 1e6) / 1e6;
   roadbrdf::write_dataset(d, p);
   return p;
 }

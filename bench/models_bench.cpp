@@ -7,11 +7,11 @@
 // (table h_tabulated used by the model vs the direct quadrature h_exact), items = H evaluations.
 #include <benchmark/benchmark.h>
 
-#include <random>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/models/hapke_h_function.h"
 #include "roadbrdf/models/hapke_h_table.h"
 #include "roadbrdf/models/registry.h"
@@ -21,12 +21,12 @@ namespace {
 using namespace roadbrdf;
 
 std::vector<Geometry> random_geometries(std::size_t n) {
-  std::mt19937_64 rng(42);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  roadbrdf::Rng rng(42);
   std::vector<Geometry> g;
   g.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
-    g.push_back(geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)), 2 * kPi * u(rng)));
+    g.push_back(geometry_from_radians(std::acos(rng.uniform()), 2 * kPi * rng.uniform(), std::acos(rng.uniform()),
+                                      2 * kPi * rng.uniform()));
   }
   return g;
 }
@@ -83,12 +83,11 @@ BENCHMARK(bench_hapke_fit_path)->Name("hapke/fit_path:89x108,jacobian")->Unit(be
 // H(x, w) alone on 4096 random (x, w) pairs: table (as used by the model) vs direct quadrature.
 template <bool kTabulated>
 void bench_hapke_h(benchmark::State& state) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  roadbrdf::Rng rng(3);
   std::vector<double> x(4096), w(4096);
   for (std::size_t k = 0; k < x.size(); ++k) {
-    x[k] = u(rng);
-    w[k] = u(rng);
+    x[k] = rng.uniform();
+    w[k] = rng.uniform();
   }
   for (auto _ : state) {
     double sum = 0.0;

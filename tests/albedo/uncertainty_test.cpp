@@ -7,7 +7,6 @@
 #include <fstream>
 #include <limits>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -15,6 +14,7 @@
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -65,11 +65,10 @@ TEST(AlbedoUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
   const double u_white = j["uncertainty"]["white_sky"][0].get<double>();
 
   constexpr std::size_t kSamples = 4000;
-  std::mt19937_64 rng(2024);
-  std::normal_distribution<double> normal;
+  NormalStream normal(2024);
   std::vector<double> sets;
   for (std::size_t k = 0; k < kSamples; ++k) {
-    const double z1 = normal(rng), z2 = normal(rng);
+    const double z1 = normal.next(), z2 = normal.next();
     sets.push_back(0.5 + s_a * z1);
     sets.push_back(0.3 + s_s * (r * z1 + std::sqrt(1.0 - r * r) * z2));
   }

@@ -4,10 +4,10 @@
 
 #include <cmath>
 #include <functional>
-#include <random>
 #include <vector>
 
 #include "roadbrdf/core/geometry.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/models/model.h"
 
@@ -41,14 +41,13 @@ inline SpectralDataset synthetic_dataset(const Model& model, const std::vector<G
   const std::size_t N = geometries.size(), M = wavelengths.size();
   d.brdf.resize(N * M);
   if (store_sigma) d.sigma.resize(N * M);
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
+  NormalStream gauss(seed);
   for (std::size_t w = 0; w < M; ++w) {
     const std::vector<double> p = params(w);
     for (std::size_t g = 0; g < N; ++g) {
       const double f = model.evaluate(p.data(), geometries[g]);
       const double s = rel_noise * std::fabs(f) + abs_noise;
-      d.brdf[g * M + w] = f + s * gauss(rng);
+      d.brdf[g * M + w] = f + s * gauss.next();
       if (store_sigma) d.sigma[g * M + w] = s;
     }
   }

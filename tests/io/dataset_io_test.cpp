@@ -1,5 +1,6 @@
 // Wide/long CSV datasets: round trips and every bad-input case with its file:line:column.
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/core/random.h"
 #include "support/scratch.h"
 
 #include <gtest/gtest.h>
@@ -8,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
@@ -57,8 +57,8 @@ void expect_error(const std::string& content, long line, long column, const std:
 }
 
 SpectralDataset random_dataset(AngleConvention convention, bool sigma) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> u(-0.05, 1.0);
+  Rng rng(42);
+  auto u = [&rng] { return -0.05 + 1.05 * rng.uniform(); };
   SpectralDataset d;
   d.convention = convention;
   d.wavelengths = {350, 351.5, 400, 1000, 2500};
@@ -71,8 +71,8 @@ SpectralDataset random_dataset(AngleConvention convention, bool sigma) {
     }
   }
   for (std::size_t k = 0; k < d.geometries.size() * d.wavelengths.size(); ++k) {
-    d.brdf.push_back(u(rng));
-    if (sigma) d.sigma.push_back(std::fabs(u(rng)) * 0.01);
+    d.brdf.push_back(u());
+    if (sigma) d.sigma.push_back(std::fabs(u()) * 0.01);
   }
   d.metadata["sample"] = "random";
   d.metadata["instrument"] = "test";

@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <random>
 #include <vector>
 
 #include "mixing_test_util.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/mixing/hapke_imsa.h"
 #include "roadbrdf/models/model.h"
 
@@ -36,13 +36,12 @@ TEST(FittedMixing, RecoversKnownWeightsWithinNoise) {
   LinearCase c = linear_case();
   const auto& em = c.inputs.end_members;
   ASSERT_EQ(em.size(), 4u);  // binder, fines, coarse, mastic
-  std::mt19937 rng(42);
+  roadbrdf::NormalStream gauss(42);
   const double noise = 0.01;  // 1 % relative Gaussian noise
-  std::normal_distribution<double> gauss(0.0, noise);
   const SpectralDataset data = make_dataset([&](const Geometry& g, double w) {
     double f = 0.0;
     for (std::size_t k = 0; k < 3; ++k) f += c.truth[k] * value_at(*em[k].model, g, w);
-    return f * (1.0 + gauss(rng));
+    return f * (1.0 + noise * gauss.next());
   });
   // Expected standard errors of the (ordinary) least-squares weights under the heteroscedastic noise
   // sigma_n = 1 % of the value: sandwich covariance (A^T A)^-1 A^T diag(sigma^2) A (A^T A)^-1, for the

@@ -6,7 +6,6 @@
 
 #include <Eigen/Dense>
 #include <limits>
-#include <random>
 
 #include "mixing_test_util.h"
 
@@ -33,15 +32,14 @@ double true_mixture(const MixInputs& in, const Geometry& g, double w) {
 // Gaussian noise of standard deviation sigma(n, m) added to the true mixture; sigma stored.
 template <class Sigma>
 SpectralDataset noisy_dataset(const MixInputs& in, unsigned seed, Sigma&& sigma_of) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
+  roadbrdf::NormalStream gauss(seed);
   SpectralDataset d = make_dataset([&](const Geometry& g, double w) { return true_mixture(in, g, w); });
   d.sigma.resize(d.brdf.size());
   for (std::size_t n = 0; n < d.geometry_count(); ++n) {
     for (std::size_t m = 0; m < d.wavelength_count(); ++m) {
       const double s = sigma_of(n, d.value(n, m));
       d.sigma[n * d.wavelength_count() + m] = s;
-      d.value(n, m) += s * gauss(rng);
+      d.value(n, m) += s * gauss.next();
     }
   }
   return d;
@@ -101,9 +99,9 @@ Eigen::Vector3d closed_form(const MixInputs& in, const SpectralDataset& d, std::
 TEST(SigmaWeighting, WeightedNnlsEqualsClosedFormWhenNoBoundIsActive) {
   const MixInputs in = linear_inputs();
   // Small, strongly heteroscedastic case: sigma varies by 30x over the values.
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> factor(0.002, 0.06);
-  const SpectralDataset d = noisy_dataset(in, 11, [&](std::size_t, double y) { return factor(rng) * y; });
+  roadbrdf::Rng rng(7);
+  auto factor = [&rng] { return 0.002 + 0.058 * rng.uniform(); };
+  const SpectralDataset d = noisy_dataset(in, 11, [&](std::size_t, double y) { return factor() * y; });
   for (bool weighted : {true, false}) {
     MixSettings s;
     s.use_sigma = weighted;
@@ -125,9 +123,9 @@ TEST(SigmaWeighting, WeightedNnlsEqualsClosedFormWhenNoBoundIsActive) {
 
 TEST(MissingValues, FittedWeightsLeaveTheMissingCellOut) {
   const MixInputs in = linear_inputs();
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> factor(0.002, 0.06);
-  SpectralDataset d = noisy_dataset(in, 11, [&](std::size_t, double y) { return factor(rng) * y; });
+  roadbrdf::Rng rng(7);
+  auto factor = [&rng] { return 0.002 + 0.058 * rng.uniform(); };
+  SpectralDataset d = noisy_dataset(in, 11, [&](std::size_t, double y) { return factor() * y; });
   const Eigen::Vector3d complete = closed_form(in, d, 0, d.wavelength_count(), true);
   d.value(3, 1) = std::numeric_limits<double>::quiet_NaN();
   d.sigma[3 * d.wavelength_count() + 1] = std::numeric_limits<double>::quiet_NaN();

@@ -10,13 +10,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "mixing_test_util.h"
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/mixing/mixture_covariance.h"
 #include "roadbrdf/photometry/rtable.h"
@@ -118,11 +118,10 @@ TEST(MixtureUncertainty, NoneWithoutTheEndMembersCovarianceOrForFittedWeights) {
 struct OrenNayarFit {
   double albedo[2], sigma[2], u_albedo[2], u_sigma[2], correlation[2];
 
-  SpectralModel model(std::mt19937_64* rng) const {
-    std::normal_distribution<double> normal;
+  SpectralModel model(roadbrdf::NormalStream* normal) const {
     std::vector<double> table;
     for (int j = 0; j < 2; ++j) {
-      const double z1 = rng ? normal(*rng) : 0.0, z2 = rng ? normal(*rng) : 0.0;
+      const double z1 = normal ? normal->next() : 0.0, z2 = normal ? normal->next() : 0.0;
       const double r = correlation[j];
       table.push_back(albedo[j] + u_albedo[j] * z1);
       table.push_back(sigma[j] + u_sigma[j] * (r * z1 + std::sqrt(1.0 - r * r) * z2));
@@ -161,11 +160,11 @@ void expect_linearised_agrees_with_sampling(Method method) {
   ASSERT_TRUE(u.has_value());
 
   constexpr std::size_t kSamples = 2000;
-  std::mt19937_64 rng(method == Method::kHapke ? 17 : 4);
+  roadbrdf::NormalStream normal(method == Method::kHapke ? 17 : 4);
   std::vector<double> params, q0s, s1s, qds;
   for (std::size_t n = 0; n < kSamples; ++n) {
     MixInputs drawn_inputs =
-        load_mix_inputs(f, memory_loader({{"binder", binder.model(&rng)}, {"aggregate", aggregate.model(&rng)}}));
+        load_mix_inputs(f, memory_loader({{"binder", binder.model(&normal)}, {"aggregate", aggregate.model(&normal)}}));
     const MixResult drawn = mix(drawn_inputs, method, {});
     const std::vector<double>& table = drawn.model->parameter_table();
     params.insert(params.end(), table.begin(), table.end());

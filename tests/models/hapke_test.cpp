@@ -15,6 +15,7 @@
 //     normalisation and mean cosine (1/4pi) int p dOmega = 1, <cos Theta> = xi;
 //   - central finite differences for the gradients.
 #include "roadbrdf/models/hapke.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/models/hapke_h_table.h"
 #include "support/reference_quadrature.h"
 
@@ -25,7 +26,6 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -509,17 +509,18 @@ TEST(Hapke, NotEnergyConservingWithTheOppositionTerm) {
 }
 
 TEST(Hapke, ReciprocalForEveryOption) {
-  std::mt19937_64 rng(42);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Rng rng(42);
   for (const std::string phase : {"hg", "legendre", "hg2"}) {
     for (const std::string hf : {"hapke1981", "hapke2002", "exact"}) {
       const auto model = hapke(phase, hf);
       for (int k = 0; k < 200; ++k) {
-        std::vector<double> p = {u(rng), u(rng), 0.01 + u(rng), 1.8 * u(rng) - 0.9};
-        if (phase == "legendre") p = {u(rng), u(rng), 0.01 + u(rng), 2 * u(rng) - 1, u(rng)};
-        if (phase == "hg2") p = {u(rng), u(rng), 0.01 + u(rng), 0.95 * u(rng), 2 * u(rng) - 1};
-        const Geometry g =
-            geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)), 2 * kPi * u(rng));
+        std::vector<double> p = {rng.uniform(), rng.uniform(), 0.01 + rng.uniform(), 1.8 * rng.uniform() - 0.9};
+        if (phase == "legendre")
+          p = {rng.uniform(), rng.uniform(), 0.01 + rng.uniform(), 2 * rng.uniform() - 1, rng.uniform()};
+        if (phase == "hg2")
+          p = {rng.uniform(), rng.uniform(), 0.01 + rng.uniform(), 0.95 * rng.uniform(), 2 * rng.uniform() - 1};
+        const Geometry g = geometry_from_radians(std::acos(rng.uniform()), 2 * kPi * rng.uniform(),
+                                                 std::acos(rng.uniform()), 2 * kPi * rng.uniform());
         const double a = model->evaluate(p.data(), g);
         const double b = model->evaluate(p.data(), g.swapped());
         EXPECT_NEAR(a, b, 1e-13 * std::fabs(a)) << phase << " " << hf;
@@ -530,18 +531,23 @@ TEST(Hapke, ReciprocalForEveryOption) {
 }
 
 TEST(Hapke, GradientMatchesFiniteDifferences) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Rng rng(7);
   for (const std::string phase : {"hg", "legendre", "hg2"}) {
     for (const std::string hf : {"hapke1981", "hapke2002", "exact"}) {
       const auto model = hapke(phase, hf);
       const std::size_t n = model->parameter_count();
       std::vector<double> grad(n);
       for (int k = 0; k < 30; ++k) {
-        std::vector<double> p = {0.05 + 0.94 * u(rng), u(rng), 0.02 + u(rng), 1.6 * u(rng) - 0.8};
-        if (phase == "legendre") p = {0.05 + 0.94 * u(rng), u(rng), 0.02 + u(rng), 1.8 * u(rng) - 0.9, u(rng)};
-        if (phase == "hg2") p = {0.05 + 0.94 * u(rng), u(rng), 0.02 + u(rng), 0.05 + 0.85 * u(rng), 1.8 * u(rng) - 0.9};
-        const Geometry g = geometry_from_radians(std::acos(u(rng)), 0.0, std::acos(u(rng)), 2 * kPi * u(rng));
+        std::vector<double> p = {0.05 + 0.94 * rng.uniform(), rng.uniform(), 0.02 + rng.uniform(),
+                                 1.6 * rng.uniform() - 0.8};
+        if (phase == "legendre")
+          p = {0.05 + 0.94 * rng.uniform(), rng.uniform(), 0.02 + rng.uniform(), 1.8 * rng.uniform() - 0.9,
+               rng.uniform()};
+        if (phase == "hg2")
+          p = {0.05 + 0.94 * rng.uniform(), rng.uniform(), 0.02 + rng.uniform(), 0.05 + 0.85 * rng.uniform(),
+               1.8 * rng.uniform() - 0.9};
+        const Geometry g =
+            geometry_from_radians(std::acos(rng.uniform()), 0.0, std::acos(rng.uniform()), 2 * kPi * rng.uniform());
         const double f = model->evaluate_with_gradient(p.data(), g, grad.data());
         EXPECT_NEAR(f, model->evaluate(p.data(), g), 1e-15 * f);
         for (std::size_t q = 0; q < n; ++q) {

@@ -13,12 +13,12 @@
 
 #include <cmath>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -119,7 +119,7 @@ std::string test_name(const testing::TestParamInfo<Variant>& info) {
   return s;
 }
 
-std::vector<double> random_parameters(const ModelDescription& d, std::mt19937_64& rng, double margin = 0.0) {
+std::vector<double> random_parameters(const ModelDescription& d, Rng& rng, double margin = 0.0) {
   std::vector<double> p;
   for (const ParameterInfo& info : d.parameters) {
     double lo = info.lower;
@@ -129,26 +129,24 @@ std::vector<double> random_parameters(const ModelDescription& d, std::mt19937_64
     const double width = hi - lo;
     lo += margin * width;
     hi -= margin * width;
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     if (lo > 0.0 && hi / lo > 1e3) {
-      p.push_back(lo * std::pow(hi / lo, u(rng)));
+      p.push_back(lo * std::pow(hi / lo, rng.uniform()));
     } else {
-      p.push_back(lo + (hi - lo) * u(rng));
+      p.push_back(lo + (hi - lo) * rng.uniform());
     }
   }
   return p;
 }
 
-Geometry random_geometry(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+Geometry random_geometry(Rng& rng) {
   // Uniform in solid angle over the hemisphere, plus some grazing and normal cases.
   auto theta = [&] {
-    const double x = u(rng);
+    const double x = rng.uniform();
     if (x < 0.05) return 0.0;
     if (x < 0.10) return 89.9 * kDegree;
-    return std::acos(u(rng));
+    return std::acos(rng.uniform());
   };
-  return geometry_from_radians(theta(), 2 * kPi * u(rng), theta(), 2 * kPi * u(rng));
+  return geometry_from_radians(theta(), 2 * kPi * rng.uniform(), theta(), 2 * kPi * rng.uniform());
 }
 
 std::vector<Geometry> edge_geometries() {
@@ -237,7 +235,7 @@ class VectorOnlyModels : public ModelProperties {};
 // evaluation path (single, with gradient, batch, fixed sets).
 TEST_P(VectorOnlyModels, ValuesDoNotDependOnTheAngleFields) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(4242);
+  Rng rng(4242);
   std::vector<Geometry> geometries = edge_geometries();
   for (int k = 0; k < 40; ++k) geometries.push_back(random_geometry(rng));
   std::vector<Geometry> poisoned = geometries;
@@ -277,7 +275,7 @@ TEST(ModelAngles, OrenNayarAndItsCompositesReadTheAngles) {
 
 TEST_P(NonNegativeModels, NonNegative) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(12345);
+  Rng rng(12345);
   const std::vector<Geometry> edges = edge_geometries();
   for (int s = 0; s < 200; ++s) {
     const std::vector<double> p = random_parameters(d, rng);
@@ -295,7 +293,7 @@ TEST_P(NonNegativeModels, NonNegative) {
 
 TEST_P(ModelProperties, ReciprocalWhereDeclared) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(777);
+  Rng rng(777);
   double worst = 0.0;
   for (int s = 0; s < 100; ++s) {
     const std::vector<double> p = random_parameters(d, rng);
@@ -316,12 +314,11 @@ TEST_P(ModelProperties, ReciprocalWhereDeclared) {
 
 // Turning both directions about the normal by the same angle changes nothing for an isotropic model
 // (largest relative change over random geometries and turns at parameter set p).
-double largest_change_under_rotation(const Model& model, const std::vector<double>& p, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+double largest_change_under_rotation(const Model& model, const std::vector<double>& p, Rng& rng) {
   double worst = 0.0;
   for (int k = 0; k < 200; ++k) {
-    const double ti = std::acos(u(rng)), tr = std::acos(u(rng));
-    const double pi = 2 * kPi * u(rng), pr = 2 * kPi * u(rng), turn = 2 * kPi * u(rng);
+    const double ti = std::acos(rng.uniform()), tr = std::acos(rng.uniform());
+    const double pi = 2 * kPi * rng.uniform(), pr = 2 * kPi * rng.uniform(), turn = 2 * kPi * rng.uniform();
     const double a = model.evaluate(p.data(), geometry_from_radians(ti, pi, tr, pr));
     const double b = model.evaluate(p.data(), geometry_from_radians(ti, pi + turn, tr, pr + turn));
     const double scale = std::fmax(std::fabs(a), std::fabs(b));
@@ -332,7 +329,7 @@ double largest_change_under_rotation(const Model& model, const std::vector<doubl
 
 TEST_P(ModelProperties, IsotropicExactlyWhereDeclared) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(4242);
+  Rng rng(4242);
   double worst = 0.0, worst_where_equal = 0.0;
   for (int s = 0; s < 50; ++s) {
     std::vector<double> p = random_parameters(d, rng);
@@ -376,7 +373,7 @@ TEST(ModelIsotropy, CompositesCombineTheirComponents) {
 
 TEST_P(ModelProperties, FiniteAtEdgeGeometries) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(99);
+  Rng rng(99);
   const std::vector<Geometry> edges = edge_geometries();
   for (int s = 0; s < 50; ++s) {
     std::vector<double> p = s == 0 ? d.default_parameters() : random_parameters(d, rng);
@@ -396,7 +393,7 @@ TEST_P(ModelProperties, FiniteAtEdgeGeometries) {
 
 TEST_P(EnergyConservingModels, DirectionalAlbedoAtMostOne) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(2024);
+  Rng rng(2024);
   int unresolved = 0;
   int total = 0;
   for (int s = 0; s < 12; ++s) {
@@ -424,7 +421,7 @@ TEST_P(EnergyConservingModels, DirectionalAlbedoAtMostOne) {
 
 TEST_P(ModelProperties, GradientMatchesFiniteDifferences) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(31337);
+  Rng rng(31337);
   const std::size_t n = model_->parameter_count();
   std::vector<double> grad(n);
   int checked = 0;
@@ -457,7 +454,7 @@ TEST_P(ModelProperties, GradientMatchesFiniteDifferences) {
 
 TEST_P(ModelProperties, BatchEqualsSingleEvaluation) {
   const ModelDescription& d = model_->description();
-  std::mt19937_64 rng(5);
+  Rng rng(5);
   const std::size_t n_sets = 3;
   std::vector<double> params;
   for (std::size_t s = 0; s < n_sets; ++s) {

@@ -8,12 +8,12 @@
 //     quadrature values of domain notes section 3;
 //   - closed forms at the nadir and at the hot spot, derived by hand from the kernel formulas.
 #include "roadbrdf/models/ross_li.h"
+#include "roadbrdf/core/random.h"
 #include "support/reference_quadrature.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "roadbrdf/core/math.h"
@@ -126,10 +126,10 @@ TEST(RossLi, KernelClosedFormsAtNadirAndHotSpot) {
 
 TEST(RossLi, BrdfIsBrfOverPi) {
   const auto model = make_model("ross-li");
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Rng rng(3);
   for (int k = 0; k < 200; ++k) {
-    const Geometry g = geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)), 2 * kPi * u(rng));
+    const Geometry g = geometry_from_radians(std::acos(rng.uniform()), 2 * kPi * rng.uniform(),
+                                             std::acos(rng.uniform()), 2 * kPi * rng.uniform());
     const double iso[] = {0.37, 0.0, 0.0};
     EXPECT_NEAR(model->evaluate(iso, g), 0.37 / kPi, 1e-16);
     // Full model: pi f = f_iso + f_vol K_vol + f_geo K_geo, and the gradient is (1, K_vol, K_geo)/pi.
@@ -145,10 +145,10 @@ TEST(RossLi, BrdfIsBrfOverPi) {
 }
 
 TEST(RossLi, KernelsAreReciprocal) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Rng rng(11);
   for (int k = 0; k < 1000; ++k) {
-    const Geometry g = geometry_from_radians(std::acos(u(rng)), 2 * kPi * u(rng), std::acos(u(rng)), 2 * kPi * u(rng));
+    const Geometry g = geometry_from_radians(std::acos(rng.uniform()), 2 * kPi * rng.uniform(),
+                                             std::acos(rng.uniform()), 2 * kPi * rng.uniform());
     const RossLi::Kernels a = RossLi::kernels(g);
     const RossLi::Kernels b = RossLi::kernels(g.swapped());
     EXPECT_NEAR(a.vol, b.vol, 1e-12 * std::fmax(1.0, std::fabs(a.vol)));

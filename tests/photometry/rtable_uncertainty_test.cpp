@@ -15,12 +15,12 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -74,13 +74,12 @@ TEST(RTableUncertainty, LinearisedAgreesWithSamplingTheParameterDistribution) {
   const SummaryUncertainty u = uncertainty_of(sm, w);
 
   constexpr std::size_t kSamples = 4000;
-  std::mt19937_64 rng(2026);
-  std::normal_distribution<double> normal;
+  NormalStream normal(2026);
   std::vector<double> q0s, s1s, s2s, qds;
   for (std::size_t n = 0; n < kSamples; ++n) {
     std::vector<double> p;
     for (int j = 0; j < 2; ++j) {
-      const double z1 = normal(rng), z2 = normal(rng);
+      const double z1 = normal.next(), z2 = normal.next();
       p.push_back(mean[2 * j] + u_a[j] * z1);
       p.push_back(mean[2 * j + 1] + u_s[j] * (rho[j] * z1 + std::sqrt(1.0 - rho[j] * rho[j]) * z2));
     }

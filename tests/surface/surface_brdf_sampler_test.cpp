@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/surface/brdf_sampler.h"
 
@@ -82,12 +82,11 @@ TEST(BrdfSampler, SampledHistogramMatchesTheDensity) {
   const int nb_t = 9, nb_p = 12;  // bins in theta (uniform angle) and phi
   const int n = 400000;
   std::vector<double> counts(nb_t * nb_p, 0.0);
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  roadbrdf::Rng rng(7);
   double max_pdf_mismatch = 0.0;
   for (int k = 0; k < n; ++k) {
     double p = 0.0;
-    const Vec3 w = s.sample(w_o, u(rng), u(rng), u(rng), p);
+    const Vec3 w = s.sample(w_o, rng.uniform(), rng.uniform(), rng.uniform(), p);
     ASSERT_NEAR(w.x * w.x + w.y * w.y + w.z * w.z, 1.0, 1e-12);
     ASSERT_GE(w.z, 0.0);
     max_pdf_mismatch = std::max(max_pdf_mismatch, std::fabs(p - s.pdf(w_o, w)) / p);

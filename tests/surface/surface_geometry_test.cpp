@@ -6,10 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/height_field.h"
 #include "roadbrdf/surface/render.h"
@@ -133,15 +133,14 @@ TEST(PngPreview, WritesAValidSignatureAndSize) {
 TEST(RayTraversal, MatchesBruteForceMarching) {
   const rs::HeightField f = rs::make_gaussian_slope_surface(lambert(0.8), 0.5, 48, 0.1, 3, 128);
   const rs::Renderer r(f, rs::load_materials(f, {550.0}), 1);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  roadbrdf::Rng rng(11);
   double zmax = -1e9;
   for (double z : f.heights) zmax = std::max(zmax, z);
   int hits = 0;
   for (int k = 0; k < 300; ++k) {
-    const double theta = std::acos(u(rng)) * 0.999, phi = 2 * kPi * u(rng);
+    const double theta = std::acos(rng.uniform()) * 0.999, phi = 2 * kPi * rng.uniform();
     const Vec3 d{-std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), -std::cos(theta)};
-    const Vec3 o{u(rng) * 4.8, u(rng) * 4.8, zmax + 0.01};
+    const Vec3 o{rng.uniform() * 4.8, rng.uniform() * 4.8, zmax + 0.01};
     rs::Renderer::Hit hit;
     ASSERT_TRUE(r.intersect(o, d, hit));
     // Brute force: first t where the ray is below the surface, by steps of 1e-4 mm then bisection.
@@ -174,14 +173,13 @@ TEST(RayTraversal, MatchesBruteForceMarching) {
 // and secondary rays going up from just above a surface point (they hit a neighbouring slope or escape): the
 // same first hit as brute-force marching along the ray, or none where marching escapes.
 TEST(RayTraversal, MatchesBruteForceOnAnyPeriodAndDirection) {
-  std::mt19937_64 rng(29);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  roadbrdf::Rng rng(29);
   for (const int n : {45, 5}) {
     rs::HeightField f = rs::make_flat(lambert(0.8), n, 0.1);
     if (n >= 32) {
       f = rs::make_gaussian_slope_surface(lambert(0.8), 0.6, n, 0.1, 5, 64);
     } else {  // a small period of random heights (the generator needs 32 cells)
-      for (double& z : f.heights) z = 0.2 * u(rng);
+      for (double& z : f.heights) z = 0.2 * rng.uniform();
     }
     const rs::Renderer r(f, rs::load_materials(f, {550.0}), 1);
     double zmax = -1e9;
@@ -210,15 +208,15 @@ TEST(RayTraversal, MatchesBruteForceOnAnyPeriodAndDirection) {
     int down = 0, up_hits = 0, up_escapes = 0;
     for (int k = 0; k < 200; ++k) {
       // Downward rays, zenith angles up to 89.4 deg, from anywhere in [-3, 4) periods.
-      const double theta = std::acos(u(rng)) * 0.993, phi = 2 * kPi * u(rng);
+      const double theta = std::acos(rng.uniform()) * 0.993, phi = 2 * kPi * rng.uniform();
       const Vec3 d{-std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), -std::cos(theta)};
-      const Vec3 o{(7.0 * u(rng) - 3.0) * period, (7.0 * u(rng) - 3.0) * period, zmax + 0.01};
+      const Vec3 o{(7.0 * rng.uniform() - 3.0) * period, (7.0 * rng.uniform() - 3.0) * period, zmax + 0.01};
       rs::Renderer::Hit hit;
       ASSERT_TRUE(r.intersect(o, d, hit)) << "n " << n << " ray " << k;
       EXPECT_NEAR(hit.t, march(o, d), 1e-9) << "n " << n << " ray " << k;
       ++down;
       // From that hit, a ray going up at a random direction of the upper hemisphere.
-      const double theta_up = std::acos(u(rng)) * 0.95, phi_up = 2 * kPi * u(rng);
+      const double theta_up = std::acos(rng.uniform()) * 0.95, phi_up = 2 * kPi * rng.uniform();
       const Vec3 d_up{std::sin(theta_up) * std::cos(phi_up), std::sin(theta_up) * std::sin(phi_up), std::cos(theta_up)};
       // Raised 0.01 mm: marching by 1e-4 mm cannot resolve a ray grazing the facet it starts on.
       const Vec3 o_up{hit.p.x, hit.p.y, hit.p.z + 0.01};

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <tuple>
 
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/random.h"
 #include "roadbrdf/surface/generate.h"
 #include "roadbrdf/surface/packing.h"
 
@@ -76,12 +76,15 @@ bool sampled_overlap(const rs::Ellipsoid& p, const rs::Ellipsoid& q, double sx, 
   return min_implicit_over_surface(ps, q, 0.0, 0.0, n) < 1.0 || min_implicit_over_surface(q, ps, 0.0, 0.0, n) < 1.0;
 }
 
-rs::Mat3 rotation_from(std::mt19937_64& g) {
+rs::Mat3 rotation_from(roadbrdf::Rng& g) {
   // Gram-Schmidt on random vectors (independent of the library's quaternion construction).
-  std::normal_distribution<double> N(0.0, 1.0);
   double v[3][3];
-  for (auto& r : v)
-    for (double& x : r) x = N(g);
+  double* x = &v[0][0];
+  for (int k = 0; k < 9; k += 2) {
+    const auto [z0, z1] = g.normal_pair();
+    x[k] = z0;
+    if (k + 1 < 9) x[k + 1] = z1;
+  }
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < k; ++j) {
       const double d = v[k][0] * v[j][0] + v[k][1] * v[j][1] + v[k][2] * v[j][2];
@@ -125,7 +128,7 @@ TEST(Packing, PerramWertheimMatchesClosedFormsForSpheresAndAlignedEllipsoids) {
 TEST(Packing, VolumeBelowAPlaneMatchesNumericalIntegration) {
   // A tilted ellipsoid cut by horizontal planes: the volume below, by midpoint integration over a
   // 200^3 grid of its bounding box, against the library's cap formula.
-  std::mt19937_64 g(5);
+  roadbrdf::Rng g(5);
   rs::Ellipsoid e;
   e.a = 3.0;
   e.b = 2.0;
@@ -154,21 +157,20 @@ TEST(Packing, VolumeBelowAPlaneMatchesNumericalIntegration) {
 TEST(Packing, PerramWertheimAgreesWithDenseSurfaceSampling) {
   // Random pairs near contact: "separated" must never have a surface point inside the other, and an
   // "overlap" must show one once both are scaled up by 1 % about their centres.
-  std::mt19937_64 g(11);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
+  roadbrdf::Rng g(11);
   int separated = 0, overlapping = 0;
   for (int trial = 0; trial < 200; ++trial) {
     rs::Ellipsoid p, q;
-    p.a = 1.0 + 2.0 * U(g);
-    p.b = p.a * (0.4 + 0.6 * U(g));
-    p.c = p.b * (0.3 + 0.7 * U(g));
-    q.a = 1.0 + 2.0 * U(g);
-    q.b = q.a * (0.4 + 0.6 * U(g));
-    q.c = q.b * (0.3 + 0.7 * U(g));
+    p.a = 1.0 + 2.0 * g.uniform();
+    p.b = p.a * (0.4 + 0.6 * g.uniform());
+    p.c = p.b * (0.3 + 0.7 * g.uniform());
+    q.a = 1.0 + 2.0 * g.uniform();
+    q.b = q.a * (0.4 + 0.6 * g.uniform());
+    q.c = q.b * (0.3 + 0.7 * g.uniform());
     p.rotation = rotation_from(g);
     q.rotation = rotation_from(g);
-    const double ct = 2.0 * U(g) - 1.0, ph = 2.0 * kPi * U(g), st = std::sqrt(1.0 - ct * ct);
-    const double dist = (p.c + q.c) + U(g) * (p.a + q.a - p.c - q.c);
+    const double ct = 2.0 * g.uniform() - 1.0, ph = 2.0 * kPi * g.uniform(), st = std::sqrt(1.0 - ct * ct);
+    const double dist = (p.c + q.c) + g.uniform() * (p.a + q.a - p.c - q.c);
     q.x = dist * st * std::cos(ph);
     q.y = dist * st * std::sin(ph);
     q.z = dist * ct;
@@ -225,11 +227,10 @@ void expect_no_overlap(const std::vector<rs::Ellipsoid>& grains, double L, doubl
 // cap formula in packing.cpp); also returns its standard error.
 std::vector<double> sampled_fractions(const std::vector<rs::Ellipsoid>& grains, std::size_t K, double L, double T,
                                       int points, double& sigma_max) {
-  std::mt19937_64 g(3);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
+  roadbrdf::Rng g(3);
   std::vector<long> hits(K, 0);
   for (int n = 0; n < points; ++n) {
-    const double x = U(g) * L, y = U(g) * L, z = U(g) * T;
+    const double x = g.uniform() * L, y = g.uniform() * L, z = g.uniform() * T;
     for (const auto& e : grains) {
       const double r = std::max({e.a, e.b, e.c});
       if (std::fabs(z - e.z) >= r) continue;
