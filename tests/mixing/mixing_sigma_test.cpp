@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "mixing_test_util.h"
+#include "roadbrdf/core/random.h"
 
 namespace {
 

@@ -10,6 +10,8 @@
 //  - the standard normal distribution function at tabulated points (Phi(1) = 0.8413447460685429).
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <limits>

@@ -12,10 +12,25 @@ DATA = "data/examples/single/lazard.csv"
 MODEL = "lambert+torrance-sparrow"
 
 
+def _ceres_reason(status):
+    """Ceres' termination message without its figures ("Function tolerance reached.")."""
+    return status.split("|")[0].split(":")[0].strip()
+
+
 def _without_timing(content):
+    # Timings differ run to run. So do the figures inside Ceres' termination messages: the relative
+    # cost change it quotes is a difference of two nearly equal costs (1e-12 relative), and its
+    # leading digits were seen to vary between repeated identical fits in one process (3.176217e-12,
+    # 3.176410e-12) while every parameter and cost stayed bit-identical; the likely cause is the heap
+    # alignment of Ceres' dense blocks, which changes where Eigen's vectorised sums start. Every
+    # number of the result is compared in full.
     for f in content["fits"]:
         f.pop("seconds", None)
         f.pop("cpu_seconds", None)
+        if "status" in f:
+            f["status"] = [_ceres_reason(s) for s in f["status"]]
+        if "joint_status" in f:
+            f["joint_status"] = _ceres_reason(f["joint_status"])
     return content
 
 
