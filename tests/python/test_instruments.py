@@ -1,26 +1,11 @@
 """Instrument files and run manifests from Python: the same results and errors as the CLI."""
 import math
-import os
-import pathlib
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 import roadbrdf
 
-
-@pytest.fixture(scope="module")
-def instruments(tmp_path_factory):
-    """The synthetic instrument files: the build's (ctest sets ROADBRDF_INSTRUMENT_FILES), or written
-    here by the same script."""
-    if os.environ.get("ROADBRDF_INSTRUMENT_FILES"):
-        return pathlib.Path(os.environ["ROADBRDF_INSTRUMENT_FILES"])
-    out = tmp_path_factory.mktemp("instruments")
-    script = pathlib.Path(__file__).resolve().parents[1] / "data" / "instruments" / "make_synthetic.py"
-    subprocess.run([sys.executable, str(script), str(out)], check=True)
-    return out
 
 
 def rho(l):  # make_synthetic.py

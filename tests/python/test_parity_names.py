@@ -1,10 +1,6 @@
 """A name that is not one of an option's names: the program and Python report the same error, listing
 the names and suggesting the nearest (the library's tables, core/enum_names.h), the program naming
 its flag and Python the argument."""
-import os
-import pathlib
-import subprocess
-import sys
 
 import pytest
 
@@ -14,15 +10,6 @@ from conftest import assert_same_error
 DATA = "data/examples/single/lazard.csv"
 GEOMETRY = dict(theta_i=0, phi_i=0, theta_r=30, phi_r=180)
 
-
-@pytest.fixture(scope="module")
-def instruments(tmp_path_factory):
-    if os.environ.get("ROADBRDF_INSTRUMENT_FILES"):
-        return pathlib.Path(os.environ["ROADBRDF_INSTRUMENT_FILES"])
-    out = tmp_path_factory.mktemp("instruments")
-    script = pathlib.Path(__file__).resolve().parents[1] / "data" / "instruments" / "make_synthetic.py"
-    subprocess.run([sys.executable, str(script), str(out)], check=True)
-    return out
 
 
 def _python_error(call):
