@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from . import _roadbrdf
 from .core import InputError, data_directory, road_to_zenith_azimuth
+from .result import Diagnostic, Result, RoadbrdfWarning
 from .model import Model, SpectralModel, model_aliases, model_names, models
 from .io import Dataset, check, read_alta, read_curet, read_dataset, write_dataset
 from .fitting import FitResult, ModelFit, fit, params, read_fit, spectral_model_from_fit
@@ -36,7 +37,7 @@ from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dat
 # Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
 from .studies import study
 
-__all__ = ["InputError", "Model", "SpectralModel", "Dataset", "RTable", "FitResult", "ModelFit", "models",
+__all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "SpectralModel", "Dataset", "RTable", "FitResult", "ModelFit", "models",
            "model_names", "model_aliases", "read_fit", "read_dataset", "write_dataset", "read_curet", "read_alta",
            "rtable", "read_rtable", "check", "fit", "params", "spectral_model_from_fit", "mix", "mix_calibrate",
            "albedo", "AlbedoResult", "road_to_zenith_azimuth",

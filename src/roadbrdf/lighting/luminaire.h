@@ -26,7 +26,9 @@ struct IntensityDistribution {
   // Luminous intensity [cd], row-major [c][gamma]: candela[i * gamma_deg.size() + j].
   std::vector<double> candela;
 
-  double at(std::size_t c_index, std::size_t gamma_index) const { return candela[c_index * gamma_deg.size() + gamma_index]; }
+  double at(std::size_t c_index, std::size_t gamma_index) const {
+    return candela[c_index * gamma_deg.size() + gamma_index];
+  }
   // Luminous intensity [cd] towards (C, gamma) [deg]: bilinear in (C, gamma) between the tabulated
   // planes and angles, periodic in C (any real C is reduced modulo 360), 0 outside the gamma range.
   // A single C-plane (rotational symmetry) is used for every C.
@@ -37,10 +39,10 @@ struct IntensityDistribution {
 };
 
 struct Luminaire {
-  std::string file;          // where it was read from ("" for one built in memory)
-  std::string format;        // "eulumdat" or "ies"
-  std::string name;          // luminaire name / catalogue number as the file gives it
-  std::string manufacturer;  // as the file gives it ("" if absent)
+  std::string file;                    // where it was read from ("" for one built in memory)
+  std::string format;                  // "eulumdat" or "ies"
+  std::string name;                    // luminaire name / catalogue number as the file gives it
+  std::string manufacturer;            // as the file gives it ("" if absent)
   IntensityDistribution distribution;  // [cd] for `flux_lm`
   double flux_lm = 0.0;                // luminous flux of the luminaire as rated [lm] (header flux x LOR...)
   double lamp_flux_lm = 0.0;           // flux of its lamps (lamp set 1) [lm]; 0 when the file gives absolute photometry

@@ -1,0 +1,125 @@
+// The command line of a request (core/request_fields.h): its options made from the request's field
+// table, its errors spelt with the table's flags, and its notes and warnings printed the one way.
+// A command made this way is its request table, its library function and a few lines that print the
+// result (see cmd_luminaire.cpp).
+#pragma once
+
+#include <fmt/core.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/diagnostics.h"
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/range.h"
+#include "roadbrdf/core/request_fields.h"
+
+namespace roadbrdf::cli {
+
+namespace detail {
+
+template <class Request>
+std::string option_help(const RequestField<Request>& field) {
+  std::string help(field.help);
+  if (!field.unit.empty()) help += " [" + std::string(field.unit) + "]";
+  return help;
+}
+
+template <class Request>
+void add_field(CLI::App* command, Request& request, const RequestField<Request>& field) {
+  const std::string flag(field.flag);
+  const std::string help = option_help(field);
+  const std::string name(field.name);
+  CLI::Option* option = nullptr;
+  std::visit(
+      [&](auto member) {
+        using Value = std::remove_reference_t<decltype(request.*member)>;
+        Value& value = request.*member;
+        if constexpr (std::is_same_v<Value, bool>) {
+          option = command->add_flag(flag, value, help);
+        } else if constexpr (std::is_same_v<Value, std::optional<double>>) {
+          option = command->add_option_function<double>(
+              flag, [&value](const double& v) { value = v; }, help);
+        } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
+          // Lists of numbers in the one grammar of core/range.h; the request validates the values.
+          option = command->add_option_function<std::string>(
+              flag, [&value, name](const std::string& text) { value = parse_range_list(text, name); }, help);
+        } else {
+          option = command->add_option(flag, value, help);
+          if constexpr (std::is_same_v<Value, double> || std::is_same_v<Value, int>) option->capture_default_str();
+        }
+      },
+      field.member);
+  if (field.required) option->required();
+}
+
+}  // namespace detail
+
+// Adds every field of Request's table to `command`, bound to `request`'s members.
+template <class Request>
+void add_request_options(CLI::App* command, Request& request) {
+  for (const RequestField<Request>& field : Request::fields()) detail::add_field(command, request, field);
+}
+
+// The flag of a request field ("options.distribution" -> "--option distribution"); a field that is
+// not in the table is spelt by the general rule (cli/common.h flag_for_field).
+template <class Request>
+std::string flag_of(const std::string& field_name) {
+  const RequestField<Request>* field = find_field(Request::fields(), field_name);
+  if (field == nullptr) return flag_for_field(field_name);
+  std::string flag(field->long_flag());
+  const auto dot = field_name.find('.');
+  if (field->name != field_name && dot != std::string::npos) flag += " " + field_name.substr(dot + 1);
+  return flag;
+}
+
+// A library message with its `field` references spelt as the table's flags.
+template <class Request>
+std::string with_flags(const std::string& message) {
+  std::string out;
+  std::size_t at = 0;
+  while (at < message.size()) {
+    const std::size_t open = message.find('`', at);
+    const std::size_t close = open == std::string::npos ? std::string::npos : message.find('`', open + 1);
+    if (close == std::string::npos) break;
+    const std::string inside = message.substr(open + 1, close - open - 1);
+    out += message.substr(at, open - at);
+    out += find_field(Request::fields(), inside) != nullptr ? flag_of<Request>(inside)
+                                                            : name_flags(message.substr(open, close - open + 1));
+    at = close + 1;
+  }
+  return out + message.substr(std::min(at, message.size()));
+}
+
+// Runs `task` and rethrows a FieldError of the request as an InputError spelt with the table's
+// flags (main prints it as "roadbrdf: error: --flag: detail").
+template <class Request, class Task>
+void run_request(Task&& task) {
+  try {
+    task();
+  } catch (const FieldError& e) {
+    throw InputError(flag_of<Request>(e.field()) + ": " + with_flags<Request>(e.detail()));
+  } catch (const FileError&) {
+    throw;  // located in a file: nothing of the request to spell
+  } catch (const InputError& e) {
+    throw InputError(with_flags<Request>(e.what()));
+  }
+}
+
+// "roadbrdf: note: ..." and "roadbrdf: warning: ..." lines on standard error, fields spelt as flags.
+template <class Request>
+void print_diagnostics(const Diagnostics& diagnostics) {
+  for (const Diagnostic& d : diagnostics.notes)
+    fmt::print(stderr, "roadbrdf: note: {}\n", with_flags<Request>(d.message));
+  for (const Diagnostic& d : diagnostics.warnings) {
+    fmt::print(stderr, "roadbrdf: warning: {}\n", with_flags<Request>(d.message));
+  }
+}
+
+}  // namespace roadbrdf::cli

@@ -1,0 +1,106 @@
+// A request's fields, declared once. Each task the front ends offer is a request struct of the
+// library with one validation (Ceres-style options); its fields are listed in a table of
+// RequestField rows, and everything that names a field is made from that table:
+//   - the command line's options (cli/request_options.h: flag, help with unit, default),
+//   - Python's keyword arguments, their conversion and docstring (python/src/request_kwargs.h),
+//   - the spelling of a field in errors (FieldError::field is the row's name; the command line
+//     prints the row's flag instead),
+//   - the inputs and outputs that check_distinct_files compares (rows marked FileRole::input/output),
+//   - the option tables of the docs.
+// So adding a field to a request is one member and one row (docs/ARCHITECTURE.md has an example).
+//
+// A request declares its table as a static member function defined next to validate():
+//   struct LuminaireRequest {
+//     std::string file;
+//     bool json = false;
+//     static std::span<const RequestField<LuminaireRequest>> fields();
+//   };
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "roadbrdf/core/atomic_file.h"
+
+namespace roadbrdf {
+
+// What a field holds: a pointer to one member of the request, of one of these types.
+//   double, int, bool (a switch: present or not), std::string (a name, a path or a value in the
+//   grammar the field's help states), std::optional<double> (absent = not given),
+//   std::vector<std::string> (repeatable: NAME=VALUE items, several paths),
+//   std::vector<double> (a list of numbers in core/range.h's grammar).
+template <class Request>
+using FieldMember =
+    std::variant<double Request::*, int Request::*, bool Request::*, std::string Request::*,
+                 std::optional<double> Request::*, std::vector<std::string> Request::*, std::vector<double> Request::*>;
+
+// Whether a field names a file the task reads or writes (for check_distinct_files).
+enum class FileRole { none, input, output };
+
+template <class Request>
+struct RequestField {
+  // The request field and Python keyword argument: "sun_zenith". Errors name it (FieldError).
+  std::string_view name;
+  // The command line's spelling: "--sun-zenith", "-o,--output" (short and long), or an upper-case
+  // placeholder without dashes ("INSTALLATION") for a positional argument.
+  std::string_view flag;
+  // The unit of a number, as the docs write it ("deg", "m", "lm", "W"); "" for names, counts, paths.
+  std::string_view unit;
+  // One sentence: the command's --help, Python's docstring and the docs' option table.
+  std::string_view help;
+  FieldMember<Request> member;
+  FileRole file = FileRole::none;
+  bool required = false;
+
+  bool positional() const { return !flag.empty() && flag.front() != '-'; }
+  // The long spelling of the flag ("--output" of "-o,--output"); the placeholder of a positional.
+  std::string_view long_flag() const {
+    const auto comma = flag.rfind(',');
+    return comma == std::string_view::npos ? flag : flag.substr(comma + 1);
+  }
+};
+
+template <class Request>
+using RequestFields = std::span<const RequestField<Request>>;
+
+// The row named `name` ("options.distribution" is found by its first part), or nullptr.
+template <class Request>
+const RequestField<Request>* find_field(RequestFields<Request> fields, std::string_view name) {
+  const std::string_view head = name.substr(0, name.find('.'));
+  for (const RequestField<Request>& field : fields) {
+    if (field.name == name || field.name == head) return &field;
+  }
+  return nullptr;
+}
+
+// Every file a request names, as check_distinct_files takes them; a role is the field's reference
+// (`output`), which the command line prints as its flag and Python as its keyword. Extra inputs a task finds inside its
+// inputs (a formulation's fit files, a manifest's scans) are added by the task itself.
+template <class Request>
+void file_arguments(const Request& request, RequestFields<Request> fields, std::vector<FileArgument>& inputs,
+                    std::vector<FileArgument>& outputs) {
+  for (const RequestField<Request>& field : fields) {
+    if (field.file == FileRole::none) continue;
+    std::vector<FileArgument>& into = field.file == FileRole::input ? inputs : outputs;
+    const std::string role = "`" + std::string(field.name) + "`";
+    if (const auto* text = std::get_if<std::string Request::*>(&field.member)) {
+      if (!(request.*(*text)).empty()) into.push_back({role, request.*(*text)});
+    } else if (const auto* list = std::get_if<std::vector<std::string> Request::*>(&field.member)) {
+      for (const std::string& path : request.*(*list)) into.push_back({role, path});
+    }
+  }
+}
+
+// check_distinct_files over a request's file fields and `extra_inputs` (see file_arguments).
+template <class Request>
+void check_request_files(const Request& request, std::vector<FileArgument> extra_inputs = {}) {
+  std::vector<FileArgument> outputs;
+  file_arguments(request, Request::fields(), extra_inputs, outputs);
+  check_distinct_files(extra_inputs, outputs);
+}
+
+}  // namespace roadbrdf
