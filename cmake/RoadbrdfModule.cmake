@@ -23,6 +23,9 @@ function(roadbrdf_module folder)
   add_library(${target} STATIC ${sources})
   add_library(roadbrdf::${folder} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder})
+  # The headers are C++20 (concepts): a project that links a module compiles its own sources as C++20
+  # at least, whatever its CMAKE_CXX_STANDARD (exported with the targets, as Ceres exports its standard).
+  target_compile_features(${target} PUBLIC cxx_std_20)
   target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_BINARY_DIR}/include/${folder}>
                                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   foreach(dep ${ARG_DEPENDS})
