@@ -16,12 +16,13 @@ deps-app:
 
 # Configuring an existing build folder again takes seconds; the demo's does not need the test packages.
 # The benchmarks are not tests: `make test` leaves them out, `make bench` builds them (BENCHMARKS=ON).
-# The test build treats warnings as errors (g++ 12 of Debian 12 builds the tree without any); the
-# demo's build does not, so that a user's newer compiler cannot stop the program from building.
+# `make demo` and `make test` configure the same build folder with the same compile flags (warnings are
+# errors with g++ 12, CI's compiler, in both: CMakeLists.txt ROADBRDF_WERROR), so `make test` after
+# `make demo` compiles only the tests. Turning the tests on changes no flag of the library or program.
 BENCHMARKS ?= OFF
 configure: deps
 	@mkdir -p $(BUILD)
-	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DROADBRDF_WERROR=ON -DROADBRDF_BUILD_TESTS=ON -DROADBRDF_BUILD_BENCHMARKS=$(BENCHMARKS) \
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DROADBRDF_BUILD_TESTS=ON -DROADBRDF_BUILD_BENCHMARKS=$(BENCHMARKS) \
 	  > $(BUILD)/configure.log || { cat $(BUILD)/configure.log; exit 1; }
 
 build: configure

@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/core/error.h"
+#include "support/scratch.h"
 
 namespace roadbrdf {
 namespace {
@@ -53,13 +55,18 @@ TEST(RequestFields, FileRowsBecomeInputsAndOutputsNamedByTheirField) {
 }
 
 TEST(RequestFields, AnOutputThatIsAnInputIsRefused) {
+  const std::string same = test::scratch_path("request-same.csv");
+  const std::string other = test::scratch_path("request-other.csv");
+  std::ofstream(same) << "x\n";
+  std::ofstream(other) << "y\n";
   ToyRequest request;
-  request.input = "same.csv";
-  request.output = "same.csv";
+  request.input = same;
+  request.output = same;
   EXPECT_THROW(check_request_files(request), InputError);
-  request.output = "other.csv";
+  request.output = other;
   EXPECT_NO_THROW(check_request_files(request));
-  EXPECT_THROW(check_request_files(request, {{"`formulation component`", "other.csv"}}), InputError);
+  // An input found inside another (a formulation's fit file) is protected too.
+  EXPECT_THROW(check_request_files(request, {{"`formulation component`", other}}), InputError);
 }
 
 }  // namespace
