@@ -117,3 +117,12 @@ const AlbedoTable& albedo_table(Distribution d) {
 }
 
 }  // namespace roadbrdf::ksk
+
+#include "roadbrdf/models/model_factory.h"
+
+namespace roadbrdf {
+
+// The model's factory: its adapter and the fitter's Jet instantiations compile here (model_factory.h).
+ModelFactory kelemen_szirmay_kalos_factory() { return factory_of<KelemenSzirmayKalos>(); }
+
+}  // namespace roadbrdf

@@ -6,44 +6,43 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/models/composite.h"
-// One include per model file (keep in display order).
-#include "roadbrdf/models/ashikhmin_shirley.h"
-#include "roadbrdf/models/burley.h"
-#include "roadbrdf/models/hapke.h"
-#include "roadbrdf/models/kelemen_szirmay_kalos.h"
-#include "roadbrdf/models/lafortune.h"
-#include "roadbrdf/models/lambert.h"
-#include "roadbrdf/models/oren_nayar.h"
-#include "roadbrdf/models/retro_phong.h"
-#include "roadbrdf/models/ross_li.h"
-#include "roadbrdf/models/simonot.h"
-#include "roadbrdf/models/torrance_sparrow.h"
-// [model-includes]
+#include "roadbrdf/models/model_factory.h"
 
 namespace roadbrdf {
 
 namespace {
 
-struct Entry {
-  std::string name;
-  std::function<std::unique_ptr<Model>(const OptionSet&)> make;
-};
-
-template <class M>
-Entry entry() {
-  return {M::kName, [](const OptionSet& options) { return std::make_unique<ModelAdapter<M>>(options); }};
+// Every model's factory, in display order (one per model source file, model_factory.h).
+const std::vector<ModelFactory>& factories() {
+  static const std::vector<ModelFactory> table = {
+      lambert_factory(),   oren_nayar_factory(),  ashikhmin_shirley_factory(), simonot_factory(),
+      lafortune_factory(), retro_phong_factory(), torrance_sparrow_factory(),  kelemen_szirmay_kalos_factory(),
+      burley_factory(),    hapke_factory(),       ross_li_factory(),
+      // [model-entries]
+  };
+  return table;
 }
 
-template <class M>
-concept HasAliases = requires {
-  M::aliases();
+struct AliasEntry {
+  ModelAlias alias;
+  const ModelFactory* factory;
 };
+
+const std::vector<AliasEntry>& alias_entries() {
+  static const std::vector<AliasEntry> table = [] {
+    std::vector<AliasEntry> t;
+    for (const ModelFactory& factory : factories()) {
+      for (ModelAlias& alias : factory.aliases()) t.push_back({std::move(alias), &factory});
+    }
+    return t;
+  }();
+  return table;
+}
 
 // The alias's fixed options are merged into the given ones; giving one of them another value is an
 // error naming the model that allows it.
-std::unique_ptr<Model> make_alias(
-    const ModelAlias& alias, const OptionSet& given,
-    const std::function<std::unique_ptr<Model>(const OptionSet&, const std::string&)>& make) {
+std::unique_ptr<Model> make_alias(const AliasEntry& entry, const OptionSet& given) {
+  const ModelAlias& alias = entry.alias;
   OptionSet options = given;
   for (const auto& [option, value] : alias.options) {
     const auto it = given.find(option);
@@ -53,54 +52,19 @@ std::unique_ptr<Model> make_alias(
     }
     options[option] = value;
   }
-  return make(options, alias.name);
-}
-
-struct AliasEntry {
-  ModelAlias alias;
-  std::function<std::unique_ptr<Model>(const OptionSet&, const std::string&)> make;
-};
-
-template <class M>
-void add_aliases(std::vector<AliasEntry>& table) {
-  if constexpr (HasAliases<M>) {
-    for (const auto& alias : M::aliases()) {
-      table.push_back({alias, [](const OptionSet& options, const std::string& name) {
-                         return std::make_unique<ModelAdapter<M>>(options, name);
-                       }});
-    }
-  }
-}
-
-const std::vector<AliasEntry>& alias_entries() {
-  static const std::vector<AliasEntry> table = [] {
-    std::vector<AliasEntry> t;
-    add_aliases<TorranceSparrow>(t);
-    return t;
-  }();
-  return table;
-}
-
-const std::vector<Entry>& entries() {
-  static const std::vector<Entry> table = {
-      entry<Lambert>(),   entry<OrenNayar>(),  entry<AshikhminShirley>(), entry<Simonot>(),
-      entry<Lafortune>(), entry<RetroPhong>(), entry<TorranceSparrow>(),  entry<KelemenSzirmayKalos>(),
-      entry<Burley>(),    entry<Hapke>(),      entry<RossLi>(),
-      // [model-entries]
-  };
-  return table;
+  return entry.factory->make(options, alias.name);
 }
 
 std::unique_ptr<Model> make_single(const std::string& name, const OptionSet& options) {
-  for (const auto& e : entries()) {
-    if (e.name == name) return e.make(options);
+  for (const ModelFactory& factory : factories()) {
+    if (factory.name == name) return factory.make(options, name);
   }
-  for (const auto& a : alias_entries()) {
-    if (a.alias.name == name) return make_alias(a.alias, options, a.make);
+  for (const AliasEntry& entry : alias_entries()) {
+    if (entry.alias.name == name) return make_alias(entry, options);
   }
   std::ostringstream msg;
   msg << "unknown model '" << name << "' (known:";
-  for (const auto& e : entries()) msg << ' ' << e.name;
+  for (const ModelFactory& factory : factories()) msg << ' ' << factory.name;
   for (const auto& a : alias_entries()) msg << ' ' << a.alias.name;
   msg << "; combine with '+', e.g. oren-nayar+torrance-sparrow)";
   throw InputError(msg.str());
@@ -125,7 +89,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 std::vector<std::string> model_names() {
   std::vector<std::string> names;
-  for (const auto& e : entries()) names.push_back(e.name);
+  for (const ModelFactory& factory : factories()) names.emplace_back(factory.name);
   return names;
 }
 
