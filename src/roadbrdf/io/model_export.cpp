@@ -205,9 +205,10 @@ ExportResult export_model(const ExportRequest& request, const SpectralModelFileR
       OpenMaterialMetadata meta;
       meta.name = request.name.empty() ? file_stem(request.source) : request.name;
       meta.description = !request.description.empty() ? request.description
-                         : fitted ? fmt::format("BRDF of the {} model fitted by roadbrdf to the measurements of {}.",
-                                                result.model, request.source)
-                                  : fmt::format("BRDF of the {} model (roadbrdf).", result.model);
+                         : fitted
+                             ? fmt::format("BRDF of the {} model fitted by roadbrdf to measurements (fit file {}).",
+                                           result.model, request.source)
+                             : fmt::format("BRDF of the {} model (roadbrdf).", result.model);
       meta.uuid = request.uuid.empty() ? random_uuid() : request.uuid;
       meta.material_version = request.material_version;
       meta.authors = request.authors.empty() ? std::vector<std::string>{"unknown"} : request.authors;

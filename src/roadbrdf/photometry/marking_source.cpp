@@ -37,7 +37,9 @@ SpectralWeighting model_weighting(const MarkingRequest& request, const SpectralM
   std::string note;
   w = effective_weighting(model, w, &note);
   if (!note.empty()) {
-    result.diagnostics.note("single_band", note);
+    result.diagnostics.note("single_band", fmt::format("single-band model ({} nm): the figures are at that wavelength "
+                                                       "(a photometric weighting needs a spectrum)",
+                                                       w.wavelength_nm));
     result.weighting = {{"kind", "wavelength (the model's single band)"}, {"wavelength_nm", w.wavelength_nm}};
   }
   return w;
