@@ -154,6 +154,7 @@ TEST(Marking, RequestErrorsNameTheirFields) {
 std::string write_data(const std::string& name, bool with_grazing) {
   const std::string path = test::scratch_path(name);
   std::ofstream out(path);
+  out.precision(17);
   out << "theta_i,phi_i,theta_r,phi_r,550\n";
   const double f = 0.4 / kPi;
   out << "45,0,0,0," << f << "\n";

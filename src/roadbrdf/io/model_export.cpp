@@ -140,7 +140,10 @@ SpectralDataset export_grid(const ExportRequest& request, const SpectralModel& m
   d.wavelengths = wavelengths;
   for (const double ti : request.theta_i) {
     for (const double tr : request.theta_r) {
-      for (const double phi : request.phi) d.geometries.push_back(geometry_from_degrees(ti, 0.0, tr, phi));
+      for (const double phi : request.phi) {
+        d.geometries.push_back(geometry_from_degrees(ti, 0.0, tr, phi));
+        if (tr == 0.0) break;  // along the normal the azimuth is undefined: one direction, one row
+      }
     }
   }
   if (d.geometries.size() * wavelengths.size() > kMaxExportValues) {

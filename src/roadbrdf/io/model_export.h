@@ -4,7 +4,8 @@
 // ALTA's text format (io/alta.h) for one wavelength.
 //
 // The grid: every combination of the wavelengths [nm], incident zeniths theta_i [deg], exit zeniths
-// theta_r [deg] and relative azimuths phi = phi_r - phi_i [deg] (0 retro side, 180 forward). The
+// theta_r [deg] and relative azimuths phi = phi_r - phi_i [deg] (0 retro side, 180 forward; at
+// theta_r = 0, where the azimuth is undefined, only the first). The
 // smooth part of the model is tabulated; an ideal specular (delta) part has no value on a grid and is
 // left out, with a note. The presets choose the wavelengths of a sensor: camera 380-780 nm by 10 nm,
 // LiDAR 905 and 1550 nm.
