@@ -95,6 +95,19 @@ TEST(Marking, QdMatchesAnIndependentIntegral) {
   EXPECT_NEAR(qd.value[0], independent_qd(*model, p, theta_r), 0.02);
 }
 
+// Retro-phong is not reciprocal (its lobe weights depend on theta_i): the integral runs over the
+// directions of incidence, not over those of observation.
+TEST(Marking, QdOfANonReciprocalModelIntegratesOverIncidence) {
+  const auto model = make_model("retro-phong");
+  std::vector<double> p;
+  for (const auto& d : model->description().parameters) p.push_back(d.name == "n" ? 8.0 : d.default_value);
+  const double theta_r = (90.0 - 2.29) * kDeg;
+  const QdIntegral qd = qd_of_model(*model, p.data(), 1, 2.29);
+  ASSERT_TRUE(qd.converged);
+  const double reference = independent_qd(*model, p, theta_r);
+  EXPECT_NEAR(qd.value[0], reference, 1e-3 * reference);
+}
+
 // EN 1436:2018 class limits [mcd m^-2 lx^-1] (Q_d: Q1 80, Q2 100, Q3 130, Q4 160; R_L dry: R1 80,
 // R2 100, R3 150, R4 200, R5 300).
 TEST(Marking, ClassLimitsOfTheStandard) {
