@@ -36,6 +36,9 @@ from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dat
                           read_manifest, read_usgs, usgs_dataset)
 # Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
 from .studies import study
+# Road markings (EN 1436) and model grids for other tools: request-contract functions returning a Result.
+marking = _roadbrdf.marking
+export = _roadbrdf.export
 
 __all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "SpectralModel", "Dataset", "RTable", "FitResult", "ModelFit", "models",
            "model_names", "model_aliases", "read_fit", "read_dataset", "write_dataset", "read_curet", "read_alta",
@@ -43,6 +46,6 @@ __all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "Sp
            "albedo", "AlbedoResult", "road_to_zenith_azimuth",
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
-           "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study"]
+           "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study", "marking", "export"]
 
 __version__ = _roadbrdf.__version__

@@ -91,7 +91,8 @@ def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing
     resampling and calibration mask them out, never fill them in. Negative values are kept and
     reported with a :class:`UserWarning`. Malformed files raise InputError naming file:line:column.
     ``delimiter`` ("auto", ",", ";", "tab") and ``decimal`` ("auto", ".", ",") are the command line's
-    ``--delimiter`` / ``--decimal``: by default the dialect is detected (docs/data.md).
+    ``--delimiter`` / ``--decimal``: by default the dialect is detected (docs/data.md). A file whose name
+    ends in ``.xompt`` is read as an ASAM OpenMATERIAL 3D BRDF look-up table (docs/data.md).
     """
     return Dataset._from_dict(_roadbrdf.read_dataset(str(path), average_duplicates, allow_missing, str(delimiter),
                                                      str(decimal)))

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fuzz/instrument_harnesses.h"
+#include "fuzz/openmaterial3d_harness.h"
 #include "fuzz/parser_harnesses.h"
 
 namespace roadbrdf::fuzz {
@@ -27,6 +28,7 @@ inline const std::map<std::string, Harness>& harnesses() {
       {"geometry", geometry_one_input},
       {"manifest", manifest_one_input},
       {"mix_file", mix_file_one_input},
+      {"openmaterial3d", openmaterial3d_one_input},
       {"rtable_csv", rtable_csv_one_input},
       {"rtable_radiance", rtable_radiance_one_input},
       {"rtable_rtb", rtable_rtb_one_input},

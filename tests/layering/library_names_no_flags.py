@@ -1,6 +1,8 @@
 """Library messages name request fields, never command-line flags (core/error.h): fails, listing
 file:line and the literal, when a string literal of a C++ source under the given folders holds a
-long flag ("--name"). Comments are skipped; raw string literals are not used in the library.
+long flag ("--name"). Comments are skipped; raw string literals are not used in the library. The
+flag of a request's field-table row ({"field", "--flag", ...}, core/request_fields.h) is its
+declaration, not a message, and is allowed.
 
 Usage: library_names_no_flags.py ROOT [--exclude SUBFOLDER ...]  (ROOT: src/roadbrdf)
        library_names_no_flags.py FILE ...                       (the control: check these files)
@@ -13,8 +15,8 @@ FLAG = re.compile(r"--[A-Za-z]")
 
 
 def string_literals(text):
-    """(line, literal body) of every "..." literal of C++ source `text`, outside comments and
-    character literals."""
+    """(line, offset of the body, literal body) of every "..." literal of C++ source `text`, outside
+    comments and character literals."""
     i, line, n = 0, 1, len(text)
     while i < n:
         c = text[i]
@@ -34,15 +36,24 @@ def string_literals(text):
             while i < n and text[i] != c and text[i] != "\n":
                 i += 2 if text[i] == "\\" else 1
             if c == '"':
-                yield line, text[start:i]
+                yield line, start, text[start:i]
             i += 1
         else:
             i += 1
 
 
+# A row of a request's field table (core/request_fields.h): {"field_name", "--flag", ...}. The table is
+# where a field's flag is declared, once; the command line reads it from there.
+TABLE_ROW = re.compile(r'\{\s*"[a-z][a-z0-9_.]*"\s*,\s*"$')
+
+
 def offending(path):
     text = path.read_text(encoding="utf-8")
-    return [(line, body) for line, body in string_literals(text) if FLAG.search(body)]
+    found = []
+    for line, start, body in string_literals(text):
+        if FLAG.search(body) and not TABLE_ROW.search(text[max(0, start - 80):start]):
+            found.append((line, body))
+    return found
 
 
 def main(argv):

@@ -33,16 +33,26 @@ void run(CheckArgs& a) {
   QualityOptions o = a.options;
   if (!a.panel.empty()) o.panel_reflectance = spectra::read_spectrum(a.panel);
   const QualityReport r = check_dataset(d, o);
+  // The receiver solid angles of an OpenMATERIAL 3D file (io/openmaterial3d.h), kept in the metadata.
+  constexpr std::string_view kSolidAngle = "receiver_solid_angle_sr.";
+  nlohmann::json solid_angles = nlohmann::json::object();
+  std::string solid_angle_text;
+  for (const auto& [key, value] : d.metadata) {
+    if (key.rfind(kSolidAngle, 0) != 0) continue;
+    solid_angles[key.substr(kSolidAngle.size())] = value;
+    solid_angle_text += fmt::format("receiver solid angle at {} nm: {} sr\n", key.substr(kSolidAngle.size()), value);
+  }
   if (a.json) {
     nlohmann::json j = quality_report_json(d, r);
     j["file"] = a.data;
+    if (!solid_angles.empty()) j["receiver_solid_angles_sr"] = solid_angles;
     AtomicFile out("-");
     roadbrdf::write_json(out.stream(), j, 2);
     out.stream() << '\n';
     out.commit();
   } else {
     AtomicFile out("-");
-    out.stream() << a.data << '\n' << quality_report_text(d, r);
+    out.stream() << a.data << '\n' << quality_report_text(d, r) << solid_angle_text;
     out.commit();
   }
 }

@@ -44,4 +44,10 @@ struct AltaReadOptions {
 
 SpectralDataset read_alta(const std::string& path, const AltaReadOptions& options);
 
+// Writes a single-wavelength dataset as ALTA text data: "#DIM 4 1", "#VS 0", #PARAM_IN
+// SPHERICAL_TL_PL_TV_PV (radians), #PARAM_OUT INV_STERADIAN, a "#WAVELENGTH_NM" comment, one line per
+// geometry with round-trip precision (read_alta reads back the same values). A missing value has no
+// ALTA spelling: InputError, as for more than one wavelength. Written atomically ("-" = standard output).
+void write_alta(const SpectralDataset& dataset, const std::string& path);
+
 }  // namespace roadbrdf

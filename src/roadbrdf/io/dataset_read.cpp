@@ -22,6 +22,7 @@
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/dataset_read_support.h"
+#include "roadbrdf/io/openmaterial3d.h"
 
 namespace roadbrdf {
 
@@ -382,6 +383,7 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
 SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options, DatasetReadStats& stats) {
   validate_read_options(options);
   stats = {};
+  if (is_openmaterial3d_path(path)) return read_openmaterial3d(path, options, stats);  // JSON, not CSV
   CsvReader reader(path);
   std::string_view first;
   if (!reader.next_line(first))

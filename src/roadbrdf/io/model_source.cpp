@@ -1,0 +1,79 @@
+#include "roadbrdf/io/model_source.h"
+
+#include "roadbrdf/core/error.h"
+#include "roadbrdf/core/number.h"
+#include "roadbrdf/models/registry.h"
+
+namespace roadbrdf {
+
+namespace {
+
+bool is_model_name(const std::string& name) {
+  if (name.find('+') != std::string::npos && name.find_first_of("./") == std::string::npos) return true;  // composite
+  for (const std::string& m : model_names()) {
+    if (m == name) return true;
+  }
+  for (const ModelAlias& a : model_aliases()) {
+    if (a.name == name) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string source_kind(const std::string& source) {
+  if (source.size() > 5 && source.compare(source.size() - 5, 5, ".json") == 0) return "fit";
+  if (is_model_name(source)) return "model";
+  return "data";
+}
+
+std::map<std::string, std::string> assignments(const std::vector<std::string>& items, const std::string& field) {
+  std::map<std::string, std::string> out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size()) {
+      throw FieldError(field, "expected NAME=VALUE, got '" + item + "'");
+    }
+    if (!out.emplace(item.substr(0, eq), item.substr(eq + 1)).second) {
+      throw FieldError(field, "'" + item.substr(0, eq) + "' is given twice");
+    }
+  }
+  return out;
+}
+
+SpectralModel spectral_model_from_assignments(const std::string& name, const std::vector<std::string>& parameters,
+                                              const std::vector<std::string>& options) {
+  const std::map<std::string, std::string> option_map = assignments(options, "options");
+  std::unique_ptr<Model> model;
+  try {
+    model = make_model(name, OptionSet(option_map.begin(), option_map.end()));
+  } catch (const FieldError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw FieldError("options", e.what());
+  }
+  std::map<std::string, double> values;
+  for (const auto& [key, text] : assignments(parameters, "parameters")) {
+    double v = 0.0;
+    if (!parse_finite_double(text, v)) throw FieldError("parameters", "'" + text + "' is not a finite number");
+    values[key] = v;
+  }
+  std::vector<double> p;
+  try {
+    p = parameters_from_assignments(model->description(), values);
+  } catch (const FieldError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw FieldError("parameters", e.what());
+  }
+  return SpectralModel(std::shared_ptr<const Model>(std::move(model)), std::move(p));
+}
+
+SpectralModel spectral_model_of(const std::string& source, const std::vector<std::string>& parameters,
+                                const std::vector<std::string>& options, const std::string& fit,
+                                const SpectralModelFileReader& read_model_file) {
+  if (source_kind(source) == "fit") return read_model_file(source, fit);
+  return spectral_model_from_assignments(source, parameters, options);
+}
+
+}  // namespace roadbrdf

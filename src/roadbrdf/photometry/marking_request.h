@@ -1,0 +1,61 @@
+// Road-marking figures as the front ends ask for them (`roadbrdf marking`, roadbrdf.marking in
+// Python), made by the request contract (core/request_fields.h): the request with its field table and
+// its one validation, and the result with its value, notes and warnings, summary and JSON.
+//
+// The source is a fit file or a MIX.json (read by the reader the caller passes: mixing sits above
+// photometry), a model name with its parameters, or a measured dataset file (CSV, OpenMATERIAL 3D).
+// A model gives R_L, Q_d and beta (marking.h); measured data give R_L and beta where they reach the
+// geometry (within `tolerance`), and an error naming the fit to make where they do not.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "roadbrdf/core/diagnostics.h"
+#include "roadbrdf/core/request_fields.h"
+#include "roadbrdf/io/model_source.h"
+#include "roadbrdf/photometry/marking.h"
+
+namespace roadbrdf::photometry {
+
+struct MarkingRequest {
+  std::string source;                   // FIT.json | MIX.json | MODEL | DATA file
+  std::vector<std::string> parameters;  // NAME=VALUE of a model given by name
+  std::vector<std::string> options;     // NAME=VALUE model options
+  std::string fit;                      // which fit of a fit file / method of a MIX.json ("" = best)
+  std::string illuminant;               // "" = CIE A; "A", "D65" or a lamp spectrum file
+  std::optional<double> wavelength;     // [nm]: the figures at one wavelength instead of V(lambda) x illuminant
+  double illumination_angle = kMarkingIlluminationAngleDeg;  // epsilon above the road [deg]
+  double observation_angle = kMarkingObservationAngleDeg;    // alpha above the road [deg]
+  double tolerance = 1.0;  // measured data: largest distance to a measured geometry [deg]
+
+  static std::span<const RequestField<MarkingRequest>> fields();
+  // Throws FieldError.
+  void validate() const;
+  // Whether the geometry is EN 1436's (the classes apply to it only).
+  bool standard_geometry() const;
+};
+
+struct MarkingResult {
+  std::string source_kind;  // "fit", "model" or "data"
+  std::string model;        // the model's name (fit, model)
+  nlohmann::json weighting;
+  std::optional<double> rl, qd, qd_error, beta;  // [mcd m^-2 lx^-1], beta [1]; none where unknown
+  std::optional<double> rl_nearest_distance;     // data: distance to the nearest measured geometry [deg]
+  std::optional<std::size_t> rl_points;          // data: measured geometries combined
+  std::optional<double> beta_nearest_distance;
+  std::string rl_class, qd_class;  // EN 1436 classes; "" when not at the standard geometry or unknown
+  double illumination_angle = 0.0, observation_angle = 0.0;
+  Diagnostics diagnostics;
+
+  nlohmann::json to_json() const;
+  std::string summary_text() const;
+};
+
+// The figures of the request's source. Throws FieldError / FileError / InputError.
+MarkingResult marking(const MarkingRequest& request, const SpectralModelFileReader& read_model_file);
+
+}  // namespace roadbrdf::photometry
