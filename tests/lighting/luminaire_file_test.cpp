@@ -81,8 +81,8 @@ TEST(Eulumdat, HeaderFieldsFluxesAndLuminousArea) {
   EXPECT_DOUBLE_EQ(lum.lamp_flux_lm, 2000.0);
   EXPECT_DOUBLE_EQ(lum.flux_lm, 2000.0 * 0.80);  // lamp flux x LORL 80 %
   EXPECT_DOUBLE_EQ(lum.power_w, 25.0);
-  EXPECT_DOUBLE_EQ(lum.luminous_area.length_m, 0.5);
-  EXPECT_DOUBLE_EQ(lum.luminous_area.width_m, 0.15);
+  EXPECT_DOUBLE_EQ(lum.luminous_area.along_c90_m, 0.5);  // the EULUMDAT length
+  EXPECT_DOUBLE_EQ(lum.luminous_area.along_c0_m, 0.15);
   EXPECT_FALSE(lum.luminous_area.circular);
   EXPECT_DOUBLE_EQ(lum.luminous_area.heights_m[1], 0.03);
   EXPECT_EQ(lum.metadata["lamp_sets"].size(), 1u);
@@ -108,13 +108,13 @@ TEST(Ies, EveryEditionAndLateralSymmetry) {
   EXPECT_EQ(quadrants.manufacturer, "Synthetic Lighting Co.");
   EXPECT_DOUBLE_EQ(quadrants.lamp_flux_lm, 2.0 * 1000.0 * 0.9);
   EXPECT_EQ(quadrants.metadata["lm63_edition"], 2002);
-  EXPECT_DOUBLE_EQ(quadrants.luminous_area.length_m, 0.6);
+  EXPECT_DOUBLE_EQ(quadrants.luminous_area.along_c0_m, 0.6);  // the LM-63 length
   // LM-63-1995 with TILT=INCLUDE (kept in the metadata), 0-180, feet.
   const Luminaire tilt = read("tilt_1995.ies", diag);
   expect_closed_form(
       tilt, [](double c) { return cosd(c); }, 1.0, 8);
   EXPECT_EQ(tilt.metadata["tilt"]["factors"].size(), 3u);
-  EXPECT_NEAR(tilt.luminous_area.width_m, 1.5 * 0.3048, 1e-12);
+  EXPECT_NEAR(tilt.luminous_area.along_c90_m, 1.5 * 0.3048, 1e-12);
   EXPECT_EQ(tilt.name, "TILT-1");  // no [LUMINAIRE]: the catalogue number
   // LM-63-2019, 0-360 (the 360 plane is the 0 plane), absolute photometry.
   const Luminaire full = read("full_2019.ies", diag);
@@ -128,7 +128,7 @@ TEST(Ies, EveryEditionAndLateralSymmetry) {
   expect_closed_form(
       round, [](double) { return 0.0; }, 0.95, 1);
   EXPECT_TRUE(round.luminous_area.circular);
-  EXPECT_NEAR(round.luminous_area.length_m, 0.4, 1e-12);
+  EXPECT_NEAR(round.luminous_area.along_c0_m, 0.4, 1e-12);
   // 1986 (no format line), 90-270: symmetric about the C90-C270 plane.
   const Luminaire c90 = read("c90_c270_1986.ies", diag);
   expect_closed_form(

@@ -93,20 +93,20 @@ TEST(LuminaireFlux, IsTheExactIntegralOfTheInterpolant) {
 
 TEST(LuminousArea, ProjectionOfARectangleAndADisc) {
   LuminousArea rect;
-  rect.length_m = 1.0;
-  rect.width_m = 0.5;
+  rect.along_c0_m = 0.5;
+  rect.along_c90_m = 1.0;
   rect.heights_m = {0.1, 0.2, 0.3, 0.4};
   EXPECT_NEAR(rect.projected_m2(0.0, 0.0), 0.5, 1e-12);  // seen from below: the bottom face
-  // Horizontal views: the side faces, W h_C0 towards C0, L h_C90 towards C90, and so on.
-  EXPECT_NEAR(rect.projected_m2(0.0, 90.0), 0.5 * 0.1, 1e-12);
-  EXPECT_NEAR(rect.projected_m2(90.0, 90.0), 1.0 * 0.2, 1e-12);
-  EXPECT_NEAR(rect.projected_m2(180.0, 90.0), 0.5 * 0.3, 1e-12);
-  EXPECT_NEAR(rect.projected_m2(270.0, 90.0), 1.0 * 0.4, 1e-12);
-  // A box seen obliquely: |cos| and |sin| of the faces towards the viewer.
+  // Horizontal views: the side faces, (C90 side) h_C0 towards C0, (C0 side) h_C90 towards C90, ...
+  EXPECT_NEAR(rect.projected_m2(0.0, 90.0), 1.0 * 0.1, 1e-12);
+  EXPECT_NEAR(rect.projected_m2(90.0, 90.0), 0.5 * 0.2, 1e-12);
+  EXPECT_NEAR(rect.projected_m2(180.0, 90.0), 1.0 * 0.3, 1e-12);
+  EXPECT_NEAR(rect.projected_m2(270.0, 90.0), 0.5 * 0.4, 1e-12);
+  // A box seen obliquely: the faces towards the viewer, by cos C and sin C.
   const double s = std::sqrt(0.5);
-  EXPECT_NEAR(rect.projected_m2(45.0, 60.0), 0.5 * 0.5 + std::sin(kPi / 3.0) * (0.5 * 0.1 * s + 1.0 * 0.2 * s), 1e-12);
+  EXPECT_NEAR(rect.projected_m2(45.0, 60.0), 0.5 * 0.5 + std::sin(kPi / 3.0) * (1.0 * 0.1 * s + 0.5 * 0.2 * s), 1e-12);
   LuminousArea disc;
-  disc.length_m = 0.4;
+  disc.along_c0_m = 0.4;
   disc.circular = true;
   disc.heights_m = {0.05, 0.05, 0.05, 0.05};
   // A cylinder: pi D^2 / 4 cos(gamma) + D h sin(gamma), the same from every azimuth.

@@ -118,9 +118,11 @@ Luminaire EulumdatReader::read() {
   const double area_length = number(15, "luminous area length");
   const double area_width = number(16, "luminous area width");
   LuminousArea& area = lum.luminous_area;
-  area.length_m = area_length / 1000.0;
-  area.width_m = area_width / 1000.0;
+  // The EULUMDAT length runs along the C90-C270 axis: the side face seen from C0 is length x
+  // height C0 (as Relux reads the files: tests/lighting/luminaire_real_data_test.cpp).
   area.circular = area_width == 0.0;
+  area.along_c90_m = area_length / 1000.0;
+  area.along_c0_m = area.circular ? area.along_c90_m : area_width / 1000.0;
   const char* const height_names[] = {"C0", "C90", "C180", "C270"};
   for (std::size_t k = 0; k < 4; ++k) {
     area.heights_m[k] = number(17 + k, std::string("luminous area height ") + height_names[k]) / 1000.0;

@@ -249,8 +249,9 @@ Luminaire IesReader::read() {
   const double unit = units == 1 ? kFoot : 1.0;
   LuminousArea& area = lum.luminous_area;
   area.circular = width < 0.0 && length < 0.0;  // LM-63-2002 Table 1: negative sizes give round shapes
-  area.length_m = std::abs(length) * unit;
-  area.width_m = std::abs(width) * unit;
+  // LM-63: the length along the 0-180 deg photometric axis, the width across it.
+  area.along_c0_m = std::abs(length) * unit;
+  area.along_c90_m = std::abs(width) * unit;
   area.heights_m = {std::abs(height) * unit, std::abs(height) * unit, std::abs(height) * unit, std::abs(height) * unit};
   meta["number_of_lamps"] = lamps;
   meta["lumens_per_lamp"] = lumens;

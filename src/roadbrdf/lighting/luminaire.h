@@ -36,21 +36,21 @@ constexpr std::span<const EnumName<PhotometricSymmetry>> enum_names(PhotometricS
 }
 
 // The luminous area of a luminaire (EULUMDAT fields 16-21; IES LM-63 luminous opening): a
-// rectangle `length_m` along C0-C180 by `width_m` along C90-C270, or a disc of diameter `length_m`
-// (circular), with side faces of height heights_m = {C0, C90, C180, C270} (the face seen from that
-// C-plane). All zero when the file gives none.
+// rectangle of sides `along_c0_m` (along the C0-C180 axis) and `along_c90_m` (along the C90-C270
+// axis), or a disc of diameter `along_c0_m` (circular), with side faces of height heights_m =
+// {C0, C90, C180, C270}: the face seen from that C-plane. All zero when the file gives none.
 struct LuminousArea {
-  double length_m = 0.0;
-  double width_m = 0.0;
+  double along_c0_m = 0.0;
+  double along_c90_m = 0.0;
   bool circular = false;
   std::array<double, 4> heights_m{};
 
   // Area of the luminous area projected on a plane normal to (C, gamma) [m^2]: the bottom face
   // A cos(gamma) (for gamma < 90 deg) plus the side faces seen from that azimuth, sin(gamma) times
-  // W h_C0 max(cos C, 0) + L h_C90 max(sin C, 0) + W h_C180 max(-cos C, 0) + L h_C270 max(-sin C, 0)
-  // for a rectangle, and D h(C) for a disc (a cylinder's side, h interpolated as h_C0 cos^2 C +
-  // h_C90 sin^2 C in the quadrant of C). The projected area behind luminance = I / A_p (CIE 117,
-  // CIE 190 for UGR tables).
+  //   a90 h_C0 max(cos C, 0) + a0 h_C90 max(sin C, 0) + a90 h_C180 max(-cos C, 0) + a0 h_C270 max(-sin C, 0)
+  // for a rectangle (the face seen from C0 spans the C90-C270 side a90), and D h(C) for a disc (a
+  // cylinder's side, h = h_C0 cos^2 C + h_C90 sin^2 C in the quadrant of C). The area behind
+  // luminance = I / A_p (CIE 117, CIE 190 for UGR tables).
   double projected_m2(double c_deg, double gamma_deg) const;
 };
 

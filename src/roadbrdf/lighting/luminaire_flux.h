@@ -9,7 +9,8 @@
 // each interval:
 //   int_p^q (I_p + s (g - p)) sin g dg = I_p (cos p - cos q) + s (sin q - sin p - (q - p) cos q).
 // The difference to the flux of the true distribution is therefore only that of the interpolation:
-// O(h^2) in the angle steps h (e.g. I0 cos(gamma) tabulated by 5 deg gives pi I0 to 0.02 %).
+// O(h^2) in the angle steps h (I0 cos(gamma) tabulated by 5 deg gives pi I0 to 0.064 %, by 1 deg to
+// 0.0025 %).
 #pragma once
 
 #include "roadbrdf/lighting/luminaire.h"
