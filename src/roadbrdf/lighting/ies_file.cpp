@@ -14,6 +14,7 @@
 // photometric plane, as CIE 121 counts C. The range of the horizontal angles gives the lateral
 // symmetry: 0 only (rotational), 0-90 (quadrants), 0-180 (about the C0-C180 plane), 90-270 (about
 // the C90-C270 plane), 0-360 (none).
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -132,10 +133,17 @@ PhotometricSymmetry IesReader::lateral_symmetry(std::vector<double>& horizontal,
   if (first == 90.0 && last == 270.0) return PhotometricSymmetry::c90_c270;
   if (first == 0.0 && last == 360.0) {
     // The plane at 360 deg is the plane at 0 deg again.
-    if (planes.back().values != planes.front().values) {
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t j = 0; j < planes.front().values.size(); ++j) {
+      largest = std::max(largest, planes.front().values[j]);
+      difference = std::max(difference, std::abs(planes.back().values[j] - planes.front().values[j]));
+    }
+    if (difference > 0.0) {
       diagnostics_.warn("c360_differs",
-                        "the intensities at horizontal angle 360 deg differ from those at 0 deg; "
-                        "those at 0 deg are used");
+                        "the intensities at horizontal angle 360 deg differ from those at 0 deg by up "
+                        "to " +
+                            std::to_string(difference) + " (the largest at 0 deg is " + std::to_string(largest) +
+                            "); those at 0 deg are used");
     }
     planes.pop_back();
     horizontal.pop_back();
