@@ -27,35 +27,36 @@ double reduced_angle(double c) {
 }  // namespace
 
 std::vector<CPlane> expand_symmetry(std::vector<CPlane> given, PhotometricSymmetry symmetry) {
+  // The given planes first, then their images: after a stable sort by angle, the first plane of a
+  // run of equal angles is a given one when there is one.
   std::vector<CPlane> planes;
-  const auto add = [&planes](double c, const std::vector<double>& values) {
-    const double r = reduced_angle(c);
-    for (const CPlane& p : planes) {
-      if (std::abs(p.c_deg - r) < 1e-9) return;
-    }
-    planes.push_back({r, values});
-  };
-  for (const CPlane& p : given) add(p.c_deg, p.values);
+  planes.reserve(4 * given.size());
+  for (const CPlane& p : given) planes.push_back({reduced_angle(p.c_deg), p.values});
   for (const CPlane& p : given) {
     switch (symmetry) {
       case PhotometricSymmetry::none:
       case PhotometricSymmetry::rotational:
         break;
       case PhotometricSymmetry::c0_c180:
-        add(360.0 - p.c_deg, p.values);
+        planes.push_back({reduced_angle(360.0 - p.c_deg), p.values});
         break;
       case PhotometricSymmetry::c90_c270:
-        add(180.0 - p.c_deg, p.values);
+        planes.push_back({reduced_angle(180.0 - p.c_deg), p.values});
         break;
       case PhotometricSymmetry::quadrants:
-        add(180.0 - p.c_deg, p.values);
-        add(180.0 + p.c_deg, p.values);
-        add(360.0 - p.c_deg, p.values);
+        planes.push_back({reduced_angle(180.0 - p.c_deg), p.values});
+        planes.push_back({reduced_angle(180.0 + p.c_deg), p.values});
+        planes.push_back({reduced_angle(360.0 - p.c_deg), p.values});
         break;
     }
   }
-  std::sort(planes.begin(), planes.end(), [](const CPlane& a, const CPlane& b) { return a.c_deg < b.c_deg; });
-  return planes;
+  std::stable_sort(planes.begin(), planes.end(), [](const CPlane& a, const CPlane& b) { return a.c_deg < b.c_deg; });
+  std::vector<CPlane> out;
+  out.reserve(planes.size());
+  for (CPlane& p : planes) {
+    if (out.empty() || p.c_deg - out.back().c_deg > 1e-9) out.push_back(std::move(p));
+  }
+  return out;
 }
 
 IntensityDistribution make_distribution(const std::vector<CPlane>& planes, const std::vector<double>& gamma_deg,
