@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
