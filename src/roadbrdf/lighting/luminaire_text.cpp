@@ -12,12 +12,12 @@ namespace {
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
 
-// Quotes a cell for a message, shortened and with control bytes shown as '?'.
+// Quotes a cell for a message, shortened and with control and non-ASCII bytes shown as '?'.
 std::string quoted(std::string_view cell) {
   std::string out = "'";
   for (std::size_t k = 0; k < cell.size() && k < 40; ++k) {
     const auto c = static_cast<unsigned char>(cell[k]);
-    out += c < 0x20 || c == 0x7f ? '?' : static_cast<char>(c);
+    out += c < 0x20 || c >= 0x7f ? '?' : static_cast<char>(c);  // messages stay ASCII, so valid UTF-8
   }
   if (cell.size() > 40) out += "...";
   return out + "'";
