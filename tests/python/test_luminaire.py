@@ -81,6 +81,11 @@ def test_errors_name_file_and_line_and_the_argument(lighting_data, tmp_path, cli
         roadbrdf.luminaire(fil=bad)
     with pytest.raises(roadbrdf.InputError, match="file"):
         roadbrdf.luminaire(3)
+    # A request field's error: Python names the argument, the command line its placeholder.
+    with pytest.raises(roadbrdf.InputError, match="^file: a luminaire file is required"):
+        roadbrdf.luminaire("")
+    empty = cli("luminaire", "", check=False)
+    assert empty.returncode == 2 and "error: FILE: a luminaire file is required" in empty.stderr
 
 
 def test_polar_figure_data_and_file(lighting_data, tmp_path, cli):
