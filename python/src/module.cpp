@@ -183,4 +183,5 @@ PYBIND11_MODULE(_roadbrdf, m) {
   roadbrdf::python::bind_extensions(m);
   roadbrdf::python::bind_surface(m);
   roadbrdf::python::bind_marking(m);
+  roadbrdf::python::bind_lighting(m);
 }

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   roadbrdf::cli::register_report_command(app);
   roadbrdf::cli::register_marking_command(app);
   roadbrdf::cli::register_export_command(app);
+  roadbrdf::cli::register_luminaire_command(app);
   // [command-registrations]
   int status = 0;
   try {
