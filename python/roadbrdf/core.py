@@ -16,6 +16,8 @@ ArrayLike = Any
 from . import _roadbrdf
 
 __all__ = ["InputError", "data_directory", "road_to_zenith_azimuth", "build_fingerprint"]
+# Argument conversion for the wrappers (as_int, as_float, as_mapping, as_options, as_text): errors name the
+# argument and are InputError (a ValueError) or TypeError, never AttributeError or OverflowError.
 
 #: Errors in the input: a ValueError with the same message as the command line.
 InputError = _roadbrdf.InputError
@@ -30,6 +32,71 @@ def as_float_array(value: ArrayLike, name: str) -> np.ndarray:
         return np.asarray(value, dtype=float)
     except (TypeError, ValueError) as error:
         raise InputError(f"{name}: expected numbers, got {type(value).__name__} ({error})") from None
+
+
+def _type_name(value) -> str:
+    return type(value).__name__
+
+
+def as_int(value, name: str, low: int | None = None, high: int | None = None) -> int:
+    """``value`` as an integer: an int, a numpy integer or an integral finite float (``1e3``); anything else
+    (inf, nan, 2.5, text, None) is an :class:`InputError` naming the argument ``name``, as is a value outside
+    [``low``, ``high``]. Never an OverflowError or a silently truncated value."""
+    if isinstance(value, (bool, np.bool_)):
+        raise InputError(f"{name}: expected an integer, got {value!r}")
+    if isinstance(value, (int, np.integer)):
+        out = int(value)
+    elif isinstance(value, (float, np.floating)):
+        if not np.isfinite(value) or float(value) != np.floor(value):
+            raise InputError(f"{name}: expected an integer, got {value!r}")
+        out = int(value)
+    else:
+        raise InputError(f"{name}: expected an integer, got {_type_name(value)} {value!r:.60}")
+    if (low is not None and out < low) or (high is not None and out > high):
+        bounds = f"[{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
+        raise InputError(f"{name}: {out} is outside {bounds}")
+    return out
+
+
+def as_float(value, name: str) -> float:
+    """``value`` as a float (a real number; inf and nan are passed on for the library to judge); text, None,
+    containers and complex numbers are an :class:`InputError` naming the argument ``name``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
+            return float(value)
+        if isinstance(value, str):
+            try:
+                return float(value)  # a number written as text, as float() reads it
+            except ValueError:
+                pass
+        raise InputError(f"{name}: expected a number, got {_type_name(value)} {value!r:.60}")
+    return float(value)
+
+
+def as_mapping(value, name: str) -> dict:
+    """``value`` (a dict, or None for none) as a dict; anything else is a TypeError naming ``name``."""
+    if value is None:
+        return {}
+    if not hasattr(value, "keys") or not hasattr(value, "__getitem__"):
+        raise TypeError(f"{name}: expected a dict, got {_type_name(value)} {value!r:.60}")
+    try:
+        return {k: value[k] for k in value.keys()}
+    except (TypeError, KeyError, AttributeError) as e:
+        raise TypeError(f"{name}: expected a dict, got {_type_name(value)} ({e})") from None
+
+
+def as_options(value, name: str) -> dict:
+    """Model options {name: choice} as text ({str: str}) from a dict or None (:func:`as_mapping`)."""
+    return {str(k): str(v) for k, v in as_mapping(value, name).items()}
+
+
+def as_text(value, name: str) -> str:
+    """``value`` (a str, or an os.PathLike where a path is meant) as text; anything else is a TypeError."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    raise TypeError(f"{name}: expected a string, got {_type_name(value)} {value!r:.60}")
 
 
 def data_directory() -> str:

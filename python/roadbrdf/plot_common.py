@@ -27,6 +27,27 @@ UNIT = "BRDF [sr$^{-1}$]"
 DEFAULT_DPI = 150
 
 
+#: The longest name (sample, file, label) shown in a figure; longer ones are shortened with an ellipsis.
+MAX_NAME = 80
+#: The longest title given by the caller.
+MAX_TITLE = 160
+
+
+def plain(text, limit: int = MAX_NAME) -> str:
+    """A name as figure text: shortened to ``limit`` characters (its start and an ellipsis) and with ``$``
+    escaped, so that matplotlib shows it as written instead of reading it as mathtext (a name is text, never
+    a formula)."""
+    text = str(text)
+    if len(text) > limit:
+        text = text[: limit - 1] + "…"
+    return text.replace("$", r"\$")
+
+
+def plain_title(title):
+    """A caller's title as figure text (:func:`plain`), or None."""
+    return plain(title, MAX_TITLE) if title else None
+
+
 class OutputFolderError(ValueError):
     """The folder of a figure file does not exist (``roadbrdf plot`` exits with status 2)."""
 
@@ -96,17 +117,18 @@ def as_dataset(x):
 
 
 def stem(path) -> str:
-    """A file's name without its folder and its .csv/.json/.fit.json/.mix.json ending."""
+    """A file's name without its folder and its .csv/.json/.fit.json/.mix.json ending, as figure text
+    (:func:`plain`)."""
     name = os.path.basename(os.fspath(path))
     for ending in (".fit.json", ".mix.json", ".albedo.json", ".json", ".csv"):
         if name.endswith(ending) and len(name) > len(ending):
-            return name[: -len(ending)]
-    return name
+            return plain(name[: -len(ending)])
+    return plain(name)
 
 
 def sample_label(d: Dataset, source=None, fallback="sample") -> str:
-    """The sample's name: its metadata, else the file's stem."""
-    return d.metadata.get("sample") or (stem(source) if isinstance(source, (str, os.PathLike)) else fallback)
+    """The sample's name as figure text (:func:`plain`): its metadata, else the file's stem."""
+    return plain(d.metadata.get("sample") or (stem(source) if isinstance(source, (str, os.PathLike)) else fallback))
 
 
 def wavelength_index(wavelengths, wavelength):

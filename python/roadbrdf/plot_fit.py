@@ -11,7 +11,7 @@ import matplotlib.ticker as mticker
 import numpy as np
 
 from . import read_fit
-from .plot_common import UNIT, as_dataset, finish, panels, sample_label, stem, wavelength_index
+from .plot_common import plain, plain_title, UNIT, as_dataset, finish, panels, sample_label, stem, wavelength_index
 
 __all__ = ["fit_quality"]
 
@@ -79,7 +79,7 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
         axis.set_yscale("log")
         axis.set_title("RMSE vs wavelength", fontsize=9)
         axis.legend(fontsize=7)
-    fig.suptitle(title or f"Fit quality: {name}, {chosen} ({os.path.basename(os.fspath(fit))})")
+    fig.suptitle(plain_title(title) or f"Fit quality: {name}, {chosen} ({os.path.basename(os.fspath(fit))})")
     result = {"measured": measured, "fitted": predicted, "wavelength": wl, "angles": a, "rmse": rmse,
               "model": chosen}
     return finish(fig, output, result, axes, dpi)

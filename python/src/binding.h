@@ -20,6 +20,22 @@
 namespace roadbrdf::python {
 
 void bind_extensions(pybind11::module_& m);
+
+// Ctrl-C during a long call (bind_interrupt.cpp): constructed with the GIL held, before the GIL is
+// released for the work, and destroyed after it is taken back. While it lives on the main thread,
+// SIGINT requests the library's interrupt (core/progress.h): the work stops with Interrupted, which
+// register_interrupted() turns into KeyboardInterrupt.
+class SigintGuard {
+ public:
+  SigintGuard();
+  ~SigintGuard();
+  SigintGuard(const SigintGuard&) = delete;
+  SigintGuard& operator=(const SigintGuard&) = delete;
+
+ private:
+  bool active_ = false;
+};
+void register_interrupted();
 void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces, render
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;

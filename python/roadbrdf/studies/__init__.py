@@ -29,7 +29,7 @@ def _is_campaign(source):
     try:
         with open(os.fspath(source), encoding="utf-8") as f:
             return is_campaign(json.load(f))
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return False  # read_study reports what is wrong with the file
 
 
@@ -50,7 +50,7 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
     """
     from .. import _roadbrdf
     from .run import execute, run_pending, table
-    from .store import Store, write_csv
+    from .store import Store, check_output, write_csv
     campaign = _is_campaign(source)
     if campaign:
         from .campaign import read_campaign
@@ -71,6 +71,11 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
     if store is not None:
         outputs.append(("--store", os.fspath(store)))
     _roadbrdf.check_distinct_files([(role, p) for role, p in inputs if os.path.exists(p)], outputs)
+    for role, path in outputs:
+        check_output(path, role)
+    if not campaign:
+        from .run import check_size
+        check_size(s, progress)
     results = Store(store)
     try:
         if campaign:
