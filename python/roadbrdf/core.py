@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import stat
 import sys
 import tempfile
 from typing import Any, Tuple
@@ -172,14 +173,19 @@ def write_atomic(path, write, suffix: str = "") -> str:
     """Write an output file as the library's AtomicFile does: ``write(temporary_path)`` fills a temporary
     file in the target's folder, which is synced, given the mode of the file it replaces (a new file:
     0666 & ~umask, as any program's output) and renamed over the target; the folder is synced. A symbolic
-    link is followed and kept. On any error the temporary file is removed and the target is untouched.
-    Returns ``path``."""
+    link is followed and kept; a device or FIFO (``/dev/null``, ``/dev/full``) is written directly. On any
+    error the temporary file is removed and the target is untouched. Returns ``path``."""
     target = os.path.realpath(os.fspath(path))
     folder = os.path.dirname(target)
     try:
-        mode = os.stat(target).st_mode & 0o7777
+        st = os.stat(target)
+        mode = st.st_mode & 0o7777
     except FileNotFoundError:
-        mode = 0o666 & ~umask()
+        st, mode = None, 0o666 & ~umask()
+    if st is not None and (stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode) or stat.S_ISBLK(st.st_mode)):
+        # A device or a FIFO is written directly, as AtomicFile does: renaming a file over it would replace it.
+        write(target)
+        return path
     fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-", suffix=suffix, dir=folder)
     os.close(fd)
     try:

@@ -65,8 +65,9 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
         raise InputError(f"workers: expected a positive integer, got {workers!r}")
     if scheduler is not None and workers is not None:
         raise InputError("give workers (local processes) or a scheduler (Dask), not both")
-    if store is None and output is not None and os.fspath(output) != "-":
-        store = os.fspath(output) + ".store.jsonl"
+    if store is None and output is not None and os.fspath(output) != "-" and (
+            not os.path.exists(os.fspath(output)) or os.path.isfile(os.fspath(output))):
+        store = os.fspath(output) + ".store.jsonl"  # not next to a device or FIFO (/dev/stdout): no store then
     outputs = [("-o", os.fspath(output))] if output is not None else []
     if store is not None:
         outputs.append(("--store", os.fspath(store)))

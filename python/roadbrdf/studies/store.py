@@ -158,9 +158,19 @@ class Store:
         with open(self._fd, "rb", closefd=False) as f:
             f.seek(0)
             data = f.read()
-        if not data:
-            self._append(_HEADER)
-            return
+        # Nothing is removed from a file that is not a store (its first line must be the header, or a torn start
+        # of it).
+        first = data.split(b"\n", 1)[0]
+        header_text = json.dumps(_HEADER, separators=(",", ":")).encode()
+        if b"\n" not in data and not header_text.startswith(data):
+            raise InputError(f"{self.path}:1:1: not a roadbrdf study results store")
+        if b"\n" in data:
+            try:
+                is_header = json.loads(first) == _HEADER
+            except (ValueError, RecursionError):
+                is_header = False
+            if not is_header:
+                raise InputError(f"{self.path}:1:1: not a roadbrdf study results store")
         end = data.rfind(b"\n") + 1
         if end < len(data):
             print(f"roadbrdf: warning: {self.path}: removed a torn last line of {len(data) - end} bytes (a study "
@@ -171,6 +181,9 @@ class Store:
             except OSError as e:
                 raise InputError(f"{self.path}: cannot remove the torn last line: {e.strerror}") from None
             data = data[:end]
+        if not data:
+            self._append(_HEADER)
+            return
         for number, line in enumerate(data.splitlines(), start=1):
             where = f"{self.path}:{number}"
             try:
