@@ -245,12 +245,18 @@ def _dask(pending, shared, scheduler, store, progress, function):
     except ImportError:
         raise InputError(f"--scheduler {scheduler}: the Python package 'distributed' is not installed "
                          "(Debian: apt-get install python3-distributed)") from None
+    import asyncio
     import concurrent.futures as cf
     try:
         client = Client(scheduler, timeout=30)
     except (OSError, TimeoutError, cf.TimeoutError) as e:
         raise InputError(f"--scheduler {scheduler}: cannot connect: {e}") from None
     try:
+        try:
+            client.wait_for_workers(1, timeout=30)
+        except (TimeoutError, cf.TimeoutError):
+            raise InputError(f"--scheduler {scheduler}: the scheduler has no workers (none joined within 30 s); "
+                             f"start some (dask-worker {scheduler}) and run again") from None
         limit = _in_flight_limit(max(1, len(client.scheduler_info().get("workers", {}))))
         scattered = client.scatter(shared, broadcast=True)
         futures = {}
@@ -272,7 +278,7 @@ def _dask(pending, shared, scheduler, store, progress, function):
             if submit():
                 running.add(list(futures)[-1])
             progress.update(len(futures))
-    except (cf.CancelledError, cf.TimeoutError, TimeoutError, OSError) as e:
+    except (cf.CancelledError, asyncio.CancelledError, cf.TimeoutError, TimeoutError, OSError) as e:
         # A scheduler that went away (its futures are cancelled) or has no workers (scatter times out).
         what = type(e).__name__ + (f": {e}" if str(e) else "")
         raise InputError(f"--scheduler {scheduler}: the Dask cluster stopped working ({what}); the results store "
