@@ -36,6 +36,7 @@ SigintGuard::SigintGuard() {
   if (guard_depth > 0 || !takes_over()) return;
   struct sigaction action {};
   action.sa_handler = on_sigint;
+  action.sa_flags = SA_RESTART;  // system calls of the work go on; the loops see the request
   sigemptyset(&action.sa_mask);
   if (sigaction(SIGINT, &action, &python_action) != 0) return;
   clear_interrupt();

@@ -97,6 +97,8 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
             # The same error for every sample is the campaign's settings', not the samples'.
             raise InputError(f"every sample failed: {failures.pop()}")
     else:
+        if progress and len(tasks) >= 100000:
+            print(f"study '{s.name}': collecting the table of {len(tasks)} candidates", file=sys.stderr, flush=True)
         header, rows = table(s, tasks, results)
     if output is not None:
         write_csv(os.fspath(output), header, rows)
