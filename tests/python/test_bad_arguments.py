@@ -23,7 +23,7 @@ BAD_VALUES = {"None": None, "'x'": "x", "inf": math.inf, "nan": math.nan, "-1": 
 
 
 def _files(folder):
-    """A small dataset, a Lambertian fit file and a formulation of two Lambertian rocks (test files of ours)."""
+    """A small dataset, its Lambertian fit file and a formulation of two rocks of that fit (test files of ours)."""
     data = os.path.join(folder, "tile.csv")
     with open(data, "w", encoding="utf-8") as f:
         f.write("# sample: tile\ntheta_i,phi_i,theta_r,phi_r,500,600\n")
@@ -31,10 +31,7 @@ def _files(folder):
             for tr in (0, 20, 40, 60):
                 f.write(f"{ti},0,{tr},180,0.09,0.1\n")
     fit = os.path.join(folder, "grey.fit.json")
-    with open(fit, "w", encoding="utf-8") as f:
-        json.dump({"format": "roadbrdf-fit", "version": 1, "best": "lambert",
-                   "fits": [{"model": "lambert", "options": {}, "wavelengths": [400, 550, 700],
-                             "parameters": {"albedo": [0.3, 0.3, 0.3]}}]}, f)
+    roadbrdf.fit(data, "lambert", output=fit)
     formulation = os.path.join(folder, "mix.json")
     with open(formulation, "w", encoding="utf-8") as f:
         json.dump({"format": "roadbrdf-formulation", "version": 1, "name": "rocks", "components": [
@@ -70,7 +67,7 @@ def base_calls(folder):
         "flat_surface": (roadbrdf.flat_surface, dict(model_or_fit="lambert", params={"albedo": 0.3}, cells=8,
                                                      cell_mm=0.5)),
         "gaussian_slope_surface": (roadbrdf.gaussian_slope_surface,
-                                   dict(model_or_fit="lambert", sigma_rad=0.2, params={"albedo": 0.3}, cells=8,
+                                   dict(model_or_fit="lambert", sigma_rad=0.2, params={"albedo": 0.3}, cells=32,
                                         cell_mm=0.5, seed=1)),
         "read_surface": (roadbrdf.read_surface, dict(path=surface_file)),
         "render": (roadbrdf.render, dict(surface=flat, theta_i=30, phi_i=0, theta_r=30, phi_r=180, **small)),

@@ -20,7 +20,7 @@ MACRO_NAME = r"A $\undefinedmacro$ B"
 def _dataset(path, name, wavelengths=(500, 600)):
     lines = [f"# sample: {name}", "theta_i,phi_i,theta_r,phi_r," + ",".join(str(w) for w in wavelengths)]
     for ti in (0, 20, 40, 60):
-        for tr in (0, 20, 40, 60):
+        for tr in (10, 20, 40, 60):
             for pr in (0, 180):
                 lines.append(f"{ti},0,{tr},{pr}," + ",".join(f"{0.1 + 0.0005 * tr + 0.0001 * w / 10:.5f}"
                                                           for w in wavelengths))

@@ -19,8 +19,9 @@ HEADER = json.dumps({"format": "roadbrdf-study-store", "version": 1}) + "\n"
 
 keys = st.text(alphabet="0123456789abcdef", min_size=1, max_size=8)
 numbers = st.one_of(st.none(), st.floats(allow_nan=False, allow_infinity=False), st.integers(-10 ** 6, 10 ** 6))
-rows = st.lists(st.dictionaries(st.sampled_from(["method", "Q0", "S1", "white_sky", "class"]),
-                                st.one_of(numbers, st.text(max_size=5)), max_size=4), max_size=3)
+rows = st.lists(st.fixed_dictionaries({"method": st.sampled_from(["areal", "mastic", "hapke"])},
+                                      optional={"Q0": numbers, "S1": numbers, "white_sky": numbers,
+                                                "class": st.text(max_size=5)}), max_size=3)
 records = st.builds(lambda key, error, rows: {"key": key, "error": error, "rows": [] if error else rows,
                                               "cpu_seconds": 0.0},
                     keys, st.one_of(st.none(), st.text(max_size=20)), rows)
