@@ -1,10 +1,14 @@
-// Ctrl-C during a long library call from Python (binding.h, SigintGuard). The interpreter runs its
-// SIGINT handler only between its own instructions, so a call that works for minutes without the GIL
-// would ignore Ctrl-C until it ends. While such a call runs on the main thread with Python's default
-// handler in place, SIGINT instead sets the library's interrupt request (core/progress.h), which the
-// long loops poll; the call unwinds with roadbrdf::Interrupted, which becomes KeyboardInterrupt.
+// Ctrl-C (and SIGTERM where Python handles it) during a long library call from Python (binding.h,
+// SigintGuard). The interpreter runs its signal handlers only between its own instructions, so a call
+// that works for minutes without the GIL would ignore Ctrl-C until it ends. While such a call runs on
+// the main thread, SIGINT and SIGTERM, when Python has a handler of its own for them (the default
+// handler of SIGINT raises KeyboardInterrupt; `roadbrdf report` and `study` handle SIGTERM), set the
+// library's interrupt request instead (core/progress.h), which the long loops poll; the call unwinds
+// with roadbrdf::Interrupted. The signal is then handed back to Python, whose handler raises.
 #include <pybind11/pybind11.h>
 
+#include <array>
+#include <atomic>
 #include <csignal>
 #include <exception>
 
@@ -17,40 +21,65 @@ namespace roadbrdf::python {
 
 namespace {
 
-extern "C" void on_sigint(int /*signal*/) { request_interrupt(); }
+constexpr std::array<int, 2> kSignals = {SIGINT, SIGTERM};
+
+std::atomic<int> pending_signal{0};  // lock-free: set by the handler
+static_assert(std::atomic<int>::is_always_lock_free);
+
+extern "C" void on_signal(int signal_number) {
+  pending_signal.store(signal_number, std::memory_order_relaxed);
+  request_interrupt();
+}
 
 int guard_depth = 0;  // nested guards (a callback into Python calling the library again): the outer one acts
-struct sigaction python_action {};
+std::array<struct sigaction, kSignals.size()> python_actions{};
+std::array<bool, kSignals.size()> taken{};
 
-// Python's default handler (raise KeyboardInterrupt) on the main thread: the only case the guard takes over.
-bool takes_over() {
-  const py::module_ threading = py::module_::import("threading");
-  if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return false;
-  const py::module_ signal = py::module_::import("signal");
-  return signal.attr("getsignal")(SIGINT).is(signal.attr("default_int_handler"));
+// Python runs a handler of its own for the signal (not the default action, not ignored).
+bool python_handles(const py::module_& signal, int signal_number) {
+  const py::object handler = signal.attr("getsignal")(signal_number);
+  return !handler.is_none() && !handler.equal(signal.attr("SIG_DFL")) && !handler.equal(signal.attr("SIG_IGN"));
+}
+
+// Hands a signal that stopped (or came during) the work to Python: its handler runs at the next check.
+void hand_back(int signal_number) {
+#if PY_VERSION_HEX >= 0x030A0000
+  PyErr_SetInterruptEx(signal_number);
+#else
+  if (signal_number == SIGINT) PyErr_SetInterrupt();
+#endif
 }
 
 }  // namespace
 
 SigintGuard::SigintGuard() {
-  if (guard_depth > 0 || !takes_over()) return;
-  struct sigaction action {};
-  action.sa_handler = on_sigint;
-  action.sa_flags = SA_RESTART;  // system calls of the work go on; the loops see the request
-  sigemptyset(&action.sa_mask);
-  if (sigaction(SIGINT, &action, &python_action) != 0) return;
+  if (guard_depth > 0) return;
+  const py::module_ threading = py::module_::import("threading");
+  if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return;
+  const py::module_ signal = py::module_::import("signal");
+  pending_signal.store(0);
   clear_interrupt();
-  active_ = true;
-  ++guard_depth;
+  for (std::size_t k = 0; k < kSignals.size(); ++k) {
+    taken[k] = false;
+    if (!python_handles(signal, kSignals[k])) continue;
+    struct sigaction action {};
+    action.sa_handler = on_signal;
+    action.sa_flags = SA_RESTART;  // system calls of the work go on; the loops see the request
+    sigemptyset(&action.sa_mask);
+    taken[k] = sigaction(kSignals[k], &action, &python_actions[k]) == 0;
+    active_ = active_ || taken[k];
+  }
+  if (active_) ++guard_depth;
 }
 
 SigintGuard::~SigintGuard() {
   if (!active_) return;
   --guard_depth;
-  sigaction(SIGINT, &python_action, nullptr);
-  // A Ctrl-C that came after the last poll (the work ended anyway) is handed to Python, which raises
-  // KeyboardInterrupt at its next instruction; one that stopped the work is raised by the translator.
-  if (interrupt_requested() && std::uncaught_exceptions() == 0) PyErr_SetInterrupt();
+  for (std::size_t k = 0; k < kSignals.size(); ++k) {
+    if (taken[k]) sigaction(kSignals[k], &python_actions[k], nullptr);
+  }
+  const int signal_number = pending_signal.exchange(0);
+  if (signal_number != 0) hand_back(signal_number);
   clear_interrupt();
 }
 
@@ -60,7 +89,9 @@ void register_interrupted() {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Interrupted&) {
-      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      // The guard handed the signal back: Python's handler raises its exception here (KeyboardInterrupt for
+      // Ctrl-C); one that does not raise still leaves the work stopped, reported as KeyboardInterrupt.
+      if (PyErr_CheckSignals() == 0) PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
 }

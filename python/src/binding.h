@@ -23,8 +23,9 @@ void bind_extensions(pybind11::module_& m);
 
 // Ctrl-C during a long call (bind_interrupt.cpp): constructed with the GIL held, before the GIL is
 // released for the work, and destroyed after it is taken back. While it lives on the main thread,
-// SIGINT requests the library's interrupt (core/progress.h): the work stops with Interrupted, which
-// register_interrupted() turns into KeyboardInterrupt.
+// SIGINT (and SIGTERM when Python handles it) requests the library's interrupt (core/progress.h): the
+// work stops with Interrupted, and register_interrupted() raises what Python's handler raises
+// (KeyboardInterrupt for Ctrl-C).
 class SigintGuard {
  public:
   SigintGuard();

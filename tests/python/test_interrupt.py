@@ -52,7 +52,7 @@ def _dataset(tmp_path):
     path = tmp_path / "tile.csv"
     lines = ["theta_i,phi_i,theta_r,phi_r,500,600"]
     for ti in (0, 20, 40, 60):
-        for tr in (0, 15, 30, 45, 60, 75):
+        for tr in (10, 25, 40, 55, 70, 85):
             for pr in (0, 90, 180):
                 lines.append(f"{ti},0,{tr},{pr},{0.1 + 0.001 * tr},{0.12 + 0.001 * ti}")
     path.write_text("\n".join(lines) + "\n")
