@@ -1,4 +1,5 @@
 """``python3 -m roadbrdf.studies`` = ``roadbrdf study``."""
+import logging
 import signal
 import sys
 
@@ -14,6 +15,9 @@ def _terminate(signum, frame):
 
 
 signal.signal(signal.SIGTERM, _terminate)
+# The command reports on standard error itself; the Dask client's own log (a traceback for each failed
+# reconnection to a scheduler that went away) would bury its one-line error.
+logging.disable(logging.CRITICAL)
 try:
     sys.exit(main())
 except ValueError as e:  # InputError is a ValueError: the message names the file and key

@@ -247,6 +247,11 @@ def _dask(pending, shared, scheduler, store, progress, function):
                          "(Debian: apt-get install python3-distributed)") from None
     import asyncio
     import concurrent.futures as cf
+    import logging
+    # distributed logs each failed reconnection to a scheduler that went away with its traceback; the study reports
+    # the failure itself, in one line.
+    for name in [n for n in logging.root.manager.loggerDict if n.split(".")[0] == "distributed"] + ["distributed"]:
+        logging.getLogger(name).setLevel(logging.CRITICAL)
     try:
         client = Client(scheduler, timeout=30)
     except (OSError, TimeoutError, cf.TimeoutError) as e:
