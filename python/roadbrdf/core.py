@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import hashlib
+import json
 import os
+import re
 import stat
 import sys
 import tempfile
@@ -98,6 +100,54 @@ def as_text(value, name: str) -> str:
     if isinstance(value, os.PathLike):
         return os.fspath(value)
     raise TypeError(f"{name}: expected a string, got {_type_name(value)} {value!r:.60}")
+
+
+# The nesting depth of the JSON files read (as core/json_input.h bounds the library's).
+MAX_JSON_DEPTH = 64
+
+
+def check_json_depth(text, where):
+    """Refuse JSON nested deeper than MAX_JSON_DEPTH (before Python's parser recurses into it), naming the line and
+    column where the limit is passed."""
+    depth = 0
+    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|[\[\]{}]', text):
+        token = m.group()
+        if token in "[{":
+            depth += 1
+            if depth > MAX_JSON_DEPTH:
+                line = text.count("\n", 0, m.start()) + 1
+                column = m.start() - (text.rfind("\n", 0, m.start()) + 1) + 1
+                raise InputError(f"{where}:{line}:{column}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
+        elif token in "]}":
+            depth -= 1
+
+
+def parse_json_text(text, where):
+    """JSON text as Python values: depth-checked, errors located (``where:LINE:COLUMN: ...``), as an
+    :class:`InputError`."""
+    check_json_depth(text, where)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{where}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+    except RecursionError:
+        raise InputError(f"{where}: JSON nested too deeply") from None
+
+
+def read_json_file(path):
+    """A JSON file (UTF-8) as Python values through :func:`parse_json_text`; an unreadable file is an
+    :class:`InputError` naming it."""
+    where = os.fspath(path)
+    try:
+        with open(where, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise InputError(f"{where}: cannot read: {e.strerror}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise InputError(f"{where}: byte {e.start + 1}: not UTF-8 text") from None
+    return parse_json_text(text, where)
 
 
 def data_directory() -> str:

@@ -7,14 +7,14 @@ file / MIX.json / model from which the albedo is computed for each atmosphere (`
 
 from __future__ import annotations
 
-import json
 import os
 
 import numpy as np
 
 from . import Model, SpectralModel, read_fit
 from .albedos import albedo as compute_albedo
-from .plot_common import plain, plain_title, finish, panels, stem
+from .core import read_json_file
+from .plot_common import finish, panels, plain, plain_title, stem
 
 __all__ = ["albedo"]
 
@@ -25,8 +25,7 @@ def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
     for k, item in enumerate(items):
         name = stem(item) if isinstance(item, (str, os.PathLike)) else f"result {k + 1}"
         if isinstance(item, (str, os.PathLike)):
-            with open(item, encoding="utf-8") as fh:
-                content = json.load(fh)
+            content = read_json_file(item)
             if "black_sky" in content:
                 item = content
             else:

@@ -4,7 +4,6 @@ evaluation of a model, fit file or mixture at a wavelength."""
 
 from __future__ import annotations
 
-import json
 import math
 import os
 
@@ -17,7 +16,7 @@ if os.environ.get("MPLBACKEND") is None and not os.environ.get("DISPLAY"):
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
-from .core import write_atomic  # noqa: E402
+from .core import read_json_file, write_atomic  # noqa: E402
 
 __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
 
@@ -153,8 +152,7 @@ def model_file(path, member=None):
     """A fit file or MIX.json: (SpectralModel, label, kind) with kind "fit" or "mix"; ``member``: the
     fit (model name) or mixing method, default the file's best."""
     path = os.fspath(path)
-    with open(path, encoding="utf-8") as fh:
-        content = json.load(fh)
+    content = read_json_file(path)
     kind = "mix" if content.get("format") == "roadbrdf-mix" else "fit"
     chosen = member or content.get("best")
     if not chosen and kind == "mix" and content.get("methods"):

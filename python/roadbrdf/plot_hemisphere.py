@@ -11,8 +11,8 @@ import matplotlib.colors as mcolors
 import numpy as np
 
 from . import Dataset
-from .plot_common import (plain, plain_title, UNIT, as_dataset, evaluate, finish, incidences, is_model_file, measured_at_incidence,
-                          model_file, model_name, panels, plt, sample_label, wavelength_index)
+from .plot_common import (UNIT, as_dataset, evaluate, finish, incidences, is_model_file, measured_at_incidence,
+                          model_file, model_name, panels, plain, plain_title, plt, sample_label, wavelength_index)
 
 __all__ = ["hemisphere"]
 

@@ -13,7 +13,7 @@ import os
 
 import numpy as np
 
-from .plot_common import plain, plain_title, finish as _finish, panels
+from .plot_common import finish as _finish, panels, plain_title
 
 
 def params(fit_file, parameters=None, models=None, against="wavelength", wavelength=None, ax=None, title=None,

@@ -9,9 +9,9 @@ import matplotlib.ticker as mticker
 import numpy as np
 
 from . import SpectralModel
-from .plot_common import (plain, plain_title, UNIT, as_dataset, decade_floor, evaluate, finish, incidences, is_model_file,
-                          label_log_radius, log_radius, measured_at_incidence, model_file, panels, sample_label,
-                          wavelength_index)
+from .plot_common import (UNIT, as_dataset, decade_floor, evaluate, finish, incidences, is_model_file,
+                          label_log_radius, log_radius, measured_at_incidence, model_file, panels, plain, plain_title,
+                          sample_label, wavelength_index)
 
 __all__ = ["plane", "in_plane_points"]
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import Model, RTable, SpectralModel, read_rtable
 from . import rtable as _rtable
-from .plot_common import plain, plain_title, finish, is_model_file, panels, stem
+from .plot_common import finish, is_model_file, panels, plain_title, stem
 
 __all__ = ["rtable", "CLASS_R"]
 

@@ -9,7 +9,8 @@ import sys
 import numpy as np
 
 from . import SpectralModel
-from .plot_common import (plain, plain_title, UNIT, as_dataset, finish, is_model_file, model_file, panels, sample_label, stem)
+from .plot_common import (UNIT, as_dataset, finish, is_model_file, model_file, panels, plain, plain_title,
+                          sample_label, stem)
 from .plot_geometry import TOLERANCE_DEG, nearest_geometry, parse_geometry
 
 __all__ = ["spectral"]

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from .plot_common import plain, plain_title, finish as _finish, panels
+from .plot_common import finish as _finish, panels, plain, plain_title
 
 _CLASS_COLOURS = {"R1": "tab:blue", "R2": "tab:green", "R3": "tab:orange", "R4": "tab:red"}
 _S1_BANDS = [("R1", 0.0, 0.42), ("R2", 0.42, 0.85), ("R3", 0.85, 1.35), ("R4", 1.35, math.inf)]
@@ -94,6 +94,10 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
     rows, methods = _by_method(rows, method)
     col = _albedo_column(header, albedo)
     ycol = {"Q0": "Q0 [sr^-1]", "S1": "S1 [1]"}[axis]
+    for needed in (col, ycol):
+        if needed not in header:
+            raise ValueError(f"no column '{needed}' in the results (a study without it: choose another albedo or "
+                             "axis, or an r-table in its predictions)")
     x = np.array([r[col] for r in rows], dtype=float)
     y = np.array([r[ycol] for r in rows], dtype=float)
     classes = [r.get("class [R]", "") for r in rows]

@@ -30,7 +30,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import __version__, _roadbrdf
-from .core import InputError, write_text_atomic
+from .core import InputError, read_json_file, write_text_atomic
 
 __all__ = ["write_report", "render_report", "gather", "main", "DEFAULT_MODELS"]
 
@@ -170,8 +170,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
         r.best = r.fit_all.best
         if formulation is not None:  # early: a formulation whose component fits are missing fails at once
             import json
-            with open(formulation, encoding="utf-8") as fh:
-                r.formulation = json.load(fh)
+            r.formulation = read_json_file(formulation)
             r.formulation_name = os.path.basename(formulation)
             with steps.step("mix", f"mixing predictions of {r.formulation_name}"), _collect(r, "mix"):
                 # With the end-members' covariances (cheap for the mixing itself; the r-table of one method is

@@ -98,3 +98,16 @@ def test_report_outside_the_visible_range_says_why_there_is_no_rtable(tmp_path, 
     assert 'id="rtable"' in text and "No r-table:" in text
     assert 'id="ranking"' in text and 'id="albedo"' in text
     assert "Traceback" not in result.stderr
+
+
+@pytest.mark.parametrize("args", [
+    ["albedo", "{deep}"], ["plane", "--model", "{deep}"], ["hemisphere", "{deep}"], ["study", "{study}"]])
+def test_plot_errors_are_roadbrdf_error_lines(cli, tmp_path, args):
+    deep = tmp_path / "deep.fit.json"
+    deep.write_text("[" * 100000 + "]" * 100000)
+    study = tmp_path / "study.csv"
+    study.write_text("candidate,status\n1,ok\n")
+    args = [a.format(deep=deep, study=study) for a in args]
+    result = cli("plot", *args, "-o", tmp_path / "x.png", check=False)
+    assert result.returncode == 2 and result.stderr.startswith("roadbrdf: error: "), result.stderr
+    assert "Traceback" not in result.stderr

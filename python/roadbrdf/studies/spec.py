@@ -13,6 +13,7 @@ import os
 import re
 
 from .. import _roadbrdf
+from ..core import MAX_JSON_DEPTH, check_json_depth, parse_json_text  # noqa: F401 - used here and by store.py
 
 InputError = _roadbrdf.InputError
 
@@ -90,37 +91,6 @@ def _object(where, key, value, allowed, required=()):
         if k not in value:
             _fail(where, f"{key}.{k}" if key else k, "required key is missing")
     return value
-
-
-# The nesting depth of the JSON files read (as core/json_input.h bounds the library's).
-MAX_JSON_DEPTH = 64
-
-
-def check_json_depth(text, where):
-    """Refuse JSON nested deeper than MAX_JSON_DEPTH (before Python's parser recurses into it), naming the line and
-    column where the limit is passed."""
-    depth = 0
-    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|[\[\]{}]', text):
-        token = m.group()
-        if token in "[{":
-            depth += 1
-            if depth > MAX_JSON_DEPTH:
-                line = text.count("\n", 0, m.start()) + 1
-                column = m.start() - (text.rfind("\n", 0, m.start()) + 1) + 1
-                raise InputError(f"{where}:{line}:{column}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
-        elif token in "]}":
-            depth -= 1
-
-
-def parse_json_text(text, where):
-    """JSON text as Python values: depth-checked, errors located (``where:LINE:COLUMN: ...``)."""
-    check_json_depth(text, where)
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as e:
-        raise InputError(f"{where}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
-    except RecursionError:
-        raise InputError(f"{where}: JSON nested too deeply") from None
 
 
 def _read_json(path, where, key):
