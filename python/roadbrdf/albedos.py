@@ -9,9 +9,9 @@ from typing import TYPE_CHECKING, Any, Sequence, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError
+from .core import InputError, as_float
 from .fitting import read_fit
-from .model import Model, SpectralModel
+from .model import Model, SpectralModel, model_argument
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -109,12 +109,11 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     of a mixture from its end-members' fits; ``None`` when unknown), ``units`` and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
     """
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
-    common = (zeniths, None if sun_azimuth is None else float(sun_azimuth), bool(azimuth_mean),
+    common = (zeniths, None if sun_azimuth is None else as_float(sun_azimuth, "sun_azimuth"), bool(azimuth_mean),
               "" if diffuse_fraction is None else str(diffuse_fraction), atmosphere or "", spectrum or "",
               _roadbrdf.values(wavelengths, "wavelengths", True), illuminant or "",
-              float(tolerance))
-    if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
-        model = read_fit(model)
+              as_float(tolerance, "tolerance"))
+    model = model_argument(model, "model")
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import hashlib
+import json
 import os
+import re
+import stat
 import sys
 import tempfile
 from typing import Any, Tuple
@@ -16,6 +19,8 @@ ArrayLike = Any
 from . import _roadbrdf
 
 __all__ = ["InputError", "data_directory", "road_to_zenith_azimuth", "build_fingerprint"]
+# Argument conversion for the wrappers (as_int, as_float, as_mapping, as_options, as_text): errors name the
+# argument and are InputError (a ValueError) or TypeError, never AttributeError or OverflowError.
 
 #: Errors in the input: a ValueError with the same message as the command line.
 InputError = _roadbrdf.InputError
@@ -30,6 +35,119 @@ def as_float_array(value: ArrayLike, name: str) -> np.ndarray:
         return np.asarray(value, dtype=float)
     except (TypeError, ValueError) as error:
         raise InputError(f"{name}: expected numbers, got {type(value).__name__} ({error})") from None
+
+
+def _type_name(value) -> str:
+    return type(value).__name__
+
+
+def as_int(value, name: str, low: int | None = None, high: int | None = None) -> int:
+    """``value`` as an integer: an int, a numpy integer or an integral finite float (``1e3``); anything else
+    (inf, nan, 2.5, text, None) is an :class:`InputError` naming the argument ``name``, as is a value outside
+    [``low``, ``high``]. Never an OverflowError or a silently truncated value."""
+    if isinstance(value, (bool, np.bool_)):
+        raise InputError(f"{name}: expected an integer, got {value!r}")
+    if isinstance(value, (int, np.integer)):
+        out = int(value)
+    elif isinstance(value, (float, np.floating)):
+        if not np.isfinite(value) or float(value) != np.floor(value):
+            raise InputError(f"{name}: expected an integer, got {value!r}")
+        out = int(value)
+    else:
+        raise InputError(f"{name}: expected an integer, got {_type_name(value)} {value!r:.60}")
+    if (low is not None and out < low) or (high is not None and out > high):
+        bounds = f"[{low if low is not None else '-inf'}, {high if high is not None else 'inf'}]"
+        raise InputError(f"{name}: {out} is outside {bounds}")
+    return out
+
+
+def as_float(value, name: str) -> float:
+    """``value`` as a float (a real number; inf and nan are passed on for the library to judge); text, None,
+    containers and complex numbers are an :class:`InputError` naming the argument ``name``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
+            return float(value)
+        if isinstance(value, str):
+            try:
+                return float(value)  # a number written as text, as float() reads it
+            except ValueError:
+                pass
+        raise InputError(f"{name}: expected a number, got {_type_name(value)} {value!r:.60}")
+    return float(value)
+
+
+def as_mapping(value, name: str) -> dict:
+    """``value`` (a dict, or None for none) as a dict; anything else is a TypeError naming ``name``."""
+    if value is None:
+        return {}
+    if not hasattr(value, "keys") or not hasattr(value, "__getitem__"):
+        raise TypeError(f"{name}: expected a dict, got {_type_name(value)} {value!r:.60}")
+    try:
+        return {k: value[k] for k in value.keys()}
+    except (TypeError, KeyError, AttributeError) as e:
+        raise TypeError(f"{name}: expected a dict, got {_type_name(value)} ({e})") from None
+
+
+def as_options(value, name: str) -> dict:
+    """Model options {name: choice} as text ({str: str}) from a dict or None (:func:`as_mapping`)."""
+    return {str(k): str(v) for k, v in as_mapping(value, name).items()}
+
+
+def as_text(value, name: str) -> str:
+    """``value`` (a str, or an os.PathLike where a path is meant) as text; anything else is a TypeError."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    raise TypeError(f"{name}: expected a string, got {_type_name(value)} {value!r:.60}")
+
+
+# The nesting depth of the JSON files read (as core/json_input.h bounds the library's).
+MAX_JSON_DEPTH = 64
+
+
+def check_json_depth(text, where):
+    """Refuse JSON nested deeper than MAX_JSON_DEPTH (before Python's parser recurses into it), naming the line and
+    column where the limit is passed."""
+    depth = 0
+    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|[\[\]{}]', text):
+        token = m.group()
+        if token in "[{":
+            depth += 1
+            if depth > MAX_JSON_DEPTH:
+                line = text.count("\n", 0, m.start()) + 1
+                column = m.start() - (text.rfind("\n", 0, m.start()) + 1) + 1
+                raise InputError(f"{where}:{line}:{column}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
+        elif token in "]}":
+            depth -= 1
+
+
+def parse_json_text(text, where):
+    """JSON text as Python values: depth-checked, errors located (``where:LINE:COLUMN: ...``), as an
+    :class:`InputError`."""
+    check_json_depth(text, where)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{where}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+    except RecursionError:
+        raise InputError(f"{where}: JSON nested too deeply") from None
+
+
+def read_json_file(path):
+    """A JSON file (UTF-8) as Python values through :func:`parse_json_text`; an unreadable file is an
+    :class:`InputError` naming it."""
+    where = os.fspath(path)
+    try:
+        with open(where, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise InputError(f"{where}: cannot read: {e.strerror}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise InputError(f"{where}: byte {e.start + 1}: not UTF-8 text") from None
+    return parse_json_text(text, where)
 
 
 def data_directory() -> str:
@@ -105,14 +223,19 @@ def write_atomic(path, write, suffix: str = "") -> str:
     """Write an output file as the library's AtomicFile does: ``write(temporary_path)`` fills a temporary
     file in the target's folder, which is synced, given the mode of the file it replaces (a new file:
     0666 & ~umask, as any program's output) and renamed over the target; the folder is synced. A symbolic
-    link is followed and kept. On any error the temporary file is removed and the target is untouched.
-    Returns ``path``."""
+    link is followed and kept; a device or FIFO (``/dev/null``, ``/dev/full``) is written directly. On any
+    error the temporary file is removed and the target is untouched. Returns ``path``."""
     target = os.path.realpath(os.fspath(path))
     folder = os.path.dirname(target)
     try:
-        mode = os.stat(target).st_mode & 0o7777
+        st = os.stat(target)
+        mode = st.st_mode & 0o7777
     except FileNotFoundError:
-        mode = 0o666 & ~umask()
+        st, mode = None, 0o666 & ~umask()
+    if st is not None and (stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode) or stat.S_ISBLK(st.st_mode)):
+        # A device or a FIFO is written directly, as AtomicFile does: renaming a file over it would replace it.
+        write(target)
+        return path
     fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-", suffix=suffix, dir=folder)
     os.close(fd)
     try:

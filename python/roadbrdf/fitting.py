@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError, as_float_array
+from .core import InputError, as_float_array, as_int, as_mapping, as_options, as_text
 from .io import Dataset, read_dataset
 from .model import SpectralModel
 
@@ -243,7 +243,7 @@ class FitResult:
 
 def _numbers(values: Mapping[str, Any] | None, what: str) -> dict:
     out = {}
-    for k, v in (values or {}).items():
+    for k, v in as_mapping(values, what).items():
         try:
             out[str(k)] = float(v)
         except (TypeError, ValueError):
@@ -302,9 +302,13 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
     -------
     FitResult
     """
-    d = data if isinstance(data, Dataset) else read_dataset(data)
+    d = data if isinstance(data, Dataset) else read_dataset(as_text(data, "data"))
     if isinstance(models, str):
         models = [models]
+    elif isinstance(models, (list, tuple)) and all(isinstance(m, str) for m in models):
+        models = list(models)
+    else:
+        raise TypeError(f"models: expected a model name or a list of names, got {type(models).__name__}")
     if isinstance(shared, str):
         shared = [s.strip() for s in shared.split(",") if s.strip()]
     if isinstance(group_by, str):
@@ -314,7 +318,7 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
             raise InputError("fixed: give either fixed or its alias fix, not both")
         fixed = fix
     bound_pairs = {}
-    for k, v in (bounds or {}).items():
+    for k, v in as_mapping(bounds, "bounds").items():
         pair = as_float_array(v, f"bounds.{k}").reshape(-1)
         if pair.size != 2:
             raise InputError(f"bounds.{k}: expected (lower, upper), got {v!r}")
@@ -322,10 +326,11 @@ def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[
     summary = _roadbrdf.fit(
         np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths), np.ascontiguousarray(d.brdf),
         None if d.sigma is None else np.ascontiguousarray(d.sigma), {str(k): str(v) for k, v in d.metadata.items()},
-        d.convention, [str(m) for m in models], {str(k): str(v) for k, v in (options or {}).items()},
+        d.convention, models, as_options(options, "options"),
         [str(s) for s in shared], _numbers(fixed, "fixed"), _numbers(start, "start"), bound_pairs, str(loss),
-        str(robust), bool(use_sigma), bool(solid_angle_weights), int(multistart), int(seed), wavelengths,
-        int(threads), int(max_iterations), bool(covariance), bool(warm_start), bool(solve_amplitudes),
+        str(robust), bool(use_sigma), bool(solid_angle_weights), as_int(multistart, "multistart"),
+        as_int(seed, "seed"), wavelengths, as_int(threads, "threads"), as_int(max_iterations, "max_iterations"),
+        bool(covariance), bool(warm_start), bool(solve_amplitudes),
         str(joint_solver), str(where), [str(c) for c in group_by], bands)
     result = FitResult(summary)
     if output is not None:

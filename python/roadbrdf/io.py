@@ -8,7 +8,7 @@ from typing import Any, Iterable, Mapping, Optional, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import ArrayLike, as_float_array
+from .core import ArrayLike, as_float, as_float_array, as_int, as_text
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -100,23 +100,27 @@ def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing
 
 def write_dataset(dataset: Dataset, path: PathLike, format: str = "wide") -> None:
     """Write a dataset as ``"wide"`` or ``"long"`` CSV, atomically (temporary file, then rename)."""
+    if not isinstance(dataset, Dataset):
+        raise TypeError(f"dataset: expected a roadbrdf.Dataset, got {type(dataset).__name__}")
     _roadbrdf.write_dataset(np.ascontiguousarray(dataset.angles), np.ascontiguousarray(dataset.wavelengths),
                             np.ascontiguousarray(dataset.brdf),
                             None if dataset.sigma is None else np.ascontiguousarray(dataset.sigma),
                             {str(k): str(v) for k, v in dataset.metadata.items()}, dataset.convention,
-                            list(dataset.comments), str(path), format)
+                            list(dataset.comments), as_text(path, "path"), format)
 
 
 def read_curet(abrdf_path: PathLike, table_path: PathLike, sample: int) -> Dataset:
     """One sample of the CUReT BRDF database (``abrdf.dat`` + ``table.txt``), grey, stored at a
     nominal wavelength recorded in the metadata."""
-    return Dataset._from_dict(_roadbrdf.read_curet(str(abrdf_path), str(table_path), int(sample)))
+    return Dataset._from_dict(_roadbrdf.read_curet(as_text(abrdf_path, "abrdf_path"), as_text(table_path, "table_path"),
+                                                   as_int(sample, "sample")))
 
 
 def read_alta(path: PathLike, wavelength: float, assumed_output: str = "", exclude_grazing: bool = False) -> Dataset:
     """An ALTA text-format BRDF file (BRDF x cos theta_v output is divided by cos theta_v).
     ``wavelength`` [nm] is required (ALTA files carry none)."""
-    return Dataset._from_dict(_roadbrdf.read_alta(str(path), float(wavelength), assumed_output, exclude_grazing))
+    return Dataset._from_dict(_roadbrdf.read_alta(as_text(path, "path"), as_float(wavelength, "wavelength"),
+                                                  assumed_output, exclude_grazing))
 
 
 def check(path: PathLike, average_duplicates: bool = False, delimiter: str = "auto", decimal: str = "auto") -> dict:

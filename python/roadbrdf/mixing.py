@@ -13,7 +13,7 @@ import warnings
 from typing import TYPE_CHECKING, Any, Sequence, Union
 
 from . import _roadbrdf
-from .core import InputError
+from .core import InputError, as_float, as_int, as_text
 from .model import SpectralModel
 
 if TYPE_CHECKING:
@@ -139,13 +139,15 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
     areal, mastic and hapke mixtures (``--uncertainty``; their albedo is then much slower). Methods skipped with ``method="all"`` are reported as
     :class:`UserWarning` (and in ``notes``).
     """
-    run = _roadbrdf.mix(os.fspath(formulation), "" if data is None else os.fspath(data), str(method), int(folds),
-                        int(seed), bool(per_wavelength), bool(sum_to_one),
-                        None if binder_coverage is None else float(binder_coverage),
-                        None if mastic_fraction is None else float(mastic_fraction),
-                        "" if reference is None else os.fspath(reference), "" if output is None else os.fspath(output),
-                        bool(use_sigma), "" if residuals is None else os.fspath(residuals),
-                        "" if cross_sections is None else os.fspath(cross_sections), bool(uncertainty))
+    def path(value, name):
+        return "" if value is None else as_text(value, name)
+
+    run = _roadbrdf.mix(as_text(formulation, "formulation"), path(data, "data"), as_text(method, "method"),
+                        as_int(folds, "folds"), as_int(seed, "seed"), bool(per_wavelength), bool(sum_to_one),
+                        None if binder_coverage is None else as_float(binder_coverage, "binder_coverage"),
+                        None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"),
+                        path(reference, "reference"), path(output, "output"), bool(use_sigma),
+                        path(residuals, "residuals"), path(cross_sections, "cross_sections"), bool(uncertainty))
     for note in run.notes:
         warnings.warn(note, UserWarning, stacklevel=2)
     result = MixResult(run)

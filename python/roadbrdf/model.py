@@ -8,7 +8,7 @@ import numpy as np
 from . import _roadbrdf
 from typing import Any, List
 
-from .core import ArrayLike, InputError, as_float_array
+from .core import ArrayLike, InputError, as_float, as_float_array, as_mapping, as_options
 
 __all__ = ["Model", "SpectralModel", "models", "model_names", "model_aliases"]
 
@@ -63,7 +63,7 @@ class Model:
     """
 
     def __init__(self, name: str, options: dict | None = None, **more_options: Any) -> None:
-        opts = {str(k): str(v) for k, v in (options or {}).items()}
+        opts = as_options(options, "options")
         opts.update({k: str(v) for k, v in more_options.items()})
         self._model = _roadbrdf.make_model(name, opts)
 
@@ -99,9 +99,9 @@ class Model:
     def parameter_values(self, params: dict | None = None) -> list:
         """One parameter set in the model's order: ``params`` ({name: value}) with the defaults for the
         rest. Unknown names raise InputError; the library checks the values against the bounds."""
-        given = dict(params or {})
+        given = as_mapping(params, "params")
         self._check_names(given)
-        return [float(given.get(p["name"], p["default"])) for p in self.parameters]
+        return [as_float(given.get(p["name"], p["default"]), f"params.{p['name']}") for p in self.parameters]
 
     def evaluate(self, theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike, phi_r: ArrayLike,
                  params: dict | None = None, **kwargs: ArrayLike) -> float | np.ndarray:
@@ -114,7 +114,7 @@ class Model:
         Returns a float for scalar input, else an array of the broadcast shape. The ideal
         specular (delta) part of a model, if any, is not included (see :meth:`delta_reflectance`).
         """
-        given = dict(params or {})
+        given = as_mapping(params, "params")
         given.update(kwargs)
         self._check_names(given)
         values = []
@@ -139,10 +139,10 @@ class Model:
     def delta_reflectance(self, theta_i: float, params: dict | None = None, **kwargs: float) -> float:
         """Reflectance R(theta_i) of the ideal specular part f = R delta(w_r - mirror(w_i))/cos(theta_r)
         (0 for models without one). theta_i in degrees."""
-        given = dict(params or {})
+        given = as_mapping(params, "params")
         given.update(kwargs)
-        p = [float(given.get(q["name"], q["default"])) for q in self.parameters]
-        return self._model.delta_reflectance(p, float(np.cos(np.radians(theta_i))))
+        p = [as_float(given.get(q["name"], q["default"]), f"params.{q['name']}") for q in self.parameters]
+        return self._model.delta_reflectance(p, float(np.cos(np.radians(as_float(theta_i, "theta_i")))))
 
     def __repr__(self):
         return f"roadbrdf.Model({self.name!r})"
@@ -171,7 +171,7 @@ class SpectralModel:
 
     def parameters_at(self, wavelength: float) -> dict:
         """``{name: value}`` at one wavelength [nm]."""
-        values = self._spectral.parameters_at(float(wavelength))
+        values = self._spectral.parameters_at(as_float(wavelength, "wavelength"))
         return dict(zip(self.model.parameter_names, values))
 
     def evaluate(self, theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike, phi_r: ArrayLike,
@@ -184,3 +184,14 @@ class SpectralModel:
         return _as_float_or_array(self._spectral.evaluate_flat(*flat), shape)
 
     __call__ = evaluate
+
+
+def model_argument(value, name: str):
+    """A model argument: a :class:`Model` or :class:`SpectralModel` as it is, a fit or MIX.json file (a path) read
+    as a SpectralModel; anything else is a TypeError naming ``name``."""
+    if isinstance(value, (Model, SpectralModel)):
+        return value
+    if isinstance(value, str) or hasattr(value, "__fspath__"):
+        from .fitting import read_fit
+        return read_fit(value)
+    raise TypeError(f"{name}: expected a Model, a SpectralModel or a fit file, got {type(value).__name__}")

@@ -8,9 +8,9 @@ from typing import Tuple, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError
+from .core import InputError, as_float, as_text
 from .fitting import read_fit
-from .model import Model, SpectralModel
+from .model import Model, SpectralModel, model_argument
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -49,21 +49,27 @@ def rtable(model: Model | SpectralModel | PathLike, params: dict | None = None, 
     ``class_system`` (R, N or C). ``notes`` (the first also as ``note``, else None) and ``warnings`` hold
     the command line's one-line messages; the warnings are also raised as :class:`UserWarning`.
     """
-    if isinstance(model, (str, bytes)) or hasattr(model, "__fspath__"):
-        model = read_fit(model)
+    model = model_argument(model, "model")
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")
         spectral = model._spectral
     else:
         spectral = _roadbrdf.constant_spectral_model(model._model, model.parameter_values(params))
-    return RTable(_roadbrdf.rtable_report(spectral, float(alpha), illuminant,
-                                          None if wavelength is None else float(wavelength),
-                                          None if band is None else (float(band[0]), float(band[1])),
-                                          q0_region, class_system))
+    return RTable(_roadbrdf.rtable_report(spectral, as_float(alpha, "alpha"), illuminant,
+                                          None if wavelength is None else as_float(wavelength, "wavelength"),
+                                          None if band is None else _band(band), q0_region, class_system))
+
+
+def _band(band) -> Tuple[float, float]:
+    """(lo, hi) [nm] from a pair of numbers; anything else is an InputError naming ``band``."""
+    if isinstance(band, (str, bytes)) or not hasattr(band, "__len__") or len(band) != 2:
+        raise InputError(f"band: expected a (lower, upper) pair of wavelengths [nm], got {band!r:.60}")
+    return as_float(band[0], "band"), as_float(band[1], "band")
 
 
 def read_rtable(path: PathLike, format: str | None = None, alpha: float = 1.0, scale: float = 1e4) -> RTable:
     """Read an r-table file (csv, rtb or radiance; format from the extension unless given).
     Zero cells are read as missing (NaN), never as zero reflectance."""
-    return RTable(_roadbrdf.read_rtable(str(path), format, float(alpha), float(scale)))
+    return RTable(_roadbrdf.read_rtable(as_text(path, "path"), format, as_float(alpha, "alpha"),
+                                        as_float(scale, "scale")))

@@ -7,14 +7,14 @@ file / MIX.json / model from which the albedo is computed for each atmosphere (`
 
 from __future__ import annotations
 
-import json
 import os
 
 import numpy as np
 
 from . import Model, SpectralModel, read_fit
 from .albedos import albedo as compute_albedo
-from .plot_common import finish, panels, stem
+from .core import read_json_file
+from .plot_common import finish, panels, plain, plain_title, stem
 
 __all__ = ["albedo"]
 
@@ -25,8 +25,7 @@ def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
     for k, item in enumerate(items):
         name = stem(item) if isinstance(item, (str, os.PathLike)) else f"result {k + 1}"
         if isinstance(item, (str, os.PathLike)):
-            with open(item, encoding="utf-8") as fh:
-                content = json.load(fh)
+            content = read_json_file(item)
             if "black_sky" in content:
                 item = content
             else:
@@ -42,7 +41,7 @@ def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
             r = compute_albedo(item, params if isinstance(item, Model) else None, sun_zenith=sun_zenith,
                                atmosphere=atmosphere, wavelengths=wavelengths)
             out.append((f"{name}, {atmosphere}" if atmosphere else name, r))
-    labels = list(labels or [])
+    labels = [plain(x) for x in labels or []]
     return [(labels[k] if k < len(labels) else name, r) for k, (name, r) in enumerate(out)]
 
 
@@ -195,7 +194,7 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
             axis.legend(fontsize=7)
     model = first.get("model")
     names = ", ".join(dict.fromkeys(label.split(",")[0] for label, _ in results))
-    fig.suptitle(title or f"Albedo of {names}" + (f" ({model})" if model and model not in names else ""))
+    fig.suptitle(plain_title(title) or f"Albedo of {names}" + (f" ({model})" if model and model not in names else ""))
     data = dict(first)
     data.update(zenith_panel=curves, spectral_panel=spectral_panel, results=dict(results))
     return finish(fig, output, data, axes, dpi)

@@ -4,7 +4,6 @@ evaluation of a model, fit file or mixture at a wavelength."""
 
 from __future__ import annotations
 
-import json
 import math
 import os
 
@@ -17,7 +16,7 @@ if os.environ.get("MPLBACKEND") is None and not os.environ.get("DISPLAY"):
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
-from .core import write_atomic  # noqa: E402
+from .core import read_json_file, write_atomic  # noqa: E402
 
 __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
 
@@ -25,6 +24,27 @@ __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFold
 UNIT = "BRDF [sr$^{-1}$]"
 #: Resolution of the raster parts of a figure [dots per inch] when none is asked for.
 DEFAULT_DPI = 150
+
+
+#: The longest name (sample, file, label) shown in a figure; longer ones are shortened with an ellipsis.
+MAX_NAME = 80
+#: The longest title given by the caller.
+MAX_TITLE = 160
+
+
+def plain(text, limit: int = MAX_NAME) -> str:
+    """A name as figure text: shortened to ``limit`` characters (its start and an ellipsis) and with ``$``
+    escaped, so that matplotlib shows it as written instead of reading it as mathtext (a name is text, never
+    a formula)."""
+    text = str(text)
+    if len(text) > limit:
+        text = text[: limit - 1] + "…"
+    return text.replace("$", r"\$")
+
+
+def plain_title(title):
+    """A caller's title as figure text (:func:`plain`), or None."""
+    return plain(title, MAX_TITLE) if title else None
 
 
 class OutputFolderError(ValueError):
@@ -96,17 +116,18 @@ def as_dataset(x):
 
 
 def stem(path) -> str:
-    """A file's name without its folder and its .csv/.json/.fit.json/.mix.json ending."""
+    """A file's name without its folder and its .csv/.json/.fit.json/.mix.json ending, as figure text
+    (:func:`plain`)."""
     name = os.path.basename(os.fspath(path))
     for ending in (".fit.json", ".mix.json", ".albedo.json", ".json", ".csv"):
         if name.endswith(ending) and len(name) > len(ending):
-            return name[: -len(ending)]
-    return name
+            return plain(name[: -len(ending)])
+    return plain(name)
 
 
 def sample_label(d: Dataset, source=None, fallback="sample") -> str:
-    """The sample's name: its metadata, else the file's stem."""
-    return d.metadata.get("sample") or (stem(source) if isinstance(source, (str, os.PathLike)) else fallback)
+    """The sample's name as figure text (:func:`plain`): its metadata, else the file's stem."""
+    return plain(d.metadata.get("sample") or (stem(source) if isinstance(source, (str, os.PathLike)) else fallback))
 
 
 def wavelength_index(wavelengths, wavelength):
@@ -131,8 +152,7 @@ def model_file(path, member=None):
     """A fit file or MIX.json: (SpectralModel, label, kind) with kind "fit" or "mix"; ``member``: the
     fit (model name) or mixing method, default the file's best."""
     path = os.fspath(path)
-    with open(path, encoding="utf-8") as fh:
-        content = json.load(fh)
+    content = read_json_file(path)
     kind = "mix" if content.get("format") == "roadbrdf-mix" else "fit"
     chosen = member or content.get("best")
     if not chosen and kind == "mix" and content.get("methods"):

@@ -4,14 +4,15 @@ model of the fit file."""
 
 from __future__ import annotations
 
-import json
 import os
 
 import matplotlib.ticker as mticker
 import numpy as np
 
 from . import read_fit
-from .plot_common import UNIT, as_dataset, finish, panels, sample_label, stem, wavelength_index
+from .core import read_json_file
+from .plot_common import (UNIT, as_dataset, finish, panels, plain, plain_title, sample_label, stem,
+                          wavelength_index)
 
 __all__ = ["fit_quality"]
 
@@ -28,8 +29,7 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
     ``rmse`` = {model: (wavelengths, RMSE)} from the file.
     """
     d = as_dataset(data)
-    with open(fit, encoding="utf-8") as fh:
-        fits = json.load(fh)
+    fits = read_json_file(fit)
     chosen = model or fits["best"]
     spectral_model = read_fit(fit, chosen)
     index, note = wavelength_index(d.wavelengths, wavelength)
@@ -79,7 +79,7 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
         axis.set_yscale("log")
         axis.set_title("RMSE vs wavelength", fontsize=9)
         axis.legend(fontsize=7)
-    fig.suptitle(title or f"Fit quality: {name}, {chosen} ({os.path.basename(os.fspath(fit))})")
+    fig.suptitle(plain_title(title) or f"Fit quality: {name}, {chosen} ({os.path.basename(os.fspath(fit))})")
     result = {"measured": measured, "fitted": predicted, "wavelength": wl, "angles": a, "rmse": rmse,
               "model": chosen}
     return finish(fig, output, result, axes, dpi)

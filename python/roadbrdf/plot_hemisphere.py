@@ -12,7 +12,7 @@ import numpy as np
 
 from . import Dataset
 from .plot_common import (UNIT, as_dataset, evaluate, finish, incidences, is_model_file, measured_at_incidence,
-                          model_file, model_name, panels, plt, sample_label, wavelength_index)
+                          model_file, model_name, panels, plain, plain_title, plt, sample_label, wavelength_index)
 
 __all__ = ["hemisphere"]
 
@@ -150,12 +150,14 @@ def hemisphere(model=None, params=None, theta_i=45.0, wavelength=None, log=False
             setter(f"{axis_name} [sr$^{{-1}}$]", fontsize=8)
         ax3.tick_params(labelsize=6)
         ax3.set_title(f"lobe at $\\theta_i$ = {item['theta_i']:g}° (radius = BRDF, equal axes)", fontsize=9)
-    if label is None:
+    if label is not None:
+        label = plain(label)
+    else:
         if model is not None:
             label = model_label or name or model_name(model)
         if data_label:
             label = f"{label}, measured {data_label}" if label else f"{data_label} (measured)"
     at = f" at {wavelength:g} nm" if wavelength is not None else ""
-    fig.suptitle(title or f"BRDF over the viewing hemisphere: {label}{at}" + (f" ({note})" if note else ""))
+    fig.suptitle(plain_title(title) or f"BRDF over the viewing hemisphere: {label}{at}" + (f" ({note})" if note else ""))
     result = per_incidence[0] if n == 1 else {item["theta_i"]: item for item in per_incidence}
     return finish(fig, output, result, axes, dpi)

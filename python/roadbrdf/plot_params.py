@@ -13,7 +13,7 @@ import os
 
 import numpy as np
 
-from .plot_common import finish as _finish, panels
+from .plot_common import finish as _finish, panels, plain_title
 
 
 def params(fit_file, parameters=None, models=None, against="wavelength", wavelength=None, ax=None, title=None,
@@ -88,7 +88,7 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
             axis.legend(fontsize="small")
     if against != "wavelength":
         data["wavelength_nm"] = band
-    heading = title or f"{os.path.basename(os.fspath(fit_file))}: fitted parameters ± 1 standard error"
+    heading = plain_title(title) or f"{os.path.basename(os.fspath(fit_file))}: fitted parameters ± 1 standard error"
     if against != "wavelength":
         heading += f" at {band:g} nm{note}"
     fig.suptitle(heading, fontsize="medium")

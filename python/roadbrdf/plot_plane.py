@@ -10,8 +10,8 @@ import numpy as np
 
 from . import SpectralModel
 from .plot_common import (UNIT, as_dataset, decade_floor, evaluate, finish, incidences, is_model_file,
-                          label_log_radius, log_radius, measured_at_incidence, model_file, panels, sample_label,
-                          wavelength_index)
+                          label_log_radius, log_radius, measured_at_incidence, model_file, panels, plain, plain_title,
+                          sample_label, wavelength_index)
 
 __all__ = ["plane", "in_plane_points"]
 
@@ -70,7 +70,7 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
             datasets.append((as_dataset(s), s))
     if not models and not datasets:
         raise ValueError("plane: give a model, a fit file, a mixture or a dataset")
-    labels = list(labels or [])
+    labels = [plain(x) for x in labels or []]
     if datasets:
         d0 = datasets[0][0]
         wavelength = float(d0.wavelengths[wavelength_index(d0.wavelengths, wavelength)[0]])
@@ -134,7 +134,7 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
         axis.set_title(f"$\\theta_i$ = {t:g}°" + ("" if cartesian else " (angle: $\\theta_r$)"), fontsize=10)
     axes[-1].legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2 if cartesian else -0.05),
                     frameon=False)
-    fig.suptitle(title or "BRDF in the plane of incidence" + (f", {wavelength:g} nm" if wavelength else ""))
+    fig.suptitle(plain_title(title) or "BRDF in the plane of incidence" + (f", {wavelength:g} nm" if wavelength else ""))
     if n == 1:
         data = dict(per_incidence[0][1])
     else:

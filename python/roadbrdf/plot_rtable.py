@@ -12,7 +12,7 @@ import numpy as np
 
 from . import Model, RTable, SpectralModel, read_rtable
 from . import rtable as _rtable
-from .plot_common import finish, is_model_file, panels, stem
+from .plot_common import finish, is_model_file, panels, plain_title, stem
 
 __all__ = ["rtable", "CLASS_R"]
 
@@ -139,7 +139,7 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
     axis.set_ylabel("Q0 [sr$^{-1}$]")
     axis.set_title("CIE R classes (■ the standard tables)", fontsize=10)
     label = name if name and name != model else None
-    fig.suptitle(title or "Road r-table: " + (f"{label} ({model})" if label else model or "table"))
+    fig.suptitle(plain_title(title) or "Road r-table: " + (f"{label} ({model})" if label else model or "table"))
     if t.get("note"):
         fig.supxlabel(textwrap.fill(t["note"], 150), fontsize=8, color="gray")
     t["diagram_range"] = (s1_top, q0_top)

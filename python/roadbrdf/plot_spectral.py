@@ -9,7 +9,8 @@ import sys
 import numpy as np
 
 from . import SpectralModel
-from .plot_common import (UNIT, as_dataset, finish, is_model_file, model_file, panels, sample_label, stem)
+from .plot_common import (UNIT, as_dataset, finish, is_model_file, model_file, panels, plain, plain_title,
+                          sample_label, stem)
 from .plot_geometry import TOLERANCE_DEG, nearest_geometry, parse_geometry
 
 __all__ = ["spectral"]
@@ -48,8 +49,8 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
             sources.append(s)
     if not datasets and not wanted:
         raise ValueError("spectral: give at least one dataset, fit file or mixture")
-    labels = list(labels or [sample_label(d, src, f"sample {k + 1}") for k, (d, src) in
-                             enumerate(zip(datasets, sources))])
+    labels = [plain(x) for x in labels] if labels else [sample_label(d, src, f"sample {k + 1}") for k, (d, src) in
+                                                        enumerate(zip(datasets, sources))]
     fig, (ax,) = panels([None], ax=ax, size=(8.0, 5.0))
     data, geometries, kinds, colours = {}, {}, {}, {}
     for d, src, label in zip(datasets, sources, labels):
@@ -72,7 +73,7 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
         colours[label] = line.get_color()
         if isinstance(src, (str, os.PathLike)):
             colours.setdefault(stem(src), line.get_color())
-    model_labels = list(model_labels or [])
+    model_labels = [plain(x) for x in model_labels or []]
     for k, m in enumerate(wanted):
         if isinstance(m, SpectralModel):
             spectral_model, label, kind = m, f"{m.model.name} model", "fit"
@@ -100,7 +101,7 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
     measured_stems = {stem(s) for s in sources if isinstance(s, (str, os.PathLike))}
     others = [lab.split(" (")[0] for lab in data if kinds[lab] != "measured"]
     names = ", ".join(dict.fromkeys(list(labels) + [o for o in others if o not in measured_stems]))
-    ax.set_title(title or f"Spectral BRDF of {names}" + (" (bands: $\\pm1\\sigma$)" if datasets else ""),
+    ax.set_title(plain_title(title) or f"Spectral BRDF of {names}" + (" (bands: $\\pm1\\sigma$)" if datasets else ""),
                  fontsize=10)
     fig.roadbrdf_geometries = geometries
     fig.roadbrdf_kinds = kinds

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from .plot_common import finish as _finish, panels
+from .plot_common import finish as _finish, panels, plain, plain_title
 
 _CLASS_COLOURS = {"R1": "tab:blue", "R2": "tab:green", "R3": "tab:orange", "R4": "tab:red"}
 _S1_BANDS = [("R1", 0.0, 0.42), ("R2", 0.42, 0.85), ("R3", 0.85, 1.35), ("R4", 1.35, math.inf)]
@@ -94,6 +94,10 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
     rows, methods = _by_method(rows, method)
     col = _albedo_column(header, albedo)
     ycol = {"Q0": "Q0 [sr^-1]", "S1": "S1 [1]"}[axis]
+    for needed in (col, ycol):
+        if needed not in header:
+            raise ValueError(f"no column '{needed}' in the results (a study without it: choose another albedo or "
+                             "axis, or an r-table in its predictions)")
     x = np.array([r[col] for r in rows], dtype=float)
     y = np.array([r[ycol] for r in rows], dtype=float)
     classes = [r.get("class [R]", "") for r in rows]
@@ -112,12 +116,12 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
             m = np.array([c == name for c in classes]) & (of == meth)
             if m.any():
                 ax.scatter(x[m], y[m], s=14, marker=_MARKERS[k % len(_MARKERS)], alpha=0.8,
-                           color=_CLASS_COLOURS.get(name, "grey"), label="_nolegend_" if several else name or "no class")
+                           color=_CLASS_COLOURS.get(name, "grey"), label="_nolegend_" if several else plain(name) if name else "no class")
     if several:  # the legend's keys: a colour per class, a marker per method
         for name in sorted(set(classes)):
-            ax.scatter([], [], s=14, color=_CLASS_COLOURS.get(name, "grey"), label=name or "no class")
+            ax.scatter([], [], s=14, color=_CLASS_COLOURS.get(name, "grey"), label=plain(name) if name else "no class")
         for k, meth in enumerate(methods):
-            ax.scatter([], [], s=14, marker=_MARKERS[k % len(_MARKERS)], color="grey", label=meth)
+            ax.scatter([], [], s=14, marker=_MARKERS[k % len(_MARKERS)], color="grey", label=plain(meth))
     fronts = {}
     for k, meth in enumerate(methods):
         where = np.flatnonzero(of == meth)
@@ -130,7 +134,7 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
     ax.set_ylabel("Q0 [sr$^{-1}$]" if axis == "Q0" else "S1")
     ax.legend(fontsize=8)
     what = f"{len(rows)} candidates" if not several else f"{len(rows)} predictions by {len(methods)} methods"
-    ax.set_title(title or f"albedo - {axis} trade-off ({what})")
+    ax.set_title(plain_title(title) or f"albedo - {axis} trade-off ({what})")
     data = {"albedo": x, "lighting": y, "albedo_column": col, "lighting_column": ycol, "classes": classes,
             "methods": list(of), "fronts": fronts, "pareto": [i for f in fronts.values() for i in f]}
     return _finish(fig, output, data, [ax], dpi)
@@ -163,12 +167,12 @@ def sensitivity(results, outputs=None, method=None, title=None, output=None, *, 
                 rows = [r for r in every if r.get("method", "") == meth]
                 data[out][var][meth] = _effect(ax, rows, var, out, meth if len(methods) > 1 else None)
             if i == len(outputs) - 1:
-                ax.set_xlabel(var)
+                ax.set_xlabel(plain(var))
             if j == 0:
                 ax.set_ylabel(out.replace(" [1]", ""))
     if len(methods) > 1:
         axes[0][0].legend(fontsize=7, title="method", title_fontsize=7)
-    fig.suptitle(title or "sensitivity: mean (line) and range (band) over the other variables")
+    fig.suptitle(plain_title(title) or "sensitivity: mean (line) and range (band) over the other variables")
     return _finish(fig, output, data, flat, dpi)
 
 
@@ -192,11 +196,11 @@ def _effect(ax, rows, var, out, label):
     mean = [float(np.mean(groups[k])) for k in order]
     lo = [float(np.min(groups[k])) for k in order]
     hi = [float(np.max(groups[k])) for k in order]
-    line, = ax.plot(pos, mean, "o-", label=label)
+    line, = ax.plot(pos, mean, "o-", label=plain(label) if label else None)
     ax.fill_between(pos, lo, hi, alpha=0.2, color=line.get_color())
     if not numeric:
         ax.set_xticks(pos)
-        ax.set_xticklabels(order, fontsize=7, rotation=30)
+        ax.set_xticklabels([plain(o) for o in order], fontsize=7, rotation=30)
     return {"x": list(order) if not numeric else np.asarray(pos, dtype=float), "mean": np.asarray(mean),
             "min": np.asarray(lo), "max": np.asarray(hi)}
 

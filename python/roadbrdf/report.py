@@ -30,7 +30,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from . import __version__, _roadbrdf
-from .core import InputError, write_text_atomic
+from .core import InputError, read_json_file, write_text_atomic
 
 __all__ = ["write_report", "render_report", "gather", "main", "DEFAULT_MODELS"]
 
@@ -170,8 +170,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
         r.best = r.fit_all.best
         if formulation is not None:  # early: a formulation whose component fits are missing fails at once
             import json
-            with open(formulation, encoding="utf-8") as fh:
-                r.formulation = json.load(fh)
+            r.formulation = read_json_file(formulation)
             r.formulation_name = os.path.basename(formulation)
             with steps.step("mix", f"mixing predictions of {r.formulation_name}"), _collect(r, "mix"):
                 # With the end-members' covariances (cheap for the mixing itself; the r-table of one method is
@@ -188,18 +187,30 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
         # From the fit file, as `roadbrdf albedo FIT.json` reads it: the file records the measured directions
         # (the coverage the albedo and r-table report), which a FitResult's in-memory model does not carry.
         best_model = read_fit(r.fit_all_path, r.best.model)
+        # A section whose quantity the data cannot give (an r-table is weighted by V(lambda), so data outside the
+        # visible range have none) is absent with its reason; the other sections are shown.
+        r.albedo = r.rtable = None
+        r.albedo_note = r.rtable_note = ""
         with steps.step("albedo", f"albedo of {r.best.model}"), _collect(r, "albedo"):
-            r.albedo = albedo_of(best_model, sun_zenith=zeniths, atmosphere=atmosphere or None)
+            try:
+                r.albedo = albedo_of(best_model, sun_zenith=zeniths, atmosphere=atmosphere or None)
+            except InputError as e:
+                r.albedo_note = f"No albedo: {e}"
+                steps.say(f"warning: no albedo: {e}")
         with steps.step("rtable", f"r-table of {r.best.model}"), _collect(r, "rtable"):
-            r.rtable = rtable_of(best_model, illuminant=illuminant)
-        if r.mix is not None:
+            try:
+                r.rtable = rtable_of(best_model, illuminant=illuminant)
+            except InputError as e:
+                r.rtable_note = f"No r-table: {e}"
+                steps.say(f"warning: no r-table: {e}")
+        if r.mix is not None and r.rtable is not None:
             with steps.step("mix-rtable", "r-table of the mixing prediction with its uncertainty"), \
                     _collect(r, "mix-rtable"):
                 _mixture_uncertainty(r, rtable_of)
         r.all_caveats = list(dict.fromkeys(
-            [n[len("WARNING: "):] if n.startswith("WARNING: ") else n for n in r.albedo.get("notes", [])
-             if n.startswith(("WARNING", "coverage"))] + list(r.rtable.get("warnings") or []) +
-            [n for n in r.rtable.get("notes") or [] if n.startswith("coverage")]))
+            [n[len("WARNING: "):] if n.startswith("WARNING: ") else n for n in (r.albedo or {}).get("notes", [])
+             if n.startswith(("WARNING", "coverage"))] + list((r.rtable or {}).get("warnings") or []) +
+            [n for n in (r.rtable or {}).get("notes") or [] if n.startswith("coverage")]))
         with steps.step("figures", "drawing the figures"):
             from .report_figures import draw_all
             draw_all(r)
@@ -378,7 +389,17 @@ def main(argv=None) -> int:
     return 0
 
 
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM: the report stops as on Ctrl-C (its temporary folder removed), with the status of SIGTERM."""
+
+
+def _terminate(signum, frame):
+    raise _Terminated()
+
+
 def _run() -> int:
+    import signal
+    signal.signal(signal.SIGTERM, _terminate)
     try:
         return main()
     except (ValueError, OSError) as e:  # InputError is a ValueError
@@ -390,9 +411,9 @@ def _run() -> int:
         traceback.print_exc()
         print(f"roadbrdf report: internal error: {type(e).__name__}: {e}", file=sys.stderr)
         return 3
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as e:
         print("roadbrdf report: interrupted", file=sys.stderr)
-        return 130
+        return 143 if isinstance(e, _Terminated) else 130
 
 
 if __name__ == "__main__":

@@ -49,6 +49,7 @@ def _draw(r, key, caption, make):
 def _spectral(r):
     """BRDF against wavelength at the mirror, retro and nadir-viewing geometries of the figures' incidence."""
     from . import plot
+    from .plot_common import plain
     ti = r.theta_i_figures
     requests = [("mirror", (ti, 0.0, ti, 180.0), f"mirror (specular) direction, θ_i = θ_r = {ti:g}°"),
                 ("retro", (ti, 0.0, ti, 0.0), f"retro direction (towards the source), θ_i = θ_r = {ti:g}°"),
@@ -61,7 +62,7 @@ def _spectral(r):
         if fig is None:
             r.spectral_keys.append(key)
             continue
-        angles, distance = fig.roadbrdf_geometries[r.sample]
+        angles, distance = fig.roadbrdf_geometries[plain(r.sample)]  # the label as the figure shows it
         if angles in seen:  # the same measured geometry answers two requests (e.g. theta_i = 0)
             del r.figures[key]
             continue

@@ -67,9 +67,15 @@ footer { margin-top: 40px; color: var(--muted); font-size: 12px; border-top: 1px
 """
 
 
+class Html(str):
+    """Text that is already HTML (what :func:`esc` returns): not escaped again where it is placed."""
+
+
 def esc(text) -> str:
-    """Text as HTML (escaped)."""
-    return html.escape(str(text), quote=True)
+    """Text as HTML (escaped), once: HTML made by esc is returned as it is."""
+    if isinstance(text, Html):
+        return text
+    return Html(html.escape(str(text), quote=True))
 
 
 class Cell(NamedTuple):
@@ -139,7 +145,7 @@ def table(headers: Sequence[str], rows: Iterable[Sequence], row_classes: Sequenc
         parts.append(f'<tr class="{cls}">' if cls else "<tr>")
         for c in row:
             if not isinstance(c, Cell):
-                c = Cell(esc(c))
+                c = Cell(esc(c))  # plain text escaped; HTML from esc kept
             parts.append(f"<td{_attrs(c)}>{c.text}</td>")
         parts.append("</tr>")
     parts.append("</tbody></table></div>")

@@ -8,7 +8,7 @@ from typing import Any, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import ArrayLike, InputError, as_float_array
+from .core import ArrayLike, InputError, as_float, as_float_array, as_int, as_mapping, as_text
 from .io import Dataset
 from .model import Model
 
@@ -174,9 +174,10 @@ def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 
     """
     import warnings
     handle, report = _roadbrdf.surface_from_formulation(
-        str(formulation_path), float(size_mm), float(cell_mm), int(seed),
-        None if matrix_level is None else float(matrix_level), None if target_mpd is None else float(target_mpd),
-        None if mastic_fraction is None else float(mastic_fraction))
+        as_text(formulation_path, "formulation_path"), as_float(size_mm, "size_mm"), as_float(cell_mm, "cell_mm"),
+        as_int(seed, "seed"), None if matrix_level is None else as_float(matrix_level, "matrix_level"),
+        None if target_mpd is None else as_float(target_mpd, "target_mpd"),
+        None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"))
     for note in report["notes"]:
         warnings.warn(note, UserWarning, stacklevel=2)
     s = Surface(handle, dict(report))
@@ -188,22 +189,23 @@ def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 
 def read_surface(path: PathLike) -> Surface:
     """Read a SURFACE file (written by ``roadbrdf surface`` or :meth:`Surface.write`); fit files of its
     materials are resolved relative to the file's folder."""
-    return Surface(_roadbrdf.read_surface(str(path)))
+    return Surface(_roadbrdf.read_surface(as_text(path, "path")))
 
 
 def _material_arguments(model_or_fit, params, fit_model):
     """(fit, fit_model, model, parameters, options) for the binding: a fit file path, a :class:`Model`
     or a model name."""
+    parameters = {str(k): as_float(v, f"params.{k}") for k, v in as_mapping(params, "params").items()}
+    fit_model = "" if fit_model is None else as_text(fit_model, "fit_model")
     if isinstance(model_or_fit, Model):
         options = {str(k): str(v) for k, v in model_or_fit.description.get("option_values", {}).items()}
-        return "", "", model_or_fit.name, {str(k): float(v) for k, v in (params or {}).items()}, options
+        return "", "", model_or_fit.name, parameters, options
     if not _is_path(model_or_fit):
-        raise InputError("expected a roadbrdf.Model, a model name or a fit file path")
-    text = str(model_or_fit)
-    parameters = {str(k): float(v) for k, v in (params or {}).items()}
+        raise InputError("model_or_fit: expected a roadbrdf.Model, a model name or a fit file path")
+    text = os.fsdecode(model_or_fit)
     if text.endswith(".json"):
-        return text, fit_model or "", "", parameters, {}
-    return "", fit_model or "", text, parameters, {}
+        return text, fit_model, "", parameters, {}
+    return "", fit_model, text, parameters, {}
 
 
 def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None = None, cells: int = 16,
@@ -213,8 +215,8 @@ def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None 
     ``model_or_fit``: a :class:`Model` (with ``params``), a model name, or a fit file (``*.json``, its
     best fit or ``fit_model``). Its rendered BRDF is the material's BRDF averaged over the detector cone.
     """
-    return Surface(_roadbrdf.flat_surface(*_material_arguments(model_or_fit, params, fit_model), int(cells),
-                                          float(cell_mm)))
+    return Surface(_roadbrdf.flat_surface(*_material_arguments(model_or_fit, params, fit_model),
+                                          as_int(cells, "cells"), as_float(cell_mm, "cell_mm")))
 
 
 def gaussian_slope_surface(model_or_fit: Union[Model, str, PathLike], sigma_rad: float, params: dict | None = None,
@@ -223,7 +225,8 @@ def gaussian_slope_surface(model_or_fit: Union[Model, str, PathLike], sigma_rad:
     """An isotropic random rough surface of one material with facet slope angle standard deviation
     ``sigma_rad`` [rad] (the Oren-Nayar roughness; ``roadbrdf surface MATERIAL --gaussian-slopes``)."""
     return Surface(_roadbrdf.gaussian_slope_surface(*_material_arguments(model_or_fit, params, fit_model),
-                                                    float(sigma_rad), int(cells), float(cell_mm), int(seed)))
+                                                    as_float(sigma_rad, "sigma_rad"), as_int(cells, "cells"),
+                                                    as_float(cell_mm, "cell_mm"), as_int(seed, "seed")))
 
 
 def _as_surface(value):
@@ -231,14 +234,16 @@ def _as_surface(value):
         return value
     if _is_path(value):
         return read_surface(value)
-    raise InputError("expected a roadbrdf.Surface or a SURFACE file path")
+    raise InputError("surface: expected a roadbrdf.Surface or a SURFACE file path")
 
 
 def _render_options(samples, target_error, max_samples, error_floor, acceptance_deg, sampling, seed, threads,
                     max_bounces):
-    return (None if samples is None else int(samples), None if target_error is None else float(target_error),
-            int(max_samples), float(error_floor), float(acceptance_deg), str(sampling), int(seed), int(threads),
-            int(max_bounces))
+    return (None if samples is None else as_int(samples, "samples"),
+            None if target_error is None else as_float(target_error, "target_error"),
+            as_int(max_samples, "max_samples"), as_float(error_floor, "error_floor"),
+            as_float(acceptance_deg, "acceptance_deg"), as_text(sampling, "sampling"), as_int(seed, "seed"),
+            as_int(threads, "threads"), as_int(max_bounces, "max_bounces"))
 
 
 def _wavelength_list(wavelengths):
@@ -296,7 +301,8 @@ def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Se
     """
     s = _as_surface(surface)
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
-    r = _roadbrdf.render_surface_albedo(s._field, zeniths, _wavelength_list(wavelengths), int(white_sky_nodes),
+    r = _roadbrdf.render_surface_albedo(s._field, zeniths, _wavelength_list(wavelengths),
+                                        as_int(white_sky_nodes, "white_sky_nodes"),
                                         *_render_options(samples, target_error, max_samples, error_floor,
                                                          acceptance_deg, sampling, seed, threads, max_bounces))
     m = len(r["wavelengths"])

@@ -51,6 +51,7 @@ std::shared_ptr<AlbedoReport> report(const SpectralModel& model, const std::vect
                                                      atmosphere, spectrum, wavelengths, illuminant, tolerance);
   auto result = std::make_shared<AlbedoReport>();
   {
+    SigintGuard interruptible;
     py::gil_scoped_release release;
     result->json = albedo::compute_albedo(model, request);
   }
@@ -78,6 +79,7 @@ void bind_albedo(py::module_& m) {
                                                              atmosphere, spectrum, wavelengths, illuminant, tolerance);
           nlohmann::json result;
           {
+            SigintGuard interruptible;
             py::gil_scoped_release release;
             result = mixing::mixture_albedo(run.content.results.at(index), request, cache);
           }

@@ -201,6 +201,7 @@ void bind_fitting(py::module_& m) {
         request.bands = intervals_argument(bands, "bands");
         request.validate();
         const SpectralDataset data = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+        SigintGuard interruptible;
         py::gil_scoped_release release;
         return std::make_shared<FitSummary>(run_fit(request, data));
       },

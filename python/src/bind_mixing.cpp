@@ -74,6 +74,7 @@ void bind_mixing(py::module_& m) {
         request.end_member_cache = std::move(cache);
         std::shared_ptr<MixRun> run;
         {
+          SigintGuard interruptible;
           py::gil_scoped_release release;
           run = std::make_shared<MixRun>(mixing::run_mix(request, {{"output", output}, {"residuals", residuals}}));
         }
@@ -96,6 +97,7 @@ void bind_mixing(py::module_& m) {
         request.reference = reference;
         mixing::CrossSectionRun run;
         {
+          SigintGuard interruptible;
           py::gil_scoped_release release;
           run = mixing::run_cross_section_calibration(request, {{"output", output}});
           if (!output.empty()) mixing::write_cross_section_file(output, run.content);

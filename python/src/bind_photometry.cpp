@@ -131,6 +131,7 @@ void bind_photometry(py::module_& m) {
         const RTableRequest request = request_from(alpha, illuminant, wavelength, band, q0_region, class_system);
         RTableReport report;
         {
+          SigintGuard interruptible;
           py::gil_scoped_release release;
           report = mixing::mixture_rtable(run.content.results.at(index), request, cache);
         }

@@ -128,6 +128,7 @@ void bind_surface(py::module_& m) {
            [](const Field& f) {
              surface::TextureStatistics s;
              {
+               SigintGuard interruptible;
                py::gil_scoped_release release;
                s = surface::texture_statistics(f);
              }
@@ -160,6 +161,7 @@ void bind_surface(py::module_& m) {
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratedSample sample;
     {
+      SigintGuard interruptible;
       py::gil_scoped_release release;
       sample = surface::generate_sample(recipe, s);
     }
@@ -205,6 +207,7 @@ void bind_surface(py::module_& m) {
           const surface::MaterialSpec spec = surface::material_spec(fit, fit_model, model, parameters, options);
           Field f;
           {
+            SigintGuard interruptible;
             py::gil_scoped_release release;
             f = surface::make_gaussian_slope_surface(spec, sigma_rad, cells, cell_mm, seed);
           }
@@ -236,6 +239,7 @@ void bind_surface(py::module_& m) {
           SpectralDataset d;
           std::vector<surface::Estimate> estimates;
           {
+            SigintGuard interruptible;
             py::gil_scoped_release release;
             d = surface::render_dataset(f, geometries, wavelengths_or_default(f, wavelengths), s, &estimates);
           }
@@ -270,6 +274,7 @@ void bind_surface(py::module_& m) {
                                                       sampling, seed, threads, max_bounces, white_sky_nodes);
     surface::VirtualAlbedo r;
     {
+      SigintGuard interruptible;
       py::gil_scoped_release release;
       r = surface::render_albedo(f, sun_zenith, wavelengths_or_default(f, wavelengths), s, white_sky_nodes);
     }

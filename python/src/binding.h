@@ -20,6 +20,23 @@
 namespace roadbrdf::python {
 
 void bind_extensions(pybind11::module_& m);
+
+// Ctrl-C during a long call (bind_interrupt.cpp): constructed with the GIL held, before the GIL is
+// released for the work, and destroyed after it is taken back. While it lives on the main thread,
+// SIGINT (and SIGTERM when Python handles it) requests the library's interrupt (core/progress.h): the
+// work stops with Interrupted, and register_interrupted() raises what Python's handler raises
+// (KeyboardInterrupt for Ctrl-C).
+class SigintGuard {
+ public:
+  SigintGuard();
+  ~SigintGuard();
+  SigintGuard(const SigintGuard&) = delete;
+  SigintGuard& operator=(const SigintGuard&) = delete;
+
+ private:
+  bool active_ = false;
+};
+void register_interrupted();
 void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces, render
 void bind_marking(pybind11::module_& m);  // bind_marking.cpp: road markings, model export
 void bind_surface(pybind11::module_& m);   // bind_surface.cpp: virtual surfaces, render

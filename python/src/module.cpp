@@ -180,6 +180,7 @@ PYBIND11_MODULE(_roadbrdf, m) {
     return py::make_tuple(rad_to_deg(g.theta_i), rad_to_deg(g.phi_i), rad_to_deg(g.theta_r), rad_to_deg(g.phi_r));
   });
 
+  roadbrdf::python::register_interrupted();
   roadbrdf::python::bind_extensions(m);
   roadbrdf::python::bind_surface(m);
   roadbrdf::python::bind_marking(m);

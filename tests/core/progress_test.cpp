@@ -122,5 +122,33 @@ TEST(ProgressCounter, GrowingTotalAndEmptyCallback) {
   quiet.finish();  // nothing to call: no crash
 }
 
+// An interrupt request (core/progress.h) stops work that reports progress, from every thread, with or
+// without a callback, and nothing before it is requested.
+TEST(ProgressCounter, AnInterruptRequestStopsEveryThreadAtItsNextReport) {
+  clear_interrupt();
+  const ProgressCallback none;
+  ProgressCounter counter(none, 1000);
+  counter.add(10);  // no request: goes on
+  EXPECT_FALSE(interrupt_requested());
+  request_interrupt();
+  std::vector<int> stopped(4, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      try {
+        for (int k = 0; k < 100; ++k) counter.add();
+      } catch (const Interrupted&) {
+        stopped[static_cast<std::size_t>(t)] = 1;
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(stopped, std::vector<int>(4, 1));
+  EXPECT_THROW(throw_if_interrupted(), Interrupted);
+  clear_interrupt();
+  EXPECT_NO_THROW(throw_if_interrupted());
+  EXPECT_NO_THROW(counter.add());
+}
+
 }  // namespace
 }  // namespace roadbrdf

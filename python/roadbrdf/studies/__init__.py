@@ -29,7 +29,7 @@ def _is_campaign(source):
     try:
         with open(os.fspath(source), encoding="utf-8") as f:
             return is_campaign(json.load(f))
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return False  # read_study reports what is wrong with the file
 
 
@@ -50,7 +50,7 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
     """
     from .. import _roadbrdf
     from .run import execute, run_pending, table
-    from .store import Store, write_csv
+    from .store import Store, check_output, write_csv
     campaign = _is_campaign(source)
     if campaign:
         from .campaign import read_campaign
@@ -65,12 +65,18 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
         raise InputError(f"workers: expected a positive integer, got {workers!r}")
     if scheduler is not None and workers is not None:
         raise InputError("give workers (local processes) or a scheduler (Dask), not both")
-    if store is None and output is not None and os.fspath(output) != "-":
-        store = os.fspath(output) + ".store.jsonl"
+    if store is None and output is not None and os.fspath(output) != "-" and (
+            not os.path.exists(os.fspath(output)) or os.path.isfile(os.fspath(output))):
+        store = os.fspath(output) + ".store.jsonl"  # not next to a device or FIFO (/dev/stdout): no store then
     outputs = [("-o", os.fspath(output))] if output is not None else []
     if store is not None:
         outputs.append(("--store", os.fspath(store)))
     _roadbrdf.check_distinct_files([(role, p) for role, p in inputs if os.path.exists(p)], outputs)
+    for role, path in outputs:
+        check_output(path, role)
+    if not campaign:
+        from .run import check_size
+        check_size(s, progress)
     results = Store(store)
     try:
         if campaign:
@@ -91,6 +97,8 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
             # The same error for every sample is the campaign's settings', not the samples'.
             raise InputError(f"every sample failed: {failures.pop()}")
     else:
+        if progress and len(tasks) >= 100000:
+            print(f"study '{s.name}': collecting the table of {len(tasks)} candidates", file=sys.stderr, flush=True)
         header, rows = table(s, tasks, results)
     if output is not None:
         write_csv(os.fspath(output), header, rows)

@@ -21,7 +21,7 @@ import shutil
 import tempfile
 
 from ..core import build_fingerprint
-from .spec import InputError, _fail, _object, _read_json, _string
+from .spec import InputError, _copy_json, _fail, _object, _read_json, _string
 
 _TOP_KEYS = {"format", "version", "name", "description", "samples", "fit", "fits_folder"}
 _SAMPLE_KEYS = {"data", "name", "attributes"}
@@ -105,7 +105,7 @@ def _settings(where, value):
 def read_campaign(source) -> Campaign:
     """A campaign from a file path or from a dict (paths in a dict are relative to the current folder)."""
     if isinstance(source, dict):
-        where, data, path = "campaign", json.loads(json.dumps(source)), os.path.join(os.getcwd(), "campaign.json")
+        where, data, path = "campaign", _copy_json(source, "campaign"), os.path.join(os.getcwd(), "campaign.json")
     else:
         path = os.path.abspath(os.fspath(source))
         where = os.fspath(source)
@@ -228,7 +228,12 @@ def write_fit_files(campaign, tasks, store):
     for _, sample, key, _ in tasks:
         text = store.results[key].get("fit_file")
         if text is not None:
-            write_text_atomic(os.path.join(campaign.fits_folder, sample["name"] + ".fit.json"), text, ".json")
+            path = os.path.join(campaign.fits_folder, sample["name"] + ".fit.json")
+            try:
+                write_text_atomic(path, text, ".json")
+            except OSError as e:
+                raise InputError(f"{path}: cannot write the fit file: {e.strerror or e} (the results store keeps "
+                                 "every fit: run again to write it)") from None
 
 
 def texts_of(campaign):

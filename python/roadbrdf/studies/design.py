@@ -37,35 +37,57 @@ def _pick(v, u):
     return lo + (hi - lo) * u
 
 
+def point_count(study):
+    """How many points the design has (without making them)."""
+    if not study.variables:
+        return 1
+    if study.design["type"] == "grid":
+        n = 1
+        for v in study.variables:
+            n *= len(_levels(v))
+        return n
+    return study.design["count"]
+
+
+def candidate_count(study):
+    """How many candidates the study has: design points x replicates."""
+    return point_count(study) * study.replicates
+
+
 def design_points(study):
-    """The design's points, in order: a list of {variable name: value}."""
+    """The design's points, in order, one at a time: {variable name: value}."""
     variables = study.variables
     d = study.design
     if not variables:
-        return [{}]
+        yield {}
+        return
     if d["type"] == "grid":
-        return [dict(zip((v["name"] for v in variables), combo))
-                for combo in itertools.product(*(_levels(v) for v in variables))]
+        for combo in itertools.product(*(_levels(v) for v in variables)):
+            yield dict(zip((v["name"] for v in variables), combo))
+        return
     n = d["count"]
     seed = d["seed"]
     if d["type"] == "random":
-        return [{v["name"]: _pick(v, uniform(seed, "random", j, i)) for j, v in enumerate(variables)}
-                for i in range(n)]
+        for i in range(n):
+            yield {v["name"]: _pick(v, uniform(seed, "random", j, i)) for j, v in enumerate(variables)}
+        return
     # Latin hypercube: for each variable a permutation of the n strata (sorted by hash), a uniform point inside.
-    columns = []
-    for j, v in enumerate(variables):
-        order = sorted(range(n), key=lambda i: uniform(seed, "lhs-permutation", j, i))
-        columns.append([(order[i] + uniform(seed, "lhs-offset", j, i)) / n for i in range(n)])
-    return [{v["name"]: _pick(v, columns[j][i]) for j, v in enumerate(variables)} for i in range(n)]
+    # The permutations are made once (n integers per variable); the points one at a time.
+    orders = []
+    for j, _ in enumerate(variables):
+        orders.append(sorted(range(n), key=lambda i, j=j: uniform(seed, "lhs-permutation", j, i)))
+    for i in range(n):
+        yield {v["name"]: _pick(v, (orders[j][i] + uniform(seed, "lhs-offset", j, i)) / n)
+               for j, v in enumerate(variables)}
 
 
 def candidates(study):
-    """Every candidate: (index, point, replicate) for each design point and replicate 1..R."""
-    out = []
+    """Every candidate, one at a time: (index, point, replicate) for each design point and replicate 1..R."""
+    index = 0
     for point in design_points(study):
         for r in range(1, study.replicates + 1):
-            out.append((len(out), point, r))
-    return out
+            yield index, point, r
+            index += 1
 
 
 def apply(study, point):

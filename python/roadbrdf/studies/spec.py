@@ -10,8 +10,10 @@ import hashlib
 import json
 import math
 import os
+import re
 
 from .. import _roadbrdf
+from ..core import MAX_JSON_DEPTH, check_json_depth, parse_json_text  # noqa: F401 - used here and by store.py
 
 InputError = _roadbrdf.InputError
 
@@ -93,16 +95,17 @@ def _object(where, key, value, allowed, required=()):
 
 def _read_json(path, where, key):
     try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
+        with open(path, "rb") as f:
+            data = f.read()
     except OSError as e:
         if key is None:
             raise InputError(f"{path}: cannot read: {e.strerror}") from None
         _fail(where, key, f"cannot read {path}: {e.strerror}")
     try:
-        return json.loads(text), text
-    except json.JSONDecodeError as e:
-        raise InputError(f"{path}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise InputError(f"{path}: byte {e.start + 1}: not UTF-8 text") from None
+    return parse_json_text(text, path), text
 
 
 def _hash_fit(study, path, where, key):
@@ -368,10 +371,19 @@ def _base(study, where, data):
     return base_path, base
 
 
+def _copy_json(source, where):
+    """A deep copy of a dict given instead of a file, through JSON (what a file could hold), depth-checked."""
+    try:
+        text = json.dumps(source)
+    except (TypeError, ValueError, RecursionError) as e:
+        raise InputError(f"{where}: not JSON data: {type(e).__name__}: {e}") from None
+    return parse_json_text(text, where)
+
+
 def read_study(source) -> Study:
     """A study from a file path or from a dict (paths in a dict are relative to the current folder)."""
     if isinstance(source, dict):
-        where, data = "study", json.loads(json.dumps(source))
+        where, data = "study", _copy_json(source, "study")
         path = os.path.join(os.getcwd(), "study.json")
     else:
         path = os.fspath(source)

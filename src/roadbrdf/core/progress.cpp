@@ -27,7 +27,18 @@ std::string seconds_text(double s) {
   return buffer;
 }
 
+// Lock-free, so that a signal handler may set it.
+std::atomic<bool> interrupt_flag{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
 }  // namespace
+
+void request_interrupt() noexcept { interrupt_flag.store(true, std::memory_order_relaxed); }
+void clear_interrupt() noexcept { interrupt_flag.store(false, std::memory_order_relaxed); }
+bool interrupt_requested() noexcept { return interrupt_flag.load(std::memory_order_relaxed); }
+void throw_if_interrupted() {
+  if (interrupt_requested()) throw Interrupted();
+}
 
 ProgressBar::ProgressBar(std::string label, std::FILE* out, bool enabled, Clock clock, double delay,
                          double min_interval)
@@ -82,6 +93,7 @@ void ProgressBar::finish() {
 }
 
 void ProgressCounter::add(std::size_t units) {
+  throw_if_interrupted();
   done_ += units;
   if (!callback_ || !report_.try_lock()) return;
   const std::lock_guard<std::mutex> lock(report_, std::adopt_lock);

@@ -14,9 +14,27 @@
 #include <cstdio>
 #include <functional>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 
 namespace roadbrdf {
+
+// Stopping long work early. A front end that must stay responsive to Ctrl-C while the library works
+// (Python: the interpreter only sees a signal between its own instructions) sets the request, e.g.
+// from a signal handler: request_interrupt() only stores an atomic flag, so it is async-signal-safe.
+// The long loops poll it where they report progress (ProgressCounter::add, the fit's multi-start and
+// iteration loops) with throw_if_interrupted(), from any thread: Interrupted unwinds the work like
+// any error (every buffer freed, no output written, TBB cancels the other tasks). The command line
+// never sets it: SIGINT ends the process there, and AtomicFile removes its temporary file.
+class Interrupted : public std::runtime_error {
+ public:
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+void request_interrupt() noexcept;
+void clear_interrupt() noexcept;
+bool interrupt_requested() noexcept;
+// Throws Interrupted when an interrupt was requested (a relaxed atomic load otherwise).
+void throw_if_interrupted();
 
 // How the library's long loops report progress (FitOptions, MixRequest, GeneratorSettings,
 // RenderSettings, AlbedoRequest): done and total units of work; `done` never decreases within one
@@ -26,7 +44,8 @@ using ProgressCallback = std::function<void(std::size_t done, std::size_t total)
 
 // Counts units of work done by any number of threads and forwards the count to a callback from one
 // thread at a time: a worker that finds the callback busy skips the report instead of waiting, so
-// the callback (e.g. a ProgressBar, which is not thread-safe) never slows the work down.
+// the callback (e.g. a ProgressBar, which is not thread-safe) never slows the work down. Every add()
+// polls the interrupt request first (throw_if_interrupted), with or without a callback.
 class ProgressCounter {
  public:
   ProgressCounter(const ProgressCallback& callback, std::size_t total) : callback_(callback), total_(total) {}

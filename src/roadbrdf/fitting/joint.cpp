@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/cost_functions.h"
 #include "roadbrdf/fitting/covariance.h"
 #include "roadbrdf/fitting/statistics.h"
@@ -18,6 +19,8 @@ class ProgressCallback final : public ceres::IterationCallback {
  public:
   explicit ProgressCallback(const FitOptions& o) : o_(o) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    // An interrupt ends the solve here (Ceres is not unwound by an exception); the caller throws.
+    if (interrupt_requested()) return ceres::SOLVER_ABORT;
     if (o_.progress) {
       o_.progress(static_cast<std::size_t>(s.iteration), static_cast<std::size_t>(std::max(1, o_.max_iterations)));
     }
@@ -66,6 +69,7 @@ void fit_joint(const FitData& d, const ParameterLayout& L, const FitOptions& o, 
   ceres::Solver::Summary best_summary;
   int best_index = 0;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
+    throw_if_interrupted();  // core/progress.h
     std::vector<double> x0 = candidates[c];
     nudge_off_bounds(L, x0);
     std::vector<double> shared(static_cast<std::size_t>(S));
@@ -120,9 +124,10 @@ void fit_joint(const FitData& d, const ParameterLayout& L, const FitOptions& o, 
     // order, which changed the last digits of the result with the thread count.
     so.num_threads = 1;
     ProgressCallback cb(o);
-    if (o.progress) so.callbacks.push_back(&cb);
+    so.callbacks.push_back(&cb);  // also polls the interrupt request
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
+    throw_if_interrupted();
     if (c == 0 || summary.final_cost < best_cost) {
       best_cost = summary.final_cost;
       best_shared = shared;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <thread>
 
+#include "roadbrdf/core/progress.h"
 #include "roadbrdf/fitting/cost_functions.h"
 #include "roadbrdf/fitting/covariance.h"
 #include "roadbrdf/fitting/small_solve.h"
@@ -79,6 +80,7 @@ std::vector<double> fit_wavelength(const FitData& d, const ParameterLayout& L, c
   double best_cost = std::numeric_limits<double>::infinity();
   int best_index = 0;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
+    throw_if_interrupted();  // a multi-start of thousands of solves stops at Ctrl-C (core/progress.h)
     std::vector<double> x0 = candidates[c];
     nudge_off_bounds(L, x0);
     if (o.solve_linear) solve_amplitudes(d, L, w, x0);
