@@ -9,8 +9,8 @@
 #include <string>
 
 #include "fuzz/instrument_harnesses.h"
-#include "fuzz/openmaterial3d_harness.h"
 #include "fuzz/luminaire_harnesses.h"
+#include "fuzz/openmaterial3d_harness.h"
 #include "fuzz/parser_harnesses.h"
 
 namespace roadbrdf::fuzz {
