@@ -1,6 +1,6 @@
 // The integrated parameter gradients of the hemispherical integrals (albedo/gradient_integrals.h)
-// against central differences of the value integrals themselves, taken far tighter (the method the
-// uncertainties used before the gradient was integrated): for every bundled model, the standard
+// against central differences of the value integrals themselves, taken far tighter (an independent
+// route to the same derivatives, through the value quadrature only): for every bundled model, the standard
 // uncertainty u = sqrt(g^T Sigma g) of black-sky (two sun zeniths) and white-sky albedo must agree to 1 %,
 // and so must each scaled derivative u(p_k) dA/dp_k (to 1 % of u).
 #include <gtest/gtest.h>

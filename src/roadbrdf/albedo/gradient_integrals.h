@@ -19,7 +19,7 @@
 // The integrator's geometries do not depend on the parameters, and each is prepared once for all
 // sets (black_sky_integrator.h evaluate_sets); the value integrals take the same path.
 //
-// Why not central differences of whole integrals (the previous method): a difference quotient with
+// Why not central differences of whole integrals: a difference quotient with
 // step h = 0.01 u(p) needs the two integrals to ~1e-11 for the quotient to be accurate, 2 P such
 // integrals per value; the integrated gradient needs one pass at the albedo's own tolerance.
 #pragma once
