@@ -38,7 +38,8 @@ class SetBatchIntegrand {
 inline void evaluate_sets(const Model& model, const Geometry* geometries, std::size_t n_geometries,
                           const double* params, std::size_t n_sets, double* out, std::vector<double>& column) {
   const std::unique_ptr<PreparedGeometries> prepared = model.prepare(geometries, n_geometries);
-  if (typeid(*prepared) == typeid(PreparedGeometries)) {
+  const PreparedGeometries& own = *prepared;
+  if (typeid(own) == typeid(PreparedGeometries)) {
     model.evaluate_batch(geometries, n_geometries, params, n_sets, out);
     return;
   }
