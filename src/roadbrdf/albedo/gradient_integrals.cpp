@@ -17,7 +17,32 @@ namespace {
 // the set once per geometry (value and full gradient) and hands each component its derivative.
 class ScaledDerivativeModel final : public Model, public detail::SetBatchIntegrand {
  public:
-  explicit ScaledDerivativeModel(const Model& base) : Model(describe(base)), base_(base), P_(base.parameter_count()) {}
+  explicit ScaledDerivativeModel(const Model& base)
+      : Model(describe(base)),
+        base_(base),
+        P_(base.parameter_count()),
+        affine_(detail::affine_in_every_parameter(base.description()) && gradient_is_constant(base)) {}
+
+  // The affine claim of the metadata checked on the gradient itself: equal at two distant parameter
+  // sets at a few scattered geometries (relative 1e-9).
+  static bool gradient_is_constant(const Model& base) {
+    const std::size_t P = base.parameter_count();
+    const ModelDescription& d = base.description();
+    std::vector<double> a(P), b(P);
+    for (std::size_t k = 0; k < P; ++k) {
+      a[k] = d.parameters[k].lower + 0.3 * (d.parameters[k].upper - d.parameters[k].lower);
+      b[k] = d.parameters[k].lower + 0.8 * (d.parameters[k].upper - d.parameters[k].lower);
+    }
+    std::vector<Geometry> g;
+    for (int i = 0; i < 6; ++i) g.push_back(geometry_from_radians(0.2 * i, 0.1, 0.25 * i + 0.1, 0.9 * i + 0.3));
+    std::vector<double> f(g.size()), ja(g.size() * P), jb(g.size() * P);
+    base.evaluate_batch_with_gradient(g.data(), g.size(), a.data(), f.data(), ja.data());
+    base.evaluate_batch_with_gradient(g.data(), g.size(), b.data(), f.data(), jb.data());
+    for (std::size_t i = 0; i < ja.size(); ++i) {
+      if (!(std::fabs(ja[i] - jb[i]) <= 1e-9 * (std::fabs(ja[i]) + std::fabs(jb[i])) + 1e-300)) return false;
+    }
+    return true;
+  }
 
   static ModelDescription describe(const Model& base) {
     ModelDescription d = base.description();
@@ -42,10 +67,15 @@ class ScaledDerivativeModel final : public Model, public detail::SetBatchIntegra
     const std::size_t W = P_ + 2;
     const std::unique_ptr<PreparedGeometries> prepared = base_.prepare(geometries, n_geometries);
     std::vector<double> values(n_geometries), jacobian(n_geometries * P_);
+    // A model affine in every parameter has the same gradient at every set (its kernels): one
+    // evaluation serves all components.
+    const bool constant_gradient = affine_ && n_sets > 1;
     std::size_t c = 0;
     while (c < n_sets) {
       const double* p = params + c * W;
-      base_.evaluate_prepared_with_gradient(*prepared, p, values.data(), jacobian.data());
+      if (c == 0 || !constant_gradient) {
+        base_.evaluate_prepared_with_gradient(*prepared, p, values.data(), jacobian.data());
+      }
       // Every following component of the same set takes its derivative from this evaluation.
       std::size_t end = c;
       do {
@@ -95,6 +125,7 @@ class ScaledDerivativeModel final : public Model, public detail::SetBatchIntegra
  private:
   const Model& base_;
   std::size_t P_;
+  bool affine_;
 };
 
 // The components wanted (scale > 0), as parameter sets of ScaledDerivativeModel.
