@@ -92,7 +92,8 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
            azimuth_mean: bool = False,
            diffuse_fraction: float | str | None = None, atmosphere: str | None = None,
            spectrum: str | None = None, wavelengths: float | str | Sequence[float] | None = None,
-           illuminant: str | None = None, tolerance: float = 1e-5) -> AlbedoResult:
+           illuminant: str | None = None, tolerance: float = 1e-5,
+           uncertainty: bool = True) -> AlbedoResult:
     """Black-sky, white-sky and blue-sky albedo, as ``roadbrdf albedo --json`` computes them.
 
     ``model``: a :class:`Model` (with ``params``), a :class:`SpectralModel`, or a fit / MIX.json file.
@@ -106,19 +107,27 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     ``broadband`` (solar-weighted values), ``luminous``, ``coverage`` (a fit's measured directions and
     the fractions of the black- and white-sky integrals outside them, ``None`` when unknown),
     ``uncertainty`` (standard uncertainties of the same albedos from the parameter covariance of a fit, or
-    of a mixture from its end-members' fits; ``None`` when unknown), ``units`` and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
+    of a mixture from its end-members' fits; ``None`` when unknown or with ``uncertainty=False``, which skips
+    their computation), ``units`` and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
     """
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
     common = (zeniths, None if sun_azimuth is None else as_float(sun_azimuth, "sun_azimuth"), bool(azimuth_mean),
               "" if diffuse_fraction is None else str(diffuse_fraction), atmosphere or "", spectrum or "",
               _roadbrdf.values(wavelengths, "wavelengths", True), illuminant or "",
-              as_float(tolerance, "tolerance"))
+              as_float(tolerance, "tolerance"), _flag(uncertainty, "uncertainty"))
     model = model_argument(model, "model")
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")
         return _warn_notes(AlbedoResult(_roadbrdf.albedo_spectral(model._spectral, *common)))
     return _warn_notes(AlbedoResult(_roadbrdf.albedo_model(model._model, model.parameter_values(params), *common)))
+
+
+def _flag(value, name: str) -> bool:
+    """A True/False argument; anything else is a TypeError naming it (not silently truthy)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise TypeError(f"{name}: expected True or False, got {type(value).__name__}")
 
 
 def _warn_notes(report: AlbedoResult) -> AlbedoResult:

@@ -22,7 +22,7 @@ albedo::AlbedoRequest request_from(const std::vector<double>& sun_zenith, std::o
                                    bool azimuth_mean, const std::string& diffuse_fraction,
                                    const std::string& atmosphere, const std::string& spectrum,
                                    const std::vector<double>& wavelengths, const std::string& illuminant,
-                                   double tolerance) {
+                                   double tolerance, bool uncertainty = true) {
   albedo::AlbedoRequest request;
   request.sun_zenith_deg = sun_zenith;
   request.sun_azimuth_deg = sun_azimuth;
@@ -33,6 +33,7 @@ albedo::AlbedoRequest request_from(const std::vector<double>& sun_zenith, std::o
   request.wavelengths = wavelengths;
   request.illuminant = illuminant;
   request.tolerance = tolerance;
+  request.uncertainty = uncertainty;
   return request;
 }
 
@@ -46,9 +47,10 @@ std::shared_ptr<AlbedoReport> report(const SpectralModel& model, const std::vect
                                      std::optional<double> sun_azimuth, bool azimuth_mean,
                                      const std::string& diffuse_fraction, const std::string& atmosphere,
                                      const std::string& spectrum, const std::vector<double>& wavelengths,
-                                     const std::string& illuminant, double tolerance) {
-  const albedo::AlbedoRequest request = request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction,
-                                                     atmosphere, spectrum, wavelengths, illuminant, tolerance);
+                                     const std::string& illuminant, double tolerance, bool uncertainty) {
+  const albedo::AlbedoRequest request =
+      request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum, wavelengths,
+                   illuminant, tolerance, uncertainty);
   auto result = std::make_shared<AlbedoReport>();
   {
     SigintGuard interruptible;
@@ -89,11 +91,11 @@ void bind_albedo(py::module_& m) {
         [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters,
            const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
            const std::string& diffuse_fraction, const std::string& atmosphere, const std::string& spectrum,
-           const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
+           const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance, bool uncertainty) {
           check_parameters(model->description(), parameters);
           const SpectralModel sm(std::const_pointer_cast<const Model>(model), parameters);
           return report(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum, wavelengths,
-                        illuminant, tolerance);
+                        illuminant, tolerance, uncertainty);
         });
 }
 

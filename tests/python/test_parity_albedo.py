@@ -88,3 +88,21 @@ def test_albedo_result_is_written_by_the_command_line_writer(cli, tmp_path):
     with pytest.raises(roadbrdf.InputError, match="format must be"):
         result.write(tmp_path / "x", format="xml")
     assert math.isclose(result.black_sky[0][0], 0.1, rel_tol=1e-9)
+
+
+def test_albedo_without_uncertainty_gives_the_same_values(cli, tmp_path):
+    """--no-uncertainty / uncertainty=False: the same values, no uncertainty (Lambert: u(A) = u(albedo))."""
+    fit, wavelengths, albedos = _spectral_fit(tmp_path / "lambert.fit.json")
+    document = json.loads(fit.read_text())
+    document["fits"][0]["stderr"] = {"albedo": [0.01] * len(wavelengths)}
+    document["fits"][0]["correlation"] = [[[1.0]]] * len(wavelengths)
+    fit.write_text(json.dumps(document))
+    full = roadbrdf.albedo(fit, sun_zenith="0:60:30", diffuse_fraction=0.2)
+    assert np.allclose(full["uncertainty"]["white_sky"], 0.01, rtol=0, atol=1e-12)
+    values = roadbrdf.albedo(fit, sun_zenith="0:60:30", diffuse_fraction=0.2, uncertainty=False)
+    assert values["uncertainty"] is None
+    for key in ("black_sky", "white_sky", "blue_sky", "broadband"):
+        assert values[key] == full[key]
+    from_cli = json.loads(cli("albedo", fit, "--sun-zenith", "0:60:30", "--diffuse-fraction", "0.2",
+                              "--no-uncertainty", "--json").stdout)
+    assert dict(values) == from_cli

@@ -28,7 +28,9 @@ struct AlbedoRequest {
   std::string spectrum;
   std::vector<double> wavelengths;  // [nm] of a fit file; empty: its own
   std::string illuminant;           // "" or A, D65, a file: also the luminous (V(lambda)-weighted) albedo
-  double tolerance = 1e-5;          // absolute quadrature tolerance per value
+  double tolerance = 1e-5;          // absolute quadrature tolerance per value (and per standard uncertainty)
+  // Standard uncertainties from a fit's parameter covariance (albedo/uncertainty.h); false: values only.
+  bool uncertainty = true;
   // Integrals done: one black-sky integral per sun zenith (all wavelengths at once), then the
   // white-sky one.
   ProgressCallback progress;

@@ -1,8 +1,11 @@
 // compute_albedo's uncertainty stage (report_stages.h): standard uncertainties of every albedo from
 // the fit's parameter covariance, per wavelength and broadband (albedo/uncertainty.h explains the
 // linearised propagation and why it is preferred to sampling here).
+#include <fmt/core.h>
+
 #include <cmath>
 
+#include "roadbrdf/albedo/gradient_integrals.h"
 #include "roadbrdf/albedo/report_stages.h"
 #include "roadbrdf/albedo/uncertainty.h"
 #include "roadbrdf/core/math.h"
@@ -49,6 +52,10 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
                                   ProgressCounter& progress, std::vector<std::string>& notes) {
   const std::vector<double>& covariance = sm.parameter_covariance();
   if (covariance.empty()) return nullptr;
+  if (!a.uncertainty) {
+    notes.emplace_back("standard uncertainties not computed: values only were requested");
+    return nullptr;
+  }
   // At the fit's own wavelengths only: an interpolated parameter set has no covariance of its own.
   if (!sets.spectral || !a.wavelengths.empty()) {
     notes.emplace_back(
@@ -66,12 +73,15 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
 
   const std::vector<double>& zeniths = a.sun_zenith_deg;
   progress.add_total(zeniths.size() + 1);
-  QuadratureSettings tight;
-  tight.tolerance = kDerivativeTolerance;
-  const SetIntegral white = [&](const std::vector<double>& p, std::size_t n) {
-    return white_sky(model, p.data(), n, tight).value;
-  };
-  const std::vector<double> g_white = parameter_gradient(model.description(), sets.params, n_sets, covariance, white);
+  const GradientPlan plan = gradient_plan(covariance, n_sets, n_params, a.tolerance);
+  if (plan.undefined_sets > 0) {
+    notes.push_back(fmt::format(
+        "the parameter covariance is undefined at {} of {} wavelengths (a parameter on its bound, or a singular "
+        "fit): their standard uncertainties are null and were not computed",
+        plan.undefined_sets, n_sets));
+  }
+  const std::vector<double> g_white =
+      plan.with_nans(white_sky_gradient(model, sets.params.data(), n_sets, plan.scale, plan.settings).gradient);
   progress.add();
 
   const bool with_broadband = broadband.formed && !broadband.black_means.empty();
@@ -79,10 +89,10 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
   nlohmann::json bb_black = nlohmann::json::array(), bb_blue = nlohmann::json::array();
   for (std::size_t z = 0; z < zeniths.size(); ++z) {
     const double theta_s = zeniths[z] * kDegree;
-    const SetIntegral black = [&](const std::vector<double>& p, std::size_t n) {
-      return black_sky_at(model, p, n, theta_s, azimuth, tight).value;
-    };
-    const std::vector<double> g_black = parameter_gradient(model.description(), sets.params, n_sets, covariance, black);
+    const std::vector<double> g_black =
+        plan.with_nans(black_sky_gradient(model, sets.params.data(), n_sets, plan.scale, theta_s, azimuth.phi_s,
+                                          azimuth.mean, plan.settings)
+                           .gradient);
     u_black.push_back(propagated(g_black));
     if (with_broadband) bb_black.push_back(broadband_of({&g_black}, {&broadband.black_means[z].first}));
     if (!sky.diffuse.empty()) {

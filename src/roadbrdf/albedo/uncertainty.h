@@ -1,11 +1,12 @@
 // Standard uncertainties of albedos from the covariance of the fitted parameters.
 //
-// The per-wavelength propagation u^2(A) = g^T Sigma g (GUM, JCGM 100:2008, eq. 10) and its step rule
-// are core/propagation.h (parameter_gradient, propagate), shared with the r-tables; the albedo's own
-// part is the integral tolerance of the derivatives and the broadband (solar-weighted) combination
-// below. tests/albedo/uncertainty_test.cpp checks the linearised values against brute-force sampling
-// of the parameter distribution. The integral is taken to kDerivativeTolerance so that its error
-// (below 1e-11 / h_k, h_k = 0.01 u(p_k)) is negligible against the derivative.
+// The per-wavelength propagation u^2(A) = g^T Sigma g (GUM, JCGM 100:2008, eq. 10) is
+// core/propagation.h (propagate), shared with the r-tables; the gradient g = dA/dp is integrated
+// with the albedo itself (albedo/gradient_integrals.h: the integral of the BRDF's analytic
+// parameter gradient by the same adaptive rule). The albedo's own parts are the choice of what to
+// integrate (GradientPlan) and the broadband (solar-weighted) combination below.
+// tests/albedo/uncertainty_test.cpp checks the linearised values against brute-force sampling of the
+// parameter distribution, and against central differences of whole integrals.
 //
 // Wavelengths are treated as independent (per-wavelength fits share no parameter); a joint fit's
 // shared parameters correlate wavelengths, which this per-wavelength uncertainty does not carry.
@@ -14,11 +15,30 @@
 #include <cstddef>
 #include <vector>
 
+#include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/propagation.h"
 
 namespace roadbrdf::albedo {
 
-constexpr double kDerivativeTolerance = 1e-11;
+// The gradient components the uncertainties need, from the covariance (n_sets x P x P): at a set
+// whose covariance is defined (no NaN entry), scale = u(p_k) for every parameter of positive variance
+// (a fixed parameter contributes nothing); a set with an undefined covariance (a parameter on its
+// bound, a singular fit) has an undefined u whatever its gradient, so nothing of it is integrated and
+// its gradient is NaN. Each scaled component u(p_k) dA/dp_k is integrated to the albedo's own
+// tolerance. By the quadrature's estimates the error of u is then at most P times that
+// (gradient_integrals.h); the estimates, those of the coarser rule, are conservative: on the bench's
+// 2151-band Hapke fit (bench/albedo_uncertainty_bench.sh) a tolerance 10 times tighter changes no u
+// by more than 2.5e-7 (0.02 %), against the tolerance 1e-5.
+struct GradientPlan {
+  std::vector<double> scale;  // n_sets x P
+  std::vector<bool> undefined;
+  std::size_t undefined_sets = 0;
+  QuadratureSettings settings;
+  // `gradient` with NaN at the undefined sets.
+  std::vector<double> with_nans(std::vector<double> gradient) const;
+};
+GradientPlan gradient_plan(const std::vector<double>& covariance, std::size_t n_sets, std::size_t parameter_count,
+                           double tolerance);
 
 // A broadband (solar-weighted) value B = sum_t sum_k c_t[k] A_t[k] of per-wavelength albedos A_t
 // (one term, or SPECTRL2's blue-sky: direct-weighted black-sky plus diffuse-weighted white-sky), c_t

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "roadbrdf/albedo/black_sky_integrator.h"
+#include "roadbrdf/albedo/gradient_integrals.h"
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
@@ -117,10 +118,15 @@ bool is_reciprocal(const Model& model, const double* params, std::size_t n_sets)
 
 }  // namespace
 
-SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
-                           const QuadratureSettings& settings) {
-  const bool isotropic = is_isotropic(model, params, n_sets);
-  if (isotropic && is_reciprocal(model, params, n_sets)) {
+namespace detail {
+
+bool white_sky_reciprocal(const Model& model, const double* params, std::size_t n_sets) {
+  return is_isotropic(model, params, n_sets) && is_reciprocal(model, params, n_sets);
+}
+
+SpectralIntegral white_sky_integral(const Model& model, const double* params, std::size_t n_sets,
+                                    const QuadratureSettings& settings, bool reciprocal) {
+  if (reciprocal) {
     // Reciprocity: int int_{mu_r > mu_i} = int int_{mu_r < mu_i}, so the inner integral runs over
     // mu_r in [0, mu_i] only and counts twice. Grazing mu_i (the costly black-sky integrals of lobes
     // near the horizon) then integrate over a thin band only, and Oren-Nayar's kink at
@@ -138,6 +144,7 @@ SpectralIntegral white_sky(const Model& model, const double* params, std::size_t
       return r;
     });
   }
+  const bool isotropic = is_isotropic(model, params, n_sets);
   return integrate_cosine_weighted(n_sets, settings, [&](double mu, double tolerance) {
     QuadratureSettings inner = settings;
     inner.tolerance = tolerance;
@@ -145,6 +152,14 @@ SpectralIntegral white_sky(const Model& model, const double* params, std::size_t
     return isotropic ? black_sky(model, params, n_sets, theta, 0.0, inner)
                      : black_sky_azimuth_mean(model, params, n_sets, theta, inner);
   });
+}
+
+}  // namespace detail
+
+SpectralIntegral white_sky(const Model& model, const double* params, std::size_t n_sets,
+                           const QuadratureSettings& settings) {
+  return detail::white_sky_integral(model, params, n_sets, settings,
+                                    detail::white_sky_reciprocal(model, params, n_sets));
 }
 
 }  // namespace roadbrdf::albedo

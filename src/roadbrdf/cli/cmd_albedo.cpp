@@ -1,7 +1,7 @@
 // roadbrdf albedo (FIT.json | MODEL -p ...) [--sun-zenith D|LIST|A:B:STEP] [--diffuse-fraction X|FILE |
 //   --atmosphere spectrl2[:aod=...,water=...,ozone=...,pressure=...]] [--spectrum
 //   astm-g173-global|astm-g173-direct|FILE]
-//   [--fit NAME] [--wavelengths LIST|A:B:STEP] [--illuminant A|D65] [--json] [-o FILE]
+//   [--fit NAME] [--wavelengths LIST|A:B:STEP] [--illuminant A|D65] [--no-uncertainty] [--json] [-o FILE]
 // Black-sky, white-sky and blue-sky albedo per wavelength and solar-weighted (report eqs. 2.19-2.22).
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -43,6 +43,7 @@ struct AlbedoArgs {
   std::string wavelengths;
   std::string illuminant;
   double tolerance = 1e-5;
+  bool no_uncertainty = false;
   bool as_json = false;
   std::string output;
   bool quiet = false;
@@ -66,6 +67,7 @@ void run(const AlbedoArgs& a) {
     request.wavelengths = parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
+  request.uncertainty = !a.no_uncertainty;
   ProgressBar bar("albedo: integrals", stderr, ProgressBar::terminal_enabled(a.quiet));
   request.progress = bar.callback();
   const nlohmann::json report = albedo::compute_albedo(sm, request);
@@ -108,6 +110,8 @@ void register_albedo_command(CLI::App& app) {
   command->add_option("--illuminant", args.illuminant,
                       "Also the luminous (V(lambda)-weighted) albedo: A, D65 or a file");
   command->add_option("--tolerance", args.tolerance, "Absolute quadrature tolerance per value (default 1e-5)");
+  command->add_flag("--no-uncertainty", args.no_uncertainty,
+                    "Skip the standard uncertainties from a fit's parameter covariance (values only)");
   command->add_flag("--json", args.as_json, "JSON output");
   command->add_option("-o,--output", args.output, "Output file (default: standard output)");
   add_quiet_flag(command, args.quiet);

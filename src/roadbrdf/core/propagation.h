@@ -8,6 +8,11 @@
 // model, and the linear form costs 2 evaluations per parameter instead of thousands; the albedo and
 // r-table tests check it against brute-force sampling of the parameter distribution.
 //
+// The albedo integrates g with the albedo itself (albedo/gradient_integrals.h) and uses propagate()
+// only; the step rule below serves quantities that are cheap to evaluate again (the r-table's values
+// at its few geometries, derivative_step; a mixture's single-scattering albedo inversion,
+// parameter_gradient).
+//
 // Step rule: g is a central difference with step h_k = 0.01 u(p_k), one-sided where p_k +- h_k
 // would leave the parameter's physical range (ModelDescription::physical_range); a parameter whose
 // variance is 0 (fixed) or undefined (NaN) gets no step and contributes nothing (0) resp. NaN.
