@@ -130,9 +130,10 @@ Statistics statistics(const std::vector<double>& values) {
 }
 double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 
-// Horizontal illuminance [lx] at (x, y) on the road from the luminaires within 5 H (maintained).
-double illuminance_at(const std::vector<PlacedLuminaire>& luminaires, const InstalledPhotometry& photometry,
-                      double mf, double x, double y) {
+}  // namespace
+
+double horizontal_illuminance(const std::vector<PlacedLuminaire>& luminaires, const InstalledPhotometry& photometry,
+                              double mf, double x, double y) {
   double e = 0.0;
   for (const PlacedLuminaire& l : luminaires) {
     if (std::abs(l.x - x) > kCountedHeights * l.z) continue;
@@ -144,11 +145,14 @@ double illuminance_at(const std::vector<PlacedLuminaire>& luminaires, const Inst
   return mf * e;
 }
 
+namespace {
+
 double strip_average(const std::vector<PlacedLuminaire>& luminaires, const InstalledPhotometry& photometry, double mf,
                      const CalculationGrid& grid, double y_lo, double width) {
   double sum = 0.0;
   for (double x : grid.x) {
-    for (int j = 0; j < 3; ++j) sum += illuminance_at(luminaires, photometry, mf, x, y_lo + (j + 0.5) * width / 3.0);
+    for (int j = 0; j < 3; ++j)
+      sum += horizontal_illuminance(luminaires, photometry, mf, x, y_lo + (j + 0.5) * width / 3.0);
   }
   return sum / (3.0 * static_cast<double>(grid.x.size()));
 }
@@ -299,7 +303,7 @@ LightingFigures compute_lighting(const Installation& inst, const Luminaire& lumi
   fig.illuminance.resize(grid.size());
   for (std::size_t i = 0; i < grid.x.size(); ++i) {
     for (std::size_t j = 0; j < grid.y.size(); ++j) {
-      fig.illuminance[i * grid.y.size() + j] = illuminance_at(luminaires, photometry, mf, grid.x[i], grid.y[j]);
+      fig.illuminance[i * grid.y.size() + j] = horizontal_illuminance(luminaires, photometry, mf, grid.x[i], grid.y[j]);
     }
   }
   const Statistics e = statistics(fig.illuminance);
@@ -339,9 +343,9 @@ LightingFigures compute_lighting(const Installation& inst, const Luminaire& lumi
     fig.f_TI = std::max(fig.f_TI, o.f_TI);
   }
   if (fig.missing_cells > 0) {
-    diagnostics.note("rtable_missing_cells",
-                     fmt::format("{} r-table look-ups touched cells the table does not define; they count as 0",
-                                 fig.missing_cells));
+    diagnostics.note(
+        "rtable_missing_cells",
+        fmt::format("{} r-table look-ups touched cells the table does not define; they count as 0", fig.missing_cells));
   }
   if (fig.beyond_table > 0) {
     diagnostics.note("beyond_rtable", fmt::format("{} luminaire contributions at tan(gamma) > 12 count as 0 (beyond "

@@ -62,13 +62,18 @@ CalculationGrid standard_grid(const Road& road, double spacing_m);
 double interpolate_r(const photometry::RTable& table, double tan_gamma, double beta_deg, std::size_t& missing,
                      std::size_t& beyond);
 
+// Horizontal illuminance [lx] at (x, y) on the road: sum of I cos^3(eps) / h^2 x mf over the
+// luminaires within 5 h of x along the road.
+double horizontal_illuminance(const std::vector<PlacedLuminaire>& luminaires, const InstalledPhotometry& photometry,
+                              double mf, double x, double y);
+
 struct ObserverFigures {
-  std::size_t lane = 0;        // 0 = the lane along the right-hand edge
-  double x_m = 0.0, y_m = 0.0;  // plan position (eye 1.5 m above the road)
+  std::size_t lane = 0;           // 0 = the lane along the right-hand edge
+  double x_m = 0.0, y_m = 0.0;    // plan position (eye 1.5 m above the road)
   std::vector<double> luminance;  // [cd/m^2] at grid point (i, j): luminance[i * grid.y.size() + j]
   double L_av = 0.0, U_o = 0.0;
-  double U_l = 0.0;               // along the centre line of the observer's lane
-  double f_TI = 0.0;              // [%] the largest over the observer's TI positions
+  double U_l = 0.0;                // along the centre line of the observer's lane
+  double f_TI = 0.0;               // [%] the largest over the observer's TI positions
   double f_TI_observer_x_m = 0.0;  // where that largest value was found
   double veiling_luminance = 0.0;  // L_v [cd/m^2] there, new installation (no maintenance factor)
   double initial_L_av = 0.0;       // L_av / MF [cd/m^2], the new installation's, which f_TI uses

@@ -35,7 +35,7 @@ struct ClassAssessment {
 ClassAssessment assess_class(const LightingFigures& figures);
 
 struct EnergyFigures {
-  double luminaires_per_km = 0.0;   // lighting this carriageway
+  double luminaires_per_km = 0.0;  // lighting this carriageway
   double power_per_luminaire_w = 0.0;
   double power_per_km_w = 0.0;
   double area_per_period_m2 = 0.0;  // carriageway over one spacing

@@ -110,8 +110,10 @@ std::optional<double> optional_q0(const JsonNode& node) {
 }  // namespace
 
 SurfaceSpec surface_from_json(const JsonNode& node, const std::string& base_dir) {
-  if (!node.is_object()) node.fail("must be an object: {\"rtable\": NAME}, {\"rtable_file\": PATH}, {\"file\": PATH} "
-                                   "or {\"model\": NAME, \"parameters\": {...}}");
+  if (!node.is_object())
+    node.fail(
+        "must be an object: {\"rtable\": NAME}, {\"rtable_file\": PATH}, {\"file\": PATH} "
+        "or {\"model\": NAME, \"parameters\": {...}}");
   SurfaceSpec spec;
   const int forms = node.has("rtable") + node.has("rtable_file") + node.has("file") + node.has("model");
   if (forms != 1) node.fail("needs exactly one of rtable, rtable_file, file, model");

@@ -72,11 +72,11 @@ struct LuminaireLayout {
 struct SurfaceSpec {
   enum class Kind { standard_table, rtable_file, model_file, model };
   Kind kind = Kind::standard_table;
-  std::string name;            // standard_table: R1-R4, C1, C2; model: the model name
-  std::string path;            // rtable_file, model_file (a FIT.json or MIX.json), resolved
-  std::string selection;       // model_file: the fit's model / the mixture's method ("" = the file's best)
-  std::optional<double> q0;    // tables: scale the table to this Q0 [sr^-1]
-  OptionSet options;           // model: its options
+  std::string name;          // standard_table: R1-R4, C1, C2; model: the model name
+  std::string path;          // rtable_file, model_file (a FIT.json or MIX.json), resolved
+  std::string selection;     // model_file: the fit's model / the mixture's method ("" = the file's best)
+  std::optional<double> q0;  // tables: scale the table to this Q0 [sr^-1]
+  OptionSet options;         // model: its options
   std::vector<std::pair<std::string, double>> parameters;  // model: given parameters (others default)
 };
 
@@ -102,8 +102,8 @@ Installation parse_installation(const Json& document, const std::string& file, c
 
 // One luminaire where it stands.
 struct PlacedLuminaire {
-  double x = 0.0, y = 0.0, z = 0.0;  // light centre [m]
-  double azimuth_deg = 0.0;          // plan direction of its C0 plane, counter-clockwise from +x
+  double x = 0.0, y = 0.0, z = 0.0;     // light centre [m]
+  double azimuth_deg = 0.0;             // plan direction of its C0 plane, counter-clockwise from +x
   bool lights_this_carriageway = true;  // false: the other half of a twin-central pair
 };
 

@@ -99,8 +99,9 @@ LightingResult evaluate_installation(const Installation& installation, const Lum
   result.installed_flux_lm = layout.flux_lm ? *layout.flux_lm : luminaire.flux_lm;
   result.power_per_luminaire_w = layout.power_w ? *layout.power_w : luminaire.power_w;
   if (!(result.power_per_luminaire_w > 0.0)) {
-    diagnostics.warn("no_power", "the luminaire's power is unknown (give luminaires.power_w in the installation): "
-                                 "the energy figures are 0");
+    diagnostics.warn("no_power",
+                     "the luminaire's power is unknown (give luminaires.power_w in the installation): "
+                     "the energy figures are 0");
   }
   result.figures = compute_lighting(installation, luminaire, surface, diagnostics);
   result.lighting_class = assess_class(result.figures);
@@ -113,8 +114,9 @@ LightingResult evaluate_installation(const Installation& installation, const Lum
   if (result.figures.has_brdf_luminance) {
     result.alpha_variation = alpha_variation(result.figures);
   } else {
-    diagnostics.note("no_brdf_alpha", "the surface is an r-table only: the luminance at each point's true "
-                                      "observation angle needs the BRDF");
+    diagnostics.note("no_brdf_alpha",
+                     "the surface is an r-table only: the luminance at each point's true "
+                     "observation angle needs the BRDF");
   }
   result.diagnostics = std::move(diagnostics);
   return result;

@@ -19,11 +19,11 @@
 namespace roadbrdf::lighting {
 
 struct LightingRequest {
-  std::string installation;        // the installation file
-  std::string surface;             // replaces the installation's surface (surface_from_text)
-  std::string target_class;        // an M class: the least flux and power per km that meet it
+  std::string installation;         // the installation file
+  std::string surface;              // replaces the installation's surface (surface_from_text)
+  std::string target_class;         // an M class: the least flux and power per km that meet it
   double operating_hours = 4000.0;  // [h per year] for D_E
-  std::string map;                 // CSV of the grid values (optional output)
+  std::string map;                  // CSV of the grid values (optional output)
 
   static std::span<const RequestField<LightingRequest>> fields();
   // Throws FieldError.
@@ -35,9 +35,9 @@ struct LightingRequest {
 struct AlphaVariation {
   double alpha_min_deg = 0.0, alpha_max_deg = 0.0;
   double L_av_true_alpha = 0.0, U_o_true_alpha = 0.0, U_l_true_alpha = 0.0;  // governing, as the r-table's
-  double L_av_alpha_1 = 0.0;  // from the BRDF at alpha = 1 deg (the r-table's convention, no interpolation)
-  double L_av_difference = 0.0;         // L_av_true_alpha / L_av - 1
-  double max_point_difference = 0.0;    // largest |L_true / L_rtable - 1| over the points and observers
+  double L_av_alpha_1 = 0.0;              // from the BRDF at alpha = 1 deg (the r-table's convention, no interpolation)
+  double L_av_difference = 0.0;           // L_av_true_alpha / L_av - 1
+  double max_point_difference = 0.0;      // largest |L_true / L_rtable - 1| over the points and observers
   double interpolation_difference = 0.0;  // L_av_alpha_1 / L_av - 1: the table's interpolation alone
 };
 

@@ -21,8 +21,12 @@ json grid_json(const LightingFigures& fig) {
     }
     return out;
   };
-  json g = {{"spacing_m", fig.grid.spacing_m}, {"step_x_m", fig.grid.step_x_m}, {"step_y_m", fig.grid.step_y_m},
-            {"x_m", fig.grid.x},           {"y_m", fig.grid.y},             {"E_lx", rows(fig.illuminance)}};
+  json g = {{"spacing_m", fig.grid.spacing_m},
+            {"step_x_m", fig.grid.step_x_m},
+            {"step_y_m", fig.grid.step_y_m},
+            {"x_m", fig.grid.x},
+            {"y_m", fig.grid.y},
+            {"E_lx", rows(fig.illuminance)}};
   json l = json::array(), lt = json::array();
   for (const ObserverFigures& o : fig.observers) {
     l.push_back(rows(o.luminance));
@@ -145,16 +149,15 @@ std::string LightingResult::summary_text() const {
   std::string s;
   s += fmt::format("installation: {} ({}, {} lanes x {:g} m, spacing {:g} m, height {:g} m)\n", installation.file,
                    name_of(installation.luminaires.arrangement), installation.road.lanes,
-                   installation.road.lane_width_m, installation.luminaires.spacing_m,
-                   installation.luminaires.height_m);
+                   installation.road.lane_width_m, installation.luminaires.spacing_m, installation.luminaires.height_m);
   s += fmt::format("luminaire: {} ({:g} lm, {:g} W, MF {:g})\n", luminaire_name, installed_flux_lm,
                    power_per_luminaire_w, f.maintenance_factor);
   s += fmt::format("surface: {} (Q0 {:.4f} sr^-1{})\n", surface.description, surface.q0,
                    surface.road_class.empty() ? "" : fmt::format(", S1 {:.3f}, {}", surface.s1, surface.road_class));
   s += fmt::format("grid: {} x {} points (D = {:.3g} m, d = {:.3g} m), {} observers\n", f.grid.x.size(),
                    f.grid.y.size(), f.grid.step_x_m, f.grid.step_y_m, f.observers.size());
-  s += fmt::format("L_av {:.3f} cd/m^2   U_o {:.3f}   U_l {:.3f}   f_TI {:.1f} %   R_EI {:.3f}\n", f.L_av, f.U_o,
-                   f.U_l, f.f_TI, f.R_EI);
+  s += fmt::format("L_av {:.3f} cd/m^2   U_o {:.3f}   U_l {:.3f}   f_TI {:.1f} %   R_EI {:.3f}\n", f.L_av, f.U_o, f.U_l,
+                   f.f_TI, f.R_EI);
   s += fmt::format("E_av {:.2f} lx   E_min {:.2f} lx   U_o_E {:.3f}\n", f.E_av, f.E_min, f.U_o_E);
   std::string limits;
   for (const std::string& c : lighting_class.limiting) limits += (limits.empty() ? "" : ", ") + c;

@@ -139,9 +139,9 @@ ReflectanceTable hemispherical_reflectance(const RoadSurface& surface) {
   settings.tolerance = 1e-5;
   for (double theta : table.theta_deg) {
     const double rad = deg_to_rad(theta);
-    const albedo::SpectralIntegral integral = isotropic ? albedo::black_sky(m, params.data(), sets, rad, 0.0, settings)
-                                                        : albedo::black_sky_azimuth_mean(m, params.data(), sets, rad,
-                                                                                         settings);
+    const albedo::SpectralIntegral integral =
+        isotropic ? albedo::black_sky(m, params.data(), sets, rad, 0.0, settings)
+                  : albedo::black_sky_azimuth_mean(m, params.data(), sets, rad, settings);
     double value = 0.0;
     for (std::size_t k = 0; k < sets; ++k) value += weights[k] * integral.value[k];
     table.reflectance.push_back(value);

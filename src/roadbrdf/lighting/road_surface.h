@@ -18,13 +18,13 @@
 namespace roadbrdf::lighting {
 
 struct RoadSurface {
-  std::string description;  // "CIE R3 (Q0 0.07 sr^-1)", "lambert", "F1.MIX.json"...
+  std::string description;   // "CIE R3 (Q0 0.07 sr^-1)", "lambert", "F1.MIX.json"...
   photometry::RTable table;  // reduced luminance coefficients at alpha = 1 deg, R = 1e4 r
   double q0 = 0.0;           // of `table`, over the standard region [sr^-1]
   double s1 = 0.0;
-  std::string road_class;                        // R class from S1 ("" when S1 is undefined)
-  std::optional<SpectralModel> model;            // the BRDF, when known
-  photometry::SpectralWeighting weighting;       // how `model` is reduced to one value (photometric, CIE A)
+  std::string road_class;                   // R class from S1 ("" when S1 is undefined)
+  std::optional<SpectralModel> model;       // the BRDF, when known
+  photometry::SpectralWeighting weighting;  // how `model` is reduced to one value (photometric, CIE A)
 
   bool has_brdf() const { return model.has_value(); }
   // The photometrically weighted BRDF [sr^-1] at `geometries`; requires has_brdf().

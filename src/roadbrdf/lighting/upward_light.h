@@ -14,8 +14,8 @@
 namespace roadbrdf::lighting {
 
 struct UpwardLight {
-  double luminaire_flux_lm = 0.0;  // one luminaire's flux as installed, integrated over the sphere
-  double ULOR = 0.0;               // fraction of it above the horizontal, as installed (tilt included)
+  double luminaire_flux_lm = 0.0;              // one luminaire's flux as installed, integrated over the sphere
+  double ULOR = 0.0;                           // fraction of it above the horizontal, as installed (tilt included)
   double direct_upward_lm_per_km = 0.0;        // from the luminaires that light this carriageway
   double flux_on_carriageway_lm_per_km = 0.0;  // incident on the carriageway, from every luminaire
   std::optional<double> reflected_upward_lm_per_km;  // needs a BRDF
