@@ -34,6 +34,8 @@ from .surfaces import (Surface, flat_surface, gaussian_slope_surface, read_surfa
                       surface)
 from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dataset, read_instrument,
                           read_manifest, read_usgs, usgs_dataset)
+# Road lighting (docs/lighting.md): roadbrdf.lighting(...) = `roadbrdf lighting`, a roadbrdf.Result.
+from ._roadbrdf import lighting
 # Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
 from .studies import study
 
@@ -43,6 +45,6 @@ __all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "Sp
            "albedo", "AlbedoResult", "road_to_zenith_azimuth",
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
-           "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study"]
+           "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study", "lighting"]
 
 __version__ = _roadbrdf.__version__

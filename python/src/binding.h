@@ -21,6 +21,7 @@ namespace roadbrdf::python {
 
 void bind_extensions(pybind11::module_& m);
 void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces, render
+void bind_lighting_calc(pybind11::module_& m);  // bind_lighting_calc.cpp: roadbrdf.lighting
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 

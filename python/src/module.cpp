@@ -182,4 +182,5 @@ PYBIND11_MODULE(_roadbrdf, m) {
 
   roadbrdf::python::bind_extensions(m);
   roadbrdf::python::bind_surface(m);
+  roadbrdf::python::bind_lighting_calc(m);
 }
