@@ -189,6 +189,9 @@ def _parser():
     p.add_argument("--band", help="fit file: unweighted mean over a band A:B [nm]")
     p.add_argument("--illuminant", default="", help="fit file: photometric weighting V(lambda) x A (default)|D65|FILE")
     _output(p)
+    p = sub.add_parser("luminaire", help="luminaire polar curves: C0-C180 and C90-C270 in cd/klm")
+    p.add_argument("file", metavar="FILE", help="luminaire photometry file: EULUMDAT (.ldt) or IES LM-63 (.ies)")
+    _output(p)
     from .plot_study import add_parser as add_study_parser  # design studies (plot_study.py)
     from .plot_params import add_parser as add_params_parser  # plot_params.py
     add_study_parser(sub, _output)
@@ -245,6 +248,8 @@ def _draw(a):
             band = (float(lo), float(hi))
         plot.rtable(table, params, wavelength=a.wavelength, band=band, illuminant=a.illuminant,
                     fit=a.fit if is_model_file(a.table) else None, **out)
+    elif a.kind == "luminaire":
+        plot.luminaire(a.file, **out)
     elif a.kind == "study":
         from .plot_study import run as run_study
         run_study(a)
@@ -259,7 +264,7 @@ def main(argv=None):
     check_output_folder(a.output)
     # As every roadbrdf command: the figure must not replace one of the files it is drawn from.
     inputs = []
-    for role in ("data", "model", "fit_file", "result", "table", "inputs"):
+    for role in ("data", "model", "fit_file", "result", "table", "inputs", "file"):
         value = getattr(a, role, None)
         for path in (value if isinstance(value, list) else [value]):
             if isinstance(path, str):

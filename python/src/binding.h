@@ -20,7 +20,8 @@
 namespace roadbrdf::python {
 
 void bind_extensions(pybind11::module_& m);
-void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces, render
+void bind_surface(pybind11::module_& m);        // bind_surface.cpp: virtual surfaces, render
+void bind_lighting(pybind11::module_& m);       // bind_lighting.cpp: luminaires
 void bind_lighting_calc(pybind11::module_& m);  // bind_lighting_calc.cpp: roadbrdf.lighting
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;

@@ -182,5 +182,6 @@ PYBIND11_MODULE(_roadbrdf, m) {
 
   roadbrdf::python::bind_extensions(m);
   roadbrdf::python::bind_surface(m);
+  roadbrdf::python::bind_lighting(m);
   roadbrdf::python::bind_lighting_calc(m);
 }

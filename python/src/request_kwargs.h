@@ -45,7 +45,6 @@ inline double number(const pybind11::handle& value, const std::string& field) {
       throw FieldError(field, "expected a number, got " + type_name(value));
     }
   }
-  // float_ converts an object (through __float__), not a bare handle.
   const double x = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
   if (!std::isfinite(x)) throw FieldError(field, "expected a finite number");
   return x;

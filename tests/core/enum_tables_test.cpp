@@ -19,6 +19,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/instrument.h"
+#include "roadbrdf/lighting/luminaire.h"
 #include "roadbrdf/mixing/mixing.h"
 #include "roadbrdf/mixing/mixture_model.h"
 #include "roadbrdf/photometry/rtable.h"
@@ -28,6 +29,7 @@
 namespace roadbrdf {
 namespace {
 
+using lighting::PhotometricSymmetry;
 using mixing::Method;
 using mixing::MixtureKind;
 using photometry::ClassSystem;
@@ -154,6 +156,21 @@ std::string_view expected(ComponentKind v) {
       return "filler";
     case ComponentKind::kPigment:
       return "pigment";
+  }
+  return "";
+}
+std::string_view expected(PhotometricSymmetry v) {
+  switch (v) {
+    case PhotometricSymmetry::none:
+      return "none";
+    case PhotometricSymmetry::rotational:
+      return "rotational";
+    case PhotometricSymmetry::c0_c180:
+      return "c0-c180";
+    case PhotometricSymmetry::c90_c270:
+      return "c90-c270";
+    case PhotometricSymmetry::quadrants:
+      return "quadrants";
   }
   return "";
 }
@@ -292,6 +309,7 @@ TEST(EnumTables, EveryTableNamesEveryValueOnceAndNothingElse) {
   expect_complete_table<ClassSystem>("photometry::ClassSystem");
   expect_complete_table<RTableFormat>("photometry::RTableFormat");
   expect_complete_table<Sampling>("surface::Sampling");
+  expect_complete_table<PhotometricSymmetry>("lighting::PhotometricSymmetry");
 }
 
 TEST(EnumTables, AnErrorNamesTheFieldTheNamesAndTheNearestName) {

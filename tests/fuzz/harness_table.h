@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fuzz/instrument_harnesses.h"
+#include "fuzz/luminaire_harnesses.h"
 #include "fuzz/parser_harnesses.h"
 
 namespace roadbrdf::fuzz {
@@ -22,9 +23,11 @@ inline const std::map<std::string, Harness>& harnesses() {
       {"cross_sections", cross_sections_one_input},
       {"curet", curet_one_input},
       {"dataset", dataset_one_input},
+      {"eulumdat", eulumdat_one_input},
       {"fit_file", fit_file_one_input},
       {"formulation", formulation_one_input},
       {"geometry", geometry_one_input},
+      {"ies", ies_one_input},
       {"manifest", manifest_one_input},
       {"mix_file", mix_file_one_input},
       {"rtable_csv", rtable_csv_one_input},

@@ -22,6 +22,7 @@ void register_albedo_command(CLI::App& app);
 void register_plot_command(CLI::App& app);
 void register_study_command(CLI::App& app);
 void register_report_command(CLI::App& app);
+void register_luminaire_command(CLI::App& app);
 void register_lighting_command(CLI::App& app);
 // [command-declarations]
 

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   roadbrdf::cli::register_plot_command(app);
   roadbrdf::cli::register_study_command(app);
   roadbrdf::cli::register_report_command(app);
+  roadbrdf::cli::register_luminaire_command(app);
   roadbrdf::cli::register_lighting_command(app);
   // [command-registrations]
   int status = 0;

@@ -86,10 +86,10 @@ void file_arguments(const Request& request, RequestFields<Request> fields, std::
   for (const RequestField<Request>& field : fields) {
     if (field.file == FileRole::none) continue;
     std::vector<FileArgument>& into = field.file == FileRole::input ? inputs : outputs;
-    // Appended piece by piece: g++ 12 reports a false -Wrestrict for "`" + std::string(...) here.
-    std::string role(1, '`');
+    // Built by appending: g++ 12 warns falsely (-Wrestrict) on "`" + std::string(...).
+    std::string role = "`";
     role += field.name;
-    role += '`';
+    role += "`";
     if (const auto* text = std::get_if<std::string Request::*>(&field.member)) {
       if (!(request.*(*text)).empty()) into.push_back({role, request.*(*text)});
     } else if (const auto* list = std::get_if<std::vector<std::string> Request::*>(&field.member)) {

@@ -68,3 +68,27 @@ void IntensityDistribution::check_consistent() const {
 }
 
 }  // namespace roadbrdf::lighting
+
+namespace roadbrdf::lighting {
+
+double LuminousArea::projected_m2(double c, double gamma) const {
+  constexpr double kDegree = 3.14159265358979323846 / 180.0;
+  const double cos_c = std::cos(c * kDegree);
+  const double sin_c = std::sin(c * kDegree);
+  const double cos_g = std::cos(gamma * kDegree);
+  const double sin_g = std::sin(gamma * kDegree);
+  const double bottom = circular ? 0.25 * 3.14159265358979323846 * along_c0_m * along_c0_m : along_c0_m * along_c90_m;
+  double side = 0.0;
+  if (circular) {
+    // The height of the cylinder's side towards C, between the two given heights of its quadrant.
+    const double h_c = cos_c >= 0.0 ? heights_m[0] : heights_m[2];
+    const double h_s = sin_c >= 0.0 ? heights_m[1] : heights_m[3];
+    side = along_c0_m * (h_c * cos_c * cos_c + h_s * sin_c * sin_c);
+  } else {
+    side = along_c90_m * (heights_m[0] * std::max(cos_c, 0.0) + heights_m[2] * std::max(-cos_c, 0.0)) +
+           along_c0_m * (heights_m[1] * std::max(sin_c, 0.0) + heights_m[3] * std::max(-sin_c, 0.0));
+  }
+  return bottom * std::max(cos_g, 0.0) + side * std::max(sin_g, 0.0);
+}
+
+}  // namespace roadbrdf::lighting

@@ -10,12 +10,49 @@
 // in candela for the luminaire as rated (`flux_lm`); intensity() interpolates it.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/enum_names.h"
+
 namespace roadbrdf::lighting {
+
+// The symmetry a file declares (EULUMDAT ISYM; IES LM-63 by its range of horizontal angles). The
+// distribution is stored expanded; the symmetry says which planes were measured.
+enum class PhotometricSymmetry { none, rotational, c0_c180, c90_c270, quadrants };
+inline constexpr EnumName<PhotometricSymmetry> kPhotometricSymmetryNames[] = {
+    {PhotometricSymmetry::none, "none", "every C-plane given"},
+    {PhotometricSymmetry::rotational, "rotational", "one C-plane: the same in every azimuth"},
+    {PhotometricSymmetry::c0_c180, "c0-c180", "mirror image about the C0-C180 plane"},
+    {PhotometricSymmetry::c90_c270, "c90-c270", "mirror image about the C90-C270 plane"},
+    {PhotometricSymmetry::quadrants, "quadrants", "mirror image about both planes"},
+};
+constexpr std::span<const EnumName<PhotometricSymmetry>> enum_names(PhotometricSymmetry) {
+  return kPhotometricSymmetryNames;
+}
+
+// The luminous area of a luminaire (EULUMDAT fields 16-21; IES LM-63 luminous opening): a
+// rectangle of sides `along_c0_m` (along the C0-C180 axis) and `along_c90_m` (along the C90-C270
+// axis), or a disc of diameter `along_c0_m` (circular), with side faces of height heights_m =
+// {C0, C90, C180, C270}: the face seen from that C-plane. All zero when the file gives none.
+struct LuminousArea {
+  double along_c0_m = 0.0;
+  double along_c90_m = 0.0;
+  bool circular = false;
+  std::array<double, 4> heights_m{};
+
+  // Area of the luminous area projected on a plane normal to (C, gamma) [m^2]: the bottom face
+  // A cos(gamma) (for gamma < 90 deg) plus the side faces seen from that azimuth, sin(gamma) times
+  //   a90 h_C0 max(cos C, 0) + a0 h_C90 max(sin C, 0) + a90 h_C180 max(-cos C, 0) + a0 h_C270 max(-sin C, 0)
+  // for a rectangle (the face seen from C0 spans the C90-C270 side a90), and D h(C) for a disc (a
+  // cylinder's side, h = h_C0 cos^2 C + h_C90 sin^2 C in the quadrant of C). The area behind
+  // luminance = I / A_p (CIE 117, CIE 190 for UGR tables).
+  double projected_m2(double c_deg, double gamma_deg) const;
+};
 
 struct IntensityDistribution {
   // C-planes [deg], increasing, in [0, 360): the distribution is periodic in C (C = 360 is C = 0).
@@ -48,6 +85,9 @@ struct Luminaire {
   double lamp_flux_lm = 0.0;           // flux of its lamps (lamp set 1) [lm]; 0 when the file gives absolute photometry
   double power_w = 0.0;                // system power [W] as the file gives it (0 = unknown)
   nlohmann::json metadata;             // everything else the file says (symmetry, lamp sets, luminous area...)
+  PhotometricSymmetry symmetry = PhotometricSymmetry::none;  // as the file declares it
+  bool absolute_photometry = false;  // intensities for the luminaire itself (no lamp flux to scale them by)
+  LuminousArea luminous_area;        // for luminances (projected_m2)
 };
 
 }  // namespace roadbrdf::lighting

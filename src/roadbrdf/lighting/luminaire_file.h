@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/lighting/luminaire.h"
@@ -14,5 +15,8 @@ namespace roadbrdf::lighting {
 // lamp sets kept in the metadata) goes to `diagnostics`. Throws FileError naming file, line and
 // column for a malformed file.
 Luminaire read_luminaire(const std::string& path, Diagnostics& diagnostics);
+
+// The same from a file's content; `name` is the file named in errors and in Luminaire::file.
+Luminaire parse_luminaire(std::string_view content, const std::string& name, Diagnostics& diagnostics);
 
 }  // namespace roadbrdf::lighting
