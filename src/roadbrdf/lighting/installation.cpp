@@ -53,10 +53,12 @@ Road read_road(const JsonNode& node) {
   node.check_keys({"lanes", "lane_width_m", "median_width_m"});
   Road road;
   road.lanes = static_cast<int>(node.at("lanes").integer(1, 20));
-  road.lane_width_m = positive(node.at("lane_width_m"));
+  const JsonNode lane_width = node.at("lane_width_m");
+  road.lane_width_m = positive(lane_width);
+  if (road.lane_width_m > 10.0) lane_width.fail("must not exceed 10 m");
   if (const auto median = node.find("median_width_m")) {
     road.median_width_m = median->number();
-    if (road.median_width_m < 0.0) median->fail("must not be negative");
+    if (road.median_width_m < 0.0 || road.median_width_m > 100.0) median->fail("must lie in [0, 100] m");
   }
   return road;
 }
@@ -75,12 +77,16 @@ LuminaireLayout read_layout(const JsonNode& node, const std::string& base_dir, c
     }
     layout.side = enum_member<RoadSide>(*side);
   }
-  layout.spacing_m = positive(node.at("spacing_m"));
+  const JsonNode spacing = node.at("spacing_m");
+  layout.spacing_m = positive(spacing);
+  // The grid has one row per 3 m of spacing; beyond 300 m a road is no longer lit by one installation.
+  if (layout.spacing_m > 300.0) spacing.fail("must not exceed 300 m");
   const JsonNode height = node.at("height_m");
   layout.height_m = height.number();
   // The observers' eyes are 1.5 m above the road; the threshold-increment screening needs the
   // luminaires above them.
   if (!(layout.height_m > 1.5)) height.fail("must exceed the observer's eye height of 1.5 m");
+  if (layout.height_m > 100.0) height.fail("must not exceed 100 m");
   if (const auto o = node.find("overhang_m")) {
     layout.overhang_m = o->number();
     if (std::abs(layout.overhang_m) > road.width_m() + 50.0) o->fail("is farther from the road than 50 m");
