@@ -106,3 +106,26 @@ void BM_UpwardLight(benchmark::State& state) {
 BENCHMARK(BM_UpwardLight)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+namespace {
+
+void BM_HemisphericalReflectance(benchmark::State& state) {
+  Diagnostics d;
+  const RoadSurface surface = surface_from_model(fitted_like_model(), "bench", d);
+  for (auto _ : state) {
+    const ReflectanceTable t = hemispherical_reflectance(surface);
+    benchmark::DoNotOptimize(t.reflectance.data());
+  }
+}
+BENCHMARK(BM_HemisphericalReflectance)->Unit(benchmark::kMillisecond);
+
+void BM_DirectUpwardFlux(benchmark::State& state) {
+  const Luminaire luminaire = road_luminaire();
+  const InstalledPhotometry p = installed_photometry(luminaire, standard_installation().luminaires);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(hemisphere_flux(p, PlacedLuminaire{0, 0, 10, 0, true}, true));
+  }
+}
+BENCHMARK(BM_DirectUpwardFlux)->Unit(benchmark::kMillisecond);
+
+}  // namespace

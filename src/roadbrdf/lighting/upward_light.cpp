@@ -47,7 +47,7 @@ double strip_flux(const InstalledPhotometry& photometry, const PlacedLuminaire& 
 }  // namespace
 
 double hemisphere_flux(const InstalledPhotometry& photometry, const PlacedLuminaire& at, bool upper) {
-  constexpr int kZenith = 180, kAzimuth = 360;  // 0.5 deg x 1 deg cells
+  constexpr int kZenith = 90, kAzimuth = 180;  // 1 deg x 2 deg cells
   const double dt = 0.5 * kPi / kZenith, dp = 2.0 * kPi / kAzimuth;
   double flux = 0.0;
   for (int i = 0; i < kZenith; ++i) {

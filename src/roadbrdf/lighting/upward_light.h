@@ -30,7 +30,7 @@ UpwardLight upward_light(const Installation& installation, const Luminaire& lumi
 
 // Flux [lm] of one installed luminaire (flux override, no maintenance factor) within the upper
 // (upper = true) or lower hemisphere of the road, for the luminaire at `at`: the integral of the
-// intensity over the solid angle (cells of 0.5 deg in zenith angle and 1 deg in azimuth, each
+// intensity over the solid angle (cells of 1 deg in zenith angle and 2 deg in azimuth, each
 // weighted by its exact solid angle).
 double hemisphere_flux(const InstalledPhotometry& photometry, const PlacedLuminaire& at, bool upper);
 
