@@ -121,6 +121,12 @@ nlohmann::json LightingResult::to_json() const {
     j["alpha_variation"] = nullptr;
   }
   j["grid"] = grid_json(f);
+  json positions = json::array();  // the luminaires around the field, for plans
+  for (const PlacedLuminaire& l : luminaires_between(installation.road, installation.luminaires,
+                                                     -0.25 * f.grid.spacing_m, 1.25 * f.grid.spacing_m)) {
+    positions.push_back({l.x, l.y});
+  }
+  j["luminaires_m"] = positions;
   j["units"] = {{"L_av", "cd/m^2"},
                 {"U_o", "1"},
                 {"U_l", "1"},
