@@ -34,13 +34,19 @@ def test_same_figures_from_both_front_ends(cli, tmp_path):
         _needs_reader(str(e))
         raise
     value = _cli_json(cli, installation, "--class", "M4", "--operating-hours", "4100")
-    for key in ["L_av", "U_o", "U_l", "f_TI", "R_EI", "E_av", "E_min", "U_o_E", "M_class", "limited_by"]:
+    for key in ["L_av", "U_o", "U_l", "f_TI", "R_EI", "E_av", "E_min", "U_o_E", "D_P", "D_E", "M_class", "limited_by"]:
         assert py[key] == value[key], key
     assert py["energy"] == value["energy"]
     assert py["least_flux"] == value["least_flux"]
     assert py["upward"] == value["upward"]
     assert py["alpha_variation"] == value["alpha_variation"]
     assert py["energy"]["operating_hours"] == 4100
+    # EN 13201-5 from the figures themselves: D_P = P / (E_av A), D_E = P t / A over one spacing.
+    area = 2 * 3.5 * 30.0
+    assert py["D_P"] == pytest.approx(90.0 / (py["E_av"] * area), rel=1e-12)
+    assert py["D_E"] == pytest.approx(90.0 * 4100 / area, rel=1e-12)
+    if py["least_flux"]["feasible"]:
+        assert py["least_flux"]["dimming_factor"] == pytest.approx(0.75 / py["L_av"], rel=1e-12)
     # A Lambertian road reflects its albedo at every incidence.
     assert py["upward"]["reflectance"] == pytest.approx(0.2, abs=1e-4)
     assert py["alpha_variation"]["alpha_min_deg"] > 0.9 and py["alpha_variation"]["alpha_max_deg"] < 1.5

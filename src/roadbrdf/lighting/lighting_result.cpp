@@ -64,6 +64,8 @@ nlohmann::json LightingResult::to_json() const {
   j["E_av"] = f.E_av;
   j["E_min"] = f.E_min;
   j["U_o_E"] = f.U_o_E;
+  j["D_P"] = energy.D_P;
+  j["D_E"] = energy.D_E;
   j["M_class"] = lighting_class.met.empty() ? json(nullptr) : json(lighting_class.met);
   j["next_class"] = lighting_class.next.empty() ? json(nullptr) : json(lighting_class.next);
   j["limited_by"] = lighting_class.limiting;
