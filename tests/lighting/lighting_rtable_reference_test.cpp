@@ -8,11 +8,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/lighting/calculation.h"
 #include "roadbrdf/lighting/luminaire_file.h"
+#include "roadbrdf/models/registry.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "support/paths.h"
 
@@ -77,9 +79,11 @@ double reference_r(const photometry::RTable& table, double t, double beta) {
   return quadratic(&ts[i], rows, t);
 }
 
-void compare_with_reference(const Luminaire& luminaire, const std::string& table_name, Arrangement arrangement) {
-  const std::string file = test::source_dir() + "/data/third-party/rtables/" + table_name + "-table.dat";
-  photometry::RTable table = photometry::read_rtable(file, photometry::RTableFormat::radiance).table;
+// Every grid luminance of `surface` against the reference; with a BRDF also the luminance at each
+// point's true observation angle alpha = atan(1.5 m / distance to the observer), from the model itself.
+void compare_with_reference(const Luminaire& luminaire, const RoadSurface& surface, Arrangement arrangement) {
+  const photometry::RTable& table = surface.table;
+  const std::string table_name = surface.description;
   Installation inst;
   inst.road.lanes = 3;
   inst.road.lane_width_m = 3.25;
@@ -88,7 +92,6 @@ void compare_with_reference(const Luminaire& luminaire, const std::string& table
   inst.luminaires.height_m = 11.0;
   inst.luminaires.overhang_m = 1.2;
   inst.luminaires.maintenance_factor = 0.85;
-  const RoadSurface surface = surface_from_table(table, table_name);  // at its own (nominal) Q0
   Diagnostics d;
   const LightingFigures fig = compute_lighting(inst, luminaire, surface, d);
   const double w = inst.road.width_m(), h = 11.0, s = 42.0;
@@ -110,7 +113,8 @@ void compare_with_reference(const Luminaire& luminaire, const std::string& table
     for (std::size_t i = 0; i < fig.grid.x.size(); ++i) {
       for (std::size_t j = 0; j < fig.grid.y.size(); ++j) {
         const double px = (i + 0.5) * s / 14.0, py = (j + 0.5) * 3.25 / 3.0;
-        double l = 0.0;
+        double l = 0.0, l_true = 0.0;
+        const double alpha = std::atan2(1.5, std::hypot(ox - px, oy - py)) / kDeg;
         for (const auto& [lx, ly, turn] : poles) {
           if (std::abs(lx - px) > 5.0 * h) continue;
           const double foot = std::hypot(lx - px, ly - py);
@@ -122,10 +126,19 @@ void compare_with_reference(const Luminaire& luminaire, const std::string& table
           double c = std::atan2(py - ly, px - lx) / kDeg - turn;
           c = std::fmod(c + 720.0, 360.0);
           const double gamma = std::atan(foot / h) / kDeg;
-          l += reference_r(table, foot / h, beta) * luminaire.distribution.intensity(c, gamma) * 0.85 / (h * h);
+          const double intensity = luminaire.distribution.intensity(c, gamma);
+          l += reference_r(table, foot / h, beta) * intensity * 0.85 / (h * h);
+          if (surface.has_brdf()) {
+            // L = f_r(gamma, alpha, beta) E, E = I cos^3(gamma) / h^2 (MF included).
+            const Geometry g = geometry_from_road_angles({gamma, alpha, beta, 0.0});
+            const double f_r = surface.model->model().evaluate(surface.model->parameter_table().data(), g);
+            l_true += f_r * intensity * 0.85 * std::pow(std::cos(gamma * kDeg), 3) / (h * h);
+          }
         }
-        const double got = o.luminance[i * fig.grid.y.size() + j];
+        const std::size_t k = i * fig.grid.y.size() + j;
+        const double got = o.luminance[k];
         worst = std::max(worst, std::abs(got - l) / l);
+        if (surface.has_brdf()) worst = std::max(worst, std::abs(o.luminance_true_alpha[k] - l_true) / l_true);
         ++compared;
       }
     }
@@ -134,12 +147,28 @@ void compare_with_reference(const Luminaire& luminaire, const std::string& table
   EXPECT_LT(worst, 1e-9) << table_name;
 }
 
+RoadSurface cie_table(const std::string& name) {
+  const std::string file = test::source_dir() + "/data/third-party/rtables/" + name + "-table.dat";
+  return surface_from_table(photometry::read_rtable(file, photometry::RTableFormat::radiance).table, name);
+}
+
 TEST(LightingRTableReference, EveryCieTableUnderARoadLuminaire) {
   const Luminaire luminaire = road_luminaire();
   for (const char* name : {"r1", "r2", "r3", "r4", "c1", "c2"}) {
-    compare_with_reference(luminaire, name, Arrangement::single_sided);
-    compare_with_reference(luminaire, name, Arrangement::staggered);
+    compare_with_reference(luminaire, cie_table(name), Arrangement::single_sided);
+    compare_with_reference(luminaire, cie_table(name), Arrangement::staggered);
   }
+}
+
+TEST(LightingRTableReference, LuminanceAtTheTrueObservationAngle) {
+  // A rough diffuse surface whose luminance depends on the viewing direction (Oren-Nayar, sigma 0.4).
+  const std::shared_ptr<const Model> model(make_model("oren-nayar"));
+  std::vector<double> p = model->description().default_parameters();
+  p[*model->description().parameter_index("sigma")] = 0.4;
+  Diagnostics d;
+  const RoadSurface surface = surface_from_model(SpectralModel(model, p), "oren-nayar", d);
+  compare_with_reference(road_luminaire(), surface, Arrangement::single_sided);
+  compare_with_reference(road_luminaire(), surface, Arrangement::staggered);
 }
 
 TEST(LightingRTableReference, TheSharedCopyOfTheTablesIsTheBundledOne) {
@@ -169,8 +198,8 @@ TEST(LightingRTableReference, HellaRoadLuminaire) {
   } catch (const FileError& e) {
     GTEST_SKIP() << "the luminaire reader cannot read " << file << " yet: " << e.what();
   }
-  compare_with_reference(luminaire, "r3", Arrangement::single_sided);
-  compare_with_reference(luminaire, "c2", Arrangement::staggered);
+  compare_with_reference(luminaire, cie_table("r3"), Arrangement::single_sided);
+  compare_with_reference(luminaire, cie_table("c2"), Arrangement::staggered);
 }
 
 }  // namespace
