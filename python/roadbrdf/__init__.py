@@ -13,9 +13,9 @@ command line (naming the Python argument where the command line names its flag).
 
 The package mirrors the library's folders: ``roadbrdf.core``, ``roadbrdf.model`` (models/),
 ``roadbrdf.io``, ``roadbrdf.fitting``, ``roadbrdf.photometry``, ``roadbrdf.mixing``,
-``roadbrdf.albedos`` (albedo/), ``roadbrdf.surfaces`` (surface/) and ``roadbrdf.lighting``, plus
-``roadbrdf.instruments`` and ``roadbrdf.plot``; three module names differ from their folder by a letter so that they do not hide
-the functions ``roadbrdf.models()``, ``roadbrdf.albedo()`` and ``roadbrdf.surface()``. Everything
+``roadbrdf.albedos`` (albedo/), ``roadbrdf.surfaces`` (surface/) and ``roadbrdf.lightings`` (lighting/), plus
+``roadbrdf.instruments`` and ``roadbrdf.plot``; four module names differ from their folder by a letter so that they do not hide
+the functions ``roadbrdf.models()``, ``roadbrdf.albedo()``, ``roadbrdf.surface()`` and ``roadbrdf.lighting()``. Everything
 public is also available from ``roadbrdf`` itself.
 """
 
@@ -32,9 +32,10 @@ from .mixing import mix, mix_calibrate
 from .albedos import AlbedoResult, albedo
 from .surfaces import (Surface, flat_surface, gaussian_slope_surface, read_surface, render, render_albedo,
                       surface)
-from .lighting import luminaire
 from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dataset, read_instrument,
                           read_manifest, read_usgs, usgs_dataset)
+# Road lighting (docs/lighting.md): roadbrdf.lighting(...) = `roadbrdf lighting`, a roadbrdf.Result.
+from .lightings import lighting, luminaire
 # Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
 from .studies import study
 # Road markings (EN 1436) and model grids for other tools: request-contract functions returning a Result.
@@ -48,6 +49,6 @@ __all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "Sp
            "data_directory", "Surface", "surface", "read_surface", "flat_surface", "gaussian_slope_surface",
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
            "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study", "marking", "export",
-           "luminaire"]
+           "luminaire", "lighting"]
 
 __version__ = _roadbrdf.__version__

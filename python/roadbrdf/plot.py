@@ -21,6 +21,7 @@ Kinds (one module each):
   spectral albedo (plot_albedo.py);
 * :func:`rtable` - r-table heat map, and the sample's (S1, Q0) among the standard classes (plot_rtable.py);
 * :func:`luminaire` - a luminaire's polar curves C0-C180 and C90-C270 in cd/klm (plot_luminaire.py);
+* :func:`lighting` - plan of an installation with the luminance map of `roadbrdf lighting` (plot_lighting.py);
 * :func:`params` - fitted parameters +- standard error against wavelength or a group column (plot_params.py);
 * :func:`study_plane`, :func:`study_sensitivity` - design-study results (plot_study.py).
 
@@ -38,10 +39,11 @@ from .plot_albedo import albedo
 from .plot_rtable import rtable
 from .plot_params import params
 from .plot_luminaire import luminaire
+from .plot_lighting import lighting
 from .plot_study import plane as study_plane, sensitivity as study_sensitivity
 from .plot_cli import main, run
 
-__all__ = ["spectral", "hemisphere", "plane", "fit_quality", "albedo", "rtable", "params", "luminaire", "study_plane",
+__all__ = ["spectral", "hemisphere", "plane", "fit_quality", "albedo", "rtable", "params", "luminaire", "lighting", "study_plane",
            "study_sensitivity", "save", "main"]
 
 if __name__ == "__main__":

@@ -192,6 +192,10 @@ def _parser():
     p = sub.add_parser("luminaire", help="luminaire polar curves: C0-C180 and C90-C270 in cd/klm")
     p.add_argument("file", metavar="FILE", help="luminaire photometry file: EULUMDAT (.ldt) or IES LM-63 (.ies)")
     _output(p)
+    p = sub.add_parser("lighting", help="plan of a road-lighting installation with its luminance map in cd/m^2")
+    p.add_argument("result", metavar="RESULT", help="JSON of roadbrdf lighting --json")
+    p.add_argument("--lane", type=int, default=1, help="the observer's lane (1 = the right-hand lane)")
+    _output(p)
     from .plot_study import add_parser as add_study_parser  # design studies (plot_study.py)
     from .plot_params import add_parser as add_params_parser  # plot_params.py
     add_study_parser(sub, _output)
@@ -250,6 +254,8 @@ def _draw(a):
                     fit=a.fit if is_model_file(a.table) else None, **out)
     elif a.kind == "luminaire":
         plot.luminaire(a.file, **out)
+    elif a.kind == "lighting":
+        plot.lighting(a.result, lane=a.lane, **out)
     elif a.kind == "study":
         from .plot_study import run as run_study
         run_study(a)

@@ -37,10 +37,10 @@ class SigintGuard {
   bool active_ = false;
 };
 void register_interrupted();
-void bind_surface(pybind11::module_& m);  // bind_surface.cpp: virtual surfaces, render
-void bind_marking(pybind11::module_& m);  // bind_marking.cpp: road markings, model export
-void bind_surface(pybind11::module_& m);   // bind_surface.cpp: virtual surfaces, render
-void bind_lighting(pybind11::module_& m);  // bind_lighting.cpp: luminaires
+void bind_surface(pybind11::module_& m);        // bind_surface.cpp: virtual surfaces, render
+void bind_marking(pybind11::module_& m);        // bind_marking.cpp: road markings, model export
+void bind_lighting(pybind11::module_& m);       // bind_lighting.cpp: luminaires
+void bind_lighting_calc(pybind11::module_& m);  // bind_lighting_calc.cpp: roadbrdf.lighting
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 

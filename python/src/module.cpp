@@ -185,4 +185,5 @@ PYBIND11_MODULE(_roadbrdf, m) {
   roadbrdf::python::bind_surface(m);
   roadbrdf::python::bind_marking(m);
   roadbrdf::python::bind_lighting(m);
+  roadbrdf::python::bind_lighting_calc(m);
 }

@@ -19,6 +19,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/instrument.h"
+#include "roadbrdf/lighting/installation.h"
 #include "roadbrdf/lighting/luminaire.h"
 #include "roadbrdf/mixing/mixing.h"
 #include "roadbrdf/mixing/mixture_model.h"
@@ -29,7 +30,9 @@
 namespace roadbrdf {
 namespace {
 
+using lighting::Arrangement;
 using lighting::PhotometricSymmetry;
+using lighting::RoadSide;
 using mixing::Method;
 using mixing::MixtureKind;
 using photometry::ClassSystem;
@@ -174,6 +177,28 @@ std::string_view expected(PhotometricSymmetry v) {
   }
   return "";
 }
+std::string_view expected(Arrangement v) {
+  switch (v) {
+    case Arrangement::single_sided:
+      return "single-sided";
+    case Arrangement::staggered:
+      return "staggered";
+    case Arrangement::opposite:
+      return "opposite";
+    case Arrangement::twin_central:
+      return "twin-central";
+  }
+  return "";
+}
+std::string_view expected(RoadSide v) {
+  switch (v) {
+    case RoadSide::right:
+      return "right";
+    case RoadSide::left:
+      return "left";
+  }
+  return "";
+}
 std::string_view expected(MixtureKind v) {
   switch (v) {
     case MixtureKind::kLinear:
@@ -310,6 +335,8 @@ TEST(EnumTables, EveryTableNamesEveryValueOnceAndNothingElse) {
   expect_complete_table<RTableFormat>("photometry::RTableFormat");
   expect_complete_table<Sampling>("surface::Sampling");
   expect_complete_table<PhotometricSymmetry>("lighting::PhotometricSymmetry");
+  expect_complete_table<Arrangement>("lighting::Arrangement");
+  expect_complete_table<RoadSide>("lighting::RoadSide");
 }
 
 TEST(EnumTables, AnErrorNamesTheFieldTheNamesAndTheNearestName) {

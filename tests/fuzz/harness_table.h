@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "fuzz/installation_harnesses.h"
 #include "fuzz/instrument_harnesses.h"
 #include "fuzz/luminaire_harnesses.h"
 #include "fuzz/openmaterial3d_harness.h"
@@ -29,6 +30,7 @@ inline const std::map<std::string, Harness>& harnesses() {
       {"formulation", formulation_one_input},
       {"geometry", geometry_one_input},
       {"ies", ies_one_input},
+      {"installation", installation_one_input},
       {"manifest", manifest_one_input},
       {"mix_file", mix_file_one_input},
       {"openmaterial3d", openmaterial3d_one_input},

@@ -25,6 +25,7 @@ void register_report_command(CLI::App& app);
 void register_marking_command(CLI::App& app);
 void register_export_command(CLI::App& app);
 void register_luminaire_command(CLI::App& app);
+void register_lighting_command(CLI::App& app);
 // [command-declarations]
 
 }  // namespace roadbrdf::cli

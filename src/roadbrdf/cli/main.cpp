@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   roadbrdf::cli::register_marking_command(app);
   roadbrdf::cli::register_export_command(app);
   roadbrdf::cli::register_luminaire_command(app);
+  roadbrdf::cli::register_lighting_command(app);
   // [command-registrations]
   int status = 0;
   try {

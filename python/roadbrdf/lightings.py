@@ -1,4 +1,5 @@
-"""Luminaire photometry and road lighting (``src/roadbrdf/lighting``).
+"""Luminaire photometry and road lighting (``src/roadbrdf/lighting``; named ``lightings`` so as not to hide
+the function :func:`roadbrdf.lighting`).
 
 :func:`luminaire` reads an EULUMDAT (.ldt) or IES LM-63 (.ies) file and summarises it as
 ``roadbrdf luminaire FILE --json`` does (the same library request and JSON): a :class:`roadbrdf.Result`
@@ -10,6 +11,6 @@ Conventions and formulas: docs/lighting.md ("Luminaire files").
 
 from __future__ import annotations
 
-from ._roadbrdf import luminaire
+from ._roadbrdf import lighting, luminaire
 
-__all__ = ["luminaire"]
+__all__ = ["lighting", "luminaire"]
