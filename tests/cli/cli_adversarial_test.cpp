@@ -404,8 +404,10 @@ TEST(CliAdversarial, EndlessHugeAndNonRegularInputsAreRefused) {
   for (const std::string fifo : {"entry.fifo", "manifest.fifo", "panel.fifo"}) {
     ASSERT_EQ(::mkfifo(f.path(fifo).c_str(), 0600), 0);
   }
-  std::ofstream(f.path("sparse.asd")) << "as7";
-  std::filesystem::resize_file(f.path("sparse.asd"), std::uintmax_t{3} << 30);
+  // Outside the case folder, whose snapshot would read it.
+  const std::string sparse = test::scratch_path("sparse-3GiB.asd");
+  std::ofstream(sparse) << "as7";
+  std::filesystem::resize_file(sparse, std::uintmax_t{3} << 30);
   f.snapshot();
   const std::string calibrate = "timeout 60 " + test::cli_program() + " calibrate --manifest ";
   struct Case {
@@ -421,16 +423,16 @@ TEST(CliAdversarial, EndlessHugeAndNonRegularInputsAreRefused) {
        {"entry.fifo", "is a FIFO (named pipe), not a regular file: an instrument file (.asd, .sed, .sig) must be"}},
       {calibrate + f.path("run.csv") + " --panel-reflectance " + f.path("panel.fifo") + " -o " + f.path("o.csv"),
        {"panel.fifo", "a panel reflectance file must be a regular file"}},
-      {"timeout 60 " + test::cli_program() + " convert " + f.path("sparse.asd") +
-           " --geometry gamma=0,alpha=45,beta=0,delta=0 -o " + f.path("o.csv"),
-       {"sparse.asd", "file is 3221225472 bytes (3 GiB), more than the 16777216 bytes (16 MiB)"}},
+      {"timeout 60 " + test::cli_program() + " convert " + sparse + " --geometry gamma=0,alpha=45,beta=0,delta=0 -o " +
+           f.path("o.csv"),
+       {"sparse-3GiB.asd", "file is 3221225472 bytes (3 GiB), more than the 16777216 bytes (16 MiB)"}},
   };
   for (const Case& c : cases) {
     const auto r = test::run_shell(c.command + " 2>&1");
     EXPECT_TRUE(refused_with(r, c.fragments)) << c.command;
     EXPECT_EQ(f.changes(), std::vector<std::string>{}) << c.command;
   }
-  std::filesystem::remove(f.path("sparse.asd"));
+  std::filesystem::remove(sparse);
 }
 
 // Counts beyond what memory and time allow are refused by the library's request, named by their flag.

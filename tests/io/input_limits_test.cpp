@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -109,8 +110,8 @@ TEST(SedReader, ChannelCountBeyondTheLimitIsRefusedBeforeAnyCast) {
 }
 
 // A FIFO where a regular file is required is refused without waiting for a writer. Should the
-// check ever be lost, the writer thread opens the FIFO's other end and closes it, so that the
-// reader sees an empty file and the test fails instead of hanging.
+// check ever be lost, the writer thread keeps opening the FIFO's other end and closing it, so that
+// every blocked reader sees an empty file and the test fails instead of hanging.
 class Fifo {
  public:
   explicit Fifo(const std::string& path) : path_(path) {
@@ -119,10 +120,7 @@ class Fifo {
     writer_ = std::thread([this] {
       while (!done_) {
         const int fd = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK);
-        if (fd >= 0) {
-          ::close(fd);
-          return;
-        }
+        if (fd >= 0) ::close(fd);
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
       }
     });
