@@ -145,8 +145,8 @@ SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest
                                                      std::optional<double> brf_step, const InstrumentArgs& args,
                                                      const std::vector<FileArgument>& inputs,
                                                      const std::vector<FileArgument>& outputs) {
-  const Manifest run = read_checked_manifest(manifest, inputs, outputs);
   const std::optional<spectra::Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks come first
+  const Manifest run = read_checked_manifest(manifest, inputs, outputs);
   return calibrate_manifest(run, read_panel_reflectance(panel), brf, manifest_options(args));
 }
 
