@@ -83,7 +83,7 @@ fuzz: deps
 	  -DROADBRDF_FUZZ=ON -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_BUILD_TESTS=OFF \
 	  -DROADBRDF_BUILD_PYTHON=OFF -DROADBRDF_BUILD_BENCHMARKS=OFF > $(FUZZ_BUILD)/configure.log \
 	  || { cat $(FUZZ_BUILD)/configure.log; exit 1; }
-	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
 	bash tests/fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 bench:

@@ -36,8 +36,16 @@ add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/roadbrdf.1
                            $<TARGET_FILE:roadbrdf>
                            ${PROJECT_VERSION} ${CMAKE_BINARY_DIR}/roadbrdf.1
                    DEPENDS roadbrdf ${CMAKE_SOURCE_DIR}/scripts/make_manpage.py)
-add_custom_target(roadbrdf_manpage ALL DEPENDS ${CMAKE_BINARY_DIR}/roadbrdf.1)
-install(FILES ${CMAKE_BINARY_DIR}/roadbrdf.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT program)
+# The page includes `roadbrdf study --help` and `report --help`, which the Python package answers: it
+# is part of every build that builds the package, and a target to build on request in one that does
+# not (the fuzzing build, -DROADBRDF_BUILD_PYTHON=OFF), where it would fail.
+if(ROADBRDF_BUILD_PYTHON)
+  set(manpage_in_all ALL)
+else()
+  set(manpage_in_all "")
+endif()
+add_custom_target(roadbrdf_manpage ${manpage_in_all} DEPENDS ${CMAKE_BINARY_DIR}/roadbrdf.1)
+install(FILES ${CMAKE_BINARY_DIR}/roadbrdf.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT program OPTIONAL)
 
 # The model reference, generated from the models' metadata (`roadbrdf models --markdown`) with every
 # build of the program: build/docs/models.md, installed as the reference. docs/models.md is the

@@ -317,7 +317,10 @@ def write_report(data, output, models=DEFAULT_MODELS, formulation=None, waveleng
     data, output = os.fspath(data), os.fspath(output)
     if not os.path.isfile(data):
         raise InputError(f"DATA: '{data}': no such file")
-    _check_output(output, [("DATA", data), ("--formulation", formulation)])
+    inputs = [("DATA", data), ("--formulation", formulation)]
+    if formulation is not None and os.path.isfile(formulation):  # its component fits are inputs too
+        inputs += _roadbrdf.formulation_input_files(os.fspath(formulation))
+    _check_output(output, inputs)
     r = gather(data, models, formulation, wavelength, theta_i, sun_zenith, atmosphere, illuminant, multistart,
                fix, free_weights, folds, threads, quiet)
     text = render_report(r, command)

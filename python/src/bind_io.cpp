@@ -155,7 +155,7 @@ void bind_instruments(py::module_& m) {
         const std::optional<spectra::Spectrum> brf =
             read_panel_brf(panel_brf, brf_start, brf_step);  // its checks first
         return dataset_to_dict(
-            calibrate_manifest(read_manifest(path), spectra::read_spectrum(panel), brf, manifest_options(overlap)));
+            calibrate_manifest(read_manifest(path), read_panel_reflectance(panel), brf, manifest_options(overlap)));
       },
       py::arg("path"), py::arg("panel_reflectance"), py::arg("panel_brf") = "", py::arg("panel_brf_start") = py::none(),
       py::arg("panel_brf_step") = py::none(), py::arg("overlap") = "upper");

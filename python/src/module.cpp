@@ -17,6 +17,8 @@
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/formulation/formulation.h"
+#include "roadbrdf/io/manifest.h"
 #include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -130,6 +132,20 @@ PYBIND11_MODULE(_roadbrdf, m) {
     for (const auto& [role, path] : outputs) out.push_back({role, path});
     check_distinct_files(in, out);
   });
+  // The files a formulation or a run manifest refers to, as (role, path) pairs for check_distinct_files.
+  auto pairs = [](const std::vector<FileArgument>& files) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const FileArgument& f : files) out.emplace_back(f.role, f.path);
+    return out;
+  };
+  m.def(
+      "formulation_input_files",
+      [pairs](const std::string& path) { return pairs(formulation_input_files(read_formulation(path, false))); },
+      py::arg("path"), "Every fit file a formulation refers to, as (role, path) pairs.");
+  m.def(
+      "manifest_input_files",
+      [pairs](const std::string& path) { return pairs(manifest_input_files(read_manifest(path))); }, py::arg("path"),
+      "Every instrument file a run manifest lists, as (role, path) pairs.");
 
   py::class_<Model, std::shared_ptr<Model>>(m, "Model")
       .def_property_readonly("name", &Model::name)

@@ -4,6 +4,7 @@
 // clear message naming the file (and the key path or line where there is one), a non-zero exit
 // that is neither an internal error nor a crash, no input modified and no temporary file left.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 
 #include "support/case_folder.h"
 #include "support/cli.h"
+#include "support/paths.h"
 
 namespace roadbrdf {
 namespace {
@@ -356,6 +358,93 @@ TEST(CliAdversarial, NonUtf8FileNamesAreReportedNotCrashed) {
   const auto r = run_cli("check '" + bad + "' --json");
   EXPECT_NE(r.status, 3) << r.output;
   EXPECT_LT(r.status, 128) << r.output;
+  EXPECT_EQ(f.changes(), std::vector<std::string>{});
+}
+
+// A .sig row that is only carriage returns is a blank line (it crashed the reader), and a .sed
+// channel count beyond any integer is refused (it was an undefined float-to-integer cast).
+TEST(CliAdversarial, InstrumentFilesWithCarriageReturnLinesOrHugeChannelCounts) {
+  CaseFolder f("instrument-blanks");
+  const std::string sig = f.copy(test::instrument_files_dir() + "/sig_no_overlap.sig", "plain.sig");
+  std::ifstream in(sig, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  f.write("cr.sig", text.str() + "\r\r\n");
+  const std::string geometry = " --geometry gamma=0,alpha=45,beta=0,delta=0 -o ";
+  const auto plain = run_cli("convert " + sig + geometry + f.path("plain.csv"));
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  const auto cr = run_cli("convert " + f.path("cr.sig") + geometry + f.path("cr.csv"));
+  ASSERT_EQ(cr.status, 0) << cr.output;
+  std::ifstream a(f.path("plain.csv")), b(f.path("cr.csv"));
+  std::stringstream plain_csv, cr_csv;
+  plain_csv << a.rdbuf();
+  cr_csv << b.rdbuf();
+  // The same spectrum; only the file name in the metadata differs.
+  EXPECT_EQ(substitute(cr_csv.str(), "cr.sig", "plain.sig"), plain_csv.str());
+  expect_refused({{"sed-channels",
+                   "huge.sed",
+                   "Version: 2.3\nChannels: 1e30\nData:\nWvl\tReflect. %\n400\t50\n",
+                   "convert {} --geometry gamma=0,alpha=45,beta=0,delta=0 -o {out}",
+                   {"huge.sed:2", "'Channels: 1e30' is more than the 1000000 channels"}}});
+}
+
+// Endless, huge or non-regular inputs are refused with a message, in bounded time and memory. Each
+// command runs under `timeout`, so that a regression fails instead of hanging.
+TEST(CliAdversarial, EndlessHugeAndNonRegularInputsAreRefused) {
+  CaseFolder f("unbounded-reads");
+  const std::string dir = test::instrument_files_dir();
+  for (const std::string name : {"run_001.asd", "run_white.asd", "run_dark.asd", "rho.txt"}) {
+    f.copy(dir + "/" + name, name);
+  }
+  auto manifest = [&](const std::string& file, const std::string& white) {
+    return f.write(file, "file,role,gamma,alpha,beta,delta\n" + white + ",white,,,,\nrun_001.asd,sample,0,45,0,0\n");
+  };
+  manifest("run.csv", "run_white.asd");
+  manifest("fifo_entry.csv", "entry.fifo");
+  for (const std::string fifo : {"entry.fifo", "manifest.fifo", "panel.fifo"}) {
+    ASSERT_EQ(::mkfifo(f.path(fifo).c_str(), 0600), 0);
+  }
+  // Outside the case folder, whose snapshot would read it.
+  const std::string sparse = test::scratch_path("sparse-3GiB.asd");
+  std::ofstream(sparse) << "as7";
+  std::filesystem::resize_file(sparse, std::uintmax_t{3} << 30);
+  f.snapshot();
+  const std::string calibrate = "timeout 60 " + test::cli_program() + " calibrate --manifest ";
+  struct Case {
+    std::string command;
+    std::vector<std::string> fragments;
+  };
+  const std::vector<Case> cases = {
+      {"timeout 60 " + test::cli_program() + " check /dev/zero",
+       {"/dev/zero:1: line longer than 67108864 bytes (64 MiB) without a line end"}},
+      {calibrate + f.path("manifest.fifo") + " --panel-reflectance " + f.path("rho.txt") + " -o " + f.path("o.csv"),
+       {"manifest.fifo", "is a FIFO (named pipe), not a regular file: a run manifest must be a regular file"}},
+      {calibrate + f.path("fifo_entry.csv") + " --panel-reflectance " + f.path("rho.txt") + " -o " + f.path("o.csv"),
+       {"entry.fifo", "is a FIFO (named pipe), not a regular file: an instrument file (.asd, .sed, .sig) must be"}},
+      {calibrate + f.path("run.csv") + " --panel-reflectance " + f.path("panel.fifo") + " -o " + f.path("o.csv"),
+       {"panel.fifo", "a panel reflectance file must be a regular file"}},
+      {"timeout 60 " + test::cli_program() + " convert " + sparse + " --geometry gamma=0,alpha=45,beta=0,delta=0 -o " +
+           f.path("o.csv"),
+       {"sparse-3GiB.asd", "file is 3221225472 bytes (3 GiB), more than the 16777216 bytes (16 MiB)"}},
+  };
+  for (const Case& c : cases) {
+    const auto r = test::run_shell(c.command + " 2>&1");
+    EXPECT_TRUE(refused_with(r, c.fragments)) << c.command;
+    EXPECT_EQ(f.changes(), std::vector<std::string>{}) << c.command;
+  }
+  std::filesystem::remove(sparse);
+}
+
+// Counts beyond what memory and time allow are refused by the library's request, named by their flag.
+TEST(CliAdversarial, RequestCountsBeyondTheirLimitsAreRefused) {
+  CaseFolder f("request-counts");
+  f.copy(test::test_data_dir() + "/io/wide_small.csv", "data.csv");
+  ASSERT_EQ(run_cli("surface lambert --flat -o " + f.path("flat.json")).status, 0);
+  f.snapshot();
+  auto r = run_cli("render " + f.path("flat.json") + " --albedo 30 --samples 99999999999 -o " + f.path("a.csv"));
+  EXPECT_TRUE(refused_with(r, {"--samples: 99999999999 is above the limit of 1073741824 paths per geometry"}));
+  r = run_cli("fit " + f.path("data.csv") + " -m lambert --multistart 1000000000 -o " + f.path("fit.json"));
+  EXPECT_TRUE(refused_with(r, {"--multistart: 1000000000 is outside [1, 10000]"}));
   EXPECT_EQ(f.changes(), std::vector<std::string>{});
 }
 

@@ -80,6 +80,8 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
        "fit of component 'Grey'", f.path("lambert.fit.json")},
       {"mix " + f.path("F.json") + " --data " + data + " --residuals " + data + " -o " + f.path("mix.json"),
        "--residuals", data, "--data", data},
+      {"mix-calibrate " + f.path("F.json") + " " + data + " -o " + f.path("lambert.fit.json"), "-o",
+       f.path("lambert.fit.json"), "fit of component 'Grey'", f.path("lambert.fit.json")},
       {"surface " + f.path("F.json") + " -o " + f.path("F.json"), "-o", f.path("F.json"), "INPUT", f.path("F.json")},
       {"render " + f.path("flat.json") + " --albedo 30 -o " + f.path("flat.json"), "-o", f.path("flat.json"), "SURFACE",
        f.path("flat.json")},
@@ -96,6 +98,39 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
   EXPECT_TRUE(refused_with(
       r, {"outputs -o '" + f.path("x.json") + "' and --residuals '" + f.path("x.json") + "' are the same file"}));
   EXPECT_EQ(f.changes(), std::vector<std::string>{});
+}
+
+// Every file a manifest lists is an input: calibrate and convert refuse an output that is one of
+// them, named directly or through a link, before any file is read.
+TEST(CliDataLoss, FilesListedInAManifestAreInputs) {
+  CaseFolder f("manifest-inputs");
+  for (const std::string name :
+       {"run.csv", "rho.txt", "run_white.asd", "run_dark.asd", "run_001.asd", "run_002.asd", "run_003.asd"}) {
+    f.copy(test::instrument_files_dir() + "/" + name, name);
+  }
+  fs::create_symlink("run_002.asd", f.path("link.asd"));
+  f.snapshot();
+  const std::string calibrate =
+      "calibrate --manifest " + f.path("run.csv") + " --panel-reflectance " + f.path("rho.txt");
+  struct Case {
+    std::string arguments, output, listed;
+  };
+  const std::vector<Case> cases = {
+      {calibrate + " -o " + f.path("run_white.asd"), f.path("run_white.asd"), "white reference file 'run_white.asd'"},
+      {calibrate + " -o " + f.path("link.asd"), f.path("link.asd"), "sample file 'run_002.asd'"},
+      {"convert --from manifest " + f.path("run.csv") + " -o " + f.path("run_dark.asd"), f.path("run_dark.asd"),
+       "dark file 'run_dark.asd'"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_cli(c.arguments);
+    EXPECT_TRUE(refused_with(r, {"-o '" + c.output + "' is the same file as the input " + c.listed,
+                                 f.path("run.csv") + ":", "refusing to overwrite an input"}))
+        << c.arguments;
+    EXPECT_EQ(f.changes(), std::vector<std::string>{}) << c.arguments;
+  }
+  // The listed files are still read as before.
+  const auto r = run_cli(calibrate + " -o " + f.path("brdf.csv"));
+  EXPECT_EQ(r.status, 0) << r.output;
 }
 
 // A folder whose data set and geometry grid are large enough to pass the 1-block

@@ -107,6 +107,7 @@ ERRORS = [
     (["--bound", "torrance-sparrow.roughness=0.1:5"], dict(bounds={"torrance-sparrow.roughness": (0.1, 5)}),
      "--bound torrance-sparrow.roughness", "bounds.torrance-sparrow.roughness"),
     (["--multistart", "0"], dict(multistart=0), "--multistart", "multistart"),
+    (["--multistart", "1000000000"], dict(multistart=1000000000), "--multistart", "multistart"),
     (["--loss", "l1"], dict(loss="l1"), "--loss", "loss"),
     (["--robust", "tukey:1"], dict(robust="tukey:1"), "--robust", "robust"),
     (["--joint-solver", "dense-shur", "--shared", "auto"], dict(joint_solver="dense-shur", shared="auto"),

@@ -8,9 +8,12 @@ from conftest import assert_same_error
 
 ERRORS = [
     (["--samples", "1"], dict(samples=1), "--samples", "samples"),
+    (["--samples", "99999999999"], dict(samples=99999999999), "--samples", "samples"),
     (["--samples", "64", "--target-error", "0.01"], dict(samples=64, target_error=0.01), "--samples", "samples"),
     (["--target-error", "2"], dict(target_error=2.0), "--target-error", "target_error"),
     (["--max-samples", "1"], dict(max_samples=1), "--max-samples", "max_samples"),
+    (["--target-error", "0.01", "--max-samples", "2000000000"], dict(target_error=0.01, max_samples=2000000000),
+     "--max-samples", "max_samples"),
     (["--error-floor", "-1"], dict(error_floor=-1.0), "--error-floor", "error_floor"),
     (["--acceptance", "50"], dict(acceptance_deg=50.0), "--acceptance", "acceptance_deg"),
     (["--sampling", "cosin"], dict(sampling="cosin"), "--sampling", "sampling"),

@@ -333,3 +333,25 @@ TEST(AdaptiveSampling, StopsAtTheMaximumAndFlagsIt) {
   EXPECT_EQ(ef.paths, s.min_blocks * s.paths_per_block);
   EXPECT_NEAR(ef.mean[0], 0.8 / kPi, 1e-12);
 }
+
+// A round of blocks too large for chunk_bytes runs in chunks (here one block at a time): fixed and
+// adaptive estimates are the same numbers, bit for bit, as when every block of a round runs at once.
+TEST(Scheduling, ChunkedRoundsGiveTheSameEstimates) {
+  const auto mat = model_material("lambert", {{"albedo", 0.8}});
+  const rs::HeightField f = rs::make_gaussian_slope_surface(mat, 0.5, 64, 0.1, 5, 256);
+  const rs::Renderer r(f, rs::load_materials(f, {450.0, 650.0}), 2);
+  const std::vector<Geometry> gs = {geometry_from_degrees(40, 0, 30, 180), geometry_from_degrees(0, 0, 60, 0)};
+  for (const double target : {0.0, 0.02}) {
+    rs::RenderSettings s = settings(target > 0.0 ? 0 : 3000, 1.0, 2);
+    s.target_relative_error = target;
+    const std::vector<rs::Estimate> whole = r.brdf(gs, s);
+    s.chunk_bytes = 1;
+    const std::vector<rs::Estimate> chunked = r.brdf(gs, s);
+    for (std::size_t k = 0; k < gs.size(); ++k) {
+      EXPECT_EQ(whole[k].paths, chunked[k].paths) << target;
+      EXPECT_EQ(whole[k].mean, chunked[k].mean) << target;
+      EXPECT_EQ(whole[k].standard_error, chunked[k].standard_error) << target;
+      EXPECT_EQ(whole[k].converged, chunked[k].converged) << target;
+    }
+  }
+}

@@ -32,19 +32,17 @@ struct CalibrateArgs {
 };
 
 void run(const CalibrateArgs& a) {
-  check_distinct_files({{"SAMPLE", a.sample},
-                        {"--reference", a.reference},
-                        {"--dark", a.dark},
-                        {"--panel-reflectance", a.panel},
-                        {"--panel-brf", a.panel_brf},
-                        {"--manifest", a.manifest}},
-                       {{"-o", a.output}});
+  const std::vector<FileArgument> inputs = {{"SAMPLE", a.sample},         {"--reference", a.reference},
+                                            {"--dark", a.dark},           {"--panel-reflectance", a.panel},
+                                            {"--panel-brf", a.panel_brf}, {"--manifest", a.manifest}};
+  const std::vector<FileArgument> outputs = {{"-o", a.output}};
+  check_distinct_files(inputs, outputs);
   if (!a.manifest.empty()) {
     if (!a.sample.empty() || !a.reference.empty() || !a.dark.empty()) {
       throw InputError("--manifest gives the sample, white reference and dark files: no SAMPLE, --reference or --dark");
     }
-    SpectralDataset out =
-        calibrate_manifest_from_command_line(a.manifest, a.panel, a.panel_brf, a.brf_start, a.brf_step, a.instrument);
+    SpectralDataset out = calibrate_manifest_from_command_line(a.manifest, a.panel, a.panel_brf, a.brf_start,
+                                                               a.brf_step, a.instrument, inputs, outputs);
     write_dataset_output(out, a.output, a.format);
     return;
   }
@@ -55,7 +53,7 @@ void run(const CalibrateArgs& a) {
   in.sample = read_dataset(a.sample, radiance);
   in.reference = read_dataset(a.reference, radiance);
   if (!a.dark.empty()) in.dark = read_dataset(a.dark, radiance);
-  in.panel_reflectance = spectra::read_spectrum(a.panel);
+  in.panel_reflectance = read_panel_reflectance(a.panel);
   in.panel_brf = read_panel_brf(a.panel_brf, a.brf_start, a.brf_step);
   SpectralDataset out = calibrate(in);
   out.metadata["sample_radiance"] = a.sample;

@@ -31,7 +31,7 @@ void run(CheckArgs& a) {
   read.allow_missing = true;  // counted in the report
   const SpectralDataset d = read_dataset(a.data, read);
   QualityOptions o = a.options;
-  if (!a.panel.empty()) o.panel_reflectance = spectra::read_spectrum(a.panel);
+  if (!a.panel.empty()) o.panel_reflectance = read_panel_reflectance(a.panel);
   const QualityReport r = check_dataset(d, o);
   // The receiver solid angles of an OpenMATERIAL 3D file (io/openmaterial3d.h), kept in the metadata.
   constexpr std::string_view kSolidAngle = "receiver_solid_angle_sr.";

@@ -37,11 +37,13 @@ struct ConvertArgs {
 };
 
 void run(const ConvertArgs& a) {
-  check_distinct_files({{"INPUT", a.input}, {"--curet-table", a.curet_table}}, {{"-o", a.output}});
+  const std::vector<FileArgument> inputs = {{"INPUT", a.input}, {"--curet-table", a.curet_table}};
+  const std::vector<FileArgument> outputs = {{"-o", a.output}};
+  check_distinct_files(inputs, outputs);
   const ConvertSource from = parse_name<ConvertSource>(a.from, "from");
   SpectralDataset d;
   if (is_instrument_input(from, a.input)) {
-    d = convert_instrument_input(from, a.input, a.instrument);
+    d = convert_instrument_input(from, a.input, a.instrument, inputs, outputs);
   } else if (from == ConvertSource::kCuret) {
     if (a.sample < 0) {
       std::string list;

@@ -155,7 +155,7 @@ void register_fit_command(CLI::App& app) {
               "Weight each geometry by its solid-angle cell (nearest-neighbour estimate, fitting/fit.h)");
   c->add_flag("--no-sigma-weights", args.no_sigma, "Ignore the dataset's uncertainties (default: weights 1/sigma^2)");
   c->add_option("--multistart", args.multistart,
-                "Starting points per fit: the start, then a Latin hypercube over the nonlinear parameters")
+                "Starting points per fit (1 to 10000): the start, then a Latin hypercube over the nonlinear parameters")
       ->capture_default_str();
   c->add_option("--seed", args.seed, "Seed of the multi-start points")->capture_default_str();
   c->add_option("--wavelengths", args.wavelengths, "Wavelengths to fit: START:STOP:STEP or a list, nm");

@@ -135,8 +135,8 @@ void run_surface(const SurfaceArgs& a) {
     }
     // Fit files are needed only to render: they may not exist yet (warned below).
     const roadbrdf::Formulation formulation = roadbrdf::read_formulation(a.input, false);
-    if (formulation.mastic) inputs.push_back({"mastic.fit of " + a.input, formulation.mastic->fit_path});
-    for (const auto& c : formulation.components) inputs.push_back({"fit of component '" + c.name + "'", c.fit_path});
+    const std::vector<FileArgument> fits = roadbrdf::formulation_input_files(formulation);
+    inputs.insert(inputs.end(), fits.begin(), fits.end());
     check_distinct_files(inputs, outputs);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratorSettings s = request.generator_settings();
@@ -360,7 +360,8 @@ void register_surface_command(CLI::App& app) {
                 "With --albedo: Gauss-Legendre nodes in cos(theta) for the white-sky albedo (default 8; 0 = none)");
   r->add_option("--wavelengths", rargs.wavelengths,
                 "Wavelengths START:STOP:STEP [nm] (default: those of the materials' fits, or 550)");
-  r->add_option("--samples", rargs.samples, "Paths per geometry (default 4096 when --target-error is not given)");
+  r->add_option("--samples", rargs.samples,
+                "Paths per geometry, 2 to 2^30 (default 4096 when --target-error is not given)");
   r->add_option("--target-error", rargs.target_error,
                 "Adaptive sampling: add paths until every wavelength's standard error is <= this fraction of |BRDF| "
                 "(e.g. 0.01), at least 1024 paths");

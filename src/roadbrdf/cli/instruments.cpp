@@ -90,13 +90,29 @@ bool is_instrument_input(ConvertSource from, const std::string& input) {
   return false;
 }
 
-SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args) {
+namespace {
+
+// The manifest, after its listed files are checked against the outputs.
+Manifest read_checked_manifest(const std::string& path, std::vector<FileArgument> inputs,
+                               const std::vector<FileArgument>& outputs) {
+  Manifest manifest = read_manifest(path);
+  const std::vector<FileArgument> listed = manifest_input_files(manifest);
+  inputs.insert(inputs.end(), listed.begin(), listed.end());
+  check_distinct_files(inputs, outputs);
+  return manifest;
+}
+
+}  // namespace
+
+SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args,
+                                         const std::vector<FileArgument>& inputs,
+                                         const std::vector<FileArgument>& outputs) {
   const InstrumentQuantity quantity = parse_name<InstrumentQuantity>(args.quantity, "quantity");
   const ManifestOptions options = manifest_options(args);
   if (from == ConvertSource::kManifest) {
     if (!args.geometry.empty())
       throw InputError("--geometry is for a single instrument file: a manifest gives its own");
-    return manifest_dataset(read_manifest(input), quantity, options);
+    return manifest_dataset(read_checked_manifest(input, inputs, outputs), quantity, options);
   }
   if (from == ConvertSource::kUsgs) {
     if (args.usgs_wavelengths.empty())
@@ -106,6 +122,9 @@ SpectralDataset convert_instrument_input(ConvertSource from, const std::string& 
       throw InputError("--quantity reference: a USGS splib07a file holds no reference signal");
     AngleConvention convention = AngleConvention::kZenithAzimuth;
     const Geometry geometry = parse_geometry(args.geometry, convention);
+    std::vector<FileArgument> read = inputs;
+    read.push_back({"--usgs-wavelengths", args.usgs_wavelengths});
+    check_distinct_files(read, outputs);
     const UsgsSpectrum s = read_usgs_spectrum(input, args.usgs_wavelengths);
     if (s.missing > 0) warn(fmt::format("{}: {} missing channels (-1.23e+34) left out", input, s.missing));
     return usgs_dataset(s, geometry, convention);
@@ -123,9 +142,12 @@ SpectralDataset convert_instrument_input(ConvertSource from, const std::string& 
 
 SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
                                                      const std::string& panel_brf, std::optional<double> brf_start,
-                                                     std::optional<double> brf_step, const InstrumentArgs& args) {
+                                                     std::optional<double> brf_step, const InstrumentArgs& args,
+                                                     const std::vector<FileArgument>& inputs,
+                                                     const std::vector<FileArgument>& outputs) {
   const std::optional<spectra::Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks come first
-  return calibrate_manifest(read_manifest(manifest), spectra::read_spectrum(panel), brf, manifest_options(args));
+  const Manifest run = read_checked_manifest(manifest, inputs, outputs);
+  return calibrate_manifest(run, read_panel_reflectance(panel), brf, manifest_options(args));
 }
 
 }  // namespace roadbrdf::cli

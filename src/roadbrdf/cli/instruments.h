@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
 
@@ -47,11 +48,17 @@ void add_instrument_flags(CLI::App* command, InstrumentArgs& args, bool convert)
 bool is_instrument_input(ConvertSource from, const std::string& input);
 
 // `convert` of an instrument file (one row at --geometry) or of a manifest (one row per sample).
-SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args);
+// `inputs` and `outputs` are the command's own file arguments: the files a manifest lists are added
+// to the inputs and checked against the outputs (check_distinct_files) before any file is read.
+SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args,
+                                         const std::vector<FileArgument>& inputs,
+                                         const std::vector<FileArgument>& outputs);
 
 // `calibrate --manifest`: the calibrated BRDF of the run.
 SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
                                                      const std::string& panel_brf, std::optional<double> brf_start,
-                                                     std::optional<double> brf_step, const InstrumentArgs& args);
+                                                     std::optional<double> brf_step, const InstrumentArgs& args,
+                                                     const std::vector<FileArgument>& inputs,
+                                                     const std::vector<FileArgument>& outputs);
 
 }  // namespace roadbrdf::cli

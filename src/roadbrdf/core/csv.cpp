@@ -6,19 +6,9 @@
 #include <cmath>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/text.h"
 
 namespace roadbrdf {
-
-namespace {
-std::string_view trim(std::string_view s, std::size_t& offset) {
-  std::size_t b = 0;
-  while (b < s.size() && (s[b] == ' ' || s[b] == '\t' || s[b] == '\r')) ++b;
-  std::size_t e = s.size();
-  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == '\r')) --e;
-  offset = b;
-  return s.substr(b, e - b);
-}
-}  // namespace
 
 std::vector<CsvCell> split_cells(std::string_view line, char separator, std::size_t limit, std::size_t* count) {
   std::vector<CsvCell> cells;
@@ -30,7 +20,7 @@ std::vector<CsvCell> split_cells(std::string_view line, char separator, std::siz
       const std::string_view raw =
           line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
       std::size_t offset = 0;
-      const std::string_view text = trim(raw, offset);
+      const std::string_view text = trim_blanks(raw, offset);
       cells.push_back({text, static_cast<long>(start + offset + 1)});
     }
     ++n;
@@ -45,17 +35,17 @@ std::vector<CsvCell> split_whitespace(std::string_view line) {
   std::vector<CsvCell> cells;
   std::size_t k = 0;
   while (k < line.size()) {
-    while (k < line.size() && (line[k] == ' ' || line[k] == '\t' || line[k] == '\r')) ++k;
+    while (k < line.size() && is_blank(line[k])) ++k;
     if (k >= line.size()) break;
     const std::size_t b = k;
-    while (k < line.size() && line[k] != ' ' && line[k] != '\t' && line[k] != '\r') ++k;
+    while (k < line.size() && !is_blank(line[k])) ++k;
     cells.push_back({line.substr(b, k - b), static_cast<long>(b + 1)});
   }
   return cells;
 }
 
-CsvReader::CsvReader(const std::string& path)
-    : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path)) {}
+CsvReader::CsvReader(const std::string& path, const InputLimits& limits)
+    : path_(input_display_name(path)), in_(std::make_unique<InputFile>(path, limits)) {}
 
 bool CsvReader::next_line(std::string_view& line) {
   std::string_view raw;
@@ -63,7 +53,7 @@ bool CsvReader::next_line(std::string_view& line) {
     ++line_number_;
     if (line_number_ == 1 && raw.substr(0, 3) == "\xEF\xBB\xBF") raw.remove_prefix(3);
     std::size_t offset = 0;
-    const std::string_view text = trim(raw, offset);
+    const std::string_view text = trim_blanks(raw, offset);
     if (text.empty()) continue;
     if (text.front() == '#') {
       comments_.emplace_back(text.substr(1));

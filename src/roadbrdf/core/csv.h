@@ -25,8 +25,8 @@ struct CsvCell {
 
 class CsvReader {
  public:
-  // Throws FileError if the file cannot be opened ("-" = standard input).
-  explicit CsvReader(const std::string& path);
+  // Throws FileError if the file cannot be opened ("-" = standard input) or is refused by `limits`.
+  explicit CsvReader(const std::string& path, const InputLimits& limits = {});
 
   // Next non-blank, non-comment line split into cells; false at end of file. Comment lines seen
   // on the way are collected in comments() (without the leading '#'). Throws FileError on a read

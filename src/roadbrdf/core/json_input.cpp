@@ -174,7 +174,10 @@ Json parse_json(std::istream& in, const std::string& file, int max_depth) {
 }
 
 Json parse_json_file(const std::string& path, int max_depth) {
-  return parse_json_text(read_text_file(path), input_display_name(path), max_depth);
+  InputLimits limits;
+  limits.what = "a JSON file";
+  limits.max_bytes = kJsonFileMaxBytes;
+  return parse_json_text(read_text_file(path, limits), input_display_name(path), max_depth);
 }
 
 std::string dump_json(const Json& j, int indent) { return j.dump(indent, ' ', false, Json::error_handler_t::replace); }

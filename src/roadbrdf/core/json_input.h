@@ -28,6 +28,9 @@ using Json = nlohmann::json;
 // No roadbrdf file nests more than a handful of levels; 64 leaves room for hand-written extras.
 constexpr int kMaxJsonDepth = 64;
 
+// The largest JSON file read: a surface of the most cells (4e7 heights) takes a few hundred MB.
+inline constexpr std::uintmax_t kJsonFileMaxBytes = std::uintmax_t{1} << 30;
+
 // Parses a whole document. `file` names it in errors (FileError with line, column and key path).
 Json parse_json(std::istream& in, const std::string& file, int max_depth = kMaxJsonDepth);
 Json parse_json_text(const std::string& text, const std::string& file, int max_depth = kMaxJsonDepth);

@@ -9,16 +9,13 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/number.h"
+#include "roadbrdf/core/text.h"
 
 namespace roadbrdf {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
+std::string_view trim(std::string_view s) { return trim_blanks(s); }
 
 [[noreturn]] void fail(std::string_view field, const std::string& detail) {
   throw FieldError(std::string(field), detail);

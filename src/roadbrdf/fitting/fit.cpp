@@ -2,6 +2,8 @@
 // dispatch to the per-wavelength or joint mode (per_wavelength.cpp, joint.cpp) and the totals.
 #include "roadbrdf/fitting/fit.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -38,9 +40,7 @@ void check_request(const SpectralDataset& data, const FitOptions& options) {
     throw InputError("cannot fit: dataset BRDF table does not match its geometries x wavelengths");
   if (data.has_sigma() && data.sigma.size() != N * M)
     throw InputError("cannot fit: dataset sigma table has the wrong size");
-  if (options.multistart < 1) throw FieldError("multistart", "must be at least 1");
-  if (options.threads < 1) throw FieldError("threads", "must be at least 1");
-  if (options.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
+  check_fit_counts(options.multistart, options.threads, options.max_iterations);
 }
 
 // Measured geometries per wavelength. NaN is a missing value (masked out at its wavelength); an
@@ -344,6 +344,19 @@ void add_totals(const SpectralDataset& data, const fitting::FitData& d, const fi
 }
 
 }  // namespace
+
+void check_fit_counts(int multistart, int threads, int max_iterations) {
+  if (multistart < 1 || multistart > kMaxMultistart) {
+    throw FieldError("multistart",
+                     fmt::format("{} is outside [1, {}] (each start is a whole fit)", multistart, kMaxMultistart));
+  }
+  if (threads < 1 || threads > kMaxFitThreads) {
+    throw FieldError("threads", fmt::format("{} is outside [1, {}]", threads, kMaxFitThreads));
+  }
+  if (max_iterations < 1 || max_iterations > kMaxFitIterations) {
+    throw FieldError("max_iterations", fmt::format("{} is outside [1, {}]", max_iterations, kMaxFitIterations));
+  }
+}
 
 FitResult fit_model(const Model& model, const SpectralDataset& data, const FitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();

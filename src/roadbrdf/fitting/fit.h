@@ -90,6 +90,15 @@ FitLoss fit_loss_from_string(const std::string& name, const std::string& field =
 void robust_loss_from_string(const std::string& text, RobustLoss& kind, double& scale,
                              const std::string& field = "robust");
 
+// The counts a fit accepts, so that a request too large for the memory or a lifetime is refused
+// before the work: each start is a whole fit (the Latin hypercube holds every start's parameters at
+// once), each iteration a Ceres step, each thread a Ceres problem in memory.
+inline constexpr int kMaxMultistart = 10000;
+inline constexpr int kMaxFitThreads = 1024;
+inline constexpr int kMaxFitIterations = 100000;
+// Throws FieldError("multistart" / "threads" / "max_iterations") for a count outside [1, its limit].
+void check_fit_counts(int multistart, int threads, int max_iterations);
+
 struct FitOptions {
   FitLoss loss = FitLoss::kPlain;
   RobustLoss robust = RobustLoss::kNone;
@@ -106,7 +115,7 @@ struct FitOptions {
   std::map<std::string, std::pair<double, double>> bounds;
   // Parameter names shared across wavelengths: non-empty selects the joint spectral mode.
   std::vector<std::string> shared;
-  // Number of starting points (>= 1): the first is the given start (or, per wavelength, the warm
+  // Number of starting points (1 to kMaxMultistart): the first is the given start (or, per wavelength, the warm
   // start), the others a Latin hypercube over the free nonlinear parameters within their bounds
   // (seeded). Free linear amplitudes are solved by bounded linear least squares for every start.
   int multistart = 1;

@@ -406,8 +406,15 @@ FitSelector parse_fit_selector(const std::string& text) {
   return s;
 }
 
+InputLimits fit_file_limits() {
+  InputLimits limits;
+  limits.what = "a fit file";
+  limits.max_bytes = std::uintmax_t{256} << 20;
+  return limits;
+}
+
 SpectralModel read_fit_file(const std::string& path, const std::string& selection) {
-  return parse_fit_file(read_text_file(path), input_display_name(path), selection);
+  return parse_fit_file(read_text_file(path, fit_file_limits()), input_display_name(path), selection);
 }
 
 SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection) {

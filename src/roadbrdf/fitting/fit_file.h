@@ -34,6 +34,7 @@
 #include <utility>
 #include <vector>
 
+#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -53,6 +54,9 @@ FitSelector parse_fit_selector(const std::string& text);
 // file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
 // InputError (FieldError "fit" for a selection matching no fit or several).
 SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
+// What a fit file (or a mix file, read as a model the same way) may be: at most 256 MiB (a fit of a
+// few models at a few thousand wavelengths with covariances takes a few MB).
+InputLimits fit_file_limits();
 // The same from a fit file's content held in memory (Python: a fit file as a dict): `name` stands
 // for the file in error messages, which name the JSON key as for a file.
 SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection = "");

@@ -54,9 +54,7 @@ FitOptions settings_of(const FitRequest& r) {
   FitOptions o;
   o.loss = fit_loss_from_string(r.loss, "loss");
   robust_loss_from_string(r.robust, o.robust, o.robust_scale, "robust");
-  if (r.multistart < 1) throw FieldError("multistart", "must be at least 1");
-  if (r.threads < 1) throw FieldError("threads", "must be at least 1");
-  if (r.max_iterations < 1) throw FieldError("max_iterations", "must be at least 1");
+  check_fit_counts(r.multistart, r.threads, r.max_iterations);
   o.use_sigma = r.use_sigma;
   o.solid_angle_weights = r.solid_angle_weights;
   o.multistart = r.multistart;

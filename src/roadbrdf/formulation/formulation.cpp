@@ -266,7 +266,21 @@ Formulation parse_formulation(const std::string& text, const std::string& path, 
 }
 
 Formulation read_formulation(const std::string& path, bool check_files) {
-  return parse_formulation(read_text_file(path), path, check_files);
+  InputLimits limits;
+  limits.what = "a formulation file";
+  limits.max_bytes = std::uintmax_t{16} << 20;  // a few components: a few kB
+  return parse_formulation(read_text_file(path, limits), path, check_files);
+}
+
+}  // namespace roadbrdf
+
+namespace roadbrdf {
+
+std::vector<FileArgument> formulation_input_files(const Formulation& formulation) {
+  std::vector<FileArgument> files;
+  if (formulation.mastic) files.push_back({"mastic.fit of " + formulation.path, formulation.mastic->fit_path});
+  for (const Component& c : formulation.components) files.push_back({"fit of component '" + c.name + "'", c.fit_path});
+  return files;
 }
 
 }  // namespace roadbrdf

@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/enum_names.h"
 
 namespace roadbrdf {
@@ -113,6 +114,10 @@ Formulation read_formulation(const std::string& path, bool check_files = true);
 // Parse JSON text; `path` is used for error messages and to resolve fit files. check_files: fail
 // when a fit file does not exist.
 Formulation parse_formulation(const std::string& json_text, const std::string& path, bool check_files = true);
+
+// Every file a formulation refers to (the mastic's and each component's fit file, resolved), named
+// for messages, for check_distinct_files: a command that reads a formulation reads these too.
+std::vector<FileArgument> formulation_input_files(const Formulation& formulation);
 
 // Consistency checks shared by the reader and in-memory formulations (names unique, positive
 // densities and fractions, fractions summing to 100 % within the tolerance, size classes ordered,

@@ -17,6 +17,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/text.h"
 
 namespace roadbrdf {
 
@@ -57,7 +58,7 @@ class AltaParser {
 
   void read_line(const std::string& line) {
     ++n_;
-    const auto b = line.find_first_not_of(" \t\r");
+    const auto b = line.find_first_not_of(kBlankCharacters);
     if (b == std::string::npos) return;
     if (line[b] == '#') {
       header_line(line, b);

@@ -13,6 +13,19 @@
 
 namespace roadbrdf {
 
+spectra::SpectrumReadOptions panel_read_options() {
+  spectra::SpectrumReadOptions o;
+  o.input.what = "a panel reflectance file";
+  o.input.max_bytes = kPanelFileMaxBytes;
+  o.input.max_line_bytes = 1 << 16;
+  o.input.regular_file_only = true;
+  return o;
+}
+
+spectra::Spectrum read_panel_reflectance(const std::string& path) {
+  return spectra::read_spectrum(path, panel_read_options());
+}
+
 std::optional<spectra::Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
                                                 std::optional<double> step) {
   if (path.empty()) {
@@ -20,7 +33,7 @@ std::optional<spectra::Spectrum> read_panel_brf(const std::string& path, std::op
     if (step) throw FieldError("panel_brf_step", "needs the panel BRF file (panel_brf)");
     return std::nullopt;
   }
-  spectra::SpectrumReadOptions o;
+  spectra::SpectrumReadOptions o = panel_read_options();
   o.first_wavelength = first_wavelength;
   o.step = step;
   return spectra::read_spectrum(path, o);

@@ -9,17 +9,24 @@
 // D = L_ref - L_d:  df/dL_s = c/D,  df/dL_ref = -c N/D^2,  df/dL_d = c (N - D)/D^2,  df/drho = N/(pi D).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/spectra/spectrum.h"
+#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf {
 
 // A panel's reflectance (or BRF) file is a spectrum file (spectra::read_spectrum with its default
-// options): "wavelength value [sigma]" lines, or values alone on a stated grid.
+// options): "wavelength value [sigma]" lines, or values alone on a stated grid. It must be a regular
+// file of at most kPanelFileMaxBytes (a calibrated panel's table holds a few thousand lines).
+inline constexpr std::uintmax_t kPanelFileMaxBytes = std::uintmax_t{64} << 20;
+spectra::SpectrumReadOptions panel_read_options();
+// The panel reflectance rho_ref (CalibrationInput::panel_reflectance) read with panel_read_options().
+spectra::Spectrum read_panel_reflectance(const std::string& path);
 
 // The optional measured BRF of the reference panel (CalibrationInput::panel_brf) as the front ends
 // give it: a file (`path`, "" = none) and, for a one-column file (e.g. BRF_i10_e0.txt), its first

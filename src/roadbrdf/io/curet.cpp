@@ -10,6 +10,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/text.h"
 
 namespace roadbrdf {
 
@@ -24,7 +25,7 @@ double number_or_throw(const std::string& path, long line, const CsvCell& cell, 
 }
 
 bool is_blank_or_comment(const std::string& line) {
-  const auto b = line.find_first_not_of(" \t\r");
+  const auto b = line.find_first_not_of(kBlankCharacters);
   return b == std::string::npos || line[b] == '#';
 }
 

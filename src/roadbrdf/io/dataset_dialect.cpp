@@ -10,19 +10,13 @@
 #include <cstring>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/text.h"
 
 namespace roadbrdf {
 
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-std::string_view trim(std::string_view s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && is_space(s[b])) ++b;
-  while (e > b && is_space(s[e - 1])) --e;
-  return s.substr(b, e - b);
-}
+std::string_view trim(std::string_view s) { return trim_blanks(s); }
 
 bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
@@ -108,8 +102,8 @@ bool CellScanner::next(std::string_view& text, long& column) {
   }
   position_ = end + 1;
   std::size_t b = start, e = end;
-  while (b < e && is_space(line_[b]) && line_[b] != delimiter_) ++b;
-  while (e > b && is_space(line_[e - 1]) && line_[e - 1] != delimiter_) --e;
+  while (b < e && is_blank(line_[b]) && line_[b] != delimiter_) ++b;
+  while (e > b && is_blank(line_[e - 1]) && line_[e - 1] != delimiter_) --e;
   text = line_.substr(b, e - b);
   column = static_cast<long>(b + 1);
   return true;

@@ -12,6 +12,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/text.h"
 #include "roadbrdf/io/dataset_read_support.h"
 
 namespace roadbrdf::dataset_read {
@@ -28,12 +29,7 @@ bool is_missing_text(std::string_view t) {
   return lower == "nan" || lower == "na" || lower == "-nan";
 }
 
-std::string trim_copy(const std::string& s) {
-  std::size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return {};
-  std::size_t e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
+std::string trim_copy(const std::string& s) { return trimmed_copy(s); }
 
 void default_warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
 

@@ -61,7 +61,12 @@ InstrumentSpectrum read_instrument_bytes(std::string_view bytes, const std::stri
 }
 
 InstrumentSpectrum read_instrument_file(const std::string& path, const InstrumentReadOptions& options) {
-  InputFile in(path);  // "-" = standard input; a directory or a read error is a FileError
+  InputLimits limits;
+  limits.what = "an instrument file (.asd, .sed, .sig)";
+  limits.max_bytes = kInstrumentFileMaxBytes;
+  limits.max_line_bytes = kInstrumentLineMaxBytes;
+  limits.regular_file_only = options.regular_file_only;
+  InputFile in(path, limits);  // "-" = standard input; a directory or a read error is a FileError
   const std::string bytes = in.read_all();
   if (bytes.empty()) throw FileError(in.name(), 0, 0, "file is empty");
   return read_instrument_bytes(bytes, in.name(), options);

@@ -7,6 +7,8 @@
 // A manifest (io/manifest.h) turns many such files into one dataset.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <span>
 #include <string>
@@ -42,7 +44,16 @@ constexpr std::span<const EnumName<OverlapRule>> enum_names(OverlapRule) { retur
 
 struct InstrumentReadOptions {
   OverlapRule overlap = OverlapRule::kUpper;
+  // Refuse a FIFO or a device (files a manifest lists are read as regular files only).
+  bool regular_file_only = false;
 };
+
+// The largest instrument file read: the biggest of these formats holds two spectra of a few
+// thousand channels and a header, well under a megabyte; a larger file (a sparse or corrupt one) is
+// refused from its size, before it is read.
+inline constexpr std::uintmax_t kInstrumentFileMaxBytes = std::uintmax_t{16} << 20;
+// The longest line of a text instrument file (.sed, .sig): a header line or a row of a few numbers.
+inline constexpr std::size_t kInstrumentLineMaxBytes = std::size_t{1} << 16;
 
 struct InstrumentSpectrum {
   std::string path;

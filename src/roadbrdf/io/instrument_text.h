@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "roadbrdf/core/text.h"
+
 namespace roadbrdf::instrument_text {
 
 struct Line {
@@ -28,12 +30,8 @@ inline std::vector<Line> lines(std::string_view text) {
   return out;
 }
 
-inline std::string_view trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t");
-  return s.substr(b, e - b + 1);
-}
+// The blanks rule of every reader (core/text.h): the row splitters use it too.
+inline std::string_view trim(std::string_view s) { return trim_blanks(s); }
 
 // "a, b ,c" -> {"a", "b", "c"}
 inline std::vector<std::string> split_list(std::string_view s, char separator = ',') {

@@ -10,6 +10,7 @@
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/text.h"
 #include "roadbrdf/io/geometry_file.h"
 
 namespace roadbrdf {
@@ -37,11 +38,7 @@ const char* role_name(ManifestRole r) {
   return r == ManifestRole::kSample ? "sample" : r == ManifestRole::kWhite ? "white reference" : "dark";
 }
 
-std::string trim_copy(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string_view::npos) return {};
-  return std::string(s.substr(b, s.find_last_not_of(" \t\r") - b + 1));
-}
+std::string trim_copy(std::string_view s) { return trimmed_copy(s); }
 
 void default_warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
 
@@ -59,6 +56,7 @@ class RunFiles {
  public:
   RunFiles(const Manifest& m, const ManifestOptions& o) : manifest_(m), options_(o) {
     if (!options_.warn) options_.warn = default_warn;
+    options_.read.regular_file_only = true;
   }
   const InstrumentSpectrum& get(const ManifestEntry& e) {
     auto it = files_.find(e.path);
@@ -173,7 +171,12 @@ std::vector<const ManifestEntry*> reference_rows(const Manifest& m, ManifestRole
 }  // namespace
 
 Manifest read_manifest(const std::string& path) {
-  CsvReader reader(path);
+  InputLimits limits;
+  limits.what = "a run manifest";
+  limits.max_bytes = kManifestMaxBytes;
+  limits.max_line_bytes = kManifestLineMaxBytes;
+  limits.regular_file_only = true;
+  CsvReader reader(path, limits);
   Manifest m;
   m.path = path;
   std::vector<CsvCell> cells;
@@ -255,6 +258,15 @@ Manifest read_manifest(const std::string& path) {
     m.metadata[key] = trim_copy(c.substr(colon + 1));
   }
   return m;
+}
+
+std::vector<FileArgument> manifest_input_files(const Manifest& manifest) {
+  std::vector<FileArgument> files;
+  files.reserve(manifest.entries.size());
+  for (const ManifestEntry& e : manifest.entries) {
+    files.push_back({fmt::format("{} file '{}' ({}:{})", role_name(e.role), e.file, manifest.path, e.line), e.path});
+  }
+  return files;
 }
 
 SpectralDataset manifest_dataset(const Manifest& m, InstrumentQuantity quantity, const ManifestOptions& options) {

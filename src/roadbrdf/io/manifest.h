@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset.h"
@@ -52,7 +53,14 @@ struct Manifest {
 };
 
 // Throws FileError (file:line:column) for a malformed manifest; the instrument files are not read.
+// A manifest is a regular file of at most kManifestMaxBytes, lines of at most kManifestLineMaxBytes.
+inline constexpr std::uintmax_t kManifestMaxBytes = std::uintmax_t{64} << 20;
+inline constexpr std::size_t kManifestLineMaxBytes = std::size_t{1} << 16;
 Manifest read_manifest(const std::string& path);
+
+// Every file a manifest lists (each entry's resolved path, named by its role and line), for
+// check_distinct_files: a command that reads a manifest reads all of them.
+std::vector<FileArgument> manifest_input_files(const Manifest& manifest);
 
 struct ManifestOptions {
   InstrumentReadOptions read;

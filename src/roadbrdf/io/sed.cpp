@@ -23,6 +23,10 @@ namespace {
 
 using instrument_text::trim;
 
+// The channel count a header may declare. Spectral Evolution instruments have 512 to 2151 channels
+// (one per nm from 350 to 2500 nm at most); the bound leaves ample room and keeps the count exact.
+constexpr std::size_t kMaxSedChannels = 1'000'000;
+
 enum class Role { kWavelength, kChannel, kReference, kTarget, kReflectancePercent, kReflectanceFraction };
 
 struct Column {
@@ -103,8 +107,14 @@ std::size_t read_header(const std::vector<instrument_text::Line>& lines, const s
     s.metadata["sed." + key] = value;
     if (key == "channels") {
       double c = 0;
+      // Compared as a double before the cast: converting a double beyond the integer's range is undefined.
       if (!parse_finite_double(value, c) || c < 1 || c != std::floor(c)) {
         throw FileError(name, lines[k].number, 0, fmt::format("'Channels: {}' is not a positive whole number", value));
+      }
+      if (c > static_cast<double>(kMaxSedChannels)) {
+        throw FileError(name, lines[k].number, 0,
+                        fmt::format("'Channels: {}' is more than the {} channels a spectrometer file may hold", value,
+                                    kMaxSedChannels));
       }
       channels = static_cast<std::size_t>(c);
       channels_line = lines[k].number;

@@ -9,6 +9,7 @@
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/number.h"
+#include "roadbrdf/core/text.h"
 #include "roadbrdf/io/instrument_text.h"
 
 namespace roadbrdf {
@@ -30,7 +31,7 @@ Column parse_column(std::string_view text, const std::string& name) {
   const long line_count = static_cast<long>(lines.size());
   bool title_seen = false;
   for (const auto& [line, line_number] : lines) {
-    constexpr std::string_view kSpace = " \t\r";
+    constexpr std::string_view kSpace = kBlankCharacters;
     const std::size_t a = std::min(line.find_first_not_of(kSpace), line.size());
     const std::size_t b = a == line.size() ? a : line.find_last_not_of(kSpace) + 1;
     const std::string_view item = line.substr(a, b - a);
@@ -121,8 +122,12 @@ UsgsSpectrum parse_usgs_spectrum(std::string_view spectrum_text, const std::stri
 }
 
 UsgsSpectrum read_usgs_spectrum(const std::string& path, const std::string& wavelength_path) {
-  const std::string spectrum = read_text_file(path);
-  const std::string wavelengths = read_text_file(wavelength_path);
+  // One number per line for a few thousand channels: a few tens of kB.
+  InputLimits limits;
+  limits.what = "a USGS splib07a file";
+  limits.max_bytes = std::uintmax_t{64} << 20;
+  const std::string spectrum = read_text_file(path, limits);
+  const std::string wavelengths = read_text_file(wavelength_path, limits);
   return parse_usgs_spectrum(spectrum, path, wavelengths, wavelength_path);
 }
 

@@ -132,12 +132,21 @@ CrossSectionRun run_cross_section_calibration(const CrossSectionRequest& request
     read.push_back({"data " + request.data[m], request.data[m]});
   }
   check_distinct_files(read, outputs);
+  // The fit files the formulations name are inputs too.
+  std::vector<Formulation> formulations;
+  formulations.reserve(request.formulations.size());
+  for (const std::string& path : request.formulations) {
+    formulations.push_back(read_formulation(path));
+    const std::vector<FileArgument> fits = formulation_input_files(formulations.back());
+    read.insert(read.end(), fits.begin(), fits.end());
+  }
+  check_distinct_files(read, outputs);
   std::vector<MixInputs> inputs;
   std::vector<SpectralDataset> data;
   inputs.reserve(request.formulations.size());
   data.reserve(request.formulations.size());
   for (std::size_t m = 0; m < request.formulations.size(); ++m) {
-    inputs.push_back(load_mix_inputs(read_formulation(request.formulations[m])));
+    inputs.push_back(load_mix_inputs(formulations[m]));
     data.push_back(read_dataset(request.data[m], request.data_read));
   }
   std::vector<CalibrationMixture> mixtures;

@@ -193,10 +193,8 @@ void write_mix_file(const std::string& path, const MixFileContent& content) {
 }
 
 bool is_mix_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return false;
   try {
-    const Json j = parse_json(in, path);
+    const Json j = parse_json_text(read_text_file(path, fit_file_limits()), path);
     return j.is_object() && j.contains("format") && j.at("format") == "roadbrdf-mix";
   } catch (const InputError&) {
     return false;  // not JSON at all: read_spectral_model_file reports it as a fit file

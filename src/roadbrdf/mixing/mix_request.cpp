@@ -75,8 +75,8 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
   run.request = request;
   run.request.progress = nullptr;  // the caller's callback does not outlive this call
   const Formulation formulation = read_formulation(request.formulation);
-  if (formulation.mastic) read.push_back({"mastic.fit of " + request.formulation, formulation.mastic->fit_path});
-  for (const auto& c : formulation.components) read.push_back({"fit of component '" + c.name + "'", c.fit_path});
+  const std::vector<FileArgument> fits = formulation_input_files(formulation);
+  read.insert(read.end(), fits.begin(), fits.end());
   check_distinct_files(read, outputs);
   run.inputs = std::make_unique<MixInputs>(
       load_mix_inputs(formulation, request.end_member_cache ? request.end_member_cache->loader() : FitLoader{}));

@@ -14,6 +14,7 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/text.h"
 
 namespace roadbrdf::photometry {
 
@@ -66,7 +67,13 @@ std::vector<Token> tokenize(const std::string& content, long first_line = 1) {
   return tokens;
 }
 
-std::string read_all(const std::string& path) { return read_text_file(path); }
+// An r-table file holds a few hundred numbers.
+std::string read_all(const std::string& path) {
+  InputLimits limits;
+  limits.what = "an r-table file";
+  limits.max_bytes = std::uintmax_t{64} << 20;
+  return read_text_file(path, limits);
+}
 
 class TokenStream {
  public:
@@ -176,8 +183,8 @@ void read_csv_comments(const std::string& path, CsvReader& reader, RTable& table
     const auto eq = c.find('=');
     if (key != std::string::npos && eq != std::string::npos && eq > key) {
       // The whole value must be the observation angle in degrees, 0 < alpha < 90 ("1abc" is no angle).
-      const auto start = c.find_first_not_of(" \t", eq + 1);
-      const auto end = c.find_last_not_of(" \t\r");
+      const auto start = c.find_first_not_of(kBlankCharacters, eq + 1);
+      const auto end = c.find_last_not_of(kBlankCharacters);
       const std::string v = start == std::string::npos ? std::string() : c.substr(start, end - start + 1);
       double a = 0.0;
       if (!parse_finite_double(v, a) || !(a > 0.0 && a < 90.0)) {
@@ -189,8 +196,7 @@ void read_csv_comments(const std::string& path, CsvReader& reader, RTable& table
     }
     const auto name = c.find("name:");
     if (name != std::string::npos) {
-      std::string n = c.substr(name + 5);
-      n.erase(0, n.find_first_not_of(" \t"));
+      const std::string n = trimmed_copy(std::string_view(c).substr(name + 5));
       if (!n.empty()) table.name = n;
     }
   }
@@ -258,11 +264,7 @@ RTableFile read_rtb(const std::string& path, double scale) {
   };
   std::string magic, name;
   if (!next_line(magic)) throw FileError(path, 1, 0, "empty file");
-  auto trim = [](std::string s) {
-    s.erase(0, s.find_first_not_of(" \t"));
-    s.erase(s.find_last_not_of(" \t") + 1);
-    return s;
-  };
+  auto trim = [](const std::string& s) { return trimmed_copy(s); };
   if (!magic.empty() && static_cast<unsigned char>(magic[0]) == 0xEF && magic.size() >= 3) magic.erase(0, 3);  // BOM
   if (trim(magic) != "RTable.v1") throw FileError(path, 1, 1, "not an RTB file: the first line is not 'RTable.v1'");
   if (!next_line(name)) throw FileError(path, 2, 0, "missing the table name (line 2)");

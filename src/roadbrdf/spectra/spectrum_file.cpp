@@ -57,7 +57,7 @@ std::string layout(const SpectrumReadOptions& o) {
 }  // namespace
 
 Spectrum read_spectrum(const std::string& path, const SpectrumReadOptions& o) {
-  CsvReader reader(path);
+  CsvReader reader(path, o.input);
   std::vector<double> w, v, sigma;
   std::vector<std::string> names;
   long header_line = 0;

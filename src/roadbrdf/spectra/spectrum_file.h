@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/spectra/spectrum.h"
 
 namespace roadbrdf::spectra {
@@ -36,6 +37,8 @@ struct SpectrumReadOptions {
   // How the spectrum is interpolated and what it is outside its range (spectra/interpolation.h).
   Interpolation interpolation = Interpolation::kLinear;
   Extrapolation outside = Extrapolation::kRefuseBeyondRounding;
+  // What the file may be (core/input_file.h): its size, its line length, a regular file or any.
+  InputLimits input;
 };
 
 // Read a spectrum file ("-": standard input). Throws FileError.

@@ -78,6 +78,7 @@
 // linear in each cell, so hits are found exactly.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -104,6 +105,11 @@ inline constexpr EnumName<Sampling> kSamplingNames[] = {
 };
 constexpr std::span<const EnumName<Sampling>> enum_names(Sampling) { return kSamplingNames; }
 
+// The most paths per geometry a render takes (samples, max_samples): 2^30 paths of ~1 us each are
+// about 20 min of one core per geometry, beyond any use of the estimate (its standard error falls as
+// 1/sqrt(paths)). Memory does not grow with the count (the blocks are scheduled in bounded rounds).
+inline constexpr long kMaxPathsPerGeometry = 1L << 30;
+
 struct RenderSettings {
   long samples = 4096;                     // paths per geometry (when target_relative_error == 0)
   double acceptance_half_angle_deg = 1.0;  // detector cone half-angle Delta; 0 = ideal direction
@@ -121,6 +127,9 @@ struct RenderSettings {
   double absolute_error_floor = 1e-5;  // [sr^-1]
   long max_samples = 1L << 20;
   int min_blocks = 4;
+  // Memory for the sums of the blocks run at once (2 doubles per wavelength per block): a round of
+  // more blocks runs in chunks. The results do not depend on it.
+  std::size_t chunk_bytes = std::size_t{64} << 20;
   // Blocks of paths done out of those scheduled so far (adaptive rounds add to the total);
   // render_albedo reports estimates (sun zeniths and white-sky nodes) instead.
   ProgressCallback progress;

@@ -14,6 +14,10 @@ RenderSettings render_settings(const RenderRequest& r) {
   if (r.samples) {
     if (*r.samples < 2)
       throw FieldError("samples", fmt::format("{} is below 2 (a standard error needs 2 paths)", *r.samples));
+    if (*r.samples > kMaxPathsPerGeometry) {
+      throw FieldError("samples",
+                       fmt::format("{} is above the limit of {} paths per geometry", *r.samples, kMaxPathsPerGeometry));
+    }
     s.samples = *r.samples;
   }
   if (r.target_error) {

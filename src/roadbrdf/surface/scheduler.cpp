@@ -20,6 +20,14 @@ void validate_sampling(const RenderSettings& s) {
   // Checked whether or not the path count is adaptive, so that a request is refused the same way
   // in both modes (render_settings checks a request through this function).
   if (s.max_samples < 2) throw FieldError("max_samples", fmt::format("{} is below 2", s.max_samples));
+  if (s.max_samples > kMaxPathsPerGeometry) {
+    throw FieldError("max_samples", fmt::format("{} is above the limit of {} paths per geometry", s.max_samples,
+                                                kMaxPathsPerGeometry));
+  }
+  if (s.target_relative_error == 0.0 && s.samples > kMaxPathsPerGeometry) {
+    throw FieldError("samples",
+                     fmt::format("{} is above the limit of {} paths per geometry", s.samples, kMaxPathsPerGeometry));
+  }
   if (s.paths_per_block < 1) throw InputError("render: paths_per_block must be >= 1");
   if (!(s.brdf_sampling_fraction >= 0.0 && s.brdf_sampling_fraction < 1.0)) {
     throw InputError("render: brdf_sampling_fraction must be in [0, 1) (cosine sampling keeps the estimator unbiased)");
@@ -78,18 +86,26 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
     a.mean.assign(m, 0.0);
     a.m2.assign(m, 0.0);
   }
-  std::vector<long> extra(job_count, min_blocks);  // blocks to add in the next round
+  std::vector<long> extra(job_count, min_blocks);  // blocks still to do in each job's current round
   std::vector<Estimate> out(job_count);
   tbb::task_arena arena(s.threads > 0 ? s.threads : tbb::task_arena::automatic);
   ProgressCounter progress(s.progress, 0);  // blocks done / scheduled
+  // A round is run in chunks of at most max_items blocks (their sums take 2 m doubles each), so that
+  // memory does not grow with the path count. A job's estimate and its next round are decided only
+  // once its round is complete, and blocks are merged in (job, block) order: the chunking changes
+  // no result.
+  progress.add_total(static_cast<std::size_t>(min_blocks) * job_count);
+  const std::size_t max_items =
+      std::max<std::size_t>(1, s.chunk_bytes / (2 * std::max<std::size_t>(m, 1) * sizeof(double)));
 
   for (;;) {
     std::vector<std::pair<std::size_t, long>> items;  // (job, block)
-    for (std::size_t g = 0; g < job_count; ++g) {
-      for (long k = 0; k < extra[g]; ++k) items.emplace_back(g, acc[g].blocks + k);
+    std::vector<long> taken(job_count, 0);
+    for (std::size_t g = 0; g < job_count && items.size() < max_items; ++g) {
+      for (; taken[g] < extra[g] && items.size() < max_items; ++taken[g])
+        items.emplace_back(g, acc[g].blocks + taken[g]);
     }
     if (items.empty()) break;
-    progress.add_total(items.size());
     // Per block: mean and m2 (m values each) and the number of paths.
     std::vector<double> sums(items.size() * 2 * m, 0.0);
     std::vector<long> counts(items.size(), 0);
@@ -122,15 +138,16 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
       a.n = nt;
       a.blocks += 1;
     }
-    // Estimates and the next round.
+    // Estimates and the next round of the jobs whose round is complete.
     for (std::size_t g = 0; g < job_count; ++g) {
+      extra[g] -= taken[g];
+      if (taken[g] == 0 || extra[g] > 0) continue;
       const Accumulator& a = acc[g];
       Estimate& e = out[g];
       e.paths = static_cast<long>(a.n);
       e.mean = a.mean;
       e.standard_error.resize(m);
       for (std::size_t w = 0; w < m; ++w) e.standard_error[w] = std::sqrt(std::max(0.0, a.m2[w] / (a.n - 1.0)) / a.n);
-      extra[g] = 0;
       if (!adaptive) continue;
       // Ratio of the standard error to the tolerance; the paths needed scale with its square.
       double ratio = 0.0;
@@ -147,8 +164,8 @@ std::vector<Estimate> run_estimates(const PathSource& source, std::size_t job_co
       long add = static_cast<long>(std::min(needed, 1e15)) - a.blocks;
       add = std::clamp(add, 1L, 3 * a.blocks);
       extra[g] = std::min(add, max_blocks - a.blocks);
+      progress.add_total(static_cast<std::size_t>(extra[g]));
     }
-    if (!adaptive) break;
   }
   progress.finish();
   return out;

@@ -41,7 +41,7 @@ class PathSource {
 };
 
 // Checks the sampling settings (block size, adaptive target, limits); throws InputError, or
-// FieldError("max_samples").
+// FieldError("samples" / "max_samples") for a path count beyond [2, kMaxPathsPerGeometry].
 void validate_sampling(const RenderSettings& s);
 
 // Estimates (mean and standard error per wavelength) of `job_count` estimates of `source`.
