@@ -12,6 +12,7 @@
 #include "binding.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/data_path.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/json_input.h"
@@ -91,6 +92,12 @@ Array evaluate_spectral_flat(const SpectralModel& model, const Array& theta_i, c
 
 PYBIND11_MODULE(_roadbrdf, m) {
   m.doc() = "roadbrdf C++ core (use the `roadbrdf` package instead of this module)";
+  // Warnings of readers called without a sink of their own (core/diagnostics.h) become Python warnings;
+  // a reader may run while the GIL is released, so the sink takes it.
+  set_front_end_warning_sink([](const std::string& message) {
+    const py::gil_scoped_acquire gil;
+    py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 2);
+  });
 
   // InputError and FileError become roadbrdf.InputError (a ValueError) with the CLI's message.
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);

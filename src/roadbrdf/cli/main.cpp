@@ -15,6 +15,7 @@
 #include "roadbrdf/cli/parse_errors.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/data_path.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 
@@ -24,6 +25,9 @@ int main(int argc, char** argv) {
       "Angles in degrees, BRDF in sr^-1, wavelengths in nm."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "roadbrdf " + roadbrdf::version());
+  // Warnings of readers called without a sink of their own (core/diagnostics.h): the library never prints.
+  roadbrdf::set_front_end_warning_sink(
+      [](const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); });
   roadbrdf::cli::register_models_command(app);
   roadbrdf::cli::register_eval_command(app);
   roadbrdf::cli::register_rtable_command(app);

@@ -59,6 +59,15 @@ struct Diagnostics {
 // Where a reader called deep inside a task sends what it has to say (see above).
 using DiagnosticSink = std::function<void(Severity, const Diagnostic&)>;
 
+// The front end's sink for warnings of readers whose caller passed none (a reader's `warn` option left
+// empty): the command line installs one that prints "roadbrdf: warning: MESSAGE" on standard error,
+// Python one that issues roadbrdf.RoadbrdfWarning. Until one is installed (a C++ program using the
+// library directly) such warnings are kept, in order, for take_unrouted_warnings(): the library itself
+// never prints. Thread-safe.
+void set_front_end_warning_sink(std::function<void(const std::string&)> sink);
+void route_warning(const std::string& message);
+std::vector<std::string> take_unrouted_warnings();
+
 // A sink that collects into `diagnostics` (which must outlive it).
 inline DiagnosticSink collect_into(Diagnostics& diagnostics) {
   return [&diagnostics](Severity severity, const Diagnostic& d) {

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
@@ -80,7 +81,7 @@ class AltaParser {
     if (options_.warn) {
       options_.warn(m);
     } else {
-      fmt::print(stderr, "roadbrdf: warning: {}\n", m);
+      route_warning(m);
     }
   }
 

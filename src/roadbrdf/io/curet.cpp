@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
@@ -136,7 +137,7 @@ SpectralDataset read_curet(const std::string& abrdf_path, const std::string& tab
       if (options.warn) {
         options.warn(message);
       } else {
-        fmt::print(stderr, "roadbrdf: warning: {}\n", message);
+        route_warning(message);
       }
     }
   }

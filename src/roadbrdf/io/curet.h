@@ -18,7 +18,7 @@ namespace roadbrdf {
 
 struct CuretReadOptions {
   double nominal_wavelength_nm = 550.0;  // the wavelength the single grey channel is stored at
-  // Negative values are kept and counted; warnings go here (default: standard error).
+  // Negative values are kept and counted; warnings go here (default: the front end's sink, route_warning).
   std::function<void(const std::string&)> warn;
 };
 

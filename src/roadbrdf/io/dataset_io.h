@@ -64,8 +64,8 @@ struct DatasetReadOptions {
   bool allow_missing = true;
   // Accept any "# units:" metadata (e.g. radiances read by `calibrate`); otherwise only sr^-1.
   bool any_units = false;
-  // Where warnings go (negative values, missing values, averaged duplicates). Default: standard
-  // error, prefixed by "roadbrdf: warning: ".
+  // Where warnings go (negative values, missing values, averaged duplicates). Default: the front
+  // end's sink (core/diagnostics.h route_warning); the library never prints.
   std::function<void(const std::string&)> warn;
 };
 

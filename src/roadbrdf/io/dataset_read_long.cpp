@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/core/math.h"
@@ -31,7 +32,7 @@ bool is_missing_text(std::string_view t) {
 
 std::string trim_copy(const std::string& s) { return trimmed_copy(s); }
 
-void default_warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
+void default_warn(const std::string& message) { route_warning(message); }
 
 // Why a cell is no number, for an error message: out of range, not finite, or not a number at all.
 [[noreturn]] void not_a_number(Reading& r, std::string_view text, long column, std::string_view what) {

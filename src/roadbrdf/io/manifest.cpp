@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "roadbrdf/core/csv.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/text.h"
@@ -40,7 +41,7 @@ const char* role_name(ManifestRole r) {
 
 std::string trim_copy(std::string_view s) { return trimmed_copy(s); }
 
-void default_warn(const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); }
+void default_warn(const std::string& message) { route_warning(message); }
 
 std::string geometry_text(const Geometry& g) {
   return fmt::format("theta_i {:.4g}, phi_i {:.4g}, theta_r {:.4g}, phi_r {:.4g} deg", rad_to_deg(g.theta_i),

@@ -64,8 +64,8 @@ std::vector<FileArgument> manifest_input_files(const Manifest& manifest);
 
 struct ManifestOptions {
   InstrumentReadOptions read;
-  // Where warnings go (detector overlaps, dark rows for dark-corrected files). Default: standard
-  // error, prefixed by "roadbrdf: warning: ".
+  // Where warnings go (detector overlaps, dark rows for dark-corrected files). Default: the front
+  // end's sink (core/diagnostics.h route_warning); the library never prints.
   std::function<void(const std::string&)> warn;
 };
 

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <tuple>
 
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/io/openmaterial3d.h"
@@ -160,7 +161,7 @@ SpectralDataset read_openmaterial3d(const std::string& path, const DatasetReadOp
     if (options.warn) {
       options.warn(message);
     } else {
-      fmt::print(stderr, "roadbrdf: warning: {}\n", message);  // as the CSV readers do by default
+      route_warning(message);  // the front end's sink (core/diagnostics.h), as the CSV readers do
     }
   };
   if (stats.negative_values > 0) {
