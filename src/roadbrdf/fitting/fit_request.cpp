@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "roadbrdf/core/error.h"
@@ -372,7 +373,8 @@ std::vector<std::string> components_of(const std::string& name) {
 bool component_contains(const std::string& richer, const std::string& simpler) {
   if (richer == simpler) return true;
   try {
-    for (const auto& [name, values] : make_model(richer)->description().reduces_to) {
+    const std::unique_ptr<Model> model = make_model(richer);  // outlives the loop over its description
+    for (const auto& [name, values] : model->description().reduces_to) {
       if (name == simpler) return true;
     }
   } catch (const InputError&) {
