@@ -10,7 +10,7 @@ def _lambert_with_grazing_rows(path):
     rows = ["theta_i,phi_i,theta_r,phi_r,500,600"]
     for ti in (0, 20, 40, 60, 80):
         for tr in (0, 20, 40, 60, 80):
-            for dphi in (0, 180):
+            for dphi in (0, 180) if ti and tr else (0,):  # the azimuth of the normal is undefined
                 v = 0.3 / np.pi
                 rows.append(f"{ti},0,{tr},{dphi},{v!r},{v!r}")
     rows += ["90,0,90,0,0,0", "90,0,30,180,0,0", "45,0,90,180,0,0"]
@@ -23,7 +23,7 @@ def test_grazing_rows_are_left_out_with_the_same_note(cli, tmp_path):
     result = roadbrdf.fit(data, ["oren-nayar", "lambert"])
     notes = [n for n in result.notes if "direction at 90 deg" in n]
     assert len(notes) == 1
-    assert notes[0].startswith("3 of 53 geometries have a direction at 90 deg")
+    assert notes[0].startswith("3 of 44 geometries have a direction at 90 deg")
     printed = cli("fit", data, "-m", "oren-nayar", "-m", "lambert", "-o", tmp_path / "f.json").stderr
     assert f"roadbrdf: note: {notes[0]}" in printed
     for f in result["fits"]:
