@@ -93,6 +93,7 @@ class ModelFit:
         Over all wavelengths: ``rmse``, ``relative_rmse``, ``max_relative_error``, ``chi2``, ``aic``,
         ``bic``, ``points`` (measured values), ``missing_values``, ``free_parameters``,
         ``converged_count``, ``at_bound_count``, ``covariance_failures``, ``stayed_at_start_count``,
+        ``worse_than_nested`` (fitted models this one contains that fit better: its fit missed the optimum),
         ``seconds``, ``joint``, and ``coverage``: the measured directions (``theta_i_deg`` and
         ``theta_r_deg`` [min, max], ``azimuth_planes_deg``, ``geometries``), as in the fit file.
     """

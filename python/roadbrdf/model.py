@@ -32,7 +32,9 @@ def model_aliases() -> List[dict]:
 def models() -> List[dict]:
     """Metadata of every model: a list of dicts with ``name``, ``summary``, ``citation``,
     ``reciprocal``, ``energy_conserving``, ``non_negative``, ``has_delta``, ``isotropic``,
-    ``isotropic_when_equal`` (pairs of parameter names), ``parameters``
+    ``isotropic_when_equal`` (pairs of parameter names), ``grazing_zero`` (where the value at exactly
+    90 deg is 0 because the BRDF diverges there; "" when it is the limit everywhere), ``reduces_to``
+    (pairs [simpler model, parameter values]), ``parameters``
     (each a dict with ``name``, ``unit``, ``description``, ``default``, ``lower``, ``upper``,
     ``spectral``, ``linear``) and ``options`` (``name``, ``values``, ``default``, ``description``).
     This is the same metadata as ``roadbrdf models --json``."""

@@ -96,6 +96,7 @@ py::dict totals(const FitResult& f) {
   d["at_bound_count"] = f.at_bound_count;
   d["covariance_failures"] = f.covariance_failures;
   d["stayed_at_start_count"] = f.stayed_at_start_count;
+  d["worse_than_nested"] = f.worse_than_nested;
   // The angular coverage of the data (the fit file's "coverage").
   py::dict c;
   c["theta_i_deg"] = std::vector<double>{f.coverage.theta_i_min_deg, f.coverage.theta_i_max_deg};

@@ -220,8 +220,9 @@ void bind_io(py::module_& m) {
         options.decimal = decimal_from_name(decimal, "decimal");
         validate_read_options(options);
         options.warn = python_warning();
-        const SpectralDataset d = read_dataset(path, options);
-        const QualityReport r = check_dataset(d);
+        DatasetReadStats stats;
+        const SpectralDataset d = read_dataset(path, options, stats);
+        const QualityReport r = check_dataset(d, QualityOptions{}, stats);
         nlohmann::json j = quality_report_json(d, r);
         j["file"] = path;
         j["text"] = quality_report_text(d, r);

@@ -567,8 +567,11 @@ TEST(Hapke, GradientMatchesFiniteDifferences) {
 TEST(Hapke, FiniteAtGrazingGeometries) {
   const auto model = hapke("hg", "exact");
   const std::vector<double> p = {1.0, 1.0, 0.001, 0.95};
+  // Both directions grazing: f diverges like 1/(mu0 + mu) and is 0 there (declared in grazing_zero).
+  EXPECT_FALSE(model->description().grazing_zero.empty());
   for (double dphi : {0.0, 90.0, 180.0}) {
-    const double f = model->evaluate(p.data(), geometry_from_degrees(90.0, 0.0, 90.0, dphi));
+    EXPECT_EQ(model->evaluate(p.data(), geometry_from_degrees(90.0, 0.0, 90.0, dphi)), 0.0);
+    const double f = model->evaluate(p.data(), geometry_from_degrees(89.999, 0.0, 90.0, dphi));
     EXPECT_TRUE(std::isfinite(f));
     EXPECT_GT(f, 0.0);
   }

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <limits>
 
 #include "roadbrdf/core/math.h"
 
@@ -132,6 +133,24 @@ void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vec
         "WARNING: non-physical: an albedo above 1 (the model reflects more than it receives; e.g. a "
         "lobe amplitude too large): largest " +
         where);
+  }
+  // Below kImplausibleAlbedo no natural material reflects (fresh asphalt ~0.04, coal and carbon black
+  // ~0.02-0.03 in the visible): a white-sky albedo that low is a scale error of the data (a BRDF cos theta_i,
+  // a radiance, a reflectance divided by 100 twice) rather than a surface.
+  double darkest = std::numeric_limits<double>::infinity();
+  std::size_t at = 0;
+  for (std::size_t w = 0; w < white_sky.size(); ++w) {
+    if (white_sky[w] < darkest) {
+      darkest = white_sky[w];
+      at = w;
+    }
+  }
+  if (darkest >= 0.0 && darkest < kImplausibleAlbedo) {
+    notes.push_back(fmt::format(
+        "WARNING: implausible: a white-sky albedo of {:.3g}{} is below {:g}, darker than any natural material "
+        "(asphalt ~0.04): check the scale of the data (BRDF in sr^-1, not BRDF x cos theta_i, a radiance or a "
+        "reflectance in percent)",
+        darkest, at < wavelengths.size() ? fmt::format(" at {:g} nm", wavelengths[at]) : "", kImplausibleAlbedo));
   }
 }
 

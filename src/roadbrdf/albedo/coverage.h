@@ -35,7 +35,12 @@ nlohmann::json albedo_coverage(const Model& model, const double* params, double 
                                const std::vector<double>& sun_zenith_deg, const AngularCoverage& coverage,
                                std::vector<std::string>& notes);
 
-// Notes on non-physical values: a directional (black-sky) or white-sky albedo above 1.
+// White-sky albedos below this are warned about: darker than any natural material (docs/data.md,
+// "Implausible values"; physical range taken as 0.005-1).
+inline constexpr double kImplausibleAlbedo = 0.005;
+
+// Notes on non-physical values: a directional (black-sky) or white-sky albedo above 1; and on
+// implausible ones: a white-sky albedo below kImplausibleAlbedo.
 void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vector<double>& wavelengths,
                        const std::vector<std::vector<double>>& black_sky, const std::vector<double>& white_sky,
                        std::vector<std::string>& notes);

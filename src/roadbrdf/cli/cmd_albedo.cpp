@@ -75,7 +75,8 @@ void run(const AlbedoArgs& a) {
   // Mostly extrapolated or non-physical results are also warnings (the notes are in the output too).
   for (const auto& note : report.at("notes")) {
     const std::string n = note.get<std::string>();
-    if (n.rfind("WARNING: mostly", 0) == 0 || n.rfind("WARNING: non-physical", 0) == 0) {
+    if (n.rfind("WARNING: mostly", 0) == 0 || n.rfind("WARNING: non-physical", 0) == 0 ||
+        n.rfind("WARNING: implausible", 0) == 0) {
       fmt::print(stderr, "roadbrdf: warning: {}\n", n.substr(9));
     }
   }

@@ -29,10 +29,11 @@ void run(CheckArgs& a) {
   check_distinct_files({{"DATA", a.data}, {"--panel-reflectance", a.panel}}, {});
   DatasetReadOptions read = dataset_read_options(a.read);
   read.allow_missing = true;  // counted in the report
-  const SpectralDataset d = read_dataset(a.data, read);
+  DatasetReadStats stats;
+  const SpectralDataset d = read_dataset(a.data, read, stats);
   QualityOptions o = a.options;
   if (!a.panel.empty()) o.panel_reflectance = read_panel_reflectance(a.panel);
-  const QualityReport r = check_dataset(d, o);
+  const QualityReport r = check_dataset(d, o, stats);
   // The receiver solid angles of an OpenMATERIAL 3D file (io/openmaterial3d.h), kept in the metadata.
   constexpr std::string_view kSolidAngle = "receiver_solid_angle_sr.";
   nlohmann::json solid_angles = nlohmann::json::object();
@@ -82,6 +83,11 @@ void register_check_command(CLI::App& app) {
                 "Robust score above which a geometry is an outlier");
   c->add_option("--outlier-min-ratio", args.options.outlier_min_ratio,
                 "Minimum ratio to the neighbours' median for an outlier");
+  c->add_option("--specular-window", args.options.specular_cone_deg,
+                "Angle from the mirror direction [deg] within which a bright geometry is a specular peak, not an "
+                "outlier");
+  c->add_option("--listed-outliers", args.options.listed_outliers,
+                "Outliers listed in the text report (all of them with --json)");
   c->callback([] { run(args); });
 }
 

@@ -31,6 +31,9 @@ void print_markdown() {
         "azimuthally isotropic: {}\n",
         d.reciprocal ? "yes" : "no", d.energy_conserving ? "yes" : "no", d.non_negative ? "yes" : "no",
         d.has_delta ? "yes" : "no", isotropy_summary(d));
+    for (const auto& [simpler, values] : d.reduces_to) fmt::print("- Reduces to `{}` at {}\n", simpler, values);
+    fmt::print("- At grazing directions (theta = 90 deg): {}\n",
+               d.grazing_zero.empty() ? "the limit (finite everywhere)" : "the limit, except 0 " + d.grazing_zero);
     fmt::print("\n| parameter | unit | default | lower | upper | spectral | description |\n");
     fmt::print("|---|---|---|---|---|---|---|\n");
     for (const auto& p : d.parameters) {

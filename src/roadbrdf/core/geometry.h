@@ -35,6 +35,13 @@ inline Vec3 mirror_direction(const Vec3& w) { return {-w.x, -w.y, w.z}; }
 
 // One measurement geometry: the pair of directions plus their angles, computed once so that
 // models never repeat trigonometry in inner loops.
+// A direction whose cos(theta) is at most this counts as exactly grazing (theta = 90 deg): 90 deg
+// read from a file gives cos(theta) = 6.1e-17, not 0, and the next representable angles below
+// 90 deg that anyone measures (89.99999 deg: cos = 1.7e-7) stay far above it. At such a direction
+// there is no irradiance (incidence) or no projected area in view (viewing); the models define
+// their value there as the limit or as 0 (docs/models.md, "Grazing directions").
+inline constexpr double kGrazingCosine = 1e-12;
+
 struct Geometry {
   Vec3 wi;               // towards the source
   Vec3 wr;               // towards the viewer
@@ -47,6 +54,9 @@ struct Geometry {
 
   double cos_theta_i() const { return wi.z; }
   double cos_theta_r() const { return wr.z; }
+  // Whether a direction is exactly grazing (theta = 90 deg): see kGrazingCosine.
+  bool grazing_i() const;
+  bool grazing_r() const;
   // Half vector (w_i + w_r)/|w_i + w_r| (report eq. 3.6). Returns the normal when w_r = -w_i,
   // which cannot happen for two upper-hemisphere directions unless both are grazing.
   Vec3 half_vector() const;
@@ -54,6 +64,9 @@ struct Geometry {
   // Geometry with incident and reflected directions exchanged (for reciprocity checks).
   Geometry swapped() const;
 };
+
+inline bool Geometry::grazing_i() const { return wi.z <= kGrazingCosine; }
+inline bool Geometry::grazing_r() const { return wr.z <= kGrazingCosine; }
 
 // Build a geometry from angles in radians. Throws InputError if a zenith angle is outside [0, pi/2]
 // or an angle is not finite.

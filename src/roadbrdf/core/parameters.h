@@ -57,6 +57,16 @@ struct ModelDescription {
   bool energy_conserving = true;
   bool non_negative = true;  // f >= 0 for every geometry and every parameter set inside the bounds
   bool has_delta = false;    // has an ideal specular part, handled separately from the smooth BRDF
+  // The value at exactly grazing directions (theta_i or theta_r = 90 deg, Geometry::grazing_i/_r): the
+  // limit of the BRDF as the direction approaches the horizon with the other one held fixed, wherever
+  // that limit is finite. Where it is not (the BRDF diverges like 1/cos or tan of a zenith angle), the
+  // value there is 0, and `grazing_zero` says where, in words ("" when the limit is finite everywhere).
+  // model_properties_test checks both claims on a grid of 89.999, 90 deg and their mixes.
+  std::string grazing_zero;
+  // Registered models this one equals at some parameter values inside its bounds (nested models):
+  // name -> the values ("sigma = 0"). A fit worse than a fit of a model it nests is flagged
+  // (fitting/fit_request.h). Composites nest their components without listing them.
+  std::vector<std::pair<std::string, std::string>> reduces_to;
   // Azimuthal isotropy: the BRDF depends on the azimuths only through phi_r - phi_i (turning the
   // sample about its normal changes nothing), for every parameter set. A model anisotropic in general
   // may be isotropic where pairs of its parameters are equal (Ashikhmin-Shirley n_u = n_v, anisotropic

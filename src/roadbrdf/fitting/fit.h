@@ -187,8 +187,13 @@ struct FitResult {
   std::size_t at_bound_count = 0;  // wavelengths with at least one parameter on a bound
   std::size_t covariance_failures = 0;
   std::size_t stayed_at_start_count = 0;  // converged wavelengths with stayed_at_start
-  AngularCoverage coverage;               // of the geometries measured at one wavelength at least
-  double seconds = 0.0;                   // wall time of fit_model
+  // Models of the same request (and group) that this model contains (it equals them at some parameter
+  // values: a composite its components, Oren-Nayar Lambert; ModelDescription::reduces_to) and whose fit
+  // has a lower total relative RMSE (by more than 0.1 % + 1e-6): this fit missed its optimum (set by
+  // run_fit, fitting/fit_request.h).
+  std::vector<std::string> worse_than_nested;
+  AngularCoverage coverage;  // of the geometries measured at one wavelength at least
+  double seconds = 0.0;      // wall time of fit_model
   double cpu_seconds = 0.0;  // process CPU time during fit_model (all threads; noisy machines: compare this)
   bool joint = false;
   // Joint mode: iterations and status of the single problem.

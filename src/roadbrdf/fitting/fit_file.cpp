@@ -253,6 +253,7 @@ nlohmann::json fit_to_json(const FitResult& fit) {
   j["at_bound_count"] = fit.at_bound_count;
   j["covariance_failures"] = fit.covariance_failures;
   j["stayed_at_start_count"] = fit.stayed_at_start_count;
+  j["worse_than_nested"] = fit.worse_than_nested;
   if (fit.joint) {
     j["joint_iterations"] = fit.joint_iterations;
     j["joint_status"] = fit.joint_status;

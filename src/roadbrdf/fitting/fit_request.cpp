@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "roadbrdf/core/error.h"
@@ -270,6 +271,16 @@ std::string FitSummary::table() const {
                        number_or_dash(f.aic_total, "{:.2f}"), number_or_dash(f.bic_total, "{:.2f}"),
                        fmt::format("{}/{}", f.converged_count, M), f.at_bound_count, f.seconds);
   }
+  for (const FitResult& f : fits) {
+    for (const std::string& simpler : f.worse_than_nested) {
+      const auto other = std::find_if(fits.begin(), fits.end(),
+                                      [&](const FitResult& x) { return x.model == simpler && x.group == f.group; });
+      out += fmt::format(
+          "# flag: {} fits worse (RMSE {:.4g}) than {} (RMSE {:.4g}), a model it contains: its fit missed the "
+          "optimum (try `multistart` or `start`)\n",
+          f.model, f.rmse_total, simpler, other == fits.end() ? std::nan("") : other->rmse_total);
+    }
+  }
   if (!ranking.empty()) {
     out += grouped ? fmt::format("best (lowest BIC summed over the groups): {}\n", fits[best_fit_index(fits)].model)
                    : fmt::format("best (lowest total BIC): {}\n", best().model);
@@ -343,12 +354,75 @@ std::vector<GeometryGroup> fit_groups(const FitRequest& request, const SpectralD
 
 }  // namespace
 
+namespace {
+
+std::vector<std::string> components_of(const std::string& name) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t plus = name.find('+', start);
+    out.push_back(name.substr(start, plus == std::string::npos ? std::string::npos : plus - start));
+    if (plus == std::string::npos) return out;
+    start = plus + 1;
+  }
+}
+
+// Whether the registered model `richer` equals `simpler` or reduces to it (ModelDescription::reduces_to).
+bool component_contains(const std::string& richer, const std::string& simpler) {
+  if (richer == simpler) return true;
+  try {
+    const std::unique_ptr<Model> model = make_model(richer);  // outlives the loop over its description
+    for (const auto& [name, values] : model->description().reduces_to) {
+      if (name == simpler) return true;
+    }
+  } catch (const InputError&) {
+  }
+  return false;
+}
+
+// Assign each of simpler[k...] to a distinct unused component of `richer` that contains it.
+bool assign_components(const std::vector<std::string>& simpler, std::size_t k, const std::vector<std::string>& richer,
+                       std::vector<bool>& used) {
+  if (k == simpler.size()) return true;
+  for (std::size_t r = 0; r < richer.size(); ++r) {
+    if (used[r] || !component_contains(richer[r], simpler[k])) continue;
+    used[r] = true;
+    if (assign_components(simpler, k + 1, richer, used)) return true;
+    used[r] = false;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool model_contains(const std::string& richer, const std::string& simpler) {
+  if (richer == simpler) return false;
+  const std::vector<std::string> r = components_of(richer), s = components_of(simpler);
+  if (s.size() > r.size()) return false;
+  std::vector<bool> used(r.size(), false);
+  return assign_components(s, 0, r, used);
+}
+
+void flag_worse_than_nested(std::vector<FitResult>& fits, std::size_t first) {
+  for (std::size_t i = first; i < fits.size(); ++i) {
+    for (std::size_t j = first; j < fits.size(); ++j) {
+      if (i == j || !model_contains(fits[i].model, fits[j].model)) continue;
+      // The richer model can always reproduce the simpler fit, so a worse fit missed its optimum. The
+      // margin (0.1 % of the simpler fit's relative RMSE, plus 1e-6 of the data) keeps the convergence
+      // tolerance of two near-perfect fits from being flagged.
+      if (fits[i].relative_rmse_total > fits[j].relative_rmse_total * (1.0 + 1e-3) + 1e-6) {
+        fits[i].worse_than_nested.push_back(fits[j].model);
+      }
+    }
+  }
+}
+
 FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, const FitProgress& progress) {
   std::vector<PlannedFit> plan = plan_fits(request);
   const SpectralDataset* data = &dataset;
   SpectralDataset subset;
   std::vector<std::string> notes;
-  if (!request.wavelengths.empty() || !request.bands.empty()) {
+  if (!request.wavelengths.empty() || !request.bands.empty() || !grazing_geometries(dataset).empty()) {
     subset = fitted_spectra(request, dataset, &notes);
     data = &subset;
   }
@@ -391,6 +465,7 @@ FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, co
       s.fits.back().group = group.key;
       s.models.push_back(plan[i].model);
     }
+    flag_worse_than_nested(s.fits, first);
     std::vector<std::size_t> ranks(plan.size());
     for (std::size_t i = 0; i < ranks.size(); ++i) ranks[i] = first + i;
     std::stable_sort(ranks.begin(), ranks.end(),

@@ -102,10 +102,20 @@ struct FitSummary {
 using FitProgress = std::function<std::function<void(std::size_t, std::size_t)>(const std::string& label)>;
 
 // The spectra a request fits: the dataset, its selected wavelengths, or its band means (`bands`), with
-// the notes on nearest bands and band means. run_fit and the residuals file both use it. Throws
-// FieldError ("wavelengths", "bands").
+// the notes on nearest bands and band means, and without the geometries that have a grazing direction
+// (grazing_geometries: no irradiance or nothing in view), named in a note. run_fit and the residuals
+// file both use it. Throws FieldError ("wavelengths", "bands"), InputError when every geometry is grazing.
 SpectralDataset fitted_spectra(const FitRequest& request, const SpectralDataset& data,
                                std::vector<std::string>* notes = nullptr);
+// The indices of the geometries with theta_i or theta_r = 90 deg (Geometry::grazing_i, grazing_r).
+std::vector<std::size_t> grazing_geometries(const SpectralDataset& data);
+
+// Whether the model `richer` ("a+b" for a composite) contains `simpler` (a different model): each
+// component of `simpler` is a distinct component of `richer` or one it reduces to
+// (ModelDescription::reduces_to). "oren-nayar+torrance-sparrow" contains "oren-nayar" and "lambert".
+bool model_contains(const std::string& richer, const std::string& simpler);
+// Sets FitResult::worse_than_nested of fits[first...] (one group of a request) from their total RMSE.
+void flag_worse_than_nested(std::vector<FitResult>& fits, std::size_t first);
 
 // Validate, select the wavelengths, and fit every model. Throws FieldError / InputError.
 FitSummary run_fit(const FitRequest& request, const SpectralDataset& data, const FitProgress& progress = {});

@@ -1,4 +1,6 @@
 // The wavelengths to fit (a subset of the dataset's), and the dataset restricted to them.
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -8,9 +10,11 @@
 #include <vector>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/io/geometry_selection.h"
 #include "roadbrdf/io/resample.h"
 
 namespace roadbrdf {
@@ -88,8 +92,11 @@ SpectralDataset subset_wavelengths(const SpectralDataset& data, const std::vecto
   return out;
 }
 
-SpectralDataset fitted_spectra(const FitRequest& request, const SpectralDataset& data,
-                               std::vector<std::string>* notes) {
+namespace {
+
+// The selected wavelengths or band means of fitted_spectra, every geometry kept.
+SpectralDataset selected_spectra(const FitRequest& request, const SpectralDataset& data,
+                                 std::vector<std::string>* notes) {
   if (!request.wavelengths.empty()) {
     return subset_wavelengths(data, select_wavelengths(data.wavelengths, request.wavelengths, notes));
   }
@@ -123,6 +130,59 @@ SpectralDataset fitted_spectra(const FitRequest& request, const SpectralDataset&
                      " nm), fitted at " + fmt_double(0.5 * (lower + upper)) + " nm");
   }
   return means;
+}
+
+}  // namespace
+
+std::vector<std::size_t> grazing_geometries(const SpectralDataset& data) {
+  std::vector<std::size_t> out;
+  for (std::size_t g = 0; g < data.geometry_count(); ++g) {
+    if (data.geometries[g].grazing_i() || data.geometries[g].grazing_r()) out.push_back(g);
+  }
+  return out;
+}
+
+// A geometry measured with a direction on the horizon (theta = 90 deg) holds no reflectance: at grazing
+// incidence no light reaches the sample, at grazing view no area of it is seen, and a model's value
+// there is a limit or a declared 0 (ModelDescription::grazing_zero; Oren-Nayar and Hapke diverge when
+// both are grazing). Fitting such rows drove Oren-Nayar to albedo ~1e-17, so they are left out, with
+// a note naming them.
+SpectralDataset fitted_spectra(const FitRequest& request, const SpectralDataset& data,
+                               std::vector<std::string>* notes) {
+  SpectralDataset selected = selected_spectra(request, data, notes);
+  const std::vector<std::size_t> grazing = grazing_geometries(selected);
+  if (grazing.empty()) return selected;
+  if (grazing.size() == selected.geometry_count()) {
+    throw InputError(
+        fmt::format("every one of the {} geometries has a direction at 90 deg (grazing: no irradiance "
+                    "or nothing in view): there is nothing to fit",
+                    grazing.size()));
+  }
+  std::vector<std::size_t> kept;
+  kept.reserve(selected.geometry_count() - grazing.size());
+  for (std::size_t g = 0, next = 0; g < selected.geometry_count(); ++g) {
+    if (next < grazing.size() && grazing[next] == g) {
+      ++next;
+    } else {
+      kept.push_back(g);
+    }
+  }
+  if (notes != nullptr) {
+    constexpr std::size_t kNamed = 5;
+    std::string named;
+    for (std::size_t k = 0; k < std::min(grazing.size(), kNamed); ++k) {
+      const Geometry& g = selected.geometries[grazing[k]];
+      named +=
+          fmt::format("{}#{} (theta_i {:g}, phi_i {:g}, theta_r {:g}, phi_r {:g} deg)", k ? ", " : "", grazing[k] + 1,
+                      rad_to_deg(g.theta_i), rad_to_deg(g.phi_i), rad_to_deg(g.theta_r), rad_to_deg(g.phi_r));
+    }
+    if (grazing.size() > kNamed) named += fmt::format(" and {} more", grazing.size() - kNamed);
+    notes->push_back(
+        fmt::format("{} of {} geometries have a direction at 90 deg (grazing: no irradiance or nothing "
+                    "in view) and are not fitted: {}",
+                    grazing.size(), selected.geometry_count(), named));
+  }
+  return subset_geometries(selected, kept);
 }
 
 }  // namespace roadbrdf

@@ -72,15 +72,28 @@ struct DatasetReadOptions {
 // Throws InputError for contradictory options (e.g. decimal ',' with delimiter ',').
 void validate_read_options(const DatasetReadOptions& options);
 
+// How far repeated measurements of one geometry (duplicate rows, averaged when asked) disagree: per
+// wavelength, the relative spread (max - min) / |mean| of each duplicated cell, and its median and
+// largest value over the duplicated geometries. The first estimate of the measurement noise a user has
+// (a relative spread of two normal deviates of standard deviation s has mean 2 s / sqrt(pi) = 1.13 s).
+struct Repeatability {
+  std::size_t geometries = 0;                  // geometries with more than one row
+  std::vector<double> median_relative_spread;  // per wavelength (NaN where no duplicated cell is measured)
+  std::vector<double> max_relative_spread;     // per wavelength
+};
+
 // Counts found while reading (also in the warnings).
 struct DatasetReadStats {
   std::size_t negative_values = 0;
   std::size_t missing_values = 0;  // missing cells written as such (empty, nan, NA)
   std::size_t absent_rows = 0;     // long files: (geometry, wavelength) pairs without a row, also missing
   std::size_t averaged_duplicate_rows = 0;
-  std::size_t implausible_values = 0;   // BRDF values above 1e3 sr^-1
+  std::size_t implausible_values = 0;  // BRDF values above 1e3 sr^-1
+  // Averaged duplicates: how far the rows of one geometry disagree (see Repeatability).
+  Repeatability repeatability;
   bool micrometre_wavelengths = false;  // every wavelength below 30 "nm": probably micrometres
-  bool radian_angles = false;           // every angle within +-1.6 "deg": probably radians
+  bool metre_wavelengths = false;       // every wavelength below 1e-4 "nm": probably metres
+  bool radian_angles = false;           // zeniths within 1.6 "deg" and azimuths within +-6.3 "deg": probably radians
 };
 
 // Number of missing (NaN) BRDF values of a dataset.

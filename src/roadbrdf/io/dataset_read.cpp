@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <unordered_map>
 
 #include "roadbrdf/core/csv.h"
@@ -288,6 +289,8 @@ class WideRows {
   std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen_;
   std::vector<long> row_lines_;
   std::vector<int> multiplicity_;  // only when averaging
+  // Only when averaging: per duplicated geometry, the smallest and largest value of each cell.
+  std::map<std::size_t, std::vector<std::pair<double, double>>> ranges_;
   std::vector<double> row_, srow_;
   AngleCells angles_;
   bool reserved_ = false;
@@ -337,8 +340,15 @@ void WideRows::add_duplicate(std::size_t n) {
     for (std::size_t k = 0; k < brdf.size(); ++k) multiplicity_[k] = std::isnan(brdf[k]) ? 0 : 1;
   }
   ++r_.stats.averaged_duplicate_rows;
+  auto [range, first] = ranges_.try_emplace(n);
+  if (first) {  // the geometry's first row, still on its own
+    for (std::size_t j = 0; j < m_; ++j) range->second.emplace_back(brdf[n * m_ + j], brdf[n * m_ + j]);
+  }
   for (std::size_t j = 0; j < m_; ++j) {
     if (std::isnan(row_[j])) continue;
+    auto& [lo, hi] = range->second[j];
+    lo = std::isnan(lo) ? row_[j] : std::min(lo, row_[j]);
+    hi = std::isnan(hi) ? row_[j] : std::max(hi, row_[j]);
     double& v = brdf[n * m_ + j];
     v = multiplicity_[n * m_ + j]++ == 0 ? row_[j] : v + row_[j];
     if (with_sigma_) {
@@ -361,6 +371,14 @@ void WideRows::finish() {
   }
   if (r_.stats.averaged_duplicate_rows)
     d_.metadata["averaged_duplicate_rows"] = std::to_string(r_.stats.averaged_duplicate_rows);
+  std::vector<std::vector<double>> spreads(m_);
+  for (const auto& [n, range] : ranges_) {
+    for (std::size_t j = 0; j < m_; ++j) {
+      if (multiplicity_[n * m_ + j] < 2) continue;
+      spreads[j].push_back(relative_spread(range[j].first, range[j].second, d_.brdf[n * m_ + j]));
+    }
+  }
+  r_.stats.repeatability = repeatability_of(spreads, ranges_.size());
 }
 
 SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector<HeaderCell>& names,
@@ -399,7 +417,7 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
       throw FileError(reader.path(), reader.line_number(), 0, e.what());
     }
   }
-  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0, {}};
+  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0, {}, false};
   std::size_t column_count = 0;
   bool is_long = false;
   const std::vector<HeaderCell> names = header_names(r, header, column_count, is_long);

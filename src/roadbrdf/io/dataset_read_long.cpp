@@ -173,6 +173,31 @@ void ragged(Reading& r, std::string_view line, std::size_t expected, std::string
 
 std::string duplicates_hint() { return "ask for averaging of duplicates (`average_duplicates`) to average them"; }
 
+double relative_spread(double lo, double hi, double mean) {
+  if (hi == lo) return 0.0;
+  return (hi - lo) / std::fabs(mean);
+}
+
+Repeatability repeatability_of(std::vector<std::vector<double>>& spreads, std::size_t geometries) {
+  Repeatability out;
+  out.geometries = geometries;
+  if (geometries == 0) return out;
+  for (auto& s : spreads) {
+    if (s.empty()) {
+      out.median_relative_spread.push_back(kNaN);
+      out.max_relative_spread.push_back(kNaN);
+      continue;
+    }
+    const std::size_t h = s.size() / 2;
+    std::nth_element(s.begin(), s.begin() + static_cast<long>(h), s.end());
+    double median = s[h];
+    if (s.size() % 2 == 0) median = 0.5 * (median + *std::max_element(s.begin(), s.begin() + static_cast<long>(h)));
+    out.median_relative_spread.push_back(median);
+    out.max_relative_spread.push_back(*std::max_element(s.begin(), s.end()));
+  }
+  return out;
+}
+
 void finish_warnings(Reading& r, const SpectralDataset& d) {
   auto warn = r.options.warn ? r.options.warn : default_warn;
   const std::size_t total = d.brdf.size();
@@ -198,25 +223,43 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
                     "counts or a reflectance in percent)",
                     r.reader.path(), r.stats.implausible_values, total, kImplausibleBrdf, r.largest, r.first_large));
   }
-  if (!d.wavelengths.empty() && d.wavelengths.back() < kMicrometreLikeWavelength) {
+  const char* wavelength_place = r.long_format ? "in the 'wavelength' column" : "in the header";
+  if (!d.wavelengths.empty() && d.wavelengths.back() < kMetreLikeWavelength) {
+    r.stats.metre_wavelengths = true;
+    warn(
+        fmt::format("{}: every wavelength {} is below {:g} nm ({:g}-{:g}): they look like metres; datasets "
+                    "hold nm (multiply the wavelengths {} by 1e9)",
+                    r.reader.path(), wavelength_place, kMetreLikeWavelength, d.wavelengths.front(),
+                    d.wavelengths.back(), wavelength_place));
+  } else if (!d.wavelengths.empty() && d.wavelengths.back() < kMicrometreLikeWavelength) {
     r.stats.micrometre_wavelengths = true;
     warn(
-        fmt::format("{}: every wavelength is below {:g} nm ({:g}-{:g}): they look like micrometres; datasets hold "
-                    "nm (multiply the header wavelengths by 1000)",
-                    r.reader.path(), kMicrometreLikeWavelength, d.wavelengths.front(), d.wavelengths.back()));
+        fmt::format("{}: every wavelength {} is below {:g} nm ({:g}-{:g}): they look like micrometres; datasets "
+                    "hold nm (multiply the wavelengths {} by 1000)",
+                    r.reader.path(), wavelength_place, kMicrometreLikeWavelength, d.wavelengths.front(),
+                    d.wavelengths.back(), wavelength_place));
   }
-  double largest_angle = 0.0;
+  // Zenith angles in radians lie within [0, pi/2], azimuths within +-2 pi: judged separately, so that
+  // azimuths up to pi or 2 pi do not hide radian zeniths. Azimuths are compared modulo 360 (a file's
+  // -1 rad reads as 359 "deg").
+  double largest_zenith = 0.0, largest_azimuth = 0.0;
+  const bool road = d.convention == AngleConvention::kRoad;
   for (const Geometry& g : d.geometries) {
     double a[4];
     angle_values_of_geometry(g, d.convention, a);
-    for (double v : a) largest_angle = std::max(largest_angle, std::fabs(v));
+    // zenith convention: theta_i, phi_i, theta_r, phi_r; road: gamma, alpha (zenith-like), beta, delta.
+    const double zeniths[2] = {a[0], road ? a[1] : a[2]};
+    const double azimuths[2] = {road ? a[2] : a[1], a[3]};
+    for (double v : zeniths) largest_zenith = std::max(largest_zenith, std::fabs(v));
+    for (double v : azimuths) largest_azimuth = std::max(largest_azimuth, std::fabs(std::remainder(v, 360.0)));
   }
-  if (!d.geometries.empty() && largest_angle > 0.0 && largest_angle <= kRadianLikeAngle) {
+  if (!d.geometries.empty() && largest_zenith > 0.0 && largest_zenith <= kRadianLikeZenith &&
+      largest_azimuth <= kRadianLikeAzimuth) {
     r.stats.radian_angles = true;
     warn(
-        fmt::format("{}: every angle is within +-{:g} deg (largest {:g}): they look like radians; datasets hold "
-                    "degrees (multiply the angles by 180/pi)",
-                    r.reader.path(), kRadianLikeAngle, largest_angle));
+        fmt::format("{}: every zenith angle is within {:g} deg (largest {:g}) and every azimuth within +-{:g} deg "
+                    "(largest {:g}): they look like radians; datasets hold degrees (multiply the angles by 180/pi)",
+                    r.reader.path(), kRadianLikeZenith, largest_zenith, kRadianLikeAzimuth, largest_azimuth));
   }
 }
 
@@ -431,11 +474,21 @@ void fill_table(Reading& r, const RecordTable& t, bool with_sigma, SpectralDatas
     d.sigma.assign(n * m, 0.0);
   }
   std::vector<std::uint32_t> rows(n * m, 0), count(n * m, 0);
+  // Smallest and largest value of each cell (duplicates are averaged only when asked for).
+  std::vector<double> lo, hi;
+  if (r.options.average_duplicates) {
+    lo.assign(n * m, kNaN);
+    hi.assign(n * m, kNaN);
+  }
   for (std::size_t k = 0; k < t.records.size(); ++k) {
     const auto& rec = t.records[k];
     const std::size_t idx = rec.geometry * m + t.wl_index[k];
     if (rows[idx]++ > 0) ++r.stats.averaged_duplicate_rows;
     if (std::isnan(rec.brdf)) continue;
+    if (!lo.empty()) {
+      lo[idx] = count[idx] == 0 ? rec.brdf : std::min(lo[idx], rec.brdf);
+      hi[idx] = count[idx] == 0 ? rec.brdf : std::max(hi[idx], rec.brdf);
+    }
     ++count[idx];
     d.brdf[idx] += rec.brdf;
     if (with_sigma) d.sigma[idx] += rec.sigma * rec.sigma;
@@ -449,6 +502,19 @@ void fill_table(Reading& r, const RecordTable& t, bool with_sigma, SpectralDatas
     d.brdf[idx] /= count[idx];
     if (with_sigma) d.sigma[idx] = std::sqrt(d.sigma[idx]) / count[idx];
   }
+  if (lo.empty()) return;
+  std::vector<std::vector<double>> spreads(m);
+  std::size_t duplicated = 0;
+  for (std::size_t g = 0; g < n; ++g) {
+    bool any = false;
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::size_t idx = g * m + j;
+      any = any || rows[idx] > 1;
+      if (count[idx] >= 2) spreads[j].push_back(relative_spread(lo[idx], hi[idx], d.brdf[idx]));
+    }
+    if (any) ++duplicated;
+  }
+  r.stats.repeatability = repeatability_of(spreads, duplicated);
 }
 
 }  // namespace
@@ -457,6 +523,7 @@ SpectralDataset read_long(Reading& r, const std::vector<LongColumn>& columns, st
                           const std::vector<std::size_t>& angle_columns, AngleConvention convention) {
   SpectralDataset d;
   d.convention = convention;
+  r.long_format = true;
   read_metadata(r, d);
   const LongLayout layout = long_layout(r, columns, column_count, angle_columns);
   // One record per row; the table is allocated only once its shape is known to be complete.

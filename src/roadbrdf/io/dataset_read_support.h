@@ -18,10 +18,14 @@ namespace roadbrdf::dataset_read {
 // BRDF values above this [sr^-1] are warned about (a mirror or retroreflector peak, or the wrong
 // units: radiance, counts, percent).
 constexpr double kImplausibleBrdf = 1e3;
-// A dataset whose wavelengths are all below this [nm] probably gives micrometres.
+// A dataset whose wavelengths are all below this [nm] probably gives micrometres (UV to thermal
+// infrared: 0.2-25 um), below the second metres (2e-7 to 2.5e-5 m).
 constexpr double kMicrometreLikeWavelength = 30.0;
-// A dataset whose angles all lie within +-this [deg] probably gives radians.
-constexpr double kRadianLikeAngle = 1.6;
+constexpr double kMetreLikeWavelength = 1e-4;
+// A dataset whose zenith angles all lie within this [deg] (pi/2 = 1.571) and whose azimuths lie within
+// +-the second (2 pi = 6.283) probably gives radians.
+constexpr double kRadianLikeZenith = 1.6;
+constexpr double kRadianLikeAzimuth = 6.3;
 
 struct Reading {
   const DatasetReadOptions& options;
@@ -34,6 +38,7 @@ struct Reading {
   std::string first_large;  // location of the first value above kImplausibleBrdf
   double largest = 0.0;
   std::string first_absent;  // the first (geometry, wavelength) pair of a long file without a row
+  bool long_format = false;  // wavelengths in a column (long) or in the header (wide)
 };
 
 // Key identifying a geometry: zenith angles and azimuths (azimuth mod 360, undefined azimuth at
@@ -72,6 +77,10 @@ Geometry parse_geometry(Reading& r, AngleConvention convention, const AngleCells
 // What to say about duplicate geometries.
 std::string duplicates_hint();
 void finish_warnings(Reading& r, const SpectralDataset& d);
+// (hi - lo) / |mean| of a duplicated cell (0 when all three are 0).
+double relative_spread(double lo, double hi, double mean);
+// Repeatability from the relative spreads of the duplicated cells, per wavelength.
+Repeatability repeatability_of(std::vector<std::vector<double>>& spreads, std::size_t geometries);
 
 // A non-angle column of a long file's header.
 struct LongColumn {

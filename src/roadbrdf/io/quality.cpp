@@ -268,27 +268,43 @@ double neighbour_prediction(const OutlierInputs& in, std::size_t g,
   return median_of(vals);
 }
 
-// Residuals far from their median in units of the robust spread (MAD, floored at 0.02 in log) and
-// large as a ratio are outliers; a bright one inside the specular cone is a physical peak.
-void flag_outliers(const std::vector<double>& residual, const std::vector<bool>& specular, const QualityOptions& o,
-                   QualityReport& r) {
+// Robust centre and spread (1.4826 MAD, floored at 0.02 in log) of some residuals.
+std::pair<double, double> robust_centre_and_spread(std::vector<double> v) {
+  std::vector<double> tmp = v;
+  const double center = median_of(tmp);
+  for (auto& x : v) x = std::fabs(x - center);
+  return {center, std::max(1.4826 * median_of(v), 0.02)};
+}
+
+// Residuals far from their neighbours' residuals in units of the neighbours' robust spread (local in
+// angle and scale-aware: a smooth ramp whose residuals grow where its signal falls into the noise is
+// judged against its own neighbourhood, not against the quiet part of the data), and large as a ratio,
+// are outliers; a bright one within the specular window is a physical peak. Fewer than 5 neighbours
+// with a residual: the spread of all residuals.
+void flag_outliers(const std::vector<double>& residual, const std::vector<std::vector<std::size_t>>& neighbours,
+                   const OutlierInputs& in, const SpectralDataset& d, const QualityOptions& o, QualityReport& r) {
   std::vector<double> finite;
   for (double v : residual) {
     if (std::isfinite(v)) finite.push_back(v);
   }
   if (finite.size() < 3) return;
-  std::vector<double> tmp = finite;
-  const double center = median_of(tmp);
-  for (auto& v : finite) v = std::fabs(v - center);
-  const double scale = std::max(1.4826 * median_of(finite), 0.02);
+  const auto [global_center, global_scale] = robust_centre_and_spread(finite);
+  std::vector<double> local;
   for (std::size_t g = 0; g < residual.size(); ++g) {
     if (!std::isfinite(residual[g])) continue;
+    local.clear();
+    for (std::size_t k : neighbours[g]) {
+      if (std::isfinite(residual[k])) local.push_back(residual[k]);
+    }
+    const auto [center, scale] =
+        local.size() >= 5 ? robust_centre_and_spread(local) : std::pair<double, double>{global_center, global_scale};
     const double score = std::fabs(residual[g] - center) / scale;
     if (score > o.outlier_threshold && std::exp(std::fabs(residual[g])) > o.outlier_min_ratio) {
-      if (specular[g] && residual[g] > 0.0) {
-        r.specular_peaks.push_back({g, std::exp(residual[g]), score});
+      const double from_mirror = rad_to_deg(angle_between(d.geometries[g].wr, mirror_direction(d.geometries[g].wi)));
+      if (in.specular[g] && residual[g] > 0.0) {
+        r.specular_peaks.push_back({g, std::exp(residual[g]), score, from_mirror});
       } else {
-        r.outliers.push_back({g, std::exp(residual[g]), score});
+        r.outliers.push_back({g, std::exp(residual[g]), score, from_mirror});
       }
     }
   }
@@ -302,14 +318,16 @@ void check_outliers(const SpectralDataset& d, const QualityOptions& o, QualityRe
   // enough neighbours, else their median. A linear fit follows smooth angular gradients, also at
   // the edge of the grid where every neighbour lies on one side.
   std::vector<double> residual(n, std::nan(""));
+  std::vector<std::vector<std::size_t>> neighbours(n);
   std::vector<std::pair<double, std::size_t>> cand;
   for (std::size_t g = 0; g < n; ++g) {
     if (!std::isfinite(in.level[g])) continue;
     const std::size_t k = nearest_neighbours(in, g, o, cand);
     if (k == 0) continue;
+    for (std::size_t q = 0; q < k; ++q) neighbours[g].push_back(cand[q].second);
     residual[g] = in.level[g] - neighbour_prediction(in, g, cand, k);
   }
-  flag_outliers(residual, in.specular, o, r);
+  flag_outliers(residual, neighbours, in, d, o, r);
 }
 
 void check_panel(const SpectralDataset& d, const spectra::Spectrum& rho, QualityReport& r) {
@@ -383,7 +401,12 @@ QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
   if (o.neighbours < 2) {
     throw InputError(fmt::format("neighbours must be >= 2 (a prediction needs two neighbours), got {}", o.neighbours));
   }
+  if (!(o.specular_cone_deg >= 0.0 && o.specular_cone_deg <= 180.0)) {
+    throw InputError(fmt::format("specular window must be in [0, 180] deg, got {:g}", o.specular_cone_deg));
+  }
   QualityReport r;
+  r.listed_outliers = o.listed_outliers;
+  r.specular_window_deg = o.specular_cone_deg;
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
   r.geometry_count = n;
   r.wavelength_count = m;
@@ -423,6 +446,13 @@ QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
   check_noise(d, o, r);
   check_outliers(d, o, r);
   if (o.panel_reflectance) check_panel(d, *o.panel_reflectance, r);
+  check_plausibility(d, r);
+  return r;
+}
+
+QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o, const DatasetReadStats& stats) {
+  QualityReport r = check_dataset(d, o);
+  r.repeatability = stats.repeatability;
   return r;
 }
 
@@ -471,14 +501,21 @@ nlohmann::json quality_report_json(const SpectralDataset& d, const QualityReport
   j["noise"] = {{"noisy_bands", bands}, {"snr_per_wavelength", snr}};
   nlohmann::json outliers = nlohmann::json::array();
   for (const auto& o : r.outliers) {
-    outliers.push_back({{"geometry", geometry_json(d, o.index)}, {"ratio_to_neighbours", o.ratio}, {"score", o.score}});
+    outliers.push_back({{"geometry", geometry_json(d, o.index)},
+                        {"ratio_to_neighbours", o.ratio},
+                        {"score", o.score},
+                        {"from_mirror_deg", o.from_mirror_deg}});
   }
   j["outliers"] = outliers;
   nlohmann::json peaks = nlohmann::json::array();
   for (const auto& o : r.specular_peaks) {
-    peaks.push_back({{"geometry", geometry_json(d, o.index)}, {"ratio_to_neighbours", o.ratio}, {"score", o.score}});
+    peaks.push_back({{"geometry", geometry_json(d, o.index)},
+                     {"ratio_to_neighbours", o.ratio},
+                     {"score", o.score},
+                     {"from_mirror_deg", o.from_mirror_deg}});
   }
   j["specular_peaks_not_counted_as_outliers"] = peaks;
+  plausibility_json(d, r, j);
   if (r.panel) {
     nlohmann::json per = nlohmann::json::array();
     for (std::size_t g = 0; g < r.panel->mean_relative_deviation.size(); ++g) {
@@ -524,16 +561,28 @@ std::string quality_report_text(const SpectralDataset& d, const QualityReport& r
   for (const auto& b : r.noisy_bands)
     s += fmt::format("  {:g}-{:g} nm (min SNR {:.3g})\n", b.lower_nm, b.upper_nm, b.min_snr);
   s += fmt::format("outlier geometries: {}\n", r.outliers.size());
-  for (const auto& o : r.outliers) {
+  for (std::size_t k = 0; k < std::min(r.outliers.size(), r.listed_outliers); ++k) {
+    const auto& o = r.outliers[k];
     s += fmt::format("  {}: {:.3g} x its neighbours (score {:.3g})\n", geometry_text(d, o.index), o.ratio, o.score);
   }
+  if (r.outliers.size() > r.listed_outliers) {
+    s += fmt::format("  ... and {} more (every one in the JSON report)\n", r.outliers.size() - r.listed_outliers);
+  }
   if (!r.specular_peaks.empty()) {
-    s += fmt::format("bright geometries near the specular direction (physical peaks, not counted as outliers): {}\n",
-                     r.specular_peaks.size());
-    for (const auto& o : r.specular_peaks) {
-      s += fmt::format("  {}: {:.3g} x its neighbours\n", geometry_text(d, o.index), o.ratio);
+    s += fmt::format(
+        "bright geometries within {:g} deg of the mirror direction (physical peaks, not counted as outliers): {}\n",
+        r.specular_window_deg, r.specular_peaks.size());
+    for (std::size_t k = 0; k < std::min(r.specular_peaks.size(), r.listed_outliers); ++k) {
+      const auto& o = r.specular_peaks[k];
+      s += fmt::format("  {}: {:.3g} x its neighbours, {:.3g} deg from the mirror direction\n",
+                       geometry_text(d, o.index), o.ratio, o.from_mirror_deg);
+    }
+    if (r.specular_peaks.size() > r.listed_outliers) {
+      s += fmt::format("  ... and {} more (every one in the JSON report)\n",
+                       r.specular_peaks.size() - r.listed_outliers);
     }
   }
+  s += plausibility_text(d, r);
   if (r.panel) {
     s += fmt::format("reference panel vs rho/pi: mean relative deviation {:+.3g}, max |deviation| {:.3g}\n",
                      r.panel->overall_mean, r.panel->overall_max_abs);

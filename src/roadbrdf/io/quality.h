@@ -18,12 +18,20 @@
 //   nearest geometries in the isotropic angular coordinates (theta_i, theta_r cos dphi,
 //   theta_r |sin dphi|) [deg] by a local least-squares fit (quadratic without cross terms with
 //   >= 12 neighbours, linear with >= 5, else their median);
-//   residual = log(f / prediction), score = |residual - median| / (1.4826 * MAD of all residuals);
-//   flagged when score > `outlier_threshold` and the ratio exceeds `outlier_min_ratio`. Sharp
-//   physical peaks: a bright geometry within `specular_cone_deg` of the mirror direction is
-//   listed as a specular peak instead, and such geometries do not enter the other predictions.
-//   Remaining limitation: strong grazing-angle curvature on a coarse grid can still be flagged.
+//   residual = log(f / prediction), score = |residual - median| / (1.4826 MAD, floored at 0.02), the
+//   median and MAD of the residuals of the same neighbours (local in angle and scale-aware: where the
+//   data are noisier, e.g. a ramp falling into the noise towards grazing angles, so is the spread; all
+//   residuals with fewer than 5 neighbours); flagged when score > `outlier_threshold` and the ratio
+//   exceeds `outlier_min_ratio`. Sharp physical peaks: a bright geometry within `specular_cone_deg`
+//   (the specular window, an angle from the mirror direction) is listed as a specular peak instead,
+//   and such geometries do not enter the other predictions. The text lists the first
+//   `listed_outliers`, the JSON all. Remaining limitation: strong grazing-angle curvature on a coarse
+//   grid can still be flagged.
 // - Reference panel: with a panel reflectance rho(lambda), every value against rho/pi.
+// - Plausibility of the scale (quality_plausibility.cpp): the Lambertian-equivalent albedo pi x median
+//   BRDF per wavelength against [0.005, 1] (natural materials); values that look like BRDF x cos theta_i
+//   (reciprocity pairs that disagree by the ratio of their incidence cosines and agree once divided
+//   by cos theta_i); the repeatability of averaged duplicate rows (io/dataset_io.h, Repeatability).
 #pragma once
 
 #include <optional>
@@ -33,6 +41,7 @@
 #include <nlohmann/json.hpp>
 
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/spectra/spectrum.h"
 
 namespace roadbrdf {
@@ -47,9 +56,12 @@ struct QualityOptions {
   double outlier_threshold = 6.0;
   double outlier_min_ratio = 1.6;
   double neighbour_max_distance_deg = 40.0;
-  // Geometries whose w_r is within this angle of the mirror direction of w_i: a bright value there
-  // is reported as a specular peak, not an outlier, and they are not used to predict the others.
-  double specular_cone_deg = 25.0;
+  // The specular window: geometries whose w_r is within this angle [deg] of the mirror direction of
+  // w_i. A bright value there is reported as a specular peak, not an outlier, and they are not used to
+  // predict the others. (At theta_i = 89 deg, theta_r = 64 deg in the forward plane is 25 deg away.)
+  double specular_cone_deg = 10.0;
+  // The summary text lists this many outliers (all of them in the JSON report).
+  std::size_t listed_outliers = 5;
   std::optional<spectra::Spectrum> panel_reflectance;  // validate a reference panel measured as a sample
 };
 
@@ -64,6 +76,25 @@ struct OutlierGeometry {
   std::size_t index = 0;
   double ratio = 1.0;  // spectral mean / median of the neighbours' spectral means
   double score = 0.0;
+  double from_mirror_deg = 0.0;  // angle between w_r and the mirror direction of w_i
+};
+
+// Lambertian-equivalent albedo pi x median over the geometries of the BRDF, per wavelength, against the
+// range of natural materials [kPlausibleAlbedoMin, kPlausibleAlbedoMax].
+inline constexpr double kPlausibleAlbedoMin = 0.005;
+inline constexpr double kPlausibleAlbedoMax = 1.0;
+struct ScalePlausibility {
+  std::vector<double> equivalent_albedo;  // per wavelength (NaN without a measured value)
+  std::size_t below = 0, above = 0;       // wavelengths outside the range
+};
+
+// Whether the values look like BRDF x cos theta_i: over the reciprocity pairs whose incidence cosines
+// differ (by more than 5 %), the mean disagreement of the values as stored and divided by cos theta_i.
+struct CosineFactorTest {
+  std::size_t pairs = 0;
+  double disagreement = 0.0;          // as stored
+  double divided_disagreement = 0.0;  // after dividing every value by cos theta_i
+  bool likely = false;                // clearly non-reciprocal as stored, reciprocal once divided
 };
 
 struct NoisyBand {
@@ -93,9 +124,24 @@ struct QualityReport {
   std::vector<OutlierGeometry> outliers;
   std::vector<OutlierGeometry> specular_peaks;  // bright near-specular geometries (not outliers)
   std::optional<PanelValidation> panel;
+  ScalePlausibility scale;
+  CosineFactorTest cosine_factor;
+  Repeatability repeatability;        // of the averaged duplicates (from the reading statistics)
+  std::vector<std::string> warnings;  // implausible scale, BRDF x cos theta_i: one line each
+  std::size_t listed_outliers = 5;    // from the options: outliers listed in the text
+  double specular_window_deg = 10.0;  // from the options
 };
 
 QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions& options = {});
+// The same with the statistics of reading the file (the repeatability of averaged duplicates).
+QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions& options,
+                            const DatasetReadStats& stats);
+
+// The plausibility checks (quality_plausibility.cpp), their JSON ("plausibility", "repeatability")
+// and their lines of the text report.
+void check_plausibility(const SpectralDataset& dataset, QualityReport& report);
+void plausibility_json(const SpectralDataset& dataset, const QualityReport& report, nlohmann::json& j);
+std::string plausibility_text(const SpectralDataset& dataset, const QualityReport& report);
 
 nlohmann::json quality_report_json(const SpectralDataset& dataset, const QualityReport& report);
 std::string quality_report_text(const SpectralDataset& dataset, const QualityReport& report);

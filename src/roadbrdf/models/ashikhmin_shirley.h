@@ -78,6 +78,9 @@ struct AshikhminShirley {
     d.reciprocal = true;                      // symmetric in k1, k2 (max() and h.k1 = h.k2)
     d.energy_conserving = true;               // paper's claim; holds numerically (see the header comment)
     d.non_negative = true;
+    // Both directions grazing: max(n.k1, n.k2) -> 0 in the specular lobe's denominator, which diverges
+    // (a broad lobe, small n_u and n_v, keeps a finite numerator there); the value there is 0.
+    d.grazing_zero = "where both directions are grazing (the specular lobe's 1/((h.k) max(n.k1, n.k2)) diverges)";
     return d;
   }
   explicit AshikhminShirley(const OptionSet&) {}

@@ -67,6 +67,10 @@ struct Burley {
                               1.5, 0.5, 4.0, false, false});
     }
     d.energy_conserving = false;  // Burley's diffuse term is not energy conserving (by design)
+    // Both directions grazing: the half vector lies in the surface (cos theta_h = 0), where D is cut off
+    // while its limit from above is not; the value there is 0 (declared) rather than a diffuse term
+    // without its specular part.
+    d.grazing_zero = "where both directions are grazing (the half vector lies in the surface)";
     return d;
   }
 
@@ -78,6 +82,7 @@ struct Burley {
     double lh = 0.0;              // w_i.h (0 where h is undefined)
     double cos_h = 1.0;           // n.h
     bool valid = false;           // h defined (not w_i = -w_r)
+    bool both_grazing = false;    // theta_i = theta_r = 90 deg (grazing_zero)
     double mi5 = 0.0, mr5 = 0.0;  // (1 - cos theta_i)^5, (1 - cos theta_r)^5: the diffuse's Schlick weights
   };
 
@@ -87,6 +92,7 @@ struct Burley {
     q.cr = g.wr.z;
     const microfacet::HalfVector h = microfacet::half_vector_of(g);
     q.valid = h.valid;
+    q.both_grazing = g.grazing_i() && g.grazing_r();
     q.lh = h.valid ? h.cos_ih : 0.0;
     q.cos_h = h.cos_h;
     const double mi = 1.0 - q.ci, mr = 1.0 - q.cr;
@@ -120,6 +126,7 @@ struct Burley {
 
   template <typename T>
   T operator()(const Coefficients<T>& k, const Prepared& g) const {
+    if (g.both_grazing) return T(0.0);  // grazing_zero
     // Diffuse (Burley 2012 eq. in section 5.3).
     const T fd90 = 0.5 + 2.0 * k.roughness * (g.lh * g.lh);
     T diffuse = k.albedo_over_pi * (1.0 + (fd90 - 1.0) * g.mi5) * (1.0 + (fd90 - 1.0) * g.mr5);

@@ -22,6 +22,9 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
     d.reciprocal = d.reciprocal && c.reciprocal;
     d.non_negative = d.non_negative && c.non_negative;
     d.has_delta = d.has_delta || c.has_delta;
+    if (!c.grazing_zero.empty()) {
+      d.grazing_zero += (d.grazing_zero.empty() ? "" : "; ") + prefixes[k] + ": " + c.grazing_zero;
+    }
     const std::string& prefix = prefixes[k];
     combine_isotropy(d, c, prefix);
     d.parameters.push_back(

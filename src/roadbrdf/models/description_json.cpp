@@ -11,6 +11,9 @@ nlohmann::json description_to_json(const ModelDescription& d) {
   j["energy_conserving"] = d.energy_conserving;
   j["non_negative"] = d.non_negative;
   j["has_delta"] = d.has_delta;
+  j["grazing_zero"] = d.grazing_zero;
+  j["reduces_to"] = nlohmann::json::array();
+  for (const auto& [simpler, values] : d.reduces_to) j["reduces_to"].push_back({simpler, values});
   j["isotropic"] = d.isotropic;
   j["isotropic_when_equal"] = nlohmann::json::array();
   for (const auto& [first, second] : d.isotropic_when_equal) j["isotropic_when_equal"].push_back({first, second});

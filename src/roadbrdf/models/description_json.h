@@ -9,7 +9,8 @@
 
 namespace roadbrdf {
 
-// Keys: name, summary, citation, reciprocal, energy_conserving, non_negative, has_delta,
+// Keys: name, summary, citation, reciprocal, energy_conserving, non_negative, has_delta, grazing_zero,
+// reduces_to [[name, values], ...],
 // isotropic, isotropic_when_equal [[name, name], ...], parameters [{name, unit, description, default, lower, upper,
 // spectral, linear}], options [{name, description, values, default}], option_values {name: value}.
 nlohmann::json description_to_json(const ModelDescription& description);

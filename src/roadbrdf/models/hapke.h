@@ -64,9 +64,11 @@
 //     (albedo > 1 for w near 1 and b0 > 0), IMSA treats multiple scattering as isotropic whatever p is,
 //     and the approximate H functions do not satisfy the albedo identity (domain notes section 4: H1 and
 //     H2 BRDFs integrate to 7% and 1.4% below the closed form at w = 0.95, mu0 = 0.2).
-//   - Both directions exactly grazing (mu0 = mu = 0): f diverges like 1/(mu0 + mu). The denominator is
-//     floored at kMinCosineSum so that the value there is finite (and huge), continuous with the
-//     neighbouring geometries; no measurement or Gauss quadrature node sits exactly there.
+//   - Grazing directions: with one of mu0, mu = 0 every factor is finite (H(0) = 1) and the formula
+//     gives its own limit. With both exactly grazing (mu0 = mu = 0) f diverges like 1/(mu0 + mu) (the
+//     bracket tends to [1 + B(g)] p(g) > 0, since H(0) H(0) - 1 = 0): f is 0 there (declared in
+//     grazing_zero; no irradiance and no projected area in view). Just inside, the denominator is
+//     floored at kMinCosineSum so that the values stay finite (and huge).
 #pragma once
 
 #include <algorithm>
@@ -166,6 +168,7 @@ struct Hapke {
     d.reciprocal = true;
     d.energy_conserving = false;  // SHOE term, IMSA, approximate H (see the header comment)
     d.non_negative = true;
+    d.grazing_zero = "where both directions are grazing (f diverges like 1/(cos theta_i + cos theta_r))";
     return d;
   }
 
@@ -253,7 +256,7 @@ struct Hapke {
     double mu = 0.0;          // cos(theta_r), >= 0
     double cos_g = 1.0;       // cosine of the phase angle
     double tan_half_g = 0.0;  // tan(g/2); +infinity at g = pi
-    double scale = 0.0;       // 1 / (4 pi (mu0 + mu)), the sum floored at kMinCosineSum
+    double scale = 0.0;       // 1 / (4 pi (mu0 + mu)), the sum floored at kMinCosineSum; 0 if both grazing
   };
 
   Prepared prepare(const Geometry& g) const {
@@ -263,7 +266,7 @@ struct Hapke {
     q.cos_g = std::fmax(-1.0, std::fmin(1.0, dot(g.wi, g.wr)));
     q.tan_half_g = tan_half_phase_angle(g);
     const double inv_sum = 1.0 / std::fmax(q.mu0 + q.mu, kMinCosineSum);
-    q.scale = 0.25 * kInvPi * inv_sum;
+    q.scale = g.grazing_i() && g.grazing_r() ? 0.0 : 0.25 * kInvPi * inv_sum;
     return q;
   }
 

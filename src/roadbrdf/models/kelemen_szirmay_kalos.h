@@ -76,6 +76,9 @@ struct KelemenSzirmayKalos {
          false},
     };
     d.energy_conserving = true;
+    // Both directions grazing in the forward plane: the specular term's 1/(4 (l.h)^2) diverges as the
+    // half vector becomes undefined; the value there is 0 (declared) wherever both are grazing.
+    d.grazing_zero = "where both directions are grazing (the specular term's 1/(4 (l.h)^2) diverges forward)";
     return d;
   }
 
@@ -85,6 +88,7 @@ struct KelemenSzirmayKalos {
 
   template <typename T>
   T operator()(const T* p, const Geometry& g) const {
+    if (g.grazing_i() && g.grazing_r()) return T(0.0);  // grazing_zero
     const T& alpha = p[kRoughness];
     const T f0 = fresnel_f0(p[kIor]);
     const microfacet::HalfVector h = microfacet::half_vector_of(g);

@@ -55,6 +55,10 @@ struct OrenNayar {
     // towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, 1.014 at 89 deg; 1.044 at
     // sigma = 0.3, 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). Checked in oren_nayar_test.
     d.energy_conserving = false;
+    d.reduces_to = {{"lambert", "sigma = 0 (C1 = 1, C2 = C3 = 0, no interreflection)"}};
+    d.grazing_zero = full ? "where both directions are grazing, unless cos(dphi) = -1 (tan(beta) and tan((alpha + "
+                            "beta)/2) diverge; eqs. 30, 37)"
+                          : "where both directions are grazing and cos(dphi) > 0 (tan(beta) diverges; eq. 32)";
     d.summary +=
         "; not energy conserving (fitted closed form: with albedo 1 the black-sky albedo exceeds 1 towards "
         "grazing sun, 1.044 at sigma = 0.3 rad and 89 deg)";
@@ -73,6 +77,7 @@ struct OrenNayar {
     double c3_geometry = 0.0;           // (4 alpha beta / pi^2)^2
     double c3_weight = 0.0;             // (1 - |cos dphi|) tan((alpha + beta) / 2)
     double interreflection = 0.0;       // 1 - cos(dphi) (2 beta / pi)^2
+    bool zero = false;                  // both directions grazing where the closed form diverges
   };
 
   Prepared prepare(const Geometry& g) const {
@@ -89,7 +94,29 @@ struct OrenNayar {
     q.c3_geometry = sqr(4.0 * alpha * beta / (kPi * kPi));
     q.c3_weight = (1.0 - std::fabs(c)) * std::tan(0.5 * (alpha + beta));
     q.interreflection = 1.0 - c * sqr(two_beta_over_pi);
+    if (g.grazing_i() && g.grazing_r()) grazing_limit(q);
     return q;
+  }
+
+  // Both directions grazing (alpha = beta = pi/2), approached with one of them held at 90 deg: with
+  // alpha = pi/2 and beta = pi/2 - e, tan(beta) = 1/e + O(e), sin(alpha) = 1 and
+  // (2 beta / pi)^3 = 1 - 6e/pi + O(e^2), so
+  //   tan(beta) (sin(alpha) - (2 beta/pi)^3) -> 6/pi   (full form, cos dphi < 0: finite),
+  //   tan(beta) sin(alpha) -> infinity                 (full form, cos dphi >= 0; qualitative, cos dphi > 0),
+  //   (1 - |cos dphi|) tan((alpha + beta)/2) -> infinity unless |cos dphi| = 1 (C3 weight, full form).
+  // The limit is finite only in the forward plane (cos dphi = -1) for the full form and wherever
+  // cos dphi <= 0 for the qualitative form; elsewhere the value there is 0 (grazing_zero).
+  void grazing_limit(Prepared& q) const {
+    constexpr double kTiny = 1e-12;  // cos(dphi) at 90 deg evaluates to 6e-17, at 180 deg to -1
+    q.c3_weight = 0.0;
+    if (!full_) {
+      q.qualitative_b = 0.0;
+      q.zero = q.c > kTiny;
+      return;
+    }
+    q.zero = q.c > -1.0 + kTiny;
+    q.tan_beta = 6.0 * kInvPi;  // the product tan(beta) (sin(alpha) - (2 beta/pi)^3), with:
+    q.sin_alpha_minus_cube = 1.0;
   }
 
   template <typename T>
@@ -129,6 +156,7 @@ struct OrenNayar {
 
   template <typename T>
   T operator()(const Coefficients<T>& k, const Prepared& g) const {
+    if (g.zero) return T(0.0);
     if (!full_) return k.rho_over_pi * (k.c1 + k.c2_base * g.qualitative_b);
     const T c2 = g.c >= 0.0 ? T(k.c2_base * g.sin_alpha) : T(k.c2_base * g.sin_alpha_minus_cube);
     const T c3 = k.c3_base * g.c3_geometry;

@@ -61,6 +61,7 @@ struct RetroPhong {
     d.reciprocal = false;         // weights depend on theta_i only
     d.energy_conserving = false;  // k_d + k_s + k_r < 1 is not enforced
     d.non_negative = true;
+    d.reduces_to = {{"lambert", "k1 = k2 = k3 = 0 (no lobes; kd is the albedo)"}};
     return d;
   }
   explicit RetroPhong(const OptionSet&) {}

@@ -28,8 +28,11 @@
 //     grazing geometries unless f_iso is large; no box bounds on (f_iso, f_vol, f_geo) with f_geo > 0 can
 //     prevent it. The kernels are a fitting basis for view/sun zenith angles up to ~60-70 deg.
 //   - NOT energy conserving: nothing bounds the albedo f_iso + f_vol K_vol_bs + f_geo K_geo_bs by 1.
-//   - Exactly grazing directions (theta = 90 deg) make sec and tan infinite: the cosines are floored at
-//     kMinCosine there so that the (huge) value stays finite and continuous with nearby geometries.
+//   - Exactly grazing directions (theta = 90 deg): K_geo diverges like sec(theta) (with ts fixed,
+//     K_geo ~ sec(tv) [(1 + sin ts cos phi) sec(ts) / 2 - 1] as tv -> 90 deg; the overlap term vanishes
+//     there) and K_vol like 1 / (cos ts + cos tv) when both are grazing, so the model is 0 at any
+//     grazing direction (declared in grazing_zero), as no single finite value is the limit for every
+//     weight. Just inside, the cosines are floored at kMinCosine so that the (huge) values stay finite.
 // Parameter bounds: non-negative kernel weights, as in the MCD43A1 product; upper bound 2 leaves room
 // above the BRF of the brightest natural surfaces (~1).
 #pragma once
@@ -67,6 +70,7 @@ struct RossLi {
     d.reciprocal = true;
     d.energy_conserving = false;
     d.non_negative = false;  // K_geo -> -infinity towards grazing angles (see the header comment)
+    d.grazing_zero = "at any grazing direction (K_geo diverges like sec theta, K_vol like 1/(cos ts + cos tv))";
     return d;
   }
   explicit RossLi(const OptionSet&) {}
@@ -109,6 +113,7 @@ struct RossLi {
 
   template <typename T>
   T operator()(const T* p, const Geometry& g) const {
+    if (g.grazing_i() || g.grazing_r()) return T(0.0);
     const Kernels k = kernels(g);
     return (p[kIso] + p[kVol] * k.vol + p[kGeo] * k.geo) * kInvPi;
   }

@@ -87,6 +87,7 @@ struct Simonot {
     d.energy_conserving = true;  // albedo = R01 + (1 - R01) rho (1 - r10)/(1 - rho r10) <= 1 for rho <= 1
     d.non_negative = true;
     d.has_delta = true;
+    d.reduces_to = {{"lambert", "ior = 1 (no interface: R01 = r10 = 0, f = rho/pi)"}};
     return d;
   }
   explicit Simonot(const OptionSet&) {}

@@ -152,6 +152,10 @@ struct TorranceSparrow {
                               3.0, true, false});
     }
     d.energy_conserving = true;  // single scattering with normalised D and G <= 1, F <= 1, ks <= 1
+    // Both directions grazing: G / (cos_i cos_r) diverges for the height-correlated Smith term and the
+    // value there is 0 (the half vector lies in the surface or is undefined); one grazing direction
+    // keeps a finite limit (G vanishes like the cosine it divides).
+    d.grazing_zero = "where both directions are grazing (F D G / (4 cos_i cos_r) diverges there)";
     return d;
   }
 

@@ -20,6 +20,10 @@ nlohmann::json class_json(const RoadClass& c) { return {{"name", c.name}, {"stan
 // Q0 of real road surfaces lies between about 0.04 and 0.2 sr^-1 (van Bommel, Road Lighting,
 // Table 12.2: standard tables 0.07-0.10); above this the table is most likely scaled differently.
 constexpr double kImplausibleQ0 = 0.5;
+// Below this (a fifth of the darkest surfaces, and of the standard classes' 0.07-0.10) the S1 class is
+// given with a warning: a table that dark is a scale error of the data (BRDF x cos theta_i, percent,
+// a radiance), and its class says nothing about a road.
+constexpr double kImplausiblyLowQ0 = 0.01;
 
 // The summary figures, class, coverage notes and plausibility warnings of a finished table.
 void summarize_into(RTableReport& report, const RTableRequest& request,
@@ -41,6 +45,13 @@ void summarize_into(RTableReport& report, const RTableRequest& request,
         fmt::format("Q0 = {:.4g} sr^-1 is implausibly large for a road surface: is the table "
                     "normalised differently (e.g. to Q0 = 1)? See the scale option of the import",
                     report.summary.q0));
+  }
+  if (report.summary.q0 >= 0.0 && report.summary.q0 < kImplausiblyLowQ0) {
+    report.warnings.push_back(
+        fmt::format("Q0 = {:.3g} sr^-1 is far below any road surface (0.04-0.2) and the standard tables of class "
+                    "{} (Q0 {:g}): the class is not meaningful for this table; check the scale of the data (BRDF in "
+                    "sr^-1, not BRDF x cos theta_i, a radiance or a reflectance in percent)",
+                    report.summary.q0, report.chosen.name, report.chosen.standard_q0));
   }
   const auto& declared = report.declared_q0;
   if (declared && *declared > 0.0 && std::abs(*declared - report.summary.q0) > 0.05 * report.summary.q0) {
