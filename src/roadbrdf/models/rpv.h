@@ -91,10 +91,12 @@ struct RahmanPintyVerstraete {
     q.log_cos_product = std::log(ci_clamped) + std::log(cr_clamped);
     q.log_cos_sum = std::log(ci_clamped + cr_clamped);
     q.cos_phase = dot(g.wi, g.wr);
-    // G from the zenith angles (tan = sin / cos); G^2 >= (tan_i - tan_r)^2 >= 0, rounding aside.
-    const double ti = std::sin(g.theta_i) / ci_clamped, tr = std::sin(g.theta_r) / cr_clamped;
-    const double g2 = ti * ti + tr * tr - 2.0 * ti * tr * g.cos_delta_phi;
-    q.hot_spot = 1.0 / (1.0 + std::sqrt(std::fmax(g2, 0.0)));
+    // G from the direction vectors alone (the angle fields are not read, model.h): tan theta = |w_xy| / w_z
+    // and tan theta_i tan theta_r cos(dphi) = (w_i,xy . w_r,xy) / (cos theta_i cos theta_r). G^2 =
+    // |w_i,xy / cos_i - w_r,xy / cos_r|^2 >= 0, computed as that difference vector's squared length.
+    const double dx = g.wi.x / ci_clamped - g.wr.x / cr_clamped, dy = g.wi.y / ci_clamped - g.wr.y / cr_clamped;
+    const double g2 = dx * dx + dy * dy;
+    q.hot_spot = 1.0 / (1.0 + std::sqrt(g2));
     return q;
   }
 
