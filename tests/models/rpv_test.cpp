@@ -1,7 +1,7 @@
 // Rahman-Pinty-Verstraete model ("rpv").
 //
-// Independent references: the paper's equations (Rahman, Pinty & Verstraete, JGR 98(D11):20791, 1993,
-// eqs. 3-7) written again here from the spherical angles, in the paper's own form (phase angle g from
+// Independent references: the paper's equations (Rahman, Pinty & Verstraete, JGR 98(D11):20791, 1993)
+// written again here from the spherical angles, in the paper's own form (phase angle g from
 // its cosine, F with cos(pi - g), G from the tangents), and closed forms derived by hand: the nadir, the
 // hot spot, and the Lambertian special case rho0 = 1, k = 1, Theta = 0 (rho = 1 everywhere).
 #include "roadbrdf/models/rpv.h"

@@ -3,7 +3,7 @@
 //
 // H. Rahman, B. Pinty and M. M. Verstraete, "Coupled surface-atmosphere reflectance (CSAR) model 2.
 // Semiempirical surface model usable with NOAA advanced very high resolution radiometer data",
-// JGR 98(D11):20791-20801 (1993), eqs. 3-7. The bidirectional reflectance FACTOR is
+// JGR 98(D11):20791-20801 (1993). The bidirectional reflectance FACTOR is
 //   rho = rho0 M(k) F(g) [1 + R(G)]
 //   M(k)     = cos^(k-1)(theta_i) cos^(k-1)(theta_r) / (cos theta_i + cos theta_r)^(1-k)   (Minnaert-like)
 //   F(g)     = (1 - Theta^2) / [1 + Theta^2 - 2 Theta cos(pi - g)]^(3/2)                 (Henyey-Greenstein)
@@ -18,7 +18,9 @@
 // spot). roadbrdf's dphi = phi_r - phi_i with both directions pointing away from the surface has the same
 // origin (dphi = 0 is the retro side), so cos phi = cos(dphi) and cos g = w_i . w_r. With cos(pi - g) =
 // -cos g the phase function is F = (1 - Theta^2) / (1 + 2 Theta cos g + Theta^2)^(3/2): Theta < 0 makes
-// F largest at g = 0, i.e. predominantly backward scattering, as the paper states for its soil fits.
+// F largest at g = 0, i.e. predominantly backward scattering. (The
+// I3RC intercomparison's reference code has the same origin: hot spot at mu2 = mu1, phi = 0, and
+// F with + 2 Theta cos g.) Implementations that measure phi from the forward side write -cos phi instead.
 //
 // Properties:
 //   - reciprocal and azimuthally isotropic: every factor is symmetric in (theta_i, theta_r) and depends on
@@ -56,7 +58,7 @@ struct RahmanPintyVerstraete {
     d.summary =
         "Rahman-Pinty-Verstraete semi-empirical model for soils and sand (BRDF = BRF/pi); not energy conserving "
         "(k < 1 diverges towards grazing directions, 0 at exactly 90 deg)";
-    d.citation = "Rahman, Pinty & Verstraete, JGR 98(D11):20791 (1993), eqs. 3-7";
+    d.citation = "Rahman, Pinty & Verstraete, JGR 98(D11):20791 (1993)";
     d.parameters = {
         {"rho0", "1", "amplitude rho0 of the bidirectional reflectance factor (also sets the hot-spot height)", 0.3,
          0.0, 1.0, true, false},
