@@ -22,6 +22,7 @@
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/retro_phong.h"
 #include "roadbrdf/models/ross_li.h"
+#include "roadbrdf/models/rpv.h"
 #include "roadbrdf/models/simonot.h"
 #include "roadbrdf/models/torrance_sparrow.h"
 
@@ -161,6 +162,9 @@ TEST(ModelParameterLayout, EnumeratorsAreThePositionsOfTheDescribedParameters) {
                         {Hapke::kHg2B, "hg2_b"},
                         {Hapke::kHg2C, "hg2_c"}});
   expect_layout<RossLi>({{RossLi::kIso, "f_iso"}, {RossLi::kVol, "f_vol"}, {RossLi::kGeo, "f_geo"}});
+  expect_layout<RahmanPintyVerstraete>({{RahmanPintyVerstraete::kRho0, "rho0"},
+                                        {RahmanPintyVerstraete::kK, "k"},
+                                        {RahmanPintyVerstraete::kTheta, "Theta"}});
 }
 
 // Lafortune reads lobe k (0-based) at 1 + k * stride: rho, cx, (cy when anisotropic), cz, n.

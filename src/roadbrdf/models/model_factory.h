@@ -61,6 +61,7 @@ ModelFactory kelemen_szirmay_kalos_factory();
 ModelFactory burley_factory();
 ModelFactory hapke_factory();
 ModelFactory ross_li_factory();
+ModelFactory rpv_factory();
 // [model-factories]
 
 }  // namespace roadbrdf

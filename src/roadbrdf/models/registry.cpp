@@ -17,7 +17,7 @@ const std::vector<ModelFactory>& factories() {
   static const std::vector<ModelFactory> table = {
       lambert_factory(),   oren_nayar_factory(),  ashikhmin_shirley_factory(), simonot_factory(),
       lafortune_factory(), retro_phong_factory(), torrance_sparrow_factory(),  kelemen_szirmay_kalos_factory(),
-      burley_factory(),    hapke_factory(),       ross_li_factory(),
+      burley_factory(),    hapke_factory(),       ross_li_factory(),           rpv_factory(),
       // [model-entries]
   };
   return table;
