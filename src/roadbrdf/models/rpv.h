@@ -71,6 +71,9 @@ struct RahmanPintyVerstraete {
     };
     d.reciprocal = true;
     d.energy_conserving = false;  // see the header comment
+    d.grazing_zero =
+        "at any grazing direction when k != 1 (for k < 1 the BRDF diverges like cos^(k-1) theta; for k > 1 0 is the "
+        "limit)";
     d.non_negative = true;
     return d;
   }
