@@ -375,7 +375,9 @@ def _with_u(t, name, key):
     the mixture's covariance: photometry/rtable_uncertainty.h) where defined; ``data-value`` is the figure."""
     u = t.get("uncertainty") or {}
     text = number(t[name], 4)
-    if u.get(name) is not None and np.isfinite(u[name]):
+    if t.get("extrapolated"):
+        text += " (extrapolated)"
+    elif u.get(name) is not None and np.isfinite(u[name]):
         text += f" ± {number(u[name], 2)}"
     return Cell(text, key, float(t[name]), True)
 
@@ -399,11 +401,17 @@ def rtable(r) -> Section:
              ("Qd [sr⁻¹]", _with_u(t, "Qd", "rtable.Qd")),
              ("class (R system)", Cell(esc(t["class"]), "rtable.class")),
              ("classes N / C", esc(f"{cls.get('N', '–')} / {cls.get('C', '–')}"))]
-    if u.get("class_probabilities"):
+    if t.get("extrapolated"):
+        items.append(("class probability", "none: extrapolated (no standard-region cell was measured)"))
+    elif u.get("class_probabilities"):
         items.append(("class probability (S1 normal with its uncertainty; ≥ 1 %)",
                       esc(", ".join(f"{c['class']} {c['probability']:.2f}" for c in u["class_probabilities"]))))
     html += definition_list(items)
-    if u:
+    if t.get("extrapolated"):
+        html += ("<p>Every cell of the standard region lies outside the measured directions: the figures are "
+                 "the model's extrapolation, and the fit's covariance, which only describes the measured "
+                 "directions, gives them no uncertainty.</p>")
+    elif u:
         html += "<p>± standard uncertainty from the fit's covariance (wavelengths independent, where defined).</p>"
     html += caveats(list(t.get("warnings") or []) + [n for n in t.get("notes") or [] if n.startswith("coverage")])
     html += caveats([n for n in t.get("notes") or [] if not n.startswith("coverage")], info=True)
