@@ -81,8 +81,8 @@ def draw_all(r) -> None:
     _spectral(r)
     ti, band, best = r.theta_i_figures, r.band, r.best.model
     _draw(r, "hemisphere", esc(f"The best-ranked fit ({best}) over the viewing hemisphere at θ_i = {ti:g}°, "
-                               f"{band:g} nm (plot.hemisphere)."),
-          lambda: plot.hemisphere(read_fit(r.fit_all_path, best), theta_i=ti, wavelength=band,
+                               f"{band:g} nm, with the measured points on the same colour scale (plot.hemisphere)."),
+          lambda: plot.hemisphere(read_fit(r.fit_all_path, best), theta_i=ti, wavelength=band, data=r.dataset,
                                   title=f"{r.sample}: {best} at {band:g} nm, θ_i = {ti:g}°"))
     _draw(r, "plane", esc(f"Plane of incidence at θ_i = {ti:g}°, {band:g} nm: the measured points and every "
                           "model fitted to all configurations (plot.plane)."),

@@ -35,7 +35,8 @@ div.table { overflow-x: auto; max-width: 100%; }
 table { border-collapse: collapse; margin: 8px 0 14px; font-size: 13px; }
 th, td { border: 1px solid var(--rule); padding: 3px 8px; text-align: left; vertical-align: top; }
 th { background: var(--band); font-weight: 600; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+th { overflow-wrap: anywhere; }
 tr.best td { background: #eef7f0; }
 dl { display: grid; grid-template-columns: max-content auto; gap: 2px 16px; margin: 8px 0 14px; }
 dt { color: var(--muted); }
