@@ -230,8 +230,12 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
         if kind != "values":
             axis.legend(fontsize=7)
     model = first.get("model")
-    names = ", ".join(dict.fromkeys(label.split(",")[0] for label, _ in results))
-    fig.suptitle(plain_title(title) or f"Albedo of {names}" + (f" ({model})" if model and model not in names else ""))
+    names = ", ".join(dict.fromkeys(label.split(",")[0] for label, _ in results if label))
+    if not names:
+        heading = f"Albedo of {model}" if model else "Albedo"
+    else:
+        heading = f"Albedo of {names}" + (f" ({model})" if model and model not in names else "")
+    fig.suptitle(plain_title(title) or heading)
     data = dict(first)
     data.update(zenith_panel=curves, spectral_panel=spectral_panel, results=dict(results))
     return finish(fig, output, data, axes, dpi)

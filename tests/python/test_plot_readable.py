@@ -98,24 +98,24 @@ def test_albedo_axis_keeps_a_small_change_small_and_the_legend_names_no_result_n
     assert [t.get_text() for t in two.axes[0].get_legend().get_texts() if "result 2" in t.get_text()]
 
 
-def _fit_with_a_fixed_parameter(tmp_path):
-    """An Oren-Nayar fit file written here: albedo free with a standard error far beyond [0, 1] at one band
-    and on its upper bound at another, sigma fixed."""
-    content = {"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{
-        "model": "oren-nayar", "options": {}, "wavelengths": WAVELENGTHS,
-        "parameters": {"albedo": [0.4, 0.95, 1.0], "sigma": [0.3, 0.3, 0.3]},
-        "stderr": {"albedo": [0.01, 0.5, 53.0], "sigma": [None, None, None]},
-        "parameter_order": ["albedo", "sigma"], "fixed": ["sigma"],
-        "rmse": [0.001] * 3, "relative_rmse": [0.01] * 3, "max_relative_error": [0.02] * 3,
-        "aic": [-10.0] * 3, "bic": [-9.0] * 3, "converged": [True] * 3,
-        "at_bounds": [[], [], ["albedo"]]}]}
+def _fit_with_a_fixed_parameter(root, tmp_path):
+    """An Oren-Nayar fit of an example file with sigma fixed, whose albedo is then rewritten here: a standard
+    error far beyond [0, 1] at one band, and on its upper bound at another."""
     path = tmp_path / "on.fit.json"
+    roadbrdf.fit(root / "data/examples/single/lazard.csv", ["oren-nayar"], fixed={"sigma": 0.3},
+                 wavelengths="510,590,710", output=path)
+    content = json.loads(path.read_text())
+    f = content["fits"][0]
+    assert f["fixed"] == ["sigma"]
+    f["parameters"]["albedo"] = [0.4, 0.95, 1.0]
+    f["stderr"]["albedo"] = [0.01, 0.5, 53.0]
+    f["at_bounds"] = [[], [], ["albedo"]]
     path.write_text(json.dumps(content))
     return path
 
 
-def test_params_no_panel_for_a_fixed_parameter_and_bands_inside_the_bounds(tmp_path):
-    fit = _fit_with_a_fixed_parameter(tmp_path)
+def test_params_no_panel_for_a_fixed_parameter_and_bands_inside_the_bounds(root, tmp_path):
+    fit = _fit_with_a_fixed_parameter(root, tmp_path)
     # A standard error at a bound is not a standard error: none is given (b0 = 1 +- 53 on [0, 1]).
     table = roadbrdf.params(fit)
     assert table["albedo_stderr"].iloc[0] == 0.01 and table["albedo_stderr"].iloc[1] == 0.5
