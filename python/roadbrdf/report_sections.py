@@ -451,7 +451,7 @@ def rtable(r) -> Section:
     rr = np.asarray(t["r"], dtype=float) * 1e4
     rows = [[cell(tg, None, 3)] + [cell(v, None, 4) for v in line] for tg, line in zip(t["tan_gamma"], rr)]
     html += ("<details><summary>the r-table (10⁴ r [sr⁻¹]; rows tan γ, columns β)</summary>" +
-             table(["tan γ \\ β [°]"] + [f"{b:g}" for b in t["beta_deg"]], rows) + "</details>")
+             table(["tan γ \\ β [°]"] + [f"{b:g}" for b in t["beta_deg"]], rows, dense=True) + "</details>")
     return Section("rtable", "8. Road r-table", html)
 
 

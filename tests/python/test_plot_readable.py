@@ -109,7 +109,7 @@ def _fit_with_a_fixed_parameter(root, tmp_path):
     assert f["fixed"] == ["sigma"]
     f["parameters"]["albedo"] = [0.4, 0.95, 1.0]
     f["stderr"]["albedo"] = [0.01, 0.5, 53.0]
-    f["at_bounds"] = [[], [], ["albedo"]]
+    f["at_bounds"] = [[], [], ["albedo=upper"]]  # as the fitter writes them
     path.write_text(json.dumps(content))
     return path
 
