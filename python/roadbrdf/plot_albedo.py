@@ -175,10 +175,10 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
                 # The largest bar is named: a well-determined albedo's bars hide behind the markers.
                 largest = np.nanmax([np.nanmax(np.r_[c[k]]) for c in curves.values()
                                      for k in ("black_sky_u", "blue_sky_u") if c[k] is not None] or [np.nan])
-                axis.text(0.01, 0.01, f"bars: standard uncertainty from the parameter covariance (k = 1; {uncertainty}"
+                axis.text(0.01, 0.01, f"bars: k = 1 from the parameter covariance, {uncertainty}"
                           + (" across wavelengths" if uncertainty == "correlated" else " wavelengths")
-                          + "; calibration and repeatability not included)"
-                          + (f", largest {largest:.2g}" if np.isfinite(largest) else ""),
+                          + (f"; largest {largest:.2g}" if np.isfinite(largest) else "")
+                          + "\n(calibration and repeatability between scans not included)",
                           transform=axis.transAxes, fontsize=6, va="bottom")
             axis.set_ylim(*albedo_range(curves.values()))
             axis.set_xlabel("sun zenith angle [deg]")

@@ -105,7 +105,7 @@ def draw_all(r) -> None:
         _draw(r, "params-by-incidence", esc(f"Parameters of the per-incidence fits at {band:g} nm against θ_i, ± one "
                                             "standard error (plot_params.params)."),
               lambda: params_plot(r.fit_groups_path, parameters=free, against="theta_i", wavelength=band,
-                                  title=f"{r.sample}: per-incidence fits at {band:g} nm"))
+                                  title=f"{r.sample}: per-incidence fits"))  # params() adds the band
     if r.albedo is not None:
         _draw(r, "albedo", esc(f"Albedo of {best}: spectral black-, white- and blue-sky, and the solar-weighted "
                                "values (plot.albedo)."),
