@@ -3,8 +3,9 @@ axis (a logarithmic axis inside one decade included), legend and title text that
 (no "result 1", no "+-1 sigma" without sigma), an axis range that contains the data with margins
 proportional to them (a 1 % change is not drawn as a cliff), no panel for a constant (fixed) parameter,
 standard-error bands inside the parameter's physical bounds, and the r-table's class diagram without a
-class probability when the table is all extrapolation. Reference values are closed forms (Lambert:
-BRDF = rho / pi, every albedo = rho) and the numbers written into the small files here."""
+class probability when the table is all extrapolation, the measured points on a Lambert fit's hemisphere.
+Reference values are closed forms (Lambert: BRDF = rho / pi, every albedo = rho, S1 = 5^-1.5) and the
+numbers written into the small files here."""
 import json
 import math
 
@@ -144,3 +145,41 @@ def test_rtable_of_an_extrapolated_table_has_no_class_probability():
     # S1 of a Lambertian table: r(0, 2) / r(0, 0) = cos^3(atan 2) = 5^-1.5, inside the class diagram.
     assert table["S1"] == pytest.approx(5 ** -1.5, rel=1e-9)
     assert fig.axes[1].get_xlim()[1] > table["S1"]
+
+
+def test_hemisphere_of_a_lambert_fit_shows_the_measured_points_on_its_colour_scale(tmp_path):
+    """A Lambertian model alone is one flat colour; with the data (as the report draws it) the measured
+    points carry the information, on a colour scale that contains them (0.10-0.14 sr^-1 written here)."""
+    data = _narrow_dataset(tmp_path)
+    fit = _lambert_fit(tmp_path / "l.fit.json", [0.12 * math.pi] * 3)
+    fig = rplot.hemisphere(fit, theta_i=30, wavelength=590, data=data, lobe=False)
+    measured = fig.roadbrdf_data["measured"]
+    assert len(measured["brdf"]) == 6  # the six geometries at theta_i = 30 deg
+    polar = fig.axes[0]
+    points = [c for c in polar.collections if c.get_array() is not None and len(c.get_array()) == 6]
+    assert points, "no measured points drawn"
+    low, high = points[0].norm.vmin, points[0].norm.vmax
+    assert low <= min(measured["brdf"]) and high >= max(measured["brdf"])
+    np.testing.assert_allclose(fig.roadbrdf_data["brdf"], 0.12, rtol=1e-12)  # BRDF = rho / pi
+
+
+@pytest.mark.parametrize("kind", ["spectral", "plane", "fit", "albedo", "rtable", "params"])
+def test_every_cartesian_axis_has_tick_labels_on_both_sides(kind, root, tmp_path):
+    data = _narrow_dataset(tmp_path)
+    fit = _lambert_fit(tmp_path / "l.fit.json", [0.3, 0.35, 0.4])
+    fig = {"spectral": lambda: rplot.spectral([data, fit], geometry=(30, 0, 30, 180)),
+           "plane": lambda: rplot.plane([fit], [data], theta_i=30, wavelength=590, cartesian=True),
+           "fit": lambda: rplot.fit_quality(data, fit, wavelength=590),
+           "albedo": lambda: rplot.albedo(fit, sun_zenith="0:60:20"),
+           "rtable": lambda: rplot.rtable(fit, wavelength=590),
+           "params": lambda: plot_params.params(_fit_with_a_fixed_parameter(root, tmp_path))}[kind]()
+    fig.canvas.draw()
+    checked = 0
+    for axis in fig.axes:
+        if axis.name != "rectilinear" or not axis.get_visible() or axis.get_label() == "<colorbar>":
+            continue
+        for which in (axis.xaxis, axis.yaxis):
+            if which.get_visible() and which.get_ticks_position() != "none":
+                assert len(_labels(which)) >= 2, (kind, axis.get_title(), which.axis_name, _labels(which))
+        checked += 1
+    assert checked >= 1

@@ -526,3 +526,14 @@ def test_no_table_is_clipped_in_a_1280_px_window(tmp_path, report):
     dom = _chromium(tmp_path, "--virtual-time-budget=10000", "--window-size=1280,1600", "--dump-dom",
                     control.as_uri())
     assert dom.split(marker, 1)[1].split('"', 1)[0] == "1/1"
+
+
+def test_a_message_repeated_per_incidence_is_listed_once_with_its_count():
+    from roadbrdf import report_sections
+    repeated = [f"the per-incidence fits: oren-nayar, theta_i={t}: parameters on a bound at {n} of 108 wavelengths"
+                for t, n in [(0, 3), (20, 5), (40, 7)] * 20]  # 60 messages of one kind
+    items = repeated[:59] + ["lambert: did not converge at 590 nm"]
+    grouped = report_sections.grouped_messages(items)
+    assert grouped == [(repeated[0], 59), ("lambert: did not converge at 590 nm", 1)]
+    html = report_sections._warnings_details(items)
+    assert html.count("<li>") == 2 and "and 58 more like it" in html and "60 messages of the fit (2 kinds)" in html
