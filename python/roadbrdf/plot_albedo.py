@@ -23,7 +23,8 @@ def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
     items = result if isinstance(result, (list, tuple)) else [result]
     out = []
     for k, item in enumerate(items):
-        name = stem(item) if isinstance(item, (str, os.PathLike)) else f"result {k + 1}"
+        # A result given as a value has no name: numbered only when there are several to tell apart.
+        name = stem(item) if isinstance(item, (str, os.PathLike)) else (f"result {k + 1}" if len(items) > 1 else "")
         if isinstance(item, (str, os.PathLike)):
             content = read_json_file(item)
             if "black_sky" in content:
@@ -40,7 +41,7 @@ def _results(result, labels, atmospheres, sun_zenith, wavelengths, fit, params):
         for atmosphere in atmospheres or [None]:
             r = compute_albedo(item, params if isinstance(item, Model) else None, sun_zenith=sun_zenith,
                                atmosphere=atmosphere, wavelengths=wavelengths)
-            out.append((f"{name}, {atmosphere}" if atmosphere else name, r))
+            out.append((", ".join(x for x in (name, atmosphere) if x), r))
     labels = [plain(x) for x in labels or []]
     return [(labels[k] if k < len(labels) else name, r) for k, (name, r) in enumerate(out)]
 
@@ -53,10 +54,10 @@ def _u(values, shape=None):
     return a if shape is None else a.reshape(shape)
 
 
-def _versus_zenith(r):
+def _versus_zenith(r, which="correlated"):
     """Black-, blue- and white-sky values against sun zenith: solar-weighted, else at the single band; with
-    their standard uncertainties from the fit's covariance (``*_u``, the broadband ones for independent
-    wavelengths; None when the result has none)."""
+    their standard uncertainties from the fit's covariance (``*_u``; the broadband ones ``which``: "correlated",
+    the bound for errors correlated across wavelengths, or "independent"; None when the result has none)."""
     zen = np.atleast_1d(np.asarray(r["sun_zenith_deg"], dtype=float))
     bb = r.get("broadband")
     u = r.get("uncertainty") or {}
@@ -66,10 +67,10 @@ def _versus_zenith(r):
         white = float(np.atleast_1d(bb["white_sky"])[0])
         how = "solar-weighted"
         ub = u.get("broadband") or {}
-        independent = lambda items: None if items is None else [i["independent"] for i in items]  # noqa: E731
-        black_u = _u(independent(ub.get("black_sky")))
-        blue_u = _u(independent(ub.get("blue_sky")))
-        white_u = None if ub.get("white_sky") is None else _u(ub["white_sky"]["independent"])
+        chosen = lambda items: None if items is None else [i[which] for i in items]  # noqa: E731
+        black_u = _u(chosen(ub.get("black_sky")))
+        blue_u = _u(chosen(ub.get("blue_sky")))
+        white_u = None if ub.get("white_sky") is None else _u(ub["white_sky"][which])
     else:
         wl = np.atleast_1d(np.asarray(r["wavelengths"], dtype=float))
         j = int(np.argmin(np.abs(wl - 550.0)))
@@ -84,6 +85,32 @@ def _versus_zenith(r):
             "black_sky_u": black_u, "blue_sky_u": blue_u, "white_sky_u": None if white_u is None else float(white_u)}
 
 
+def albedo_range(curves):
+    """(bottom, top) of the albedo axis: every value and its bar, with a margin each side of at least 5 % of the
+    largest value (and 10 % of the data's spread), never below 0: a 1 % change stays a small change."""
+    values = []
+    for c in curves:
+        for key in ("black_sky", "blue_sky", "white_sky"):
+            if c[key] is None:
+                continue
+            v = np.atleast_1d(np.asarray(c[key], dtype=float))
+            u = c.get(key + "_u")
+            u = np.zeros_like(v) if u is None else np.nan_to_num(np.atleast_1d(np.asarray(u, dtype=float)))
+            values += [v - u, v + u]
+    v = np.concatenate(values)
+    v = v[np.isfinite(v)]
+    if v.size == 0:
+        return 0.0, 1.0
+    low, high = float(v.min()), float(v.max())
+    margin = max(0.05 * max(abs(low), abs(high)), 0.1 * (high - low), 1e-6)
+    return max(0.0, low - margin) if low >= 0 else low - margin, high + margin
+
+
+def _named(what, label):
+    """A legend entry: ``what``, then the result's name when it has one."""
+    return f"{what}, {label}" if label else what
+
+
 def _line(axis, x, y, u, fmt, **kw):
     """A curve with its standard uncertainty as error bars (k = 1) when known."""
     if u is None:
@@ -93,7 +120,7 @@ def _line(axis, x, y, u, fmt, **kw):
 
 
 def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, sun_zenith="0:80:10",
-           wavelengths=None, fit=None, params=None, ax=None, fig=None, dpi=None):
+           wavelengths=None, fit=None, params=None, uncertainty="correlated", ax=None, fig=None, dpi=None):
     """Albedo figure: black-sky against sun zenith (solar-weighted, or at the single band) with white-sky and
     the blue-sky albedo of every atmosphere, and the spectral black-, white- and blue-sky albedo when there are
     several bands (a single sun zenith and a single band: the values as bars).
@@ -105,7 +132,12 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
     the file). ``ax``: the panels' axes, or ``fig``.
 
     Where the result has standard uncertainties (a fit file with its covariance: ``uncertainty``), they are drawn
-    as error bars (k = 1; the solar-weighted ones for independent wavelengths) and shaded bands.
+    as error bars (k = 1) and shaded bands; the solar-weighted ones are ``uncertainty``: "correlated" (the
+    default: the bound for errors correlated across wavelengths, which a per-wavelength covariance cannot
+    exclude) or "independent" (smaller by about the square root of the number of bands). Either comes from the
+    fit's covariance alone: calibration, sample non-uniformity and repeatability between scans are not in it.
+    The albedo axis contains the data with a margin proportional to their size (at least 5 % of the largest
+    value each side), so a small change with sun zenith is not drawn as a cliff.
 
     ``fig.roadbrdf_data``: the first result's keys, and ``zenith_panel`` = {label: {sun_zenith_deg,
     black_sky, blue_sky, white_sky, weighting, black_sky_u, blue_sky_u, white_sky_u}}, ``spectral_panel`` =
@@ -118,7 +150,9 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
     first = results[0][1]
     wl = np.atleast_1d(np.asarray(first["wavelengths"], dtype=float))
     zen = np.atleast_1d(np.asarray(first["sun_zenith_deg"], dtype=float))
-    curves = {label: _versus_zenith(r) for label, r in results}
+    if uncertainty not in ("correlated", "independent"):
+        raise ValueError(f"albedo: uncertainty must be 'correlated' or 'independent', got {uncertainty!r}")
+    curves = {label: _versus_zenith(r, uncertainty) for label, r in results}
     several_zeniths = any(c["sun_zenith_deg"].size > 1 for c in curves.values())
     kinds = (["zenith"] if several_zeniths else []) + (["spectral"] if wl.size > 1 else [])
     kinds = kinds or ["values"]
@@ -129,11 +163,11 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
             for k, (label, c) in enumerate(curves.items()):
                 colour = f"C{k}"
                 _line(axis, c["sun_zenith_deg"], c["black_sky"], c["black_sky_u"], "o-", color=colour, ms=3,
-                      label=f"black-sky ({c['weighting']}), {label}")
+                      label=_named(f"black-sky ({c['weighting']})", label))
                 if c["blue_sky"] is not None:
                     _line(axis, c["sun_zenith_deg"], c["blue_sky"], c["blue_sky_u"], "s--", color=colour, ms=3,
-                          label=f"blue-sky, {label}")
-                axis.axhline(c["white_sky"], color=colour, ls=":", lw=1.4, label=f"white-sky, {label}")
+                          label=_named("blue-sky", label))
+                axis.axhline(c["white_sky"], color=colour, ls=":", lw=1.4, label=_named("white-sky", label))
                 if c["white_sky_u"] is not None and np.isfinite(c["white_sky_u"]):
                     axis.axhspan(c["white_sky"] - c["white_sky_u"], c["white_sky"] + c["white_sky_u"], color=colour,
                                  alpha=0.12, lw=0)
@@ -141,9 +175,12 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
                 # The largest bar is named: a well-determined albedo's bars hide behind the markers.
                 largest = np.nanmax([np.nanmax(np.r_[c[k]]) for c in curves.values()
                                      for k in ("black_sky_u", "blue_sky_u") if c[k] is not None] or [np.nan])
-                axis.text(0.01, 0.01, "bars: standard uncertainty from the parameter covariance (k = 1)"
-                          + (f", largest {largest:.2g}" if np.isfinite(largest) else ""),
+                axis.text(0.01, 0.01, f"bars: k = 1 from the parameter covariance, {uncertainty}"
+                          + (" across wavelengths" if uncertainty == "correlated" else " wavelengths")
+                          + (f"; largest {largest:.2g}" if np.isfinite(largest) else "")
+                          + "\n(calibration and repeatability between scans not included)",
                           transform=axis.transAxes, fontsize=6, va="bottom")
+            axis.set_ylim(*albedo_range(curves.values()))
             axis.set_xlabel("sun zenith angle [deg]")
             axis.set_ylabel("albedo [1]")
             axis.set_title("albedo vs sun zenith", fontsize=10)
@@ -168,7 +205,7 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
                     blue = np.asarray(r["blue_sky"], dtype=float).reshape(len(r["sun_zenith_deg"]), -1)[0]
                     blues[label] = blue
                     axis.plot(r["wavelengths"], blue, "--", lw=1.3, color=f"C{k + len(shown)}",
-                              label=f"blue-sky, sun zenith {r['sun_zenith_deg'][0]:g}°, {label}")
+                              label=_named(f"blue-sky, sun zenith {r['sun_zenith_deg'][0]:g}°", label))
             spectral_panel = {"wavelengths": wl, "black_sky": {float(zen[j]): black[j] for j in shown},
                               "white_sky": white, "blue_sky": blues, "blue_sky_zenith_deg": float(zen[0]),
                               "black_sky_u": None if black_u is None else {float(zen[j]): black_u[j] for j in shown},
@@ -193,8 +230,12 @@ def albedo(result, title=None, output=None, *, labels=None, atmospheres=None, su
         if kind != "values":
             axis.legend(fontsize=7)
     model = first.get("model")
-    names = ", ".join(dict.fromkeys(label.split(",")[0] for label, _ in results))
-    fig.suptitle(plain_title(title) or f"Albedo of {names}" + (f" ({model})" if model and model not in names else ""))
+    names = ", ".join(dict.fromkeys(label.split(",")[0] for label, _ in results if label))
+    if not names:
+        heading = f"Albedo of {model}" if model else "Albedo"
+    else:
+        heading = f"Albedo of {names}" + (f" ({model})" if model and model not in names else "")
+    fig.suptitle(plain_title(title) or heading)
     data = dict(first)
     data.update(zenith_panel=curves, spectral_panel=spectral_panel, results=dict(results))
     return finish(fig, output, data, axes, dpi)

@@ -181,6 +181,9 @@ def _parser():
     p.add_argument("--wavelengths", help="fit file: wavelengths [nm] (default: the fit's)")
     p.add_argument("--fit", metavar="NAME", help="which fit of FIT.json or method of MIX.json (default: the best)")
     p.add_argument("--label", action="append", help="legend name of each input (repeatable; default: file names)")
+    p.add_argument("--uncertainty", choices=["correlated", "independent"], default="correlated",
+                   help="solar-weighted bars: the bound for errors correlated across wavelengths (default) or "
+                   "the wavelengths taken as independent")
     _output(p)
     p = sub.add_parser("rtable", help="r-table heat map and class diagram")
     p.add_argument("table", help="r-table file, fit file (with --fit) or model name (with -p/--option)")
@@ -233,7 +236,7 @@ def _draw(a):
         plot.fit_quality(a.data, a.fit_file, a.fit, a.wavelength, **out)
     elif a.kind == "albedo":
         plot.albedo(a.result if len(a.result) > 1 else a.result[0], labels=a.label, atmospheres=a.atmosphere,
-                    sun_zenith=a.sun_zenith, wavelengths=a.wavelengths, fit=a.fit, **out)
+                    sun_zenith=a.sun_zenith, wavelengths=a.wavelengths, fit=a.fit, uncertainty=a.uncertainty, **out)
     elif a.kind == "rtable":
         table = a.table
         if is_model_file(table) or not os.path.exists(table):

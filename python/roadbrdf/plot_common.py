@@ -236,3 +236,20 @@ def label_log_radius(ax, floor, top):
     ax.set_rlim(0, max(float(decades[-1]), 1.0))
     ax.set_yticks(decades)
     ax.set_yticklabels([f"{floor * 10.0 ** k:g}" for k in decades], fontsize=7)
+
+
+def readable_log_axis(axis_obj, low, high) -> None:
+    """Ticks for a logarithmic axis (``ax.xaxis`` / ``ax.yaxis``) over [low, high]: powers of ten when the
+    range holds at least two, else 1-2-5 (or every digit) of each decade, labelled in plain numbers, so that a
+    range inside one decade is not left with a single tick label."""
+    import matplotlib.ticker as mticker
+    if not (np.isfinite(low) and np.isfinite(high) and 0 < low < high):
+        return
+    first, last = math.ceil(math.log10(low) - 1e-9), math.floor(math.log10(high) + 1e-9)
+    for subs in ((1.0,), (1.0, 2.0, 5.0), tuple(float(k) for k in range(1, 10))):
+        ticks = [m * 10.0 ** e for e in range(first - 1, last + 1) for m in subs if low <= m * 10.0 ** e <= high]
+        if len(ticks) >= 2:
+            break
+    axis_obj.set_major_locator(mticker.FixedLocator(ticks))
+    axis_obj.set_major_formatter(mticker.FuncFormatter(lambda v, _: f"{v:.3g}"))
+    axis_obj.set_minor_formatter(mticker.NullFormatter())

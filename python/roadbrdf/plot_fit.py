@@ -6,13 +6,12 @@ from __future__ import annotations
 
 import os
 
-import matplotlib.ticker as mticker
 import numpy as np
 
 from . import read_fit
 from .core import read_json_file
-from .plot_common import (UNIT, as_dataset, finish, panels, plain, plain_title, sample_label, stem,
-                          wavelength_index)
+from .plot_common import (UNIT, as_dataset, finish, panels, plain, plain_title, readable_log_axis, sample_label,
+                          stem, wavelength_index)
 
 __all__ = ["fit_quality"]
 
@@ -58,7 +57,7 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
         axis.set_ylim(lo, hi)
         axis.set_aspect("equal", adjustable="box")
         for which in (axis.xaxis, axis.yaxis):
-            which.set_minor_formatter(mticker.NullFormatter())
+            readable_log_axis(which, lo, hi)
         axis.legend(fontsize=8)
     axis.set_xlabel("measured " + UNIT)
     axis.set_ylabel("fitted " + UNIT)
@@ -77,6 +76,11 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
         axis.set_xlabel("wavelength [nm]")
         axis.set_ylabel("RMSE [sr$^{-1}$]")
         axis.set_yscale("log")
+        finite = np.concatenate([y[np.isfinite(y) & (y > 0)] for _, y in rmse.values()] or [np.array([])])
+        if finite.size:
+            low, high = finite.min() / 1.15, finite.max() * 1.15
+            axis.set_ylim(low, high)
+            readable_log_axis(axis.yaxis, low, high)
         axis.set_title("RMSE vs wavelength", fontsize=9)
         axis.legend(fontsize=7)
     fig.suptitle(plain_title(title) or f"Fit quality: {name}, {chosen} ({os.path.basename(os.fspath(fit))})")

@@ -4,7 +4,8 @@ One panel per parameter: against wavelength (a line per fit, the ± one standard
 or, for a fit file of ``fit --group-by``, against a group column at one wavelength (the report's
 per-incidence parameters: a line per model with error bars). The numbers are those of
 :func:`roadbrdf.params` (the fit file's), in ``fig.roadbrdf_data``:
-``{parameter: {label: (x, value, stderr)}}``.
+``{parameter: {label: (x, value, stderr)}}`` and ``bounds`` = {parameter: (lower, upper)}. A parameter fixed
+in every fit has no panel unless named; the ± bands are clipped to the physical bounds.
 """
 
 from __future__ import annotations
@@ -41,7 +42,10 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
     from . import params as _params
     table = _params(fit_file, models=models or ())
     units = table.attrs["units"]
-    names = list(parameters) if parameters else [p for p in units if table[p].notna().any()]
+    fixed, bounds = _fixed_and_bounds(fit_file, models)
+    # A parameter fixed in every fit shown (a composite's weights, say) is a constant, not a result: no panel
+    # unless asked for.
+    names = list(parameters) if parameters else [p for p in units if table[p].notna().any() and p not in fixed]
     for p in names:
         if p not in units:
             from . import _roadbrdf
@@ -76,11 +80,17 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
             if not np.isfinite(y).any():
                 continue
             data[p][label] = (x, y, e)
+            # The band y +- e is clipped to the parameter's physical range: a standard error is a local
+            # (linearised) figure and does not carry the parameter beyond its bounds.
+            low, high = bounds.get((key[0], p), (-np.inf, np.inf))
+            e = np.where(np.isfinite(e), e, 0.0)
+            below, above = np.clip(y - e, low, high), np.clip(y + e, low, high)
             if against == "wavelength" and x.size > 1:
                 line, = axis.plot(x, y, label=label)
-                axis.fill_between(x, y - e, y + e, color=line.get_color(), alpha=0.25, linewidth=0)
+                axis.fill_between(x, below, above, color=line.get_color(), alpha=0.25, linewidth=0)
             else:
-                axis.errorbar(x, y, yerr=np.where(np.isfinite(e), e, 0.0), marker="o", capsize=3, label=label)
+                axis.errorbar(x, y, yerr=np.vstack([np.maximum(y - below, 0.0), np.maximum(above - y, 0.0)]),
+                              marker="o", capsize=3, label=label)
         axis.set_xlabel("wavelength [nm]" if against == "wavelength" else f"{against} [deg]")
         axis.set_ylabel(f"{p} [{units[p]}]")
         axis.grid(True, alpha=0.3)
@@ -88,6 +98,7 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
             axis.legend(fontsize="small")
     if against != "wavelength":
         data["wavelength_nm"] = band
+    data["bounds"] = {p: bounds[k] for k in bounds for p in names if k[1] == p}
     heading = plain_title(title) or f"{os.path.basename(os.fspath(fit_file))}: fitted parameters ± 1 standard error"
     if against != "wavelength":
         heading += f" at {band:g} nm{note}"
@@ -110,3 +121,24 @@ def add_parser(sub, output):
 
 def run(a):
     params(a.fit_file, a.parameter, a.model, a.against, a.wavelength, title=a.title, output=a.output, dpi=a.dpi)
+
+
+def _fixed_and_bounds(fit_file, models):
+    """The parameters fixed in every fit of the file shown ({name}), and each (model, parameter)'s physical
+    bounds (lower, upper) from the model's metadata."""
+    from . import Model
+    from .core import read_json_file
+    fits = [f for f in read_json_file(fit_file).get("fits", [])
+            if isinstance(f, dict) and (not models or f.get("model") in models)]
+    fixed = None
+    bounds = {}
+    for f in fits:
+        names = set(f.get("fixed") or [])
+        fixed = names if fixed is None else fixed & names
+        try:
+            description = Model(f["model"], f.get("options") or {}).parameters
+        except (KeyError, ValueError, TypeError):
+            continue
+        for p in description:
+            bounds[(f["model"], p["name"])] = (float(p["lower"]), float(p["upper"]))
+    return fixed or set(), bounds

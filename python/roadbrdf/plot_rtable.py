@@ -41,7 +41,9 @@ def _error_bars(t):
     """The standard uncertainties of S1 and Q0 to draw, with the class probabilities; None when the table has
     none or they are undefined (null)."""
     u = t.get("uncertainty")
-    if not isinstance(u, dict) or u.get("S1") is None or u.get("Q0") is None:
+    if t.get("extrapolated") or not isinstance(u, dict) or u.get("S1") is None or u.get("Q0") is None:
+        # A table all of whose standard-region cells are extrapolated: the fit's covariance does not describe
+        # them (photometry/rtable_coverage.h), so no bars and no class probability.
         return None
     classes = [(c["class"], float(c["probability"])) for c in (u.get("class_probabilities") or [])]
     return {"S1": float(u["S1"]), "Q0": float(u["Q0"]), "class_probabilities": classes}
@@ -59,7 +61,8 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
 
     When the table has standard uncertainties (from the covariance of a fit, or of a mixture from its
     end-members' fits: ``uncertainty``), the sample's point carries error bars u(S1), u(Q0) (k = 1, wavelengths
-    independent) and the legend the class probabilities.
+    independent) and the legend the class probabilities; a table whose standard region is all extrapolated
+    (``extrapolated``) has neither, and its legend says "extrapolated".
 
     ``fig.roadbrdf_data``: the r-table (``r``, ``beta_deg``, ``tan_gamma``, ``Q0``, ``S1``, ``class``,
     ``uncertainty``, ...), ``diagram_range`` = (S1 upper limit, Q0 upper limit) and ``error_bars`` = {``S1``,
@@ -124,6 +127,8 @@ def rtable(table, params=None, title=None, output=None, wavelength=None, band=No
     if s1 is not None and q0 is not None:
         label = f"this surface: S1 = {s1:.2f}, Q0 = {q0:.3f} sr$^{{-1}}$" + (
             f", class {t['class']}" if t.get("class") else "")
+        if t.get("extrapolated"):
+            label += "\nextrapolated (no standard-region cell measured)"
         if bars:
             label = (f"this surface: S1 = {_pm(s1, bars['S1'], 2)}, Q0 = {_pm(q0, bars['Q0'], 3)} sr$^{{-1}}$"
                      + (f", class {t['class']}" if t.get("class") else ""))

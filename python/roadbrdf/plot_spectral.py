@@ -101,7 +101,8 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
     measured_stems = {stem(s) for s in sources if isinstance(s, (str, os.PathLike))}
     others = [lab.split(" (")[0] for lab in data if kinds[lab] != "measured"]
     names = ", ".join(dict.fromkeys(list(labels) + [o for o in others if o not in measured_stems]))
-    ax.set_title(plain_title(title) or f"Spectral BRDF of {names}" + (" (bands: $\\pm1\\sigma$)" if datasets else ""),
+    with_sigma = any(d.sigma is not None for d in datasets)  # the bands are promised only when drawn
+    ax.set_title(plain_title(title) or f"Spectral BRDF of {names}" + (" (bands: $\\pm1\\sigma$)" if with_sigma else ""),
                  fontsize=10)
     fig.roadbrdf_geometries = geometries
     fig.roadbrdf_kinds = kinds

@@ -81,8 +81,8 @@ def draw_all(r) -> None:
     _spectral(r)
     ti, band, best = r.theta_i_figures, r.band, r.best.model
     _draw(r, "hemisphere", esc(f"The best-ranked fit ({best}) over the viewing hemisphere at θ_i = {ti:g}°, "
-                               f"{band:g} nm (plot.hemisphere)."),
-          lambda: plot.hemisphere(read_fit(r.fit_all_path, best), theta_i=ti, wavelength=band,
+                               f"{band:g} nm, with the measured points on the same colour scale (plot.hemisphere)."),
+          lambda: plot.hemisphere(read_fit(r.fit_all_path, best), theta_i=ti, wavelength=band, data=r.dataset,
                                   title=f"{r.sample}: {best} at {band:g} nm, θ_i = {ti:g}°"))
     _draw(r, "plane", esc(f"Plane of incidence at θ_i = {ti:g}°, {band:g} nm: the measured points and every "
                           "model fitted to all configurations (plot.plane)."),
@@ -105,7 +105,7 @@ def draw_all(r) -> None:
         _draw(r, "params-by-incidence", esc(f"Parameters of the per-incidence fits at {band:g} nm against θ_i, ± one "
                                             "standard error (plot_params.params)."),
               lambda: params_plot(r.fit_groups_path, parameters=free, against="theta_i", wavelength=band,
-                                  title=f"{r.sample}: per-incidence fits at {band:g} nm"))
+                                  title=f"{r.sample}: per-incidence fits"))  # params() adds the band
     if r.albedo is not None:
         _draw(r, "albedo", esc(f"Albedo of {best}: spectral black-, white- and blue-sky, and the solar-weighted "
                                "values (plot.albedo)."),

@@ -35,7 +35,9 @@ div.table { overflow-x: auto; max-width: 100%; }
 table { border-collapse: collapse; margin: 8px 0 14px; font-size: 13px; }
 th, td { border: 1px solid var(--rule); padding: 3px 8px; text-align: left; vertical-align: top; }
 th { background: var(--band); font-weight: 600; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+table.dense { font-size: 11px; }
+table.dense th, table.dense td { padding: 1px 3px; }
 tr.best td { background: #eef7f0; }
 dl { display: grid; grid-template-columns: max-content auto; gap: 2px 16px; margin: 8px 0 14px; }
 dt { color: var(--muted); }
@@ -134,9 +136,11 @@ def _attrs(c: Cell) -> str:
 
 
 def table(headers: Sequence[str], rows: Iterable[Sequence], row_classes: Sequence[str] | None = None,
-          table_id: str | None = None) -> str:
-    """An HTML table; ``headers`` are HTML, each row a sequence of :class:`Cell` or plain text (escaped)."""
+          table_id: str | None = None, dense: bool = False) -> str:
+    """An HTML table; ``headers`` are HTML, each row a sequence of :class:`Cell` or plain text (escaped).
+    ``dense``: smaller type and padding, for a grid of many columns (the r-table's 20 β) to fit the page."""
     ident = f' id="{esc(table_id)}"' if table_id else ""
+    ident += ' class="dense"' if dense else ""
     parts = [f'<div class="table"><table{ident}><thead><tr>']
     parts += [f"<th>{h}</th>" for h in headers]
     parts.append("</tr></thead><tbody>")

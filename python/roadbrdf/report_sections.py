@@ -11,6 +11,7 @@ Numbers are shown rounded and carried exactly in ``data-value`` (report_html); `
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -226,7 +227,7 @@ def _parameter_table(df, model, prefix, key_columns, fixed):
         line = [cell(row[c], None, 6) for c, _ in key_columns]
         for p in params:
             v, e = row[p], row[p + "_stderr"]
-            text = number(v, 4) + (f" ± {number(e, 2)}" if e is not None and np.isfinite(e) else "")
+            text = number(v, 4) + (f" ±\u00a0{number(e, 2)}" if e is not None and np.isfinite(e) else "")
             line.append(Cell(text, f"{base}.{p}", float(v), True))
         for c, _, digits in FIT_COLUMNS:
             line.append(cell(row[c], f"{base}.{c}", digits))
@@ -270,11 +271,25 @@ def per_incidence(r) -> Section:
     return Section("per-incidence", f"5. Fits per incidence at {r.band:g} nm", html)
 
 
+def grouped_messages(items):
+    """[(first message, count)]: messages that differ only in their numbers (the same finding at each
+    incidence or wavelength) as one entry, in order of first appearance."""
+    groups = {}
+    for item in items:
+        key = re.sub(r"[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?", "#", str(item))
+        first, count = groups.get(key, (item, 0))
+        groups[key] = (first, count + 1)
+    return list(groups.values())
+
+
 def _warnings_details(items):
     if not items:
         return ""
-    return (f"<details><summary>{len(items)} message{'s' if len(items) > 1 else ''} of the fit</summary><ul>" +
-            "".join(f"<li>{esc(i)}</li>" for i in items) + "</ul></details>")
+    grouped = grouped_messages(items)
+    return (f"<details><summary>{len(items)} message{'s' if len(items) > 1 else ''} of the fit"
+            + (f" ({len(grouped)} kinds)" if len(grouped) < len(items) else "") + "</summary><ul>" +
+            "".join(f"<li>{esc(i)}" + (f" <em>(and {n - 1} more like it)</em>" if n > 1 else "") + "</li>"
+                    for i, n in grouped) + "</ul></details>")
 
 
 # ---- 6. ranking over all configurations --------------------------------------------------------
@@ -327,28 +342,45 @@ def albedo(r) -> Section:
     def with_u(value, uncertainty, key):
         text = number(value, 4)
         if uncertainty is not None and np.isfinite(uncertainty):
-            text += f" ± {number(uncertainty, 2)}"
+            text += f" ±\u00a0{number(uncertainty, 2)}"
         return Cell(text, key, float(value), True)
 
     bb = a.get("broadband")
     if bb:
-        # The solar-weighted uncertainties for independent wavelengths (albedo/uncertainty.h).
+        # The solar-weighted uncertainties (albedo/uncertainty.h): the bound for errors correlated across
+        # wavelengths is shown, since a per-wavelength covariance cannot exclude a common error (a reference
+        # panel's calibration is common to every band); the independent value, hundreds of bands averaging
+        # their noise away, is given beside it.
         ub = u.get("broadband") or {}
-        independent = lambda items, k: (_at(items, k) or {}).get("independent")  # noqa: E731
+        part = lambda items, k, which: (_at(items, k) or {}).get(which)  # noqa: E731
+
+        def with_both(value, items, k, key):
+            c = with_u(value, part(items, k, "correlated"), key)
+            i = part(items, k, "independent")
+            if i is not None and np.isfinite(i):
+                c = c._replace(text=c.text + f" (independent {number(i, 2)})")
+            return c
+
         html += f"<h3>Solar-weighted ({esc(bb.get('weighting', ''))})</h3>"
         rows = []
         for k, zen in enumerate(z):
             rows.append([cell(zen, None, 4),
-                         with_u(bb["black_sky"][k], independent(ub.get("black_sky"), k),
-                                f"albedo.broadband.black_sky.{zen:g}"),
-                         with_u(bb["blue_sky"][k], independent(ub.get("blue_sky"), k),
-                                f"albedo.broadband.blue_sky.{zen:g}") if bb.get("blue_sky") is not None else "–"])
+                         with_both(bb["black_sky"][k], ub.get("black_sky"), k, f"albedo.broadband.black_sky.{zen:g}"),
+                         with_both(bb["blue_sky"][k], ub.get("blue_sky"), k, f"albedo.broadband.blue_sky.{zen:g}")
+                         if bb.get("blue_sky") is not None else "–"])
         html += table(["sun zenith [°]", "black-sky", "blue-sky"], rows)
-        white_u = (ub.get("white_sky") or {}).get("independent")
+        white = ub.get("white_sky") or {}
+        white_u, white_i = white.get("correlated"), white.get("independent")
         html += "<p>White-sky (solar-weighted): " + \
             f'<strong data-key="albedo.broadband.white_sky" data-value="{bb["white_sky"]!r}">' \
             f'{number(bb["white_sky"], 4)}</strong>' + \
-            (f" ± {number(white_u, 2)}" if white_u is not None else "") + "</p>"
+            (f" ±\u00a0{number(white_u, 2)}" if white_u is not None else "") + \
+            (f" (independent {number(white_i, 2)})" if white_i is not None else "") + "</p>"
+        html += ("<p>± the bound for errors fully correlated across wavelengths (k = 1); in brackets the value "
+                 "for independent wavelengths, which averages the bands' noise away and understates. Both come "
+                 "from the fit's covariance only: they leave out the calibration (reference panel), the sample's "
+                 "non-uniformity and the repeatability between scans (repeated scans of one sample can differ by "
+                 "several per cent), the model's own error and the solar spectrum.</p>")
     wl = np.asarray(a["wavelengths"], dtype=float)
     k = int(np.argmin(np.abs(wl - r.band)))
     rows = []
@@ -360,7 +392,7 @@ def albedo(r) -> Section:
     html += f"<h3>At {wl[k]:g} nm</h3>" + table(["sun zenith [°]", "black-sky", "blue-sky"], rows)
     html += "<p>White-sky: " + \
         f'<strong data-key="albedo.band.white_sky" data-value="{a["white_sky"][k]!r}">{number(a["white_sky"][k], 4)}' \
-        f"</strong>" + (f" ± {number(u['white_sky'][k], 2)}" if u.get("white_sky") and
+        f"</strong>" + (f" ±\u00a0{number(u['white_sky'][k], 2)}" if u.get("white_sky") and
                         u["white_sky"][k] is not None else "") + \
         " (± standard uncertainty from the fit's covariance, where defined).</p>"
     html += caveats([n for n in a.get("notes", []) if n.startswith(("WARNING", "coverage"))])
@@ -375,8 +407,10 @@ def _with_u(t, name, key):
     the mixture's covariance: photometry/rtable_uncertainty.h) where defined; ``data-value`` is the figure."""
     u = t.get("uncertainty") or {}
     text = number(t[name], 4)
-    if u.get(name) is not None and np.isfinite(u[name]):
-        text += f" ± {number(u[name], 2)}"
+    if t.get("extrapolated"):
+        text += " (extrapolated)"
+    elif u.get(name) is not None and np.isfinite(u[name]):
+        text += f" ±\u00a0{number(u[name], 2)}"
     return Cell(text, key, float(t[name]), True)
 
 
@@ -399,11 +433,17 @@ def rtable(r) -> Section:
              ("Qd [sr⁻¹]", _with_u(t, "Qd", "rtable.Qd")),
              ("class (R system)", Cell(esc(t["class"]), "rtable.class")),
              ("classes N / C", esc(f"{cls.get('N', '–')} / {cls.get('C', '–')}"))]
-    if u.get("class_probabilities"):
+    if t.get("extrapolated"):
+        items.append(("class probability", "none: extrapolated (no standard-region cell was measured)"))
+    elif u.get("class_probabilities"):
         items.append(("class probability (S1 normal with its uncertainty; ≥ 1 %)",
                       esc(", ".join(f"{c['class']} {c['probability']:.2f}" for c in u["class_probabilities"]))))
     html += definition_list(items)
-    if u:
+    if t.get("extrapolated"):
+        html += ("<p>Every cell of the standard region lies outside the measured directions: the figures are "
+                 "the model's extrapolation, and the fit's covariance, which only describes the measured "
+                 "directions, gives them no uncertainty.</p>")
+    elif u:
         html += "<p>± standard uncertainty from the fit's covariance (wavelengths independent, where defined).</p>"
     html += caveats(list(t.get("warnings") or []) + [n for n in t.get("notes") or [] if n.startswith("coverage")])
     html += caveats([n for n in t.get("notes") or [] if not n.startswith("coverage")], info=True)
@@ -411,7 +451,7 @@ def rtable(r) -> Section:
     rr = np.asarray(t["r"], dtype=float) * 1e4
     rows = [[cell(tg, None, 3)] + [cell(v, None, 4) for v in line] for tg, line in zip(t["tan_gamma"], rr)]
     html += ("<details><summary>the r-table (10⁴ r [sr⁻¹]; rows tan γ, columns β)</summary>" +
-             table(["tan γ \\ β [°]"] + [f"{b:g}" for b in t["beta_deg"]], rows) + "</details>")
+             table(["tan γ \\ β [°]"] + [f"{b:g}" for b in t["beta_deg"]], rows, dense=True) + "</details>")
     return Section("rtable", "8. Road r-table", html)
 
 

@@ -98,6 +98,7 @@ py::dict report_to_dict(const RTableReport& report) {
   d["class"] = report.chosen.name;
   d["class_system"] = report.class_system;
   d["coverage"] = json_to_python(report.coverage.to_json());
+  d["extrapolated"] = report.coverage.extrapolated();  // no standard-region cell measured: no class probability
   d["uncertainty"] = json_to_python(report.uncertainty_json());  // None without a fit's covariance
   d["weighting"] = json_to_python(report.weighting);
   d["notes"] = report.notes;

@@ -219,6 +219,33 @@ TEST(RTableUncertainty, ReportListsTheClassesOfAtLeastOnePercent) {
   EXPECT_TRUE(RTableReport{}.uncertainty_json().is_null());
 }
 
+TEST(RTableUncertainty, NoClassProbabilityWhenEveryStandardCellIsExtrapolated) {
+  // Every r-table cell is seen at theta_r = 90 - alpha = 89 deg; a fit measured up to theta_r = 80 deg
+  // (beyond the 5 deg tolerance) covers none of them, so its covariance says nothing about the class.
+  SpectralModel sm(make_model("oren-nayar"), {550.0}, {0.4, 0.3});
+  sm.set_parameter_covariance({1e-4, 0.0, 0.0, 2.5e-3});
+  RTableRequest request;
+  request.wavelength = 550.0;
+  const RTableReport unknown_coverage = rtable_report(sm, request);
+  EXPECT_FALSE(unknown_coverage.class_probabilities.empty());
+  EXPECT_FALSE(unknown_coverage.to_json()["extrapolated"].get<bool>());
+  AngularCoverage measured;
+  measured.theta_i_min_deg = 0.0;
+  measured.theta_i_max_deg = 80.0;
+  measured.theta_r_min_deg = 0.0;
+  measured.theta_r_max_deg = 80.0;
+  measured.azimuth_planes_deg = {0.0, 45.0, 90.0, 135.0, 180.0};
+  measured.geometries = 89;
+  sm.set_coverage(measured);
+  const RTableReport report = rtable_report(sm, request);
+  ASSERT_TRUE(report.uncertainty);
+  EXPECT_TRUE(report.class_probabilities.empty());
+  const nlohmann::json j = report.to_json();
+  EXPECT_TRUE(j["extrapolated"].get<bool>());
+  EXPECT_TRUE(j["uncertainty"]["class_probabilities"].is_null());
+  EXPECT_NE(report.summary_text().find("class probability: none (extrapolated"), std::string::npos);
+}
+
 std::string oren_nayar_fit(const test::ScratchDirectory& scratch) {
   const std::string path = (scratch.path() / "on.fit.json").string();
   std::ofstream(path) << R"({"format": "roadbrdf-fit", "version": 1, "best": "oren-nayar", "fits": [{

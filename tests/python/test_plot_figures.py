@@ -358,7 +358,8 @@ def test_albedo_blue_sky_is_the_diffuse_weighted_mean_and_single_values_are_bars
 
 def test_albedo_error_bars_are_the_uncertainties_of_the_result(cli, root, tmp_path):
     """A fit file with its covariance: the figure draws the result's standard uncertainties, the solar-weighted
-    ones (independent wavelengths) against sun zenith and the per-wavelength ones as bands."""
+    ones (by default the bound for errors correlated across wavelengths, on request the independent ones)
+    against sun zenith and the per-wavelength ones as bands."""
     fit = tmp_path / "on.fit.json"
     cli("fit", root / "data" / "examples" / "single" / "lazard.csv", "--model", "oren-nayar", "--wavelengths",
         "400:700:50", "-o", fit)
@@ -366,9 +367,12 @@ def test_albedo_error_bars_are_the_uncertainties_of_the_result(cli, root, tmp_pa
     fig = rplot.albedo(result)
     c, = fig.roadbrdf_data["zenith_panel"].values()
     u = result["uncertainty"]["broadband"]
-    np.testing.assert_array_equal(c["black_sky_u"], [b["independent"] for b in u["black_sky"]])
-    np.testing.assert_array_equal(c["blue_sky_u"], [b["independent"] for b in u["blue_sky"]])
-    assert c["white_sky_u"] == u["white_sky"]["independent"] > 0
+    np.testing.assert_array_equal(c["black_sky_u"], [b["correlated"] for b in u["black_sky"]])
+    np.testing.assert_array_equal(c["blue_sky_u"], [b["correlated"] for b in u["blue_sky"]])
+    assert c["white_sky_u"] == u["white_sky"]["correlated"] > u["white_sky"]["independent"] > 0
+    independent, = rplot.albedo(result, uncertainty="independent").roadbrdf_data["zenith_panel"].values()
+    np.testing.assert_array_equal(independent["black_sky_u"], [b["independent"] for b in u["black_sky"]])
+    assert independent["white_sky_u"] == u["white_sky"]["independent"]
     zenith_axis = fig.axes[0]
     bars = [child for child in zenith_axis.containers if hasattr(child, "has_yerr") and child.has_yerr]
     assert len(bars) == 2  # black-sky and blue-sky

@@ -107,7 +107,7 @@ def _same(page, key, expected, rel=1e-9, digits=4):
     """The exact value (data-value) equals ``expected`` and the text shown rounds it to ``digits`` digits."""
     value, text = _value(page, key)
     assert value == pytest.approx(expected, rel=rel, abs=1e-15), key
-    shown = float(text.split("±")[0].replace("−", "-"))
+    shown = float(text.split("±")[0].split("(")[0].replace("−", "-"))
     assert shown == pytest.approx(expected, rel=0.6 * 10.0 ** (1 - digits), abs=1e-12), (key, text, expected)
 
 
@@ -184,7 +184,10 @@ def test_per_incidence_parameters_equal_the_fit(report):
             _same(page, f"{key}.{name}", f.parameters[k, 0])
             value, text = _value(page, f"{key}.{name}")
             se = f.standard_errors[k, 0]
-            if np.isfinite(se):
+            on_bound = any(b.split("=")[0] == name for b in f.statistics["at_bounds"][0])
+            if on_bound:  # a linearised standard error at a bound means nothing: none is shown
+                assert "±" not in text, (key, name, text)
+            elif np.isfinite(se):
                 assert float(text.split("±")[1]) == pytest.approx(se, rel=0.06)
             seen += 1
         _same(page, f"{key}.rmse_per_sr", f.statistics["rmse"][0])
@@ -233,12 +236,18 @@ def test_albedo_and_rtable_equal_the_api(tmp_path, report):
         _same(page, f"albedo.broadband.blue_sky.{z:g}", bb["blue_sky"][k])
         _same(page, f"coverage.black_sky.{z:g}", 100 * a["coverage"]["black_sky_outside_fraction"][k], digits=3)
     _same(page, "albedo.broadband.white_sky", bb["white_sky"])
-    # The solar-weighted values are shown with their standard uncertainty (independent wavelengths).
+    # The solar-weighted values are shown ± the bound for errors correlated across wavelengths, with the
+    # (smaller) uncertainty for independent wavelengths beside it, and what both leave out.
     ub = a["uncertainty"]["broadband"]
     for k, z in enumerate(a["sun_zenith_deg"]):
-        shown_u = float(_value(page, f"albedo.broadband.black_sky.{z:g}")[1].split("±")[1])
-        assert shown_u == pytest.approx(ub["black_sky"][k]["independent"], rel=0.06)
-    assert f"± {report_html.number(ub['white_sky']['independent'], 2)}" in report["text"]
+        text = _value(page, f"albedo.broadband.black_sky.{z:g}")[1]
+        shown_u = float(text.split("±")[1].split("(")[0])
+        assert shown_u == pytest.approx(ub["black_sky"][k]["correlated"], rel=0.06)
+        shown_independent = float(text.split("(independent")[1].rstrip(")"))
+        assert shown_independent == pytest.approx(ub["black_sky"][k]["independent"], rel=0.06)
+        assert ub["black_sky"][k]["correlated"] > ub["black_sky"][k]["independent"]
+    assert f"±\u00a0{report_html.number(ub['white_sky']['correlated'], 2)}" in report["text"]
+    assert "repeatability between scans" in report["text"]
     _same(page, "summary.white_sky", bb["white_sky"], digits=3)
     band = a["wavelengths"].index(590.0)
     _same(page, "albedo.band.white_sky", a["white_sky"][band])
@@ -250,9 +259,13 @@ def test_albedo_and_rtable_equal_the_api(tmp_path, report):
     _same(page, "rtable.S1", t["S1"])
     _same(page, "rtable.S2", t["S2"])
     assert _value(page, "rtable.class")[1] == t["class"]
-    # ± the standard uncertainties of the figures from the fit's covariance.
-    assert "±" in _value(page, "rtable.Q0")[1]
-    assert float(_value(page, "rtable.S1")[1].split("±")[1]) == pytest.approx(t["uncertainty"]["S1"], rel=0.06)
+    # F1 is measured to theta_r = 80 deg and the r-table's alpha = 1 deg is theta_r = 89 deg: every standard
+    # cell is extrapolated, so the figures carry "(extrapolated)" instead of an uncertainty from the fit's
+    # covariance, and there is no class probability.
+    assert t["extrapolated"] and not t["uncertainty"]["class_probabilities"]
+    for name in ("Q0", "S1"):
+        assert "±" not in _value(page, f"rtable.{name}")[1] and "(extrapolated)" in _value(page, f"rtable.{name}")[1]
+    assert "P(class)" not in report["text"] and "none: extrapolated" in report["text"]
     c = t["coverage"]
     _same(page, "coverage.rtable_standard", 100 * c["standard_cells_outside"] / c["standard_cells"], digits=3)
     # The coverage caveats are on the page (here: F1 is measured to theta_r = 80 deg, the r-table's alpha = 1 deg
@@ -480,3 +493,47 @@ def test_browser_decodes_every_figure_prints_and_screenshots(tmp_path, report):
     header = shot.read_bytes()[:24]
     assert header[:8] == b"\x89PNG\r\n\x1a\n"
     assert struct.unpack(">II", header[16:24]) == (1200, 1600)
+
+
+_WIDTHS = """<script>
+window.addEventListener('load', function () {
+  Array.prototype.slice.call(document.querySelectorAll('details')).forEach(function (d) { d.open = true; });
+  var boxes = Array.prototype.slice.call(document.querySelectorAll('div.table'));
+  var clipped = boxes.filter(function (b) { return b.scrollWidth > b.clientWidth + 1; });
+  var page = document.documentElement.scrollWidth > window.innerWidth + 1;
+  document.documentElement.setAttribute('data-clipped', clipped.length + '/' + boxes.length + (page ? ' page' : ''));
+});
+</script></body>"""
+
+
+def test_no_table_is_clipped_in_a_1280_px_window(tmp_path, report):
+    """Every table of the report (the ON+TS parameter tables and the r-table's 20 columns, the widest,
+    included, with every <details> opened) fits the page in a 1280-px-wide window: none needs its scroll bar,
+    and the page itself does not scroll sideways. The check is the browser's own layout (scrollWidth against
+    clientWidth of each table box)."""
+    page = tmp_path / "widths.html"
+    page.write_text(report["text"].replace("</body>", _WIDTHS, 1), encoding="utf-8")
+    dom = _chromium(tmp_path, "--virtual-time-budget=10000", "--window-size=1280,1600", "--dump-dom", page.as_uri())
+    marker = 'data-clipped="'
+    assert marker in dom, dom[:500]
+    clipped, boxes = dom.split(marker, 1)[1].split('"', 1)[0].split("/")
+    assert int(boxes.split()[0]) >= 5 and clipped == "0" and "page" not in boxes, (clipped, boxes)
+    # The checker itself: a table wider than the page is seen as clipped.
+    wide = "<table><tr>" + "".join(f"<td>{'x' * 30}</td>" for _ in range(60)) + "</tr></table>"
+    control = tmp_path / "control-widths.html"
+    control.write_text(f'<!DOCTYPE html><html><body><div class="table" style="overflow-x:auto">{wide}</div>'
+                       '</body></html>'.replace("</body>", _WIDTHS, 1), encoding="utf-8")
+    dom = _chromium(tmp_path, "--virtual-time-budget=10000", "--window-size=1280,1600", "--dump-dom",
+                    control.as_uri())
+    assert dom.split(marker, 1)[1].split('"', 1)[0] == "1/1"
+
+
+def test_a_message_repeated_per_incidence_is_listed_once_with_its_count():
+    from roadbrdf import report_sections
+    repeated = [f"the per-incidence fits: oren-nayar, theta_i={t}: parameters on a bound at {n} of 108 wavelengths"
+                for t, n in [(0, 3), (20, 5), (40, 7)] * 20]  # 60 messages of one kind
+    items = repeated[:59] + ["lambert: did not converge at 590 nm"]
+    grouped = report_sections.grouped_messages(items)
+    assert grouped == [(repeated[0], 59), ("lambert: did not converge at 590 nm", 1)]
+    html = report_sections._warnings_details(items)
+    assert html.count("<li>") == 2 and "and 58 more like it" in html and "60 messages of the fit (2 kinds)" in html

@@ -410,7 +410,15 @@ ParamsTable read_params_table(const ParamsRequest& request) {
       r.bic = number_or_nan(at_wavelength(fit, "bic", w, m));
       r.converged = at_wavelength(fit, "converged", w, m).boolean();
       const std::vector<std::string> bounds = at_wavelength(fit, "at_bounds", w, m).strings();
-      for (const auto& b : bounds) r.at_bounds += (r.at_bounds.empty() ? "" : ";") + b;
+      for (const auto& b : bounds) {
+        r.at_bounds += (r.at_bounds.empty() ? "" : ";") + b;
+        // A parameter on a bound of its physical range: the linearised covariance assumes a free minimum
+        // and its standard error (b0 = 1 +- 53 on [0, 1]) describes nothing, so none is given.
+        const std::string name = b.substr(0, b.find('='));  // "sigma=upper"
+        const auto k = static_cast<std::size_t>(std::find(t.parameter_names.begin(), t.parameter_names.end(), name) -
+                                                t.parameter_names.begin());
+        if (k < r.standard_errors.size()) r.standard_errors[k] = kNaN;
+      }
       t.rows.push_back(r);
     }
   }

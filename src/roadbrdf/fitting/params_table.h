@@ -42,7 +42,8 @@ struct ParamsRow {
   std::vector<double> group;  // values [deg] of ParamsTable::group_columns
   double wavelength = 0.0;    // nm
   // Indexed like ParamsTable::parameter_names; NaN where the model has no such parameter, and
-  // standard errors NaN for fixed parameters or an undefined covariance.
+  // standard errors NaN for fixed parameters, parameters on a bound (at_bounds) or an undefined
+  // covariance.
   std::vector<double> values, standard_errors;
   std::vector<bool> fixed;
   double rmse = 0.0;                // sr^-1

@@ -22,6 +22,10 @@ struct RTableCoverage {
   std::size_t negative = 0;                              // cells with r < 0 (non-physical)
 
   double outside_fraction() const { return cells ? static_cast<double>(outside) / static_cast<double>(cells) : 0.0; }
+  // Every cell of the standard region (so Q0, S1 and the class) lies outside the fit's coverage: the
+  // figures are the model's extrapolation, and an uncertainty from the fit's covariance, which only
+  // knows the measured directions, says nothing about them.
+  bool extrapolated() const { return coverage && standard_cells > 0 && standard_outside == standard_cells; }
   // One line per finding: the coverage, "WARNING: mostly extrapolation" (> 50 % of the standard
   // region outside), "WARNING: non-physical" (negative cells).
   std::vector<std::string> notes() const;

@@ -148,7 +148,11 @@ RTableReport rtable_report(const SpectralModel& model, const RTableRequest& requ
   // Cheap (each parameter moves only its neighbouring wavelengths): always, as for albedo.
   report.uncertainty = summary_uncertainty(model, w, report.table, request.region());
   if (report.uncertainty && !model.shared_parameters().empty()) report.notes.push_back(shared_parameters_note(model));
-  if (report.uncertainty && !std::isnan(report.uncertainty->independent.s1)) {
+  if (report.uncertainty && report.coverage.extrapolated()) {
+    report.notes.push_back(
+        "no class probability: every standard-region cell is extrapolated, and the fit's covariance only "
+        "describes the measured directions, so u(S1) does not bound the class");
+  } else if (report.uncertainty && !std::isnan(report.uncertainty->independent.s1)) {
     report.class_probabilities =
         class_probabilities(report.summary.s1, report.uncertainty->independent.s1, request.system());
   }
@@ -184,7 +188,8 @@ nlohmann::json RTableReport::to_json() const {
                  "standard uncertainties (units of the figures) of Q0, S1, S2, Qd from the parameter "
                  "covariance of a fit, or of a mixture from its end-members' fits, wavelengths independent; "
                  "correlated: the bound for errors fully correlated across wavelengths; class_probabilities: "
-                 "the classes of class_system with probability >= 0.01 for S1 normal with that u; null when "
+                 "the classes of class_system with probability >= 0.01 for S1 normal with that u (null when "
+                 "extrapolated is true: no standard-region cell measured); null when "
                  "unknown (a model given by its parameters, a mixture fitted to measured data, an imported "
                  "table), null entries where the covariance is undefined"}};
   j["Q0"] = summary.q0;
@@ -199,6 +204,7 @@ nlohmann::json RTableReport::to_json() const {
   j["classes"] = {
       {"R", class_json(summary.r_class)}, {"N", class_json(summary.n_class)}, {"C", class_json(summary.c_class)}};
   j["defined_cells"] = summary.defined_cells;
+  j["extrapolated"] = coverage.extrapolated();
   j["uncertainty"] = uncertainty_json();
   if (declared_q0) j["declared_q0"] = *declared_q0;
   j["beta_deg"] = standard_beta_deg();
@@ -280,7 +286,9 @@ std::string RTableReport::summary_text() const {
         "errors correlated across wavelengths (bound): u(Q0) = {} sr^-1, u(S1) = {}, u(S2) = {}, u(Qd) = {} "
         "sr^-1\n",
         u(c.q0), u(c.s1), u(c.s2), u(c.qd));
-    if (!class_probabilities.empty()) {
+    if (coverage.extrapolated()) {
+      text << "class probability: none (extrapolated: no standard-region cell was measured)\n";
+    } else if (!class_probabilities.empty()) {
       std::string classes;
       for (const ClassProbability& c : reported_classes()) {
         classes += fmt::format("{}{} {:.3f}", classes.empty() ? "" : ", ", c.name, c.probability);

@@ -57,7 +57,8 @@ struct RTableReport {
   std::optional<RTableComparison> comparison;
   // From a fit's parameter covariance (rtable_uncertainty.h; none for a model given by its
   // parameters, a mixture, an imported table): u of the figures, and the probability of every class
-  // of the request's system (in increasing S1; empty when u(S1) is undefined or unknown).
+  // of the request's system (in increasing S1; empty when u(S1) is undefined or unknown, or when the
+  // standard region is all extrapolated: coverage.extrapolated()).
   std::optional<RTableUncertainty> uncertainty;
   std::vector<ClassProbability> class_probabilities;
   std::string compared_with;  // the reference's name, when compared
