@@ -42,6 +42,9 @@ def _files(folder):
     return data, fit, formulation
 
 
+LIGHTING = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "lighting")
+
+
 def base_calls(folder):
     """{function name: (function, keyword arguments of a valid, quick call)}."""
     data, fit, formulation = _files(folder)
@@ -85,6 +88,15 @@ def base_calls(folder):
         "spectral_model_from_fit": (roadbrdf.spectral_model_from_fit, dict(fit_result=fitted, model=None)),
         "surface": (roadbrdf.surface, dict(formulation_path=os.path.join(virtual, "base.json"), size_mm=12.0,
                                            cell_mm=0.4, seed=1)),
+        # Request-contract functions (f(*args, **kwargs), fields from the library's table): every keyword of
+        # the base call is swept.
+        "luminaire": (roadbrdf.luminaire, dict(file=os.path.join(LIGHTING, "road.ldt"))),
+        "lighting": (roadbrdf.lighting, dict(installation=os.path.join(LIGHTING, "installation.json"),
+                                             target_class="M4", operating_hours=4000.0)),
+        "marking": (roadbrdf.marking, dict(source="lambert", parameters=["albedo=0.6"], illumination_angle=1.24)),
+        "export": (roadbrdf.export, dict(source="lambert", parameters=["albedo=0.3"], format="csv",
+                                         wavelengths="550", theta_i="0:60:30", theta_r="0:60:30", phi="0:180:90",
+                                         output=os.path.join(folder, "grid.csv"))),
     }
 
 
@@ -106,7 +118,12 @@ SWEEP = textwrap.dedent("""
     for name, (function, base) in calls.items():
         function(**base)  # the valid call works
         signature = t.inspect.signature(function)
-        for argument, parameter in signature.parameters.items():
+        parameters = list(signature.parameters.items())
+        if [p.kind for _, p in parameters] == [t.inspect.Parameter.VAR_POSITIONAL, t.inspect.Parameter.VAR_KEYWORD]:
+            # A request-contract function: its keywords are the request's fields; sweep those of the base call.
+            parameters = [(k, t.inspect.Parameter(k, t.inspect.Parameter.KEYWORD_ONLY)) for k in base]
+            parameters.append(("kwargs", t.inspect.Parameter("kwargs", t.inspect.Parameter.VAR_KEYWORD)))
+        for argument, parameter in parameters:
             if parameter.kind in (parameter.VAR_POSITIONAL,):
                 continue
             for label, value in t.BAD_VALUES.items():
@@ -131,7 +148,7 @@ def test_bad_values_of_every_argument_raise_input_or_type_errors(tmp_path):
     here = os.path.dirname(os.path.abspath(__file__))
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(roadbrdf.__file__)),
                                                        os.environ.get("PYTHONPATH", "")]))
-    result = subprocess.run([sys.executable, "-c", SWEEP, str(tmp_path), here], capture_output=True, text=True,
+    result = subprocess.run([sys.executable, "-c", SWEEP, str(tmp_path), here], capture_output=True, text=True, cwd=tmp_path,
                             env=env, timeout=1200)
     assert result.returncode == 0, result.stderr[-3000:]
     wrong = json.loads(result.stdout.strip().splitlines()[-1])
@@ -163,13 +180,14 @@ def test_the_sweep_covers_every_public_function():
     # A public function added later must get a base call here (classes with their own tests excepted).
     covered = {"Model", "Dataset", "read_dataset", "write_dataset", "check", "read_fit", "params", "fit", "rtable",
                "albedo", "mix", "flat_surface", "gaussian_slope_surface", "read_surface", "render", "render_albedo",
-               "road_to_zenith_azimuth", "read_rtable", "spectral_model_from_fit", "surface"}
+               "road_to_zenith_azimuth", "read_rtable", "spectral_model_from_fit", "surface", "luminaire", "lighting",
+               "marking", "export"}
     # Types, functions without arguments, study (test_study_robustness.py) and the readers of third-party and
     # instrument files (test_instruments.py, test_usgs.py, test_adversarial.py).
     elsewhere = {"InputError", "SpectralModel", "RTable", "FitResult", "ModelFit", "AlbedoResult", "Surface",
                  "InstrumentSpectrum", "models", "model_names", "model_aliases", "data_directory", "study",
                  "read_curet", "read_alta", "mix_calibrate", "read_instrument", "instrument_dataset", "read_manifest",
-                 "calibrate_manifest", "read_usgs", "usgs_dataset"}
+                 "calibrate_manifest", "read_usgs", "usgs_dataset", "Result", "Diagnostic", "RoadbrdfWarning"}
     public = {n for n in roadbrdf.__all__ if callable(getattr(roadbrdf, n))}
     assert public - covered - elsewhere == set()
     assert all(inspect.signature(getattr(roadbrdf, n)) for n in covered)
