@@ -148,8 +148,8 @@ def test_bad_values_of_every_argument_raise_input_or_type_errors(tmp_path):
     here = os.path.dirname(os.path.abspath(__file__))
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(roadbrdf.__file__)),
                                                        os.environ.get("PYTHONPATH", "")]))
-    result = subprocess.run([sys.executable, "-c", SWEEP, str(tmp_path), here], capture_output=True, text=True, cwd=tmp_path,
-                            env=env, timeout=1200)
+    result = subprocess.run([sys.executable, "-c", SWEEP, str(tmp_path), here], capture_output=True, text=True,
+                            cwd=tmp_path, env=env, timeout=1200)
     assert result.returncode == 0, result.stderr[-3000:]
     wrong = json.loads(result.stdout.strip().splitlines()[-1])
     assert wrong == [], "\n".join(wrong)
