@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <system_error>
 
@@ -137,7 +138,8 @@ std::string flag_for_field(const std::string& field) {
   return dot == std::string::npos ? flag : flag + " " + field.substr(dot + 1);
 }
 
-std::string name_flags(const std::string& message) {
+std::string replace_field_references(const std::string& message,
+                                     const std::function<std::string(const std::string&)>& flag) {
   auto is_field_character = [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-';
   };
@@ -151,11 +153,13 @@ std::string name_flags(const std::string& message) {
     const bool field = !inside.empty() && inside.front() >= 'a' && inside.front() <= 'z' &&
                        std::all_of(inside.begin(), inside.end(), is_field_character);
     out += message.substr(at, open - at);
-    out += field ? flag_for_field(inside) : message.substr(open, close - open + 1);
+    out += field ? flag(inside) : message.substr(open, close - open + 1);
     at = close + 1;
   }
   return out + message.substr(std::min(at, message.size()));
 }
+
+std::string name_flags(const std::string& message) { return replace_field_references(message, flag_for_field); }
 
 void add_quiet_flag(CLI::App* command, bool& quiet) {
   command->add_flag("--quiet", quiet, "No progress bar (it is only drawn on a terminal anyway)");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -61,6 +62,9 @@ std::string flag_for_field(const std::string& field);
 // "pass `delimiter` ';'" -> "pass --delimiter ';'". Backquoted text that is not a field name (it
 // holds a space or a character other than a-z, 0-9, '_', '.', '-') is kept as is.
 std::string name_flags(const std::string& message);
+// The same with another spelling of fields (cli/request_options.h: a request table's flags).
+std::string replace_field_references(const std::string& message,
+                                     const std::function<std::string(const std::string&)>& flag);
 
 // Adds "--fit NAME": which fit of a fit file (its model name) or which method of a MIX.json, the
 // option name every command uses; the old spelling --fit-model is refused with a message naming --fit.

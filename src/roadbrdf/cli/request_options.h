@@ -15,8 +15,10 @@
 #include <vector>
 
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/core/request_fields.h"
 
@@ -82,19 +84,7 @@ std::string flag_of(const std::string& field_name) {
 // A library message with its `field` references spelt as the table's flags.
 template <class Request>
 std::string with_flags(const std::string& message) {
-  std::string out;
-  std::size_t at = 0;
-  while (at < message.size()) {
-    const std::size_t open = message.find('`', at);
-    const std::size_t close = open == std::string::npos ? std::string::npos : message.find('`', open + 1);
-    if (close == std::string::npos) break;
-    const std::string inside = message.substr(open + 1, close - open - 1);
-    out += message.substr(at, open - at);
-    out += find_field(Request::fields(), inside) != nullptr ? flag_of<Request>(inside)
-                                                            : name_flags(message.substr(open, close - open + 1));
-    at = close + 1;
-  }
-  return out + message.substr(std::min(at, message.size()));
+  return replace_field_references(message, [](const std::string& field) { return flag_of<Request>(field); });
 }
 
 // Runs `task` and rethrows a FieldError of the request as an InputError spelt with the table's
@@ -120,6 +110,33 @@ void print_diagnostics(const Diagnostics& diagnostics) {
   for (const Diagnostic& d : diagnostics.warnings) {
     fmt::print(stderr, "roadbrdf: warning: {}\n", with_flags<Request>(d.message));
   }
+}
+
+// A command that is its request and its task alone: the request's options and --json; the task's
+// result (with `diagnostics`, `to_json()` and `summary_text()`) printed after its notes and warnings,
+// as its summary text or, with --json, as the JSON document Python's roadbrdf.Result holds too.
+template <class Request, class Task>
+void add_request_command(CLI::App& app, const std::string& name, const std::string& description,
+                         const std::string& json_help, Task task) {
+  static Request request;
+  static bool as_json = false;
+  auto* command = app.add_subcommand(name, description);
+  add_request_options(command, request);
+  command->add_flag("--json", as_json, json_help);
+  command->callback([task] {
+    run_request<Request>([&task] {
+      const auto result = task(request);
+      print_diagnostics<Request>(result.diagnostics);
+      AtomicFile out("-");
+      if (as_json) {
+        write_json(out.stream(), result.to_json(), 2);
+        out.stream() << '\n';
+      } else {
+        out.stream() << result.summary_text();
+      }
+      out.commit();
+    });
+  });
 }
 
 }  // namespace roadbrdf::cli
