@@ -100,6 +100,21 @@ def base_calls(folder):
     }
 
 
+def swept_parameters(function, base):
+    """(name, inspect.Parameter) of the arguments to sweep: a function's signature or, for a request-contract
+    function (a pybind11 function of *args and **kwargs, whose keywords are its request's fields), the keywords
+    of its base call and an unknown keyword."""
+    try:
+        parameters = list(inspect.signature(function).parameters.items())
+    except ValueError:  # a builtin without a signature line
+        parameters = [("args", inspect.Parameter("args", inspect.Parameter.VAR_POSITIONAL)),
+                      ("kwargs", inspect.Parameter("kwargs", inspect.Parameter.VAR_KEYWORD))]
+    if [p.kind for _, p in parameters] == [inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD]:
+        parameters = [(k, inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY)) for k in base]
+        parameters.append(("kwargs", inspect.Parameter("kwargs", inspect.Parameter.VAR_KEYWORD)))
+    return parameters
+
+
 # Counts that only the library's requests bound (their limits and tests are those of the C++ requests: fit
 # multistart, render samples); the sweep leaves 10**9 out for them so that it never starts such work.
 LIBRARY_COUNT_LIMITS = {("fit", "multistart"), ("fit", "max_iterations"), ("render", "samples"),
@@ -117,13 +132,7 @@ SWEEP = textwrap.dedent("""
     wrong = []
     for name, (function, base) in calls.items():
         function(**base)  # the valid call works
-        signature = t.inspect.signature(function)
-        parameters = list(signature.parameters.items())
-        if [p.kind for _, p in parameters] == [t.inspect.Parameter.VAR_POSITIONAL, t.inspect.Parameter.VAR_KEYWORD]:
-            # A request-contract function: its keywords are the request's fields; sweep those of the base call.
-            parameters = [(k, t.inspect.Parameter(k, t.inspect.Parameter.KEYWORD_ONLY)) for k in base]
-            parameters.append(("kwargs", t.inspect.Parameter("kwargs", t.inspect.Parameter.VAR_KEYWORD)))
-        for argument, parameter in parameters:
+        for argument, parameter in t.swept_parameters(function, base):
             if parameter.kind in (parameter.VAR_POSITIONAL,):
                 continue
             for label, value in t.BAD_VALUES.items():
@@ -190,4 +199,4 @@ def test_the_sweep_covers_every_public_function():
                  "calibrate_manifest", "read_usgs", "usgs_dataset", "Result", "Diagnostic", "RoadbrdfWarning"}
     public = {n for n in roadbrdf.__all__ if callable(getattr(roadbrdf, n))}
     assert public - covered - elsewhere == set()
-    assert all(inspect.signature(getattr(roadbrdf, n)) for n in covered)
+    assert all(swept_parameters(getattr(roadbrdf, n), {}) for n in covered)
