@@ -53,6 +53,20 @@ TEST(JsonInput, SyntaxErrorsHaveLineAndColumn) {
   EXPECT_NE(message.find("not valid JSON"), std::string::npos) << message;
 }
 
+TEST(JsonInput, IntegersKeepBothBoundsWhateverTheirJsonType) {
+  // JSON parsers store 0 and 7 as unsigned, -1 as signed and 1.0 as a float: each must meet both bounds.
+  const Json j = parse_json_text(R"({"zero": 0, "seven": 7, "minus": -1, "one": 1.0})", "i.json");
+  const JsonNode root(j, "i.json");
+  EXPECT_THROW(root.at("zero").integer(1, 20), FileError);
+  EXPECT_EQ(root.at("zero").integer(0, 20), 0);
+  EXPECT_THROW(root.at("seven").integer(8, 20), FileError);
+  EXPECT_THROW(root.at("seven").integer(1, 6), FileError);
+  EXPECT_EQ(root.at("seven").integer(7, 7), 7);
+  EXPECT_THROW(root.at("minus").integer(0, 5), FileError);
+  EXPECT_EQ(root.at("minus").integer(-1, 5), -1);
+  EXPECT_THROW(root.at("one").integer(2, 5), FileError);
+}
+
 TEST(JsonInput, NodesNameTheKeyPathOfEveryTypeError) {
   const Json j = parse_json_text(R"({"fits": [{"model": 3, "n": 1.5, "big": 1e10, "ok": 2.0}]})", "f.json");
   const JsonNode root(j, "f.json");

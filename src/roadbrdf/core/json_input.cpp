@@ -350,7 +350,8 @@ long long JsonNode::integer(long long lo, long long hi) const {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   if (value_->is_number_unsigned()) {
     const auto u = value_->get<std::uint64_t>();
-    if (hi < 0 || u > static_cast<std::uint64_t>(hi))
+    // Both bounds: an unsigned value may still lie below a positive lower bound (0 with lo = 1).
+    if (hi < 0 || u > static_cast<std::uint64_t>(hi) || (lo > 0 && u < static_cast<std::uint64_t>(lo)))
       fail("must be an integer in " + range + ", got " + value_->dump());
     return static_cast<long long>(u);
   }
