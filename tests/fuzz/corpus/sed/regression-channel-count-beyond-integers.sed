@@ -1,4 +1,5 @@
-Version: 2.3 [1.0.5136]
+Comment: roadbrdf regression input, hand-written
+Version: 2.2
 Channels: 1e30
 Data:
 Wvl	Reflect. %
