@@ -56,8 +56,9 @@ def lighting(source, title=None, output=None, *, lane=1, ax=None, fig=None, dpi=
         axis.plot(positions[:, 0], positions[:, 1], "*", color="orange", markersize=12, markeredgecolor="black",
                   label="luminaires")
     observer = lanes[lane - 1]["observer_m"]
-    axis.annotate(f"observer at x = {observer[0]:g} m", xy=(0.0, observer[1]), xytext=(-0.18 * spacing, observer[1]),
-                  arrowprops=dict(arrowstyle="->"), va="center", ha="right", fontsize=8)
+    # The label stands below the road, inside the axes (outside them it ran into the y-axis label).
+    axis.annotate(f"observer at x = {observer[0]:g} m", xy=(0.0, observer[1]), xytext=(-0.19 * spacing, -0.3 * width),
+                  arrowprops=dict(arrowstyle="->"), va="center", ha="left", fontsize=8)
     axis.set_xlim(-0.2 * spacing, 1.05 * spacing)
     axis.set_ylim(-0.15 * width, 1.15 * width)
     axis.set_xlabel("x along the road [m]")
