@@ -54,8 +54,8 @@ configure-sanitize: deps
 	@mkdir -p $(SANITIZE_BUILD)
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=$(SANITIZE_CXX) \
 	  -DCMAKE_CXX_FLAGS=-Werror -DCMAKE_CXX_FLAGS_DEBUG=-gline-tables-only \
-	  -DPYTHON_EXECUTABLE=$(PYTHON) -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_BUILD_TESTS=ON \
-	  -DROADBRDF_BUILD_BENCHMARKS=OFF > $(SANITIZE_BUILD)/configure.log || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
+	  -DPYTHON_EXECUTABLE=$(PYTHON) -DROADBRDF_SANITIZE=address,undefined -DROADBRDF_FUZZ=ON \
+	  -DROADBRDF_BUILD_TESTS=ON -DROADBRDF_BUILD_BENCHMARKS=OFF > $(SANITIZE_BUILD)/configure.log || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
 
 test-sanitize: configure-sanitize
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
@@ -63,10 +63,12 @@ test-sanitize: configure-sanitize
 
 # The sanitized subset CI runs after `make test` (the whole sanitized suite does not fit in CI's time
 # budget; see docs/ARCHITECTURE.md "Tests"): the CLI built with clang 14, ASan and UBSan, every
-# parser's fuzz corpus (seeds and every crash once found) and the CLI's adversarial and data-loss tests.
+# parser's fuzz corpus (seeds and every crash once found) replayed through the libFuzzer program (the
+# sanitized build is a fuzzing build, -DROADBRDF_FUZZ=ON, so CI builds the fuzzers) and the CLI's
+# adversarial and data-loss tests.
 # The Python module is built too, so that CI compiles the library, the program and the module in a
 # Debug configuration with -Werror (clang 14) as well as in the Release one (g++ 12).
-SANITIZE_CI_TARGETS = roadbrdf _roadbrdf cli_adversarial_test cli_data_loss_test fuzz_replay
+SANITIZE_CI_TARGETS = roadbrdf _roadbrdf cli_adversarial_test cli_data_loss_test fuzzers
 SANITIZE_CI_TESTS = ^(fuzz_corpus[.]|CliAdversarial[.]|CliDataLoss[.])
 test-sanitize-ci: configure-sanitize
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target $(SANITIZE_CI_TARGETS)

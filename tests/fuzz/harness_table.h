@@ -1,6 +1,7 @@
-// Every fuzz harness's entry point by name: the replay program of normal builds (replay_main.cpp)
-// runs the corpus of tests/fuzz/corpus/<name>/ through harnesses().at(name). A harness file
-// <name>_fuzz.cpp without its line here fails its ctest test fuzz_corpus.<name> ("unknown harness").
+// Every fuzz harness's entry point by name, the one list of harnesses: the build reads the names
+// from the lines below (tests/fuzz/CMakeLists.txt) to make the ctest tests fuzz_corpus.<name> and the
+// links <name>_fuzz of the libFuzzer program (fuzz_main.cpp); the replay program of normal builds
+// (replay_main.cpp) runs the corpus of tests/fuzz/corpus/<name>/ through harnesses().at(name).
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 // libFuzzer entry points of the instrument-file parsers (io/asd.h, io/sed.h, io/sig.h,
-// io/manifest.h), as inline functions so that the harness programs (*_fuzz.cpp, one
-// LLVMFuzzerTestOneInput each) and the always-run replay test (tests/io/instrument_fuzz_replay_test.cpp)
+// io/manifest.h), as inline functions so that the fuzz programs (harness_table.h) and the
+// always-run replay test (tests/io/instrument_fuzz_replay_test.cpp)
 // exercise the same code. Rejecting an input with InputError/FileError is the expected outcome;
 // any other exception, a crash or a sanitizer report is a bug.
 //

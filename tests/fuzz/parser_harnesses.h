@@ -1,6 +1,6 @@
 // libFuzzer entry points of the file parsers (datasets, geometry tables, CUReT, ALTA, formulations,
 // fit and MIX files, r-tables, spectrum files and solar spectra, surfaces, USGS splib07a spectra), as inline functions
-// shared by the harness programs (*_fuzz.cpp, one LLVMFuzzerTestOneInput each). Rejecting an input with InputError or
+// listed by name in harness_table.h. Rejecting an input with InputError or
 // FileError is the expected outcome; any other exception, a crash or a sanitizer report is a bug.
 //
 // Parsers that read a path get the input in a per-process scratch file. Warnings are swallowed.

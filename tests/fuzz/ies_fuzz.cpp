@@ -1,6 +1,0 @@
-// libFuzzer harness: IES LM-63 luminaire files (see luminaire_harnesses.h).
-#include "fuzz/luminaire_harnesses.h"
-
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  return roadbrdf::fuzz::ies_one_input(data, size);
-}
