@@ -127,12 +127,13 @@ def _local(pending, shared, workers, store, progress, function):
     import concurrent.futures as cf
     import multiprocessing
     import shutil
-    import tempfile
+    from ..scratch import make_scratch
     method = _start_method()
     ctx = multiprocessing.get_context(method)
     # The workers' temporary files go to one folder that this process removes however the pool ends (a worker
-    # killed at an interruption cannot remove its own).
-    scratch = tempfile.mkdtemp(prefix="roadbrdf-study-")
+    # killed at an interruption cannot remove its own); one left by a study killed with SIGKILL is removed by
+    # the next study (roadbrdf/scratch.py).
+    scratch = make_scratch("roadbrdf-study-")
     # A forked worker's parent is this process; a fork-server worker's is the fork server.
     pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
                                   initargs=(function, shared, os.getpid() if method == "fork" else None, scratch))
