@@ -191,8 +191,8 @@ def test_the_sweep_covers_every_public_function():
                "albedo", "mix", "flat_surface", "gaussian_slope_surface", "read_surface", "render", "render_albedo",
                "road_to_zenith_azimuth", "read_rtable", "spectral_model_from_fit", "surface", "luminaire", "lighting",
                "marking", "export"}
-    # Types, functions without arguments, study (test_study_robustness.py) and the readers of third-party and
-    # instrument files (test_instruments.py, test_usgs.py, test_adversarial.py).
+    # Types, functions without arguments, study (test_study_robustness.py), and the readers of third-party and
+    # instrument files, mix_calibrate and Surface's methods (swept by test_bad_arguments_readers.py).
     elsewhere = {"InputError", "SpectralModel", "RTable", "FitResult", "ModelFit", "AlbedoResult", "Surface",
                  "InstrumentSpectrum", "models", "model_names", "model_aliases", "data_directory", "study",
                  "read_curet", "read_alta", "mix_calibrate", "read_instrument", "instrument_dataset", "read_manifest",
