@@ -6,7 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
@@ -195,6 +198,45 @@ TEST(ModelExport, CameraPresetIs380To780By10) {
   EXPECT_EQ(result.metadata["typicalSensorTechnology"], "camera");
 }
 
+// 90 deg written in radians rounded to six decimals (1.570796 below pi/2, 1.5707964 above it) is the
+// grazing direction, read as exactly pi/2 and counted; 1.5707 (89.994 deg) is a measured angle, kept.
+TEST(OpenMaterial3d, RadiansRoundedToSixDecimalsAtNinetyDegreesAreGrazing) {
+  std::string text;
+  {
+    std::ifstream in(corpus("small_brdf.xompt"));
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string rows = R"("lookupTable": [
+      [9.05e-07, 1.570796, 0.0, 0.0, 0.1],
+      [9.05e-07, 0.5, 1.5707964, 3.141592653589793, 0.2],
+      [9.05e-07, 1.5707, 0.5, 6.2831853, 0.3],
+      [1.55e-06, 1.570796, 0.0, 0.0, 0.09],
+      [1.55e-06, 0.5, 1.5707964, 3.141592653589793, 0.18],
+      [1.55e-06, 1.5707, 0.5, 6.2831853, 0.27]
+    ])";
+  const auto begin = text.find("\"lookupTable\"");
+  const auto end = text.find(']', text.find("3.141592653589793, 0.18]")) + 1;
+  ASSERT_NE(begin, std::string::npos);
+  text.replace(begin, text.find("\n  }", end) - begin, rows);
+  const std::string path = test::scratch_path("rounded_radians.xompt");
+  std::ofstream(path) << text;
+  std::vector<std::string> warnings;
+  DatasetReadOptions options;
+  options.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
+  const SpectralDataset d = read_dataset(path, options);
+  ASSERT_EQ(d.geometry_count(), 3u);
+  EXPECT_EQ(d.geometries[0].theta_i, kPi / 2);
+  EXPECT_TRUE(d.geometries[0].grazing_i());
+  EXPECT_EQ(d.geometries[1].theta_r, kPi / 2);
+  EXPECT_TRUE(d.geometries[1].grazing_r());
+  EXPECT_EQ(d.geometries[2].theta_i, 1.5707);
+  EXPECT_FALSE(d.geometries[2].grazing_i());
+  // 6.2831853 is 2 pi - 7e-9: within the rounding of 2 pi, read as 2 pi (the same direction as 0).
+  EXPECT_EQ(d.metadata.at("rounded_radian_angles"), "6");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("1.570796 is 89.99997 deg"), std::string::npos) << warnings[0];
+}
+
 // The measured asphalt of ASAM OpenMATERIAL 3D's examples (DIVP, 905 nm): 905 rows, incident zenith
 // 86-90 deg, exit zenith 0-90 deg by 1 deg, exit azimuth 0 or pi.
 TEST(OpenMaterial3d, MeasuredAsphaltLidarFile) {
@@ -213,7 +255,9 @@ TEST(OpenMaterial3d, MeasuredAsphaltLidarFile) {
     hi = std::max(hi, g.theta_i * 180.0 / kPi);
   }
   EXPECT_NEAR(lo, 86.0, 1e-3);
-  EXPECT_NEAR(hi, 90.0, 1e-3);
+  // Its "90 deg" rows hold 1.570796 rad: read as exactly 90 deg, so the grazing rules apply to them.
+  EXPECT_EQ(hi, 90.0);
+  EXPECT_GT(std::stoul(d.metadata.at("rounded_radian_angles")), 0u);
 }
 
 }  // namespace

@@ -43,9 +43,20 @@ double wavelength_of(const JsonNode& node) {
   return m;
 }
 
-double angle_of(const JsonNode& node, double max, const char* what) {
+// Angles are stored in radians, rounded to a few decimals in practice: 90 deg is written 1.570796
+// (the ASAM example asphalt, i.e. 89.99997 deg, whose cosine 3.3e-7 no grazing rule would take for 0)
+// or 1.5707964 (just above pi/2). A value within half a unit of the sixth decimal of the upper end
+// (pi/2 for a zenith, 2 pi for the azimuth) is that end, read exactly, so that the grazing rules of
+// core/geometry.h apply; `rounded` counts them for the reader's warning.
+constexpr double kRadianRounding = 5e-7;
+
+double angle_of(const JsonNode& node, double max, const char* what, std::size_t& rounded) {
   if (node.is_null()) node.fail(std::string(what) + " is null");
   const double a = node.number();
+  if (a != max && std::abs(a - max) <= kRadianRounding) {
+    ++rounded;
+    return max;
+  }
   if (!(a >= 0.0 && a <= max)) node.fail(fmt::format("{} {} rad lies outside [0, {}] rad", what, a, max));
   return a;
 }
@@ -106,6 +117,7 @@ SpectralDataset read_openmaterial3d(const std::string& path, const DatasetReadOp
   const std::size_t m = d.wavelengths.size();
   std::map<std::tuple<double, double, double>, std::size_t> geometry_of;
   std::vector<double> values, counts;
+  std::size_t rounded_angles = 0;
   for (std::size_t r = 0; r < table.size(); ++r) {
     const JsonNode row = table[r];
     if (row.size() != 5) row.fail(fmt::format("a row holds 5 numbers, this one {}", row.size()));
@@ -113,9 +125,9 @@ SpectralDataset read_openmaterial3d(const std::string& path, const DatasetReadOp
     const double wl = wavelength_of(row[0]);
     const auto column = column_of.find(wl);
     if (column == column_of.end()) row[0].fail(fmt::format("wavelength {} m is not in \"brdf.wavelengths\"", wl));
-    const double ti = angle_of(row[1], std::numbers::pi / 2, "the incident zenith");
-    const double tr = angle_of(row[2], std::numbers::pi / 2, "the exit zenith");
-    const double phi = angle_of(row[3], 2.0 * std::numbers::pi, "the exit azimuth");
+    const double ti = angle_of(row[1], std::numbers::pi / 2, "the incident zenith", rounded_angles);
+    const double tr = angle_of(row[2], std::numbers::pi / 2, "the exit zenith", rounded_angles);
+    const double phi = angle_of(row[3], 2.0 * std::numbers::pi, "the exit azimuth", rounded_angles);
     const auto [it, added] = geometry_of.emplace(std::make_tuple(ti, tr, phi), d.geometries.size());
     if (added) {
       d.geometries.push_back(geometry_from_radians(ti, 0.0, tr, phi));
@@ -174,6 +186,13 @@ SpectralDataset read_openmaterial3d(const std::string& path, const DatasetReadOp
   }
   if (stats.averaged_duplicate_rows > 0) {
     warn(fmt::format("{}: {} repeated rows averaged", path, stats.averaged_duplicate_rows));
+  }
+  if (rounded_angles > 0) {
+    d.metadata["rounded_radian_angles"] = std::to_string(rounded_angles);
+    warn(
+        fmt::format("{}: {} angles within {:g} rad of 90 deg (or of 360 deg for the azimuth) read as exactly that "
+                    "angle: radians rounded to six decimals (1.570796 is 89.99997 deg)",
+                    path, rounded_angles, kRadianRounding));
   }
   validate_dataset(d);
   return d;
