@@ -70,6 +70,12 @@ TEST(MarkingContrast, SyntheticHeadlampLightByHand) {
   EXPECT_NEAR(l.L_marking, rho_m / kPi * e_road, 1e-12);
   EXPECT_NEAR(l.L_road, rho_r / kPi * e_road, 1e-12);
   EXPECT_NEAR(result.contrast->headlamp->contrast, rho_m / rho_r - 1.0, 1e-12);
+
+  // A file whose C90 plane points down: 2000 cd at gamma 1 deg, 600 cd at 2 deg in that plane.
+  request.headlamp_down_plane = 90.0;
+  const photometry::MarkingResult turned = marking(request);
+  EXPECT_NEAR(turned.contrast->headlamp->light->intensity_cd, 2000.0 + (1.24 - 1.0) * (600.0 - 2000.0), 1e-9);
+  EXPECT_EQ(turned.contrast->headlamp->light->c_deg, 90.0);
 }
 
 TEST(MarkingContrast, LambertianOnLambertianUnderAnInstallationIsTheRatioEverywhere) {
@@ -183,6 +189,13 @@ TEST(MarkingContrast, BadRequestsNameTheirField) {
   photometry::MarkingRequest bad_parameter = lambertian(0.6, 0.1);
   bad_parameter.pavement_parameters = {"albdo=0.1"};
   EXPECT_EQ(field_of([&] { marking(bad_parameter); }).rfind("pavement_parameters:", 0), 0u);
+
+  photometry::MarkingRequest plane_alone = lambertian(0.6, 0.1);
+  plane_alone.headlamp_down_plane = 90.0;
+  EXPECT_EQ(field_of([&] { marking(plane_alone); }).rfind("headlamp_down_plane:", 0), 0u);
+  plane_alone.headlamp = data("headlamp.ies");
+  plane_alone.headlamp_down_plane = 360.0;
+  EXPECT_EQ(field_of([&] { marking(plane_alone); }).rfind("headlamp_down_plane:", 0), 0u);
 
   photometry::MarkingRequest stray;
   stray.source = "lambert";

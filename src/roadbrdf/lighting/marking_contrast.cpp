@@ -51,7 +51,8 @@ photometry::SpectralWeighting pavement_weighting(const photometry::MarkingReques
 }  // namespace
 
 photometry::HeadlampContrast headlamp_contrast(double rl_marking, double rl_road, double illumination_angle_deg,
-                                               double observation_angle_deg, const Luminaire* headlamp) {
+                                               double observation_angle_deg, const Luminaire* headlamp,
+                                               double down_plane_deg) {
   if (!(rl_road > 0.0)) throw InputError("R_L of the pavement is 0 at this geometry: the contrast is undefined");
   photometry::HeadlampContrast h;
   const double epsilon = illumination_angle_deg * kDeg;
@@ -64,7 +65,7 @@ photometry::HeadlampContrast headlamp_contrast(double rl_marking, double rl_road
   if (headlamp != nullptr) {
     photometry::HeadlampLight l;
     l.file = headlamp->file;
-    l.c_deg = kHeadlampDownPlaneDeg;
+    l.c_deg = down_plane_deg;
     l.gamma_deg = illumination_angle_deg;
     l.intensity_cd = headlamp->distribution.intensity(l.c_deg, l.gamma_deg);
     l.distance_m = h.distance_m / std::cos(epsilon);
@@ -195,7 +196,7 @@ photometry::MarkingContrast marking_contrast(const photometry::MarkingRequest& r
     if (!request.headlamp.empty()) headlamp = read_luminaire(request.headlamp, diagnostics);
     try {
       contrast.headlamp = headlamp_contrast(*figures.rl, rl_road, request.illumination_angle, request.observation_angle,
-                                            headlamp ? &*headlamp : nullptr);
+                                            headlamp ? &*headlamp : nullptr, request.headlamp_down_plane);
     } catch (const FieldError&) {
       throw;
     } catch (const InputError& e) {

@@ -7,9 +7,10 @@
 // Headlamp frame. A headlamp's file is read as any luminaire's (luminaire.h, type C photometry), with
 // its photometric axis (gamma = 0) aimed straight ahead along the road, horizontally, and its C270
 // half-plane pointing down (C0 to the driver's right, C90 up): the type C solid turned by +90 deg about
-// the axis across the road, the way a road-lighting luminaire's file is used for a headlamp (the
-// TU Berlin RoadRad scenes turn their headlamp so). The marking lies straight ahead of the headlamp at
-// epsilon below the axis: C = 270 deg, gamma = epsilon.
+// the axis across the road, the way the TU Berlin RoadRad scenes place their headlamp file (a turn of
+// +90 deg about x of a file whose C0 lies along x and C90 along y). The marking lies straight ahead of
+// the headlamp at epsilon below the axis: C = the down plane, gamma = epsilon. Files of another
+// convention give their down plane in the request (`headlamp_down_plane`).
 #pragma once
 
 #include "roadbrdf/core/diagnostics.h"
@@ -19,13 +20,12 @@
 
 namespace roadbrdf::lighting {
 
-// The C-plane [deg] of the headlamp frame that points down (above).
-inline constexpr double kHeadlampDownPlaneDeg = 270.0;
-
 // (a) The contrast from the two R_L values [mcd m^-2 lx^-1] at illumination angle epsilon and
-// observation angle alpha [deg], with the luminances when `headlamp` is given.
+// observation angle alpha [deg], with the luminances when `headlamp` is given (its C-plane
+// `down_plane_deg` pointing down).
 photometry::HeadlampContrast headlamp_contrast(double rl_marking, double rl_road, double illumination_angle_deg,
-                                               double observation_angle_deg, const Luminaire* headlamp);
+                                               double observation_angle_deg, const Luminaire* headlamp,
+                                               double down_plane_deg = photometry::kHeadlampDownPlaneDeg);
 
 // (b) The contrast of `marking` against `road` under `installation` lit by `luminaire`.
 photometry::InstallationContrast installation_contrast(const Installation& installation, const Luminaire& luminaire,

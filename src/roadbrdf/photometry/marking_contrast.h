@@ -26,6 +26,8 @@ namespace roadbrdf::photometry {
 // Horizontal distance from the driver (and the headlamp) to the marking in EN 1436's 30 m geometry [m];
 // the headlamp and eye heights follow from the angles: h = 30 m x tan(angle) (0.65 m and 1.20 m).
 inline constexpr double kHeadlampDistance = 30.0;
+// The C-plane [deg] of a headlamp file that points down, by default (lighting/marking_contrast.h).
+inline constexpr double kHeadlampDownPlaneDeg = 270.0;
 
 // (a) with a headlamp file: the light at the point.
 struct HeadlampLight {

@@ -43,6 +43,9 @@ const Field kFields[] = {
     {"headlamp", "--headlamp", "",
      "Headlamp photometry (IES, EULUMDAT) for the luminances at 30 m; without it the contrast only",
      &MarkingRequest::headlamp, FileRole::input},
+    {"headlamp_down_plane", "--headlamp-down-plane", "deg",
+     "C-plane of the headlamp file that points down (its gamma = 0 axis points ahead)",
+     &MarkingRequest::headlamp_down_plane},
     {"installation", "--installation", "",
      "Road-lighting installation file: the contrast under its light (EN 13201-3 grid)", &MarkingRequest::installation,
      FileRole::input},
@@ -79,6 +82,12 @@ void MarkingRequest::validate() const {
   }
   if (kind != "fit" && !fit.empty()) {
     throw FieldError("fit", "selects a fit of a fit file or a method of a MIX.json; '" + source + "' is not one");
+  }
+  if (!(headlamp_down_plane >= 0.0 && headlamp_down_plane < 360.0)) {
+    throw FieldError("headlamp_down_plane", fmt::format("must lie in [0, 360) deg, got {}", headlamp_down_plane));
+  }
+  if (headlamp.empty() && headlamp_down_plane != kHeadlampDownPlaneDeg) {
+    throw FieldError("headlamp_down_plane", "orients a `headlamp` file: give one");
   }
   if (pavement.empty()) {
     if (!pavement_parameters.empty()) throw FieldError("pavement_parameters", "apply to a `pavement`: give one");

@@ -38,11 +38,12 @@ struct MarkingRequest {
   double observation_angle = kMarkingObservationAngleDeg;    // alpha above the road [deg]
   double tolerance = 1.0;  // measured data: largest distance to a measured geometry [deg]
   // The contrast against a pavement (marking_contrast.h).
-  std::string pavement;                          // CIE table, r-table file, FIT.json, MIX.json or MODEL
-  std::vector<std::string> pavement_parameters;  // NAME=VALUE of a pavement model given by name
-  std::string pavement_fit;                      // which fit / method of the pavement's file ("" = best)
-  std::string headlamp;                          // luminaire file of the vehicle's headlamp (IES, EULUMDAT)
-  std::string installation;                      // road-lighting installation file
+  std::string pavement;                                // CIE table, r-table file, FIT.json, MIX.json or MODEL
+  std::vector<std::string> pavement_parameters;        // NAME=VALUE of a pavement model given by name
+  std::string pavement_fit;                            // which fit / method of the pavement's file ("" = best)
+  std::string headlamp;                                // luminaire file of the vehicle's headlamp (IES, EULUMDAT)
+  double headlamp_down_plane = kHeadlampDownPlaneDeg;  // the headlamp file's C-plane that points down [deg]
+  std::string installation;                            // road-lighting installation file
 
   // Whether the request asks for the contrast against a pavement.
   bool wants_contrast() const { return !pavement.empty() || !installation.empty(); }
