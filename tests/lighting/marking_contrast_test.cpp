@@ -20,6 +20,7 @@
 #include "roadbrdf/lighting/marking_contrast.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "support/paths.h"
+#include "support/scratch.h"
 
 namespace roadbrdf::lighting {
 namespace {
@@ -28,6 +29,16 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kEpsilon = 1.24 * kPi / 180.0;  // EN 1436 illumination angle
 
 std::string data(const std::string& name) { return test::test_data_dir() + "/lighting/" + name; }
+
+template <class F>
+std::string field_of(F&& f) {
+  try {
+    f();
+  } catch (const FieldError& e) {
+    return e.field() + ": " + e.detail();
+  }
+  return "no error";
+}
 
 photometry::MarkingRequest lambertian(double rho_marking, double rho_road) {
   photometry::MarkingRequest r;
@@ -111,6 +122,23 @@ TEST(MarkingContrast, TheInstallationsSurfaceIsThePavementWhenNoneIsGiven) {
   EXPECT_NEAR(result.contrast->installation->contrast_of_averages, 1.0, 1e-9);
 }
 
+TEST(MarkingContrast, MeasuredMarkingUnderTheHeadlampButNotUnderAnInstallation) {
+  // A measured marking with a value at the R_L geometry itself: f_r = 0.5 sr^-1 at 550 nm.
+  const std::string file = test::scratch_path("marking-contrast-measured.csv");
+  std::ofstream(file) << "theta_i,phi_i,theta_r,phi_r,550\n88.76,0,87.71,0,0.5\n45,0,0,0,0.2\n";
+  photometry::MarkingRequest request;
+  request.source = file;
+  request.pavement = "lambert";
+  request.pavement_parameters = {"albedo=0.1"};
+  const photometry::MarkingResult result = marking(request);
+  ASSERT_TRUE(result.contrast && result.contrast->headlamp);
+  // R_L = f_r sin(epsilon) for both; the pavement's f_r = 0.1 / pi.
+  EXPECT_NEAR(result.contrast->headlamp->contrast, 0.5 / (0.1 / kPi) - 1.0, 1e-9);
+  request.installation = data("installation.json");
+  const std::string e = field_of([&] { marking(request); });
+  EXPECT_EQ(e.rfind("installation:", 0), 0u) << e;
+}
+
 // The numbers of an IES LM-63 file after its TILT=NONE line, read here on their own.
 std::vector<double> numbers_after_tilt(const std::string& path) {
   std::ifstream in(path);
@@ -155,16 +183,6 @@ TEST(MarkingContrast, RealHeadlampFileOfTuBerlin) {
   EXPECT_NEAR(l.intensity_cd, intensity, 1e-9 * std::max(1.0, intensity));
   EXPECT_NEAR(l.illuminance_lx, intensity * std::sin(kEpsilon) / (d * d), 1e-12);
   EXPECT_NEAR(l.L_road, 0.1 / kPi * intensity * std::sin(kEpsilon) / (d * d), 1e-12);
-}
-
-template <class F>
-std::string field_of(F&& f) {
-  try {
-    f();
-  } catch (const FieldError& e) {
-    return e.field() + ": " + e.detail();
-  }
-  return "no error";
 }
 
 TEST(MarkingContrast, BadRequestsNameTheirField) {
