@@ -107,6 +107,12 @@ TEST(MarkingContrast, LambertianOnLambertianUnderAnInstallationIsTheRatioEverywh
     ASSERT_TRUE(o.contrast_of_averages_true_alpha);
     EXPECT_NEAR(*o.contrast_of_averages_true_alpha, expected, 1e-9 * expected);
     EXPECT_NEAR(o.L_av_marking / o.L_av_road, rho_m / rho_r, 1e-9);
+    EXPECT_NEAR(o.L_min_marking / o.L_min_road, rho_m / rho_r, 1e-9);
+    ASSERT_EQ(o.contrast.size(), b.x_m.size() * b.y_m.size());
+    for (std::size_t p = 0; p < o.contrast.size(); ++p) {
+      EXPECT_NEAR(o.L_marking[p] / o.L_road[p], rho_m / rho_r, 1e-9);
+      EXPECT_NEAR(o.contrast[p], expected, 1e-9 * expected);
+    }
   }
   EXPECT_NEAR(b.contrast_of_averages, expected, 1e-9 * expected);
 }

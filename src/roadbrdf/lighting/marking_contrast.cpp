@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 
 #include "roadbrdf/core/error.h"
@@ -94,6 +95,8 @@ photometry::InstallationContrast installation_contrast(const Installation& insta
   photometry::InstallationContrast out;
   out.installation = installation.file;
   out.grid_points = fr.grid.size();
+  out.x_m = fr.grid.x;
+  out.y_m = fr.grid.y;
   const bool true_alpha = fm.has_brdf_luminance && fr.has_brdf_luminance;
   std::size_t dark_points = 0;
   for (std::size_t k = 0; k < fr.observers.size(); ++k) {
@@ -107,6 +110,11 @@ photometry::InstallationContrast installation_contrast(const Installation& insta
       throw InputError("the road's average luminance is 0 under the installation: the contrast is undefined");
     }
     o.contrast_of_averages = o.L_av_marking / o.L_av_road - 1.0;
+    o.L_marking = om.luminance;
+    o.L_road = orr.luminance;
+    o.L_min_marking = *std::min_element(om.luminance.begin(), om.luminance.end());
+    o.L_min_road = *std::min_element(orr.luminance.begin(), orr.luminance.end());
+    o.contrast.assign(orr.luminance.size(), std::numeric_limits<double>::quiet_NaN());
     // The contrast at each grid point where the road is lit (a point of zero road luminance has none).
     double sum = 0.0;
     std::size_t counted = 0;
@@ -116,6 +124,7 @@ photometry::InstallationContrast installation_contrast(const Installation& insta
         continue;
       }
       const double c = om.luminance[p] / orr.luminance[p] - 1.0;
+      o.contrast[p] = c;
       o.contrast_min = counted == 0 ? c : std::min(o.contrast_min, c);
       o.contrast_max = counted == 0 ? c : std::max(o.contrast_max, c);
       sum += c;

@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
+
 namespace roadbrdf::photometry {
 
 nlohmann::json MarkingContrast::to_json() const {
@@ -36,10 +38,20 @@ nlohmann::json MarkingContrast::to_json() const {
   if (installation) {
     const InstallationContrast& b = *installation;
     nlohmann::json observers = nlohmann::json::array();
+    const auto values = [](const std::vector<double>& v) {
+      nlohmann::json a = nlohmann::json::array();
+      for (double x : v) a.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr));
+      return a;
+    };
     for (const ObserverContrast& o : b.observers) {
       observers.push_back({{"lane", o.lane + 1},
                            {"L_av_marking_cd_m2", o.L_av_marking},
                            {"L_av_road_cd_m2", o.L_av_road},
+                           {"L_min_marking_cd_m2", o.L_min_marking},
+                           {"L_min_road_cd_m2", o.L_min_road},
+                           {"L_marking_cd_m2", values(o.L_marking)},
+                           {"L_road_cd_m2", values(o.L_road)},
+                           {"contrast", values(o.contrast)},
                            {"contrast_of_averages", o.contrast_of_averages},
                            {"contrast_min", o.contrast_min},
                            {"contrast_max", o.contrast_max},
@@ -50,6 +62,8 @@ nlohmann::json MarkingContrast::to_json() const {
     }
     j["installation"] = {{"file", b.installation},
                          {"grid_points", b.grid_points},
+                         {"x_m", b.x_m},
+                         {"y_m", b.y_m},
                          {"contrast_of_averages", b.contrast_of_averages},
                          {"contrast_min", b.contrast_min},
                          {"contrast_max", b.contrast_max},

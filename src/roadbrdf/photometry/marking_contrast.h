@@ -52,15 +52,20 @@ struct HeadlampContrast {
 struct ObserverContrast {
   std::size_t lane = 0;                                                // 0 = the lane along the right-hand edge
   double L_av_marking = 0.0, L_av_road = 0.0;                          // [cd/m^2] averages over the grid
+  double L_min_marking = 0.0, L_min_road = 0.0;                        // [cd/m^2] least over the grid
   double contrast_of_averages = 0.0;                                   // L_av,marking / L_av,road - 1
   double contrast_min = 0.0, contrast_max = 0.0, contrast_mean = 0.0;  // of the grid points' contrasts
   // From both BRDFs at each point's true observation angle (when both surfaces have a BRDF).
   std::optional<double> contrast_of_averages_true_alpha;
+  // At the grid points, in the order of InstallationContrast::x_m / y_m (point (i, j) at i * y_m.size() + j);
+  // the contrast is NaN (JSON null) where the road's luminance is 0.
+  std::vector<double> L_marking, L_road, contrast;
 };
 
 struct InstallationContrast {
   std::string installation;  // the file
   std::size_t grid_points = 0;
+  std::vector<double> x_m, y_m;  // the grid: x along the road, y across from the right-hand edge [m]
   std::vector<ObserverContrast> observers;
   // Governing values over the observers: the lowest contrast of the averages, and the extreme points.
   double contrast_of_averages = 0.0, contrast_min = 0.0, contrast_max = 0.0;
