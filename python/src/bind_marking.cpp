@@ -6,6 +6,7 @@
 #include "binding.h"
 #include "request_kwargs.h"
 #include "roadbrdf/io/model_export.h"
+#include "roadbrdf/lighting/marking_contrast.h"
 #include "roadbrdf/mixing/mix_file.h"
 #include "roadbrdf/photometry/marking_request.h"
 
@@ -18,11 +19,12 @@ void bind_marking(pybind11::module_& m) {
       [](const py::args& args, const py::kwargs& kwargs) {
         const auto request = request_from_arguments<photometry::MarkingRequest>(args, kwargs);
         check_request_files(request);
-        const photometry::MarkingResult result = photometry::marking(request, mixing::read_spectral_model_file);
+        const photometry::MarkingResult result = lighting::marking(request);
         return python_result(result.to_json(), result.diagnostics, result.summary_text());
       },
       request_docstring<photometry::MarkingRequest>(
-          "Road-marking photometry (EN 1436): R_L at the 30 m geometry, Q_d, beta and their classes.")
+          "Road-marking photometry (EN 1436): R_L at the 30 m geometry, Q_d, beta and their classes; the "
+          "contrast against a pavement.")
           .c_str());
   m.def(
       "export",

@@ -123,13 +123,16 @@ def test_markings_walkthrough_runs_as_written(tmp_path, real_data):
     (tree / "build" / "roadbrdf").symlink_to(cli_path)
     (tmp_path / "shared").symlink_to(real_data.parent)  # ../shared as next to the source tree
     blocks = shell_blocks("docs/markings.md")
-    assert len(blocks) == 3
+    assert len(blocks) == 4
     for body in blocks:
         result = subprocess.run(["bash", "-e", "-o", "pipefail", "-c", body], cwd=tree, capture_output=True,
                                 text=True, timeout=600)
         assert result.returncode == 0, f"{body}\n{result.stderr[-3000:]}"
     marking = json.loads((tree / "tape.marking.json").read_text())
     assert marking["RL"] is not None and marking["Qd"] is not None
+    # The contrast walkthrough: a retroreflective tape is much brighter than R3 under road lighting.
+    contrast = json.loads((tree / "tape.contrast.json").read_text())["contrast"]["installation"]
+    assert contrast["contrast_of_averages"] > 0 and len(contrast["observers"]) == 2
 
 
 def test_check_reports_the_receiver_solid_angles(cli, root):

@@ -1,6 +1,7 @@
 // roadbrdf marking (FIT.json | MIX.json | MODEL -p ... | DATA) [--json]
 // Road-marking figures of EN 1436: R_L, Q_d, the luminance factor beta and the classes
-// (photometry/marking_request.h; the request contract of core/request_fields.h).
+// (photometry/marking_request.h; the request contract of core/request_fields.h), and with a pavement
+// the contrast against it (lighting/marking_contrast.h).
 #include <fmt/core.h>
 
 #include <iostream>
@@ -8,8 +9,7 @@
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/request_options.h"
 #include "roadbrdf/core/json_input.h"
-#include "roadbrdf/mixing/mix_file.h"
-#include "roadbrdf/photometry/marking_request.h"
+#include "roadbrdf/lighting/marking_contrast.h"
 
 namespace roadbrdf::cli {
 
@@ -24,7 +24,7 @@ void run(const MarkingArgs& a) {
   photometry::MarkingResult result;
   run_request<photometry::MarkingRequest>([&] {
     check_request_files(a.request);
-    result = photometry::marking(a.request, mixing::read_spectral_model_file);
+    result = lighting::marking(a.request);
   });
   print_diagnostics<photometry::MarkingRequest>(result.diagnostics);
   if (a.json) {
@@ -39,7 +39,9 @@ void run(const MarkingArgs& a) {
 void register_marking_command(CLI::App& app) {
   static MarkingArgs args;
   auto* c = app.add_subcommand(
-      "marking", "Road-marking photometry (EN 1436): R_L at the 30 m geometry, Q_d, beta and their classes");
+      "marking",
+      "Road-marking photometry (EN 1436): R_L at the 30 m geometry, Q_d, beta and their classes; the contrast "
+      "against a pavement");
   add_request_options(c, args.request);
   c->add_flag("--json", args.json, "Machine-readable result");
   c->callback([] { run(args); });

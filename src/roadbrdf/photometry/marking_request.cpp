@@ -32,6 +32,23 @@ const Field kFields[] = {
      &MarkingRequest::observation_angle},
     {"tolerance", "--tolerance", "deg", "Measured data: largest distance from the geometry to a measured one",
      &MarkingRequest::tolerance},
+    {"pavement", "--pavement", "",
+     "Pavement to compare the marking with: a CIE table (R3, R3:0.07), an r-table file, a FIT.json / MIX.json or "
+     "a model name (with pavement_parameters)",
+     &MarkingRequest::pavement},
+    {"pavement_parameters", "--pavement-parameter", "", "Parameter NAME=VALUE of a pavement model (repeatable)",
+     &MarkingRequest::pavement_parameters},
+    {"pavement_fit", "--pavement-fit", "", "Which fit / method of the pavement's file; default: the best",
+     &MarkingRequest::pavement_fit},
+    {"headlamp", "--headlamp", "",
+     "Headlamp photometry (IES, EULUMDAT) for the luminances at 30 m; without it the contrast only",
+     &MarkingRequest::headlamp, FileRole::input},
+    {"headlamp_down_plane", "--headlamp-down-plane", "deg",
+     "C-plane of the headlamp file that points down (its gamma = 0 axis points ahead)",
+     &MarkingRequest::headlamp_down_plane},
+    {"installation", "--installation", "",
+     "Road-lighting installation file: the contrast under its light (EN 13201-3 grid)", &MarkingRequest::installation,
+     FileRole::input},
 };
 
 std::string fmt_optional(const std::optional<double>& v, int digits) {
@@ -66,6 +83,30 @@ void MarkingRequest::validate() const {
   if (kind != "fit" && !fit.empty()) {
     throw FieldError("fit", "selects a fit of a fit file or a method of a MIX.json; '" + source + "' is not one");
   }
+  if (!(headlamp_down_plane >= 0.0 && headlamp_down_plane < 360.0)) {
+    throw FieldError("headlamp_down_plane", fmt::format("must lie in [0, 360) deg, got {}", headlamp_down_plane));
+  }
+  if (headlamp.empty() && headlamp_down_plane != kHeadlampDownPlaneDeg) {
+    throw FieldError("headlamp_down_plane", "orients a `headlamp` file: give one");
+  }
+  if (pavement.empty()) {
+    if (!pavement_parameters.empty()) throw FieldError("pavement_parameters", "apply to a `pavement`: give one");
+    if (!pavement_fit.empty()) throw FieldError("pavement_fit", "selects a fit of a `pavement` file: give one");
+    if (!headlamp.empty() && installation.empty()) {
+      throw FieldError("headlamp",
+                       "lights the marking and a pavement: give a `pavement` (or an `installation`, "
+                       "whose surface is then the pavement)");
+    }
+  } else {
+    const bool fit_file = source_kind(pavement) == "fit";
+    if (!pavement_parameters.empty() && source_kind(pavement) != "model") {
+      throw FieldError("pavement_parameters", "apply to a pavement model given by its name, not to '" + pavement + "'");
+    }
+    if (!pavement_fit.empty() && !fit_file) {
+      throw FieldError("pavement_fit",
+                       "selects a fit of a fit file or a method of a MIX.json; '" + pavement + "' is not one");
+    }
+  }
 }
 
 bool MarkingRequest::standard_geometry() const {
@@ -93,6 +134,7 @@ nlohmann::json MarkingResult::to_json() const {
   j["beta_nearest_measured_deg"] = opt(beta_nearest_distance);
   j["units"] = {{"RL", "mcd m^-2 lx^-1"},         {"Qd", "mcd m^-2 lx^-1"},           {"Qd_error", "mcd m^-2 lx^-1"},
                 {"beta", "1 (luminance factor)"}, {"RL_nearest_measured_deg", "deg"}, {"angles", "deg"}};
+  j["contrast"] = contrast ? contrast->to_json() : nlohmann::json(nullptr);
   j["diagnostics"] = diagnostics.to_json();
   return j;
 }
@@ -107,6 +149,7 @@ std::string MarkingResult::summary_text() const {
   if (qd_error) text += fmt::format(" (+- {:.3f})", *qd_error);
   if (!qd_class.empty()) text += "  class " + qd_class;
   text += fmt::format("\nbeta = {}\n", fmt_optional(beta, 4));
+  if (contrast) text += contrast->summary_text();
   return text;
 }
 

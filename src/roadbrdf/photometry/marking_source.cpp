@@ -154,18 +154,25 @@ void from_data(const MarkingRequest& request, MarkingResult& result) {
 
 }  // namespace
 
-MarkingResult marking(const MarkingRequest& request, const SpectralModelFileReader& read_model_file) {
+MarkingResult marking(const MarkingRequest& request, const SpectralModelFileReader& read_model_file,
+                      const MarkingContrastFunction& contrast) {
   request.validate();
+  if (request.wants_contrast() && !contrast) {
+    throw FieldError(request.pavement.empty() ? "installation" : "pavement",
+                     "the contrast against a pavement is computed by the lighting module (lighting::marking)");
+  }
   MarkingResult result;
   result.illumination_angle = request.illumination_angle;
   result.observation_angle = request.observation_angle;
   result.source_kind = source_kind(request.source);
+  std::optional<SpectralModel> model;
   if (result.source_kind == "data") {
     from_data(request, result);
-  } else if (result.source_kind == "fit") {
-    from_model(request, read_model_file(request.source, request.fit), result);
   } else {
-    from_model(request, spectral_model_from_assignments(request.source, request.parameters, request.options), result);
+    model = result.source_kind == "fit"
+                ? read_model_file(request.source, request.fit)
+                : spectral_model_from_assignments(request.source, request.parameters, request.options);
+    from_model(request, *model, result);
   }
   if (request.standard_geometry()) {
     if (result.rl) result.rl_class = marking_class(rl_classes(), *result.rl);
@@ -175,6 +182,8 @@ MarkingResult marking(const MarkingRequest& request, const SpectralModelFileRead
                             "the EN 1436 classes apply to its geometry only (illumination 1.24 deg, "
                             "observation 2.29 deg): none is given");
   }
+  if (request.wants_contrast())
+    result.contrast = contrast(request, model ? &*model : nullptr, result, result.diagnostics);
   return result;
 }
 
