@@ -162,6 +162,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     r.fixed.update({str(k): float(v) for k, v in (fix or {}).items()})
     own = tempfile.TemporaryDirectory(prefix="roadbrdf-report-") if workdir is None else None
     folder = own.name if own else workdir
+    drawing = None
     try:
         r.fit_all_path = os.path.join(folder, "all-configurations.fit.json")
         with steps.step("fit-all", f"fitting {', '.join(models)} to every geometry ({len(d)}) at "
@@ -194,6 +195,9 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
         # visible range have none) is absent with its reason; the other sections are shown.
         r.albedo = r.rtable = None
         r.albedo_note = r.rtable_note = ""
+        # The figures that need neither the albedo nor the r-table are drawn by other processes meanwhile.
+        from .report_figures import Drawing
+        drawing = Drawing(r)
         with steps.step("albedo", f"albedo of {r.best.model}"), _collect(r, "albedo"):
             try:
                 r.albedo = albedo_of(best_model, sun_zenith=zeniths, atmosphere=atmosphere or None)
@@ -215,9 +219,10 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
              if n.startswith(("WARNING", "coverage"))] + list((r.rtable or {}).get("warnings") or []) +
             [n for n in (r.rtable or {}).get("notes") or [] if n.startswith("coverage")]))
         with steps.step("figures", "drawing the figures"):
-            from .report_figures import draw_all
-            draw_all(r)
+            drawing.finish(r)
     finally:
+        if drawing is not None:
+            drawing.stop()
         if own:
             own.cleanup()
     return r

@@ -1,9 +1,9 @@
 """The figures of the sample report, drawn by the public functions of :mod:`roadbrdf.plot` (and
 ``roadbrdf.plot_params.params``), each returned as a matplotlib Figure and embedded as PNG.
 
-``draw_all(r)`` fills ``r.figures`` (key -> (PNG bytes, caption)) and ``r.spectral_keys``; a figure that
-cannot be drawn is named in ``r.figure_errors`` (shown in the page, and on standard error) rather than
-losing the whole report.
+``draw_all(r)`` (or :class:`Drawing`, started before the albedo and finished after the r-table) fills
+``r.figures`` (key -> (PNG bytes, caption)) and ``r.spectral_keys``; a figure that cannot be drawn is named
+in ``r.figure_errors`` (shown in the page, and on standard error) rather than losing the whole report.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import warnings
 
 from .report_html import esc, figure_png
 
-__all__ = ["draw_all"]
+__all__ = ["draw_all", "Drawing"]
 
 
 def _params_function():
@@ -54,8 +54,8 @@ def _run(job):
     return png, error, [line for line in stderr.getvalue().splitlines() if line.strip()], extra
 
 
-#: The jobs of the report being drawn, inherited by the forked worker processes (closures cannot be sent
-#: to a process; a forked worker has them already and is sent only their index).
+#: The jobs drawn by the worker processes, inherited when they are forked (closures cannot be sent to a
+#: process; a forked worker has them already and is sent only their index).
 _JOBS: list = []
 
 
@@ -70,56 +70,91 @@ def _worker_signals():
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def _processes(jobs) -> int:
-    """Processes drawing the figures: one per core (at most one per figure); ``ROADBRDF_REPORT_PROCESSES``
-    overrides (1: drawn in this process, in order). Drawing is single-threaded matplotlib, so the figures
-    are spread over processes; forking keeps the data already read (datasets, fit models) without copying."""
+def _cores() -> int:
+    """Cores for the figures: ``ROADBRDF_REPORT_PROCESSES`` when set (1: everything drawn in this process, in
+    order), else the cores this process may run on; 1 where processes cannot be forked."""
     import multiprocessing
     from .report import default_threads
-    asked = os.environ.get("ROADBRDF_REPORT_PROCESSES", "")
-    n = int(asked) if asked.strip().isdigit() and int(asked) > 0 else default_threads()
     if "fork" not in multiprocessing.get_all_start_methods():
         return 1
-    return max(1, min(n, len(jobs)))
+    asked = os.environ.get("ROADBRDF_REPORT_PROCESSES", "").strip()
+    return int(asked) if asked.isdigit() and int(asked) > 0 else default_threads()
 
 
-def _draw_parallel(jobs, n):
-    """The results of ``jobs`` (in their order) drawn by ``n`` forked processes, the costliest figures first
-    so that the processes finish together; None when a worker died (the caller draws them itself)."""
-    global _JOBS
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-    from concurrent.futures.process import BrokenProcessPool
-    order = sorted(range(len(jobs)), key=lambda k: -jobs[k].cost)
-    _JOBS = jobs
-    for stream in (sys.stdout, sys.stderr):  # a forked worker must not write the parent's buffered text again
-        stream.flush()
-    pool = ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"), initializer=_worker_signals)
-    try:
-        drawn = dict(zip(order, pool.map(_run_index, order)))
-        pool.shutdown()
-        return [drawn[k] for k in range(len(jobs))]
-    except BrokenProcessPool:
-        pool.shutdown()
-        return None
-    except BaseException:  # Ctrl-C or SIGTERM: stop the workers at once, not after the figures left
-        for process in list(getattr(pool, "_processes", {}).values()):
-            process.terminate()
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    finally:
-        _JOBS = []
+class Drawing:
+    """The figures of the page, drawn while the report computes the rest.
+
+    Matplotlib draws on one thread, so the figures are spread over processes: creating a Drawing forks
+    workers (one core is left to the report, which goes on with the albedo and the r-table) that draw the
+    figures needing neither; :meth:`finish` draws the albedo and r-table figures here, then those no worker
+    has started yet, collects the workers' and keeps every result in the page's order. Forking keeps the
+    data already read (dataset, fit models) without copying; with one core everything is drawn here, in
+    order (``ROADBRDF_REPORT_PROCESSES=1`` asks for that)."""
+
+    def __init__(self, r):
+        self.jobs = _early_jobs(r)
+        self.futures, self.pool, self.order = None, None, []
+        workers = min(_cores() - 1, len(self.jobs))
+        if workers < 1:
+            return
+        global _JOBS
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+        from . import plot  # noqa: F401 - imported once here, not in each worker
+        for stream in (sys.stdout, sys.stderr):  # a forked worker must not write the parent's buffered text again
+            stream.flush()
+        _JOBS = self.jobs
+        self.pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
+                                        initializer=_worker_signals)
+        # The costliest figures (many panels) first, so that the workers finish together.
+        self.order = sorted(range(len(self.jobs)), key=lambda k: -self.jobs[k].cost)
+        self.futures = {k: self.pool.submit(_run_index, k) for k in self.order}
+
+    def finish(self, r) -> None:
+        """Draw the rest, collect the workers' figures and fill ``r.figures``, ``r.figure_errors`` and
+        ``r.spectral_keys``."""
+        from concurrent.futures.process import BrokenProcessPool
+        late = _late_jobs(r)
+        results = [_run(job) for job in late]
+        early = None
+        if self.futures is not None:
+            # Then this process takes the figures no worker has started, the last ones queued first.
+            drawn = {}
+            for k in reversed(self.order):
+                if self.futures[k].cancel():
+                    drawn[k] = _run(self.jobs[k])
+            try:
+                early = [drawn[k] if k in drawn else self.futures[k].result() for k in range(len(self.jobs))]
+            except BrokenProcessPool:  # a worker died (out of memory, say): draw its figures here
+                early = None
+            self.stop(at_once=early is None)
+        if early is None:
+            early = [_run(job) for job in self.jobs]
+        _keep(r, self.jobs + late, early + results)
+
+    def stop(self, at_once: bool = True) -> None:
+        """End the workers: at once (Ctrl-C, SIGTERM or an error of the report), or, ``at_once=False``
+        after :meth:`finish`, when they are idle, by letting them exit."""
+        global _JOBS
+        if self.pool is None:
+            return
+        if at_once:
+            for process in list((getattr(self.pool, "_processes", None) or {}).values()):
+                process.terminate()
+            self.pool.shutdown(wait=False, cancel_futures=True)
+        else:
+            self.pool.shutdown(wait=True)
+        self.pool, _JOBS = None, []
 
 
-def _draw_jobs(r, jobs) -> None:
-    """Draw ``jobs`` (over several processes when there are cores for it) and keep each result in the
-    page's order: ``r.figures[key]`` = (PNG, caption), or the error in ``r.figure_errors``."""
-    n = _processes(jobs)
-    results = _draw_parallel(jobs, n) if n > 1 else None
-    if results is None:
-        results = [_run(job) for job in jobs]
+def _keep(r, jobs, results) -> None:
+    """Each figure's PNG and caption in ``r.figures``, or its error in ``r.figure_errors``, in the page's
+    order (``results`` are those of ``jobs``)."""
+    r.figures, r.figure_errors, r.spectral_keys = {}, {}, []
+    order = {key: k for k, key in enumerate(_PAGE_ORDER)}
+    pairs = sorted(zip(jobs, results), key=lambda p: order.get(p[0].key, len(order)))
     seen = set()
-    for job, (png, error, lines, extra) in zip(jobs, results):
+    for job, (png, error, lines, extra) in pairs:
         if error is not None:
             r.figure_errors[job.key] = f"{error[0]}: {error[1]}"
             print(f"roadbrdf report: warning: figure '{job.key}' not drawn: {error[1]}", file=sys.stderr)
@@ -141,6 +176,11 @@ def _draw_jobs(r, jobs) -> None:
         r.figures[job.key] = (png, caption)
 
 
+#: The order the figures are kept in (and their stderr lines among the caveats of the spectral section).
+_PAGE_ORDER = ["spectral-mirror", "spectral-retro", "spectral-nadir", "hemisphere", "plane", "fit-quality",
+               "params-by-wavelength", "params-by-incidence", "albedo", "rtable", "mixing"]
+
+
 def _spectral(r):
     """BRDF against wavelength at the mirror, retro and nadir-viewing geometries of the figures' incidence."""
     from . import plot
@@ -153,11 +193,11 @@ def _spectral(r):
         for name, geometry, text in requests]
 
 
-def draw_all(r) -> None:
+def _early_jobs(r) -> list:
+    """The figures that need neither the albedo nor the r-table (drawn while those are computed)."""
     from . import plot
     from .report import fit_model
     params_plot = _params_function()
-    r.figures, r.figure_errors, r.spectral_keys = {}, {}, []
     ti, band, best = r.theta_i_figures, r.band, r.best.model
     jobs = _spectral(r)
     jobs.append(_Job("hemisphere", esc(f"The best-ranked fit ({best}) over the viewing hemisphere at θ_i = {ti:g}°, "
@@ -190,13 +230,6 @@ def draw_all(r) -> None:
                                                     "θ_i, ± one standard error (plot_params.params)."),
                          lambda: params_plot(r.fit_groups_path, parameters=free_g, against="theta_i",
                                              wavelength=band, title=f"{r.sample}: per-incidence fits")))
-    if r.albedo is not None:
-        jobs.append(_Job("albedo", esc(f"Albedo of {best}: spectral black-, white- and blue-sky, and the "
-                                       "solar-weighted values (plot.albedo)."),
-                         lambda: plot.albedo(r.albedo, title=f"{r.sample}: albedo ({best})")))
-    if r.rtable is not None:
-        jobs.append(_Job("rtable", esc(f"r-table of {best} and its (S1, Q0) among the CIE R classes (plot.rtable)."),
-                         lambda: plot.rtable(r.rtable, title=f"{r.sample}: r-table ({best})")))
     if r.mix is not None and r.mix.methods:
         chosen = r.mix.best or r.mix.methods[0]
         jobs.append(_Job("mixing", esc(f"Plane of incidence at θ_i = {ti:g}°, {band:g} nm: the measured sample, its "
@@ -206,4 +239,28 @@ def draw_all(r) -> None:
                                             theta_i=ti, wavelength=band,
                                             labels=[f"mixing prediction ({chosen.method})", f"fit ({best})"],
                                             title=f"{r.sample}: mixing prediction, θ_i = {ti:g}°")))
-    _draw_jobs(r, jobs)
+    return jobs
+
+
+def _late_jobs(r) -> list:
+    """The albedo and r-table figures."""
+    from . import plot
+    best = r.best.model
+    jobs = []
+    if r.albedo is not None:
+        jobs.append(_Job("albedo", esc(f"Albedo of {best}: spectral black-, white- and blue-sky, and the "
+                                       "solar-weighted values (plot.albedo)."),
+                         lambda: plot.albedo(r.albedo, title=f"{r.sample}: albedo ({best})")))
+    if r.rtable is not None:
+        jobs.append(_Job("rtable", esc(f"r-table of {best} and its (S1, Q0) among the CIE R classes (plot.rtable)."),
+                         lambda: plot.rtable(r.rtable, title=f"{r.sample}: r-table ({best})")))
+    return jobs
+
+
+def draw_all(r) -> None:
+    """Every figure of the page (:class:`Drawing` started and finished at once)."""
+    drawing = Drawing(r)
+    try:
+        drawing.finish(r)
+    finally:
+        drawing.stop()
