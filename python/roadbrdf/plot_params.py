@@ -39,31 +39,30 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
     dpi : float, optional
         Resolution of the raster parts when saving ``output``.
     """
-    from . import params as _params
-    table = _params(fit_file, models=models or ())
-    units = table.attrs["units"]
+    table, units = _table(fit_file, models)
     fixed, bounds = _fixed_and_bounds(fit_file, models)
     # A parameter fixed in every fit shown (a composite's weights, say) is a constant, not a result: no panel
     # unless asked for.
-    names = list(parameters) if parameters else [p for p in units if table[p].notna().any() and p not in fixed]
+    names = list(parameters) if parameters else [p for p in units if np.isfinite(table[p]).any() and p not in fixed]
     for p in names:
         if p not in units:
             from . import _roadbrdf
             raise ValueError(f"no parameter '{p}' in {fit_file}{_roadbrdf.did_you_mean(p, list(units))} "
                              f"(parameters: {', '.join(units)})")
-    groups = [c[:-4] for c in table.columns if c.endswith("_deg")]
+    groups = [c[:-4] for c in table if c.endswith("_deg")]
     if against != "wavelength" and against not in groups:
         choices = ["wavelength"] + groups
         raise ValueError(f"against: '{against}' is not one of {', '.join(choices)}"
                          + ("" if groups else " (the fit file has no groups: fit with --group-by)"))
     note = ""
     if against != "wavelength":
-        bands = np.unique(table["wavelength_nm"].to_numpy())
+        bands = np.unique(table["wavelength_nm"])
         wanted = float(bands[len(bands) // 2]) if wavelength is None else float(wavelength)
         band = float(bands[np.argmin(np.abs(bands - wanted))])
         if abs(band - wanted) > 1e-6:
             note = f" (nearest band to {wanted:g} nm)"
-        table = table[table["wavelength_nm"] == band]
+        at_band = table["wavelength_nm"] == band
+        table = {c: v[at_band] for c, v in table.items()}
     columns = min(len(names), 3)
     fig, axes = panels([None] * len(names), ax=ax, fig=fig, ncols=columns, size=(4.2, 3.4), what="parameters")
     data = {}
@@ -71,12 +70,11 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
     for axis, p in zip(axes, names):
         data[p] = {}
         keys = ["model", *(g + "_deg" for g in others)]
-        for key, rows in table.groupby(keys if len(keys) > 1 else "model", sort=False):
-            key = key if isinstance(key, tuple) else (key,)
+        for key, rows in _groups(table, keys):
             label = key[0] + "".join(f", {g}={v:g}" for g, v in zip(others, key[1:]))
-            x = rows["wavelength_nm" if against == "wavelength" else against + "_deg"].to_numpy(float)
-            y = rows[p].to_numpy(float)
-            e = rows[p + "_stderr"].to_numpy(float)
+            x = table["wavelength_nm" if against == "wavelength" else against + "_deg"][rows]
+            y = table[p][rows]
+            e = table[p + "_stderr"][rows]
             if not np.isfinite(y).any():
                 continue
             data[p][label] = (x, y, e)
@@ -121,6 +119,38 @@ def add_parser(sub, output):
 
 def run(a):
     params(a.fit_file, a.parameter, a.model, a.against, a.wavelength, title=a.title, output=a.output, dpi=a.dpi)
+
+
+def _table(fit_file, models):
+    """The table of :func:`roadbrdf.params` (the same library call) as {column: array} (numbers as float, NaN
+    where missing) and the parameters' units, without building a DataFrame: the figure needs only the columns
+    (and importing pandas would cost a command as much time and memory as drawing a panel)."""
+    from . import _roadbrdf
+    t = _roadbrdf.params_table(os.fspath(fit_file), None, [str(m) for m in models or ()], [], "")
+    table = {}
+    for c in t["columns"]:
+        values = t["data"][c]
+        try:
+            table[c] = np.asarray(values, dtype=float)
+        except (TypeError, ValueError):  # text (the model's name)
+            table[c] = np.asarray(values, dtype=object)
+    return table, dict(t["units"])
+
+
+def _groups(table, keys):
+    """(key tuple, row mask) of each distinct value of the ``keys`` columns, in the order they first appear
+    (``DataFrame.groupby(keys, sort=False)``; rows with a missing group value belong to none)."""
+    columns = [table[k] for k in keys]
+    seen = {}
+    for i, key in enumerate(zip(*columns)):
+        if any(isinstance(v, float) and np.isnan(v) for v in key):
+            continue
+        seen.setdefault(key, []).append(i)
+    n = len(columns[0]) if columns else 0
+    for key, rows in seen.items():
+        mask = np.zeros(n, dtype=bool)
+        mask[rows] = True
+        yield key, mask
 
 
 def _fixed_and_bounds(fit_file, models):

@@ -129,10 +129,11 @@ def _collect(r, key):
 
 # ---- gathering the results -----------------------------------------------------------------------
 def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None, sun_zenith="0:60:30",
-           atmosphere="spectrl2", illuminant="A", multistart=8, fix=None, free_weights=False, folds=5, threads=1,
+           atmosphere="spectrl2", illuminant="A", multistart=8, fix=None, free_weights=False, folds=5, threads=None,
            quiet=True, workdir=None):
     """Every result of the report (a namespace), computed with the public API; ``workdir`` holds the fit
-    files the figures and tables read (a temporary folder when None, removed afterwards)."""
+    files the figures and tables read (a temporary folder when None, removed afterwards). ``threads``: of
+    the fit over all wavelengths (None: every core; the fit does not depend on it, bit for bit)."""
     from . import Model, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
     from . import albedo as albedo_of, rtable as rtable_of
     models = list(dict.fromkeys(models or DEFAULT_MODELS))
@@ -146,6 +147,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     zeniths = _roadbrdf.values(sun_zenith, "--sun-zenith")
     if formulation is not None and not os.path.isfile(formulation):
         raise InputError(f"--formulation: '{formulation}': no such file")
+    threads = default_threads() if threads is None else int(threads)
     steps = _Steps(quiet)
     r = SimpleNamespace(path=os.fspath(data), models=models, wavelength_asked=float(wavelength),
                         multistart=int(multistart), warnings={}, figures={}, figure_errors={}, folds=int(folds),
@@ -160,6 +162,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     r.fixed.update({str(k): float(v) for k, v in (fix or {}).items()})
     own = tempfile.TemporaryDirectory(prefix="roadbrdf-report-") if workdir is None else None
     folder = own.name if own else workdir
+    drawing = None
     try:
         r.fit_all_path = os.path.join(folder, "all-configurations.fit.json")
         with steps.step("fit-all", f"fitting {', '.join(models)} to every geometry ({len(d)}) at "
@@ -187,10 +190,14 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
         # From the fit file, as `roadbrdf albedo FIT.json` reads it: the file records the measured directions
         # (the coverage the albedo and r-table report), which a FitResult's in-memory model does not carry.
         best_model = read_fit(r.fit_all_path, r.best.model)
+        r.fit_models = {r.best.model: best_model}  # each model of the fit file is read once (fit_model)
         # A section whose quantity the data cannot give (an r-table is weighted by V(lambda), so data outside the
         # visible range have none) is absent with its reason; the other sections are shown.
         r.albedo = r.rtable = None
         r.albedo_note = r.rtable_note = ""
+        # The figures that need neither the albedo nor the r-table are drawn by other processes meanwhile.
+        from .report_figures import Drawing
+        drawing = Drawing(r)
         with steps.step("albedo", f"albedo of {r.best.model}"), _collect(r, "albedo"):
             try:
                 r.albedo = albedo_of(best_model, sun_zenith=zeniths, atmosphere=atmosphere or None)
@@ -212,12 +219,30 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
              if n.startswith(("WARNING", "coverage"))] + list((r.rtable or {}).get("warnings") or []) +
             [n for n in (r.rtable or {}).get("notes") or [] if n.startswith("coverage")]))
         with steps.step("figures", "drawing the figures"):
-            from .report_figures import draw_all
-            draw_all(r)
+            drawing.finish(r)
     finally:
+        if drawing is not None:
+            drawing.stop()
         if own:
             own.cleanup()
     return r
+
+
+def default_threads() -> int:
+    """The threads of the report's fit when none is asked for: the cores this process may run on."""
+    try:
+        return max(len(os.sched_getaffinity(0)), 1)
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(os.cpu_count() or 1, 1)
+
+
+def fit_model(r, model: str):
+    """The spectral model of ``model`` from the fit file of all configurations, read once per report (a
+    2151-band fit file takes a noticeable fraction of a second to read)."""
+    from . import read_fit
+    if model not in r.fit_models:
+        r.fit_models[model] = read_fit(r.fit_all_path, model)
+    return r.fit_models[model]
 
 
 #: The mixing methods whose prediction carries the end-members' parameter covariance (docs/mixing.md,
@@ -309,7 +334,7 @@ def _check_output(output: str, inputs) -> None:
 
 def write_report(data, output, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None,
                  sun_zenith="0:60:30", atmosphere="spectrl2", illuminant="A", multistart=8, fix=None,
-                 free_weights=False, folds=5, threads=1, quiet=True, command=""):
+                 free_weights=False, folds=5, threads=None, quiet=True, command=""):
     """Write the report of the dataset ``data`` to ``output`` (HTML, atomically; ``"-"``: standard output)
     and return the gathered results. Arguments as ``roadbrdf report``'s options; ``atmosphere=None``: no
     sky model (no blue-sky). Errors in the input are :class:`roadbrdf.InputError`, raised before the
@@ -381,7 +406,8 @@ def main(argv=None) -> int:
     p.add_argument("--free-weights", action="store_true",
                    help="fit the component weights of composites too (default: held at 1)")
     p.add_argument("--folds", type=int, default=5, help="cross-validation folds of the mixing comparison (default 5)")
-    p.add_argument("--threads", type=int, default=1, help="threads of the fit over all wavelengths (default 1)")
+    p.add_argument("--threads", type=int, default=None,
+                   help="threads of the fit over all wavelengths (default: every core; the result does not depend on it)")
     p.add_argument("--quiet", action="store_true", help="no progress lines on standard error")
     a = p.parse_args(argv)
     command = "roadbrdf report " + " ".join(argv if argv is not None else sys.argv[1:])

@@ -60,6 +60,9 @@ def summary(r) -> str:
     flags = len(r.check.get("outliers", [])) + int(r.check["reciprocity"]["flagged"]) + \
         len(r.check["noise"]["noisy_bands"])
     items.append(("quality flags (outliers, reciprocity, noisy bands)", str(flags), None))
+    plausibility = _plausibility_warnings(r)
+    items.append(("plausibility warnings (scale, BRDF × cos θ_i)", str(len(plausibility)),
+                  ("summary.plausibility_warnings", len(plausibility))))
     out = ['<div class="summary-grid">']
     for label, value, key in items:
         attr = f' data-key="{key[0]}" data-value="{float(key[1])!r}"' if key else ""
@@ -68,6 +71,12 @@ def summary(r) -> str:
     extrapolated = [n for n in r.all_caveats if n.lower().startswith("mostly extrapolation")]
     out.append(caveats(extrapolated))
     return "".join(out)
+
+
+def _plausibility_warnings(r) -> list:
+    """The plausibility warnings of the check (``plausibility.warnings``: a scale implausible for a BRDF in
+    sr^-1, data that look like BRDF × cos θ_i), one line each."""
+    return [str(w) for w in (r.check.get("plausibility") or {}).get("warnings") or []]
 
 
 # ---- 1. provenance ------------------------------------------------------------------------------
@@ -125,6 +134,7 @@ def quality(r) -> Section:
     outlier_text = "; ".join(f"{_geometry_text(o['geometry'])} ({number(o['ratio_to_neighbours'], 2)}× its "
                              f"neighbours, score {number(o['score'], 2)})" for o in outliers)
     peaks = c.get("specular_peaks_not_counted_as_outliers", [])
+    plausibility = _plausibility_warnings(r)
     rows = [
         ["negative values", cell(c["negative_values"], "check.negative_values", 0, True), status(c["negative_values"])],
         ["missing values", cell(c["missing_values"], "check.missing_values", 0, True),
@@ -141,6 +151,9 @@ def quality(r) -> Section:
          status(outliers) + (f"<br>{esc(outlier_text)}" if outliers else "")],
         ["specular peaks (bright near the mirror direction, not outliers)", cell(len(peaks), "check.peaks", 0, True),
          ""],
+        ["plausibility warnings (implausible scale, BRDF × cos θ_i)",
+         cell(len(plausibility), "check.plausibility.warnings", 0, True),
+         status(plausibility) + (f"<br>{esc('; '.join(plausibility))}" if plausibility else "")],
     ]
     rows = [[Cell(esc(a)), b, Cell(s)] for a, b, s in rows]
     html = ("<p>The checks of <code>roadbrdf check</code> (<code>roadbrdf.check</code>) with their default "

@@ -103,3 +103,46 @@ def test_an_interrupted_report_removes_its_temporary_folder(tmp_path, root, how)
     assert "interrupted" in err and "Traceback" not in err
     assert os.listdir(tmp) == []
     assert not (tmp_path / "r.html").exists()
+
+
+def _processes_writing(path):
+    """Processes whose command line names ``path`` (the report and its figure workers, which are forks)."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as fh:
+                if str(path).encode() in fh.read():
+                    found.append(int(pid))
+        except OSError:
+            continue
+    return found
+
+
+@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGTERM])
+def test_a_report_interrupted_while_drawing_stops_its_figure_workers(tmp_path, root, how):
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    data = root / "data" / "examples" / "mixed" / "F1.csv"
+    out, log = tmp_path / "r.html", tmp_path / "stderr.txt"
+    with open(log, "w") as err:
+        p = subprocess.Popen([sys.executable, "-m", "roadbrdf.report", str(data), "-o", str(out)],
+                             stdout=subprocess.DEVNULL, stderr=err, text=True,
+                             env=_env(TMPDIR=str(tmp), MPLBACKEND="Agg", ROADBRDF_REPORT_PROCESSES="2"))
+        deadline = time.monotonic() + 300
+        while "albedo of" not in log.read_text():  # the figure workers are started before the albedo
+            assert p.poll() is None and time.monotonic() < deadline, log.read_text()
+            time.sleep(0.05)
+        time.sleep(0.5)
+        if p.poll() is not None:
+            pytest.skip("the report ended before it could be interrupted while drawing")
+        p.send_signal(how)
+        p.wait(timeout=60)
+    assert p.returncode == (130 if how == signal.SIGINT else 143), log.read_text()
+    text = log.read_text()
+    assert "interrupted" in text and "Traceback" not in text
+    deadline = time.monotonic() + 30
+    while _processes_writing(out) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert _processes_writing(out) == []
+    assert os.listdir(tmp) == []
+    assert not out.exists()

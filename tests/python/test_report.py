@@ -537,3 +537,31 @@ def test_a_message_repeated_per_incidence_is_listed_once_with_its_count():
     assert grouped == [(repeated[0], 59), ("lambert: did not converge at 590 nm", 1)]
     html = report_sections._warnings_details(items)
     assert html.count("<li>") == 2 and "and 58 more like it" in html and "60 messages of the fit (2 kinds)" in html
+
+
+def test_summary_counts_the_plausibility_warnings(tmp_path):
+    """The summary card and the quality table count the check's plausibility warnings: a reflectance in
+    percent written where a BRDF in sr^-1 belongs (every value x 100, so pi x the median BRDF, the
+    Lambertian-equivalent albedo, is far above 1, which no surface reaches) is warned about; the file as
+    measured is not."""
+    from types import SimpleNamespace
+    from roadbrdf import report_sections
+    lines = DATA.read_text(encoding="utf-8").splitlines()
+    rows = [i for i, line in enumerate(lines) if line and not line.startswith("#")][1:]  # after the header
+    for i in rows:
+        fields = lines[i].split(",")
+        lines[i] = ",".join(fields[:4] + [repr(100.0 * float(v)) for v in fields[4:]])
+    percent = tmp_path / "F1-percent.csv"
+    percent.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    for path, warned in ((DATA, False), (percent, True)):
+        c = roadbrdf.check(path)
+        r = SimpleNamespace(sample="F1", best=SimpleNamespace(model="oren-nayar"), albedo=None, rtable=None, check=c,
+                            all_caveats=[])
+        text = report_sections.summary(r) + report_sections.quality(r).html
+        page = _Page(text)
+        count = len(c["plausibility"]["warnings"])
+        assert (count > 0) == warned, c["plausibility"]["warnings"]
+        assert _value(page, "summary.plausibility_warnings")[0] == count
+        assert _value(page, "check.plausibility.warnings")[0] == count
+        for w in c["plausibility"]["warnings"]:
+            assert report_html.esc(w) in text
