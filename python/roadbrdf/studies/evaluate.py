@@ -114,7 +114,8 @@ def _lighting_outputs(run, lighting):
     up = r["upward"]
     return {"M_class": r["M_class"], "L_av": r["L_av"], "U_o": r["U_o"], "U_l": r["U_l"], "f_TI": r["f_TI"],
             "R_EI": r["R_EI"], "E_av": r["E_av"], "U_o_E": r["U_o_E"], "D_P": r["D_P"], "D_E": r["D_E"],
-            "power_per_km_w": r["energy"]["power_per_km_w"], "least_dimming_factor": least.get("dimming_factor"),
+            "power_per_km_w": r["energy"]["power_per_km_w"], "least_class": least.get("class"),
+            "least_dimming_factor": least.get("dimming_factor"),
             "least_power_per_km_w": least.get("power_per_km_w"),
             "least_blocking": " ".join(least.get("blocking") or []) or None, "ULOR": up["ULOR"],
             "direct_upward_lm_per_km": up["direct_upward_lm_per_km"],
