@@ -108,8 +108,8 @@ def _power_rows(rows, header):
 
 
 def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None, *, ax=None, dpi=None):
-    """Solar albedo against Q0 or S1 (or, ``axis="power"``, the lighting power per km) with the Pareto front of each method and the R-class regions (``ax``: draw
-    into it; ``method``: only its rows).
+    """Solar albedo against Q0 or S1 (or, ``axis="power"``, the lighting power per km) with the Pareto front of
+    each method and the R-class regions (``ax``: draw into it; ``method``: only its rows).
 
     ``fig.roadbrdf_data``: ``albedo`` and ``lighting`` (N,) with their ``albedo_column``/``lighting_column``,
     ``classes`` and ``methods`` (N,), ``fronts`` ({method: indices of its front, by increasing albedo}) and

@@ -43,7 +43,8 @@ LIGHTING_OUTPUTS = (
     ("M_class", "class", "text"), ("L_av", "cd/m^2", "number"), ("U_o", "1", "number"), ("U_l", "1", "number"),
     ("f_TI", "%", "number"), ("R_EI", "1", "number"), ("E_av", "lx", "number"), ("U_o_E", "1", "number"),
     ("D_P", "W lx^-1 m^-2", "number"), ("D_E", "Wh m^-2 per year", "number"), ("power_per_km_w", "W/km", "number"),
-    ("least_class", "class", "text"), ("least_dimming_factor", "1", "number"), ("least_power_per_km_w", "W/km", "number"),
+    ("least_class", "class", "text"), ("least_dimming_factor", "1", "number"),
+    ("least_power_per_km_w", "W/km", "number"),
     ("least_blocking", "criteria", "text"), ("ULOR", "1", "number"), ("direct_upward_lm_per_km", "lm/km", "number"),
     ("reflected_upward_lm_per_km", "lm/km", "number"), ("lighting_reflectance", "1", "number"))
 
