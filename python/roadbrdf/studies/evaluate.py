@@ -103,11 +103,12 @@ def _installation(lighting):
 def _lighting_outputs(run, lighting):
     """The EN 13201 figures of the installation over the candidate mixture's BRDF (its r-table and, for the light
     reflected upward, its hemispherical reflectance): what ``roadbrdf lighting INSTALLATION --surface MIX.json
-    --class C`` gives for the MIX.json of this mixture."""
+    --class C`` gives for the MIX.json of this mixture, the r-table and the reflectance from the end-members
+    shared through the process's cache (docs/studies.md "Lighting predictions")."""
     import warnings
     from .. import _roadbrdf
     r = _roadbrdf.mixture_lighting(run, 0, _installation(lighting), lighting["class"] or "",
-                                   lighting["operating_hours"])
+                                   lighting["operating_hours"], cache=_end_members())
     for w in r["warnings"]:
         warnings.warn(w["message"], UserWarning, stacklevel=2)
     least = r["least_flux"] or {}
