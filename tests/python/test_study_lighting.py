@@ -258,3 +258,30 @@ def test_the_bundled_installation_is_usable(tmp_path):
     s = read_study(str(study))
     assert s.predictions["lighting"]["installation"] == str(tmp_path / "inst.json")
     assert s.predictions["lighting"]["operating_hours"] == 3000
+
+
+def test_a_rough_candidate_equals_the_lighting_of_its_mix_file(tmp_path):
+    """Oren-Nayar rocks (the hemispherical integral has something to refine): each row equals `roadbrdf lighting
+    --surface MIX.json` on the candidate's MIX.json; the r-table and luminances bit for bit, the reflectance behind
+    the upward flux within the two quadratures' tolerances (1e-4 each) and the two photometric weightings."""
+    from roadbrdf.studies import evaluate
+    from test_study_fast import oren_nayar_fit
+    study = lighting_study(tmp_path, installation=BUNDLED)
+    for name, albedo, sigma in (("grey", 0.25, 0.3), ("dark", 0.08, 0.5), ("light", 0.5, 0.2)):
+        oren_nayar_fit(tmp_path / "fits" / f"{name}.fit.json", albedo, sigma)
+    s = read_study(str(study))
+    for _, _, _, _, task in make_tasks(s, "v")[:2]:
+        result = evaluate._run(task, s.fits)
+        assert result["error"] is None, result["error"]
+        formulation = tmp_path / "candidate.json"
+        formulation.write_text(json.dumps(evaluate._materialise(task["formulation"], evaluate._fit_folder(s.fits))))
+        for row in result["rows"]:
+            mixture = tmp_path / f"{row['method']}.mix.json"
+            roadbrdf.mix(formulation, method=row["method"], output=mixture)
+            direct = roadbrdf.lighting(tmp_path / "road.json", surface=mixture, target_class="M6")
+            for name in ("L_av", "U_o", "U_l", "f_TI", "R_EI", "E_av", "M_class"):
+                assert row[name] == direct[name], name
+            assert row["least_power_per_km_w"] == direct["least_flux"]["power_per_km_w"]
+            assert row["lighting_reflectance"] == pytest.approx(direct["upward"]["reflectance"], abs=3e-4)
+            assert row["reflected_upward_lm_per_km"] == pytest.approx(
+                direct["upward"]["reflected_upward_lm_per_km"], rel=3e-3)

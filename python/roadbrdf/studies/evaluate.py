@@ -92,10 +92,14 @@ def _installation(lighting):
         prepared = _roadbrdf.read_lighting_installation(path)
         for what, file, digest in (("installation", path, lighting["installation_sha256"]),
                                    ("luminaire", prepared.luminaire_file, lighting["luminaire_sha256"])):
-            with open(file, "rb") as f:
-                if hashlib.sha256(f.read()).hexdigest() != digest:
-                    raise InputError(f"predictions.lighting: the {what} file {file} changed since the study began "
-                                     "(run the study again)")
+            try:
+                with open(file, "rb") as f:
+                    same = hashlib.sha256(f.read()).hexdigest() == digest
+            except OSError as e:
+                raise InputError(f"predictions.lighting: cannot read the {what} file {file}: {e.strerror}") from None
+            if not same:
+                raise InputError(f"predictions.lighting: the {what} file {file} changed since the study began "
+                                 "(run the study again)")
         _INSTALLATIONS[key] = prepared
     return _INSTALLATIONS[key]
 
