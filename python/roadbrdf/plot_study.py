@@ -3,6 +3,9 @@
 * the trade-off plane: solar albedo against Q0 (or S1) for every candidate, coloured by R class, with the Pareto
   front (candidates no other candidate beats on both axes: higher albedo and higher Q0, or higher albedo and
   lower S1) and the R-class bands of S1 (R1 < 0.42 <= R2 < 0.85 <= R3 < 1.35 <= R4, CIE 144 / EN 13201);
+* the urban-heat / lighting-energy plane (``axis="power"``, a study with ``predictions.lighting``): solar albedo
+  against the lighting power per km of road [W/km] (the least power that meets the study's M class, else the
+  installed power), with the Pareto front of higher albedo and lower power;
 * sensitivity: each variable's effect on each output (the mean of the output over the candidates at each value
   of the variable, with the spread of the other variables as a band).
 
@@ -83,9 +86,30 @@ def pareto(x, y, maximise_y=True):
     return sorted(keep, key=lambda i: x[i])
 
 
+_POWER_COLUMNS = ("least_power_per_km_w [W/km]", "power_per_km_w [W/km]")
+
+
+def _power_rows(rows, header):
+    """The power column (the least power for the study's class when the study asked for one, else the installed
+    power), its axis label, and the rows that have a value there (a class no flux meets leaves it empty)."""
+    col = next((c for c in _POWER_COLUMNS if c in header and any(isinstance(r.get(c), float) for r in rows)), None)
+    if col is None:
+        raise ValueError("no lighting power column in the results (a study with predictions.lighting has "
+                         "'least_power_per_km_w [W/km]' and 'power_per_km_w [W/km]')")
+    kept = [r for r in rows if isinstance(r.get(col), float) and math.isfinite(r[col])]
+    if not kept:
+        raise ValueError(f"no candidate has a value in '{col}' (no flux meets the class)")
+    if col == _POWER_COLUMNS[0]:
+        names = sorted({r.get("least_class [class]") for r in kept if isinstance(r.get("least_class [class]"), str)})
+        label = f"least lighting power for {'/'.join(names) or 'the class'} [W/km]"
+    else:
+        label = "installed lighting power [W/km]"
+    return col, label, kept
+
+
 def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None, *, ax=None, dpi=None):
-    """Solar albedo against Q0 or S1 with the Pareto front of each method and the R-class regions (``ax``: draw
-    into it; ``method``: only its rows).
+    """Solar albedo against Q0 or S1 (or, ``axis="power"``, the lighting power per km) with the Pareto front of
+    each method and the R-class regions (``ax``: draw into it; ``method``: only its rows).
 
     ``fig.roadbrdf_data``: ``albedo`` and ``lighting`` (N,) with their ``albedo_column``/``lighting_column``,
     ``classes`` and ``methods`` (N,), ``fronts`` ({method: indices of its front, by increasing albedo}) and
@@ -93,7 +117,14 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
     rows, _, header = read_results(results) if isinstance(results, str) else results
     rows, methods = _by_method(rows, method)
     col = _albedo_column(header, albedo)
-    ycol = {"Q0": "Q0 [sr^-1]", "S1": "S1 [1]"}[axis]
+    left_out = 0
+    if axis == "power":
+        ycol, ylabel, kept = _power_rows(rows, header)
+        left_out, rows = len(rows) - len(kept), kept
+        methods = list(dict.fromkeys(r.get("method", "") for r in rows))
+    else:
+        ycol = {"Q0": "Q0 [sr^-1]", "S1": "S1 [1]"}[axis]
+        ylabel = "Q0 [sr$^{-1}$]" if axis == "Q0" else "S1"
     for needed in (col, ycol):
         if needed not in header:
             raise ValueError(f"no column '{needed}' in the results (a study without it: choose another albedo or "
@@ -125,16 +156,19 @@ def plane(results, axis="Q0", albedo=None, method=None, title=None, output=None,
     fronts = {}
     for k, meth in enumerate(methods):
         where = np.flatnonzero(of == meth)
-        front = [int(where[i]) for i in pareto(x[where], y[where], maximise_y=(axis == "Q0"))]
+        front = [int(where[i]) for i in pareto(x[where], y[where], maximise_y=(axis == "Q0"))]  # S1, power: lower
         fronts[meth] = front
         ax.plot(x[front], y[front], color="k", ls=_FRONT_STYLES[k % len(_FRONT_STYLES)], lw=1.2,
                 label=f"Pareto front, {meth}" if several else "Pareto front")
         ax.scatter(x[front], y[front], s=30, marker=_MARKERS[k % len(_MARKERS)], facecolors="none", edgecolors="k")
     ax.set_xlabel(f"solar albedo ({col.split(' [')[0]})")
-    ax.set_ylabel("Q0 [sr$^{-1}$]" if axis == "Q0" else "S1")
+    ax.set_ylabel(ylabel)
     ax.legend(fontsize=8)
     what = f"{len(rows)} candidates" if not several else f"{len(rows)} predictions by {len(methods)} methods"
-    ax.set_title(plain_title(title) or f"albedo - {axis} trade-off ({what})")
+    if left_out:
+        what += f"; {left_out} without a power value left out"
+    topic = "lighting power" if axis == "power" else axis
+    ax.set_title(plain_title(title) or f"albedo - {topic} trade-off ({what})")
     data = {"albedo": x, "lighting": y, "albedo_column": col, "lighting_column": ycol, "classes": classes,
             "methods": list(of), "fronts": fronts, "pareto": [i for f in fronts.values() for i in f]}
     return _finish(fig, output, data, [ax], dpi)
@@ -214,7 +248,9 @@ def add_parser(sub, output):
     p.add_argument("--figure", choices=["plane", "sensitivity"], default="plane",
                    help="plane: solar albedo against Q0 or S1, Pareto fronts, R classes (default); sensitivity: "
                         "each output's mean and range at each value of each variable")
-    p.add_argument("--axis", choices=["Q0", "S1"], default="Q0", help="plane: the lighting axis")
+    p.add_argument("--axis", choices=["Q0", "S1", "power"], default="Q0",
+                   help="plane: the lighting axis (power: lighting power per km of road [W/km], a study with "
+                        "lighting predictions)")
     p.add_argument("--albedo", help="albedo column (default: the first blue-sky, else black-sky column)")
     p.add_argument("--method", help="only the rows of one prediction method (e.g. mastic; default: every method, "
                                     "each with its own front or line)")

@@ -130,10 +130,12 @@ def _collect(r, key):
 # ---- gathering the results -----------------------------------------------------------------------
 def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None, sun_zenith="0:60:30",
            atmosphere="spectrl2", illuminant="A", multistart=8, fix=None, free_weights=False, folds=5, threads=None,
-           quiet=True, workdir=None):
+           quiet=True, workdir=None, installation=None, lighting_class=None):
     """Every result of the report (a namespace), computed with the public API; ``workdir`` holds the fit
     files the figures and tables read (a temporary folder when None, removed afterwards). ``threads``: of
-    the fit over all wavelengths (None: every core; the fit does not depend on it, bit for bit)."""
+    the fit over all wavelengths (None: every core; the fit does not depend on it, bit for bit);
+    ``installation``: a road-lighting installation file for the lighting section (report_lighting.py),
+    ``lighting_class`` its M class."""
     from . import Model, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
     from . import albedo as albedo_of, rtable as rtable_of
     models = list(dict.fromkeys(models or DEFAULT_MODELS))
@@ -148,10 +150,12 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     if formulation is not None and not os.path.isfile(formulation):
         raise InputError(f"--formulation: '{formulation}': no such file")
     threads = default_threads() if threads is None else int(threads)
+    from . import report_lighting
+    report_lighting.check_arguments(installation, lighting_class)
     steps = _Steps(quiet)
     r = SimpleNamespace(path=os.fspath(data), models=models, wavelength_asked=float(wavelength),
                         multistart=int(multistart), warnings={}, figures={}, figure_errors={}, folds=int(folds),
-                        illuminant=illuminant, steps=steps, mix=None, formulation=None)
+                        illuminant=illuminant, steps=steps, mix=None, formulation=None, lighting=None)
     with steps.step("read", f"reading and checking {r.path}"), _collect(r, "read"):
         r.file = _file_info(r.path)
         r.dataset = read_dataset(r.path)
@@ -214,6 +218,9 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
             with steps.step("mix-rtable", "r-table of the mixing prediction with its uncertainty"), \
                     _collect(r, "mix-rtable"):
                 _mixture_uncertainty(r, rtable_of)
+        if installation is not None:
+            with steps.step("lighting", f"road lighting of {os.path.basename(installation)}"), _collect(r, "lighting"):
+                report_lighting.gather(r, installation, lighting_class, r.fit_all_path)
         r.all_caveats = list(dict.fromkeys(
             [n[len("WARNING: "):] if n.startswith("WARNING: ") else n for n in (r.albedo or {}).get("notes", [])
              if n.startswith(("WARNING", "coverage"))] + list((r.rtable or {}).get("warnings") or []) +
@@ -307,6 +314,9 @@ def render_report(r, command: str = "") -> str:
     import matplotlib
     sections = [s.provenance(r), s.quality(r), s.coverage(r), s.spectra(r), s.per_incidence(r), s.ranking(r),
                 s.albedo(r), s.rtable(r), s.mixing(r)]
+    if getattr(r, "lighting_installation", None) is not None:  # only when an installation was given
+        from .report_lighting import section as lighting_section
+        sections.append(lighting_section(r))
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     times = ", ".join(f"{k} {v:.1f} s" for k, v in r.steps.times.items())
     footer = (f"roadbrdf {esc(__version__)} · generated {esc(now)} · Python {esc(sys.version.split()[0])}, numpy "
@@ -334,7 +344,8 @@ def _check_output(output: str, inputs) -> None:
 
 def write_report(data, output, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None,
                  sun_zenith="0:60:30", atmosphere="spectrl2", illuminant="A", multistart=8, fix=None,
-                 free_weights=False, folds=5, threads=None, quiet=True, command=""):
+                 free_weights=False, folds=5, threads=None, quiet=True, command="", installation=None,
+                 lighting_class=None):
     """Write the report of the dataset ``data`` to ``output`` (HTML, atomically; ``"-"``: standard output)
     and return the gathered results. Arguments as ``roadbrdf report``'s options; ``atmosphere=None``: no
     sky model (no blue-sky). Errors in the input are :class:`roadbrdf.InputError`, raised before the
@@ -342,12 +353,13 @@ def write_report(data, output, models=DEFAULT_MODELS, formulation=None, waveleng
     data, output = os.fspath(data), os.fspath(output)
     if not os.path.isfile(data):
         raise InputError(f"DATA: '{data}': no such file")
-    inputs = [("DATA", data), ("--formulation", formulation)]
+    installation = None if installation is None else os.fspath(installation)
+    inputs = [("DATA", data), ("--formulation", formulation), ("--installation", installation)]
     if formulation is not None and os.path.isfile(formulation):  # its component fits are inputs too
         inputs += _roadbrdf.formulation_input_files(os.fspath(formulation))
     _check_output(output, inputs)
     r = gather(data, models, formulation, wavelength, theta_i, sun_zenith, atmosphere, illuminant, multistart,
-               fix, free_weights, folds, threads, quiet)
+               fix, free_weights, folds, threads, quiet, installation=installation, lighting_class=lighting_class)
     text = render_report(r, command)
     _write_atomic(output, text)
     r.html = text
@@ -409,12 +421,17 @@ def main(argv=None) -> int:
     p.add_argument("--threads", type=int, default=None,
                    help="threads of the fit over all wavelengths (default: every core; the result does not depend on it)")
     p.add_argument("--quiet", action="store_true", help="no progress lines on standard error")
+    p.add_argument("--installation", metavar="INSTALLATION.json",
+                   help="add a road-lighting section: this installation with the sample's best fit as its pavement "
+                        "(docs/lighting.md)")
+    p.add_argument("--lighting-class", metavar="M", help="with --installation: the M class (M1-M6) whose least "
+                   "flux and power per km the section gives")
     a = p.parse_args(argv)
     command = "roadbrdf report " + " ".join(argv if argv is not None else sys.argv[1:])
     atmosphere = None if a.atmosphere.lower() == "none" else a.atmosphere
     write_report(a.data, a.output, a.model or DEFAULT_MODELS, a.formulation, a.wavelength, a.theta_i, a.sun_zenith,
                  atmosphere, a.illuminant, a.multistart, _fix_items(a.fix), a.free_weights, a.folds, a.threads,
-                 a.quiet, command)
+                 a.quiet, command, installation=a.installation, lighting_class=a.lighting_class)
     return 0
 
 

@@ -1,5 +1,5 @@
 """Every shell block of the README, of the example data's READMEs, of docs/data.md (the real-data
-walkthrough) and docs/fitting.md runs as written.
+walkthrough), docs/fitting.md and docs/studies.md (the lighting worked study) runs as written.
 
 The blocks run with bash (-e -o pipefail) in a scratch folder laid out like the source tree: a copy of
 data/ (commands may write into data/examples/fits), examples/ and docs/ linked, and build/roadbrdf,
@@ -16,7 +16,8 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 DOCUMENTS = ["README.md", "data/examples/README.md", "data/examples/formulations/README.md", "docs/data.md",
-             "docs/fitting.md"]
+             "docs/fitting.md",
+             "docs/studies.md"]
 
 
 def shell_blocks(document):

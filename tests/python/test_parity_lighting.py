@@ -96,16 +96,35 @@ def test_map_is_not_written_over_an_input(cli, tmp_path):
     assert installation.read_bytes() == before
 
 
-def test_walkthrough_hella_and_f1(cli, root, tmp_path):
+EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "data" / "examples"
+# The fit files F1 names (data/examples/formulations/README.md) and the sample each is fitted to.
+F1_FITS = {"bitumen": "single", "garonne": "single", "mastic-garonne-bitumen": "mastics"}
+
+
+def f1_mixture(cli, folder):
+    """The demo's F1 mixture made here from the bundled example data: its three component fits (the models of
+    examples/fit_components.sh, fewer starts), the formulation beside them as in data/examples, mixed with the
+    measured F1 and its best method, as `make demo` does."""
+    (folder / "fits").mkdir()
+    (folder / "formulations").mkdir()
+    for name, kind in F1_FITS.items():
+        cli("fit", EXAMPLES / kind / f"{name}.csv", "--model", "oren-nayar", "--model", "oren-nayar+torrance-sparrow",
+            "--fix", "oren-nayar.weight=1", "--fix", "torrance-sparrow.weight=1", "--multistart", "2",
+            "-o", folder / "fits" / f"{name}.fit.json")
+    formulation = folder / "formulations" / "F1.json"
+    shutil.copy(EXAMPLES / "formulations" / "F1.json", formulation)
+    mixture = folder / "F1.mix.json"
+    cli("mix", formulation, "--data", EXAMPLES / "mixed" / "F1.csv", "--method", "all", "-o", mixture)
+    return mixture
+
+
+def test_walkthrough_hella_and_f1(cli, tmp_path):
     """docs/lighting.md: the Hella road luminaire and the demo's F1 mixture: class, power per km for M4 and
     the upward reflected flux in one command."""
     luminaire = SHARED / "luminaires" / "tuberlin-roadrad" / "HellaEcoLight_2070lm_LDT.ies"
     if not luminaire.exists():
         pytest.skip("../shared/real-data/luminaires/tuberlin-roadrad is absent")
-    build = pathlib.Path(os.environ.get("ROADBRDF_CLI", str(root / "build" / "roadbrdf"))).parent
-    mixture = build / "demo" / "F1.mix.json"
-    if not mixture.exists():
-        pytest.skip(f"the demo's F1 mixture ({mixture}, made by make demo) is absent")
+    mixture = f1_mixture(cli, tmp_path)
     installation = tmp_path / "hella.json"
     installation.write_text(json.dumps({
         "format": "roadbrdf-installation", "version": 1, "road": {"lanes": 2, "lane_width_m": 3.5},
@@ -116,3 +135,10 @@ def test_walkthrough_hella_and_f1(cli, root, tmp_path):
     assert value["least_flux"]["class"] == "M4"
     assert value["upward"]["reflected_upward_lm_per_km"] > 0
     assert "M_class" in value
+    # The flux reflected upward is the flux onto the carriageway times the road's hemispherical reflectance,
+    # which lies between the extremes of its reflectance table, within (0, 1).
+    up = value["upward"]
+    assert 0 < up["reflectance"] < 1
+    assert up["reflected_upward_lm_per_km"] <= up["flux_on_carriageway_lm_per_km"]
+    py = roadbrdf.lighting(installation, target_class="M4")
+    assert py["least_flux"] == value["least_flux"]

@@ -9,6 +9,7 @@ worker runs one task per core, and the same task gives the same numbers, bit for
 from __future__ import annotations
 
 import atexit
+import hashlib
 import json
 import math
 import os
@@ -21,6 +22,7 @@ _FIT_FOLDER = None
 _REGION = None
 _WEIGHTS = {}
 _END_MEMBERS = None
+_INSTALLATIONS = {}
 
 
 def _fit_folder(fits):
@@ -78,6 +80,53 @@ def _albedo_outputs(a, zeniths):
     return out
 
 
+def _installation(lighting):
+    """This process's reading of the study's installation and luminaire, checked against the SHA-256 the study
+    recorded (the task key holds them: a file edited while the study runs would give results under another
+    file's key)."""
+    from .. import _roadbrdf
+    from .spec import InputError
+    path = lighting["installation"]
+    key = (path, lighting["installation_sha256"], lighting["luminaire_sha256"])
+    if key not in _INSTALLATIONS:
+        prepared = _roadbrdf.read_lighting_installation(path)
+        for what, file, digest in (("installation", path, lighting["installation_sha256"]),
+                                   ("luminaire", prepared.luminaire_file, lighting["luminaire_sha256"])):
+            try:
+                with open(file, "rb") as f:
+                    same = hashlib.sha256(f.read()).hexdigest() == digest
+            except OSError as e:
+                raise InputError(f"predictions.lighting: cannot read the {what} file {file}: {e.strerror}") from None
+            if not same:
+                raise InputError(f"predictions.lighting: the {what} file {file} changed since the study began "
+                                 "(run the study again)")
+        _INSTALLATIONS[key] = prepared
+    return _INSTALLATIONS[key]
+
+
+def _lighting_outputs(run, lighting):
+    """The EN 13201 figures of the installation over the candidate mixture's BRDF (its r-table and, for the light
+    reflected upward, its hemispherical reflectance): what ``roadbrdf lighting INSTALLATION --surface MIX.json
+    --class C`` gives for the MIX.json of this mixture, the r-table and the reflectance from the end-members
+    shared through the process's cache (docs/studies.md "Lighting predictions")."""
+    import warnings
+    from .. import _roadbrdf
+    r = _roadbrdf.mixture_lighting(run, 0, _installation(lighting), lighting["class"] or "",
+                                   lighting["operating_hours"], cache=_end_members())
+    for w in r["warnings"]:
+        warnings.warn(w["message"], UserWarning, stacklevel=2)
+    least = r["least_flux"] or {}
+    up = r["upward"]
+    return {"M_class": r["M_class"], "L_av": r["L_av"], "U_o": r["U_o"], "U_l": r["U_l"], "f_TI": r["f_TI"],
+            "R_EI": r["R_EI"], "E_av": r["E_av"], "U_o_E": r["U_o_E"], "D_P": r["D_P"], "D_E": r["D_E"],
+            "power_per_km_w": r["energy"]["power_per_km_w"], "least_class": least.get("class"),
+            "least_dimming_factor": least.get("dimming_factor"),
+            "least_power_per_km_w": least.get("power_per_km_w"),
+            "least_blocking": " ".join(least.get("blocking") or []) or None, "ULOR": up["ULOR"],
+            "direct_upward_lm_per_km": up["direct_upward_lm_per_km"],
+            "reflected_upward_lm_per_km": up["reflected_upward_lm_per_km"], "lighting_reflectance": up["reflectance"]}
+
+
 def _end_members():
     """This process's end-member cache (mixing/end_member_cache.h): each fit file read once, and the
     end-members' albedo integrals and r-table values computed once for every candidate that mixes them."""
@@ -109,6 +158,8 @@ def _fast(task, path):
         row = {"method": method}
         row.update(_albedo_outputs(a, p["sun_zenith_deg"]))
         row.update(_rtable_outputs(_roadbrdf.mixture_rtable_report(run, 0, cache, 1.0, p["illuminant"] or "")))
+        if p.get("lighting") is not None:
+            row.update(_lighting_outputs(run, p["lighting"]))
         rows.append(row)
     return rows
 

@@ -19,7 +19,7 @@ import time
 from ..core import build_fingerprint
 from .design import apply, candidate_count, candidates
 from .evaluate import run_task
-from .spec import InputError
+from .spec import LIGHTING_OUTPUTS, InputError
 
 
 def _fit_ref(study, path):
@@ -322,6 +322,10 @@ def columns(study):
     units.update({"Q0": "sr^-1", "Q0_error": "sr^-1", "Qd": "sr^-1", "Qd_error": "sr^-1", "S1": "1",
                   "S1_error": "1", "class": "R"})
     out += rt
+    if p.get("lighting") is not None:
+        for name, unit, _ in LIGHTING_OUTPUTS:
+            out.append(name)
+            units[name] = unit
     if p["path"] == "physical":
         out += ["mpd_mm", "exposed_mastic_fraction"]
         units.update({"mpd_mm": "mm", "exposed_mastic_fraction": "1"})

@@ -29,11 +29,24 @@ _VARIABLE_KEYS = {"name", "kind", "component", "values", "range", "levels", "bal
                   "material", "unit", "note"}
 _DESIGN_KEYS = {"type", "count", "seed"}
 _PREDICTION_KEYS = {"path", "methods", "sun_zenith_deg", "diffuse_fraction", "atmosphere", "spectrum",
-                    "illuminant", "physical"}
+                    "illuminant", "physical", "lighting"}
 _PHYSICAL_KEYS = {"size_mm", "cell_mm", "samples", "wavelengths", "white_sky_nodes", "acceptance_deg", "rtable",
                   "max_bounces"}
 _LIBRARY_KEYS = {"fit", "fit_model", "density_g_cm3", "note"}
+_LIGHTING_KEYS = {"installation", "class", "operating_hours"}
+M_CLASSES = ("M1", "M2", "M3", "M4", "M5", "M6")
 
+# The lighting figures a study stores per candidate (predictions.lighting), with their units: the names of the
+# `roadbrdf lighting` JSON (docs/lighting.md), the least flux's with ``least_``. Kind: "number" or "text"; each
+# may be null (no class met, no class asked for, an infeasible class).
+LIGHTING_OUTPUTS = (
+    ("M_class", "class", "text"), ("L_av", "cd/m^2", "number"), ("U_o", "1", "number"), ("U_l", "1", "number"),
+    ("f_TI", "%", "number"), ("R_EI", "1", "number"), ("E_av", "lx", "number"), ("U_o_E", "1", "number"),
+    ("D_P", "W lx^-1 m^-2", "number"), ("D_E", "Wh m^-2 per year", "number"), ("power_per_km_w", "W/km", "number"),
+    ("least_class", "class", "text"), ("least_dimming_factor", "1", "number"),
+    ("least_power_per_km_w", "W/km", "number"),
+    ("least_blocking", "criteria", "text"), ("ULOR", "1", "number"), ("direct_upward_lm_per_km", "lm/km", "number"),
+    ("reflected_upward_lm_per_km", "lm/km", "number"), ("lighting_reflectance", "1", "number"))
 
 class Study:
     """A validated study: the base formulation (dict, fit paths absolute), the library, the variables, the
@@ -263,7 +276,37 @@ def _library(study, where, data):
     return out
 
 
-def _predictions(where, data):
+def _file_sha256(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def _lighting(where, raw, base_folder):
+    """``predictions.lighting``: the installation (read once here, so that a bad file fails before any candidate
+    runs), the M class for the least power per km, the operating hours for D_E. The files' SHA-256 go into the
+    task keys: an edited installation or luminaire file gives new results."""
+    k = "predictions.lighting"
+    _object(where, k, raw, _LIGHTING_KEYS, ("installation",))
+    path = os.path.abspath(os.path.join(base_folder, _string(where, f"{k}.installation", raw["installation"])))
+    try:
+        prepared = _roadbrdf.read_lighting_installation(path)
+    except InputError as e:
+        _fail(where, f"{k}.installation", str(e))
+    if not prepared.power_w > 0:
+        _fail(where, f"{k}.installation", f"{path}: the luminaires' power is unknown (the luminaire file gives none): "
+                                          "give luminaires.power_w in the installation, the power per km needs it")
+    out = {"installation": path, "installation_sha256": _file_sha256(path),
+           "luminaire_sha256": _file_sha256(prepared.luminaire_file), "class": None,
+           "operating_hours": _number(where, f"{k}.operating_hours", raw.get("operating_hours", 4000.0), 0, 8784)}
+    if "class" in raw:
+        if raw["class"] not in M_CLASSES:
+            _fail(where, f"{k}.class", f"{json.dumps(raw['class'])} is not an M lighting class "
+                                       f"({', '.join(M_CLASSES)}, EN 13201-2)")
+        out["class"] = raw["class"]
+    return out
+
+
+def _predictions(where, data, base_folder="."):
     p = data.get("predictions", {})
     _object(where, "predictions", p, _PREDICTION_KEYS)
     path = p.get("path", "fast")
@@ -299,7 +342,12 @@ def _predictions(where, data):
         if len(set(methods)) != len(methods):
             _fail(where, "predictions.methods", "methods repeat")
         out["methods"] = list(methods)
+        if "lighting" in p:
+            out["lighting"] = _lighting(where, p["lighting"], base_folder)
         return out
+    if "lighting" in p:
+        _fail(where, "predictions.lighting", "only with \"path\": \"fast\" (the lighting calculation needs the "
+                                             "candidate's BRDF, which the physical path does not make)")
     if "methods" in p:
         _fail(where, "predictions.methods", "only with \"path\": \"fast\"")
     if out["atmosphere"] is not None:
@@ -403,5 +451,5 @@ def read_study(source) -> Study:
     study.variables = _variables(study, where, data)
     study.design = _design(where, data, study.variables)
     study.replicates = _integer(where, "replicates", data.get("replicates", 1), 1, 10000)
-    study.predictions = _predictions(where, data)
+    study.predictions = _predictions(where, data, os.path.dirname(os.path.abspath(study.path)))
     return study

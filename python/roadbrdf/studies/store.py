@@ -27,7 +27,7 @@ import sys
 import weakref
 
 from ..core import write_text_atomic
-from .spec import InputError, check_json_depth
+from .spec import LIGHTING_OUTPUTS, InputError, check_json_depth
 
 _HEADER = {"format": "roadbrdf-study-store", "version": 1}
 
@@ -123,6 +123,16 @@ def _check_record(record, where):
             raise InputError(f"{where}:1: {name}: expected {'a string' if kind is str else 'an object'}")
     if record["error"] is None and any(not isinstance(r.get("method", ""), str) for r in rows):
         raise InputError(f"{where}:1: rows: a row's method must be a string")
+    for i, r in enumerate(rows):
+        for name, _, kind in LIGHTING_OUTPUTS:
+            value = r.get(name)
+            if value is None:
+                continue
+            ok = (isinstance(value, str) if kind == "text" else
+                  isinstance(value, (int, float)) and not isinstance(value, bool))
+            if not ok:
+                raise InputError(f"{where}:1: rows[{i}].{name}: expected {'text' if kind == 'text' else 'a number'} "
+                                 f"or null, got {json.dumps(value)[:40]}")
 
 
 class Store:

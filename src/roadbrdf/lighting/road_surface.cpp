@@ -47,6 +47,7 @@ SpectralModel model_with_parameters(const SurfaceSpec& spec) {
 
 std::vector<double> RoadSurface::brdf(const std::vector<Geometry>& geometries) const {
   if (!model) throw std::logic_error("RoadSurface::brdf without a BRDF");
+  if (weighted_brdf) return weighted_brdf(*model, weighting, geometries);
   return photometry::weighted_brdf(*model, weighting, geometries);
 }
 
@@ -115,6 +116,7 @@ double ReflectanceTable::at(double theta) const {
 
 ReflectanceTable hemispherical_reflectance(const RoadSurface& surface) {
   if (!surface.model) throw std::logic_error("hemispherical_reflectance without a BRDF");
+  if (surface.reflectance) return *surface.reflectance;
   const SpectralModel& model = *surface.model;
   const Model& m = model.model();
   // The parameter sets of the photometric reduction and their weights (one set, weight 1, for a

@@ -14,8 +14,16 @@
 #include "roadbrdf/lighting/installation.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/photometry/rtable.h"
+#include "roadbrdf/photometry/rtable_request.h"
 
 namespace roadbrdf::lighting {
+
+// A directional-hemispherical reflectance tabulated against the incidence angle (below).
+struct ReflectanceTable {
+  std::vector<double> theta_deg, reflectance;
+  double max_error = 0.0;  // the quadrature's error estimate (largest over the nodes)
+  double at(double theta_deg) const;
+};
 
 struct RoadSurface {
   std::string description;   // "CIE R3 (Q0 0.07 sr^-1)", "lambert", "F1.MIX.json"...
@@ -25,6 +33,12 @@ struct RoadSurface {
   std::string road_class;                   // R class from S1 ("" when S1 is undefined)
   std::optional<SpectralModel> model;       // the BRDF, when known
   photometry::SpectralWeighting weighting;  // how `model` is reduced to one value (photometric, CIE A)
+  // The BRDF's directional-hemispherical reflectance when already known (hemispherical_reflectance
+  // then returns it rather than integrating `model`).
+  std::optional<ReflectanceTable> reflectance;
+  // How brdf() evaluates `model` when set (the same numbers by a faster way, e.g. a mixture from its
+  // end-members' values shared across many mixtures: mixing/end_member_cache.h).
+  photometry::WeightedBrdf weighted_brdf;
 
   bool has_brdf() const { return model.has_value(); }
   // The photometrically weighted BRDF [sr^-1] at `geometries`; requires has_brdf().
@@ -45,12 +59,8 @@ RoadSurface surface_from_table(photometry::RTable table, std::string description
 // Directional-hemispherical (black-sky) reflectance of the surface's BRDF, photometrically weighted
 // as the r-table, tabulated at incidence angles [deg] 0, 10, ..., 80, 85, 89 and interpolated
 // linearly in between (and held at its 89 deg value up to 90 deg). Azimuth-averaged for anisotropic
-// models (the luminaires' azimuths vary over the road).
-struct ReflectanceTable {
-  std::vector<double> theta_deg, reflectance;
-  double max_error = 0.0;  // the quadrature's error estimate (largest over the nodes)
-  double at(double theta_deg) const;
-};
+// models (the luminaires' azimuths vary over the road). The surface's `reflectance` when it carries
+// one (computed elsewhere, e.g. a design study's mixture from its end-members' integrals).
 ReflectanceTable hemispherical_reflectance(const RoadSurface& surface);
 
 }  // namespace roadbrdf::lighting

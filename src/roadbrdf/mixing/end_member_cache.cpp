@@ -168,13 +168,14 @@ nlohmann::json mixture_albedo(const MixResult& result, const albedo::AlbedoReque
   return albedo::compute_albedo(*result.model, request, LinearMixtureIntegrals(mixture, cache));
 }
 
-photometry::RTableReport mixture_rtable(const MixResult& result, const photometry::RTableRequest& request,
-                                        EndMemberCache& cache) {
-  const MixtureModel& mixture = mixture_of(result);
+photometry::WeightedBrdf mixture_weighted_brdf(const MixResult& result, EndMemberCache& cache) {
+  mixture_of(result);  // checked
   // What weighted_brdf (photometry/rtable.h) computes, with MixtureModel::evaluate_batch's end-member
-  // values taken from the cache and combined the same way.
-  const auto brdf = [&](const SpectralModel& model, const photometry::SpectralWeighting& weighting,
+  // values taken from the cache and combined the same way. The mixture is kept alive by the function.
+  const std::shared_ptr<const MixtureModel> keep = result.mixture;
+  return [keep, &cache](const SpectralModel& model, const photometry::SpectralWeighting& weighting,
                         const std::vector<Geometry>& geometries) {
+    const MixtureModel& mixture = *keep;
     if (&model.model() != &mixture) return photometry::weighted_brdf(model, weighting, geometries);
     const std::size_t n = mixture.parameter_count();
     photometry::WeightedWavelengths w;
@@ -212,7 +213,11 @@ photometry::RTableReport mixture_rtable(const MixResult& result, const photometr
     }
     return out;
   };
-  return photometry::rtable_report(*result.model, request, brdf);
+}
+
+photometry::RTableReport mixture_rtable(const MixResult& result, const photometry::RTableRequest& request,
+                                        EndMemberCache& cache) {
+  return photometry::rtable_report(*result.model, request, mixture_weighted_brdf(result, cache));
 }
 
 }  // namespace roadbrdf::mixing

@@ -93,4 +93,9 @@ nlohmann::json mixture_albedo(const MixResult& result, const albedo::AlbedoReque
 photometry::RTableReport mixture_rtable(const MixResult& result, const photometry::RTableRequest& request,
                                         EndMemberCache& cache);
 
+// The weighted BRDF of the mixing result at any geometries, from its end-members' values there (kept in
+// the cache: the same geometries for many mixtures cost one evaluation of each end-member); the
+// numbers photometry::weighted_brdf gives, bit for bit. `cache` must outlive the function.
+photometry::WeightedBrdf mixture_weighted_brdf(const MixResult& result, EndMemberCache& cache);
+
 }  // namespace roadbrdf::mixing
