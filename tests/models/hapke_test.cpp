@@ -268,11 +268,16 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
   EXPECT_EQ(d.parameters[2].name, "h");
   EXPECT_EQ(d.parameters[3].name, "xi");
   EXPECT_EQ(d.option_values.at("phase"), "hg");
-  ASSERT_EQ(d.options.size(), 2u);
+  ASSERT_EQ(d.options.size(), 4u);
   EXPECT_EQ(d.options[0].name, "phase");
   EXPECT_EQ(d.options[0].values, (std::vector<std::string>{"hg", "legendre", "hg2"}));
   EXPECT_EQ(d.options[1].name, "h_function");
   EXPECT_EQ(d.options[1].values, (std::vector<std::string>{"hapke1981", "hapke2002", "exact"}));
+  EXPECT_EQ(d.options[2].name, "legendre_terms");
+  EXPECT_EQ(d.options[2].default_value, "2");
+  EXPECT_EQ(d.options[3].name, "roughness");
+  EXPECT_EQ(d.options[3].values, (std::vector<std::string>{"none", "hapke1984"}));
+  EXPECT_EQ(d.options[3].default_value, "none");
   EXPECT_TRUE(d.reciprocal);
   EXPECT_TRUE(d.non_negative);
   EXPECT_FALSE(d.energy_conserving);
