@@ -26,8 +26,8 @@
 // Reading of report eq. 3.29: it replaces [1 + B(g)] p(g) by the series 1 + sum_{n>=1} a_n P_n; the
 // leading 1 then cancels the "- 1" of eq. 3.28, which is why eq. 3.29 shows sum a_n P_n + H H without
 // either: it does not drop a term. Here the opposition factor [1 + B(g)] is kept in the legendre form
-// too (as in Hapke 1981): with b0 = 0 the model is exactly report eq. 3.29 with N = 2
-// (a_1 = legendre_b, a_2 = legendre_c); with b0 > 0 it adds the narrow SHOE peak that a two-term
+// too (as in Hapke 1981): with b0 = 0 the model is exactly report eq. 3.29 with N = legendre_terms
+// (a_1 = legendre_b, a_2 = legendre_c, ...); with b0 > 0 it adds the narrow SHOE peak that a short
 // series cannot represent.
 // Bounds of b and c (reviewed against the condition p >= 0, which is what makes p a phase function):
 // with x = cos g, p(x) = 1 - c/2 + b x + (3c/2) x^2 is >= 0 on [-1, 1] exactly when |b| <= 1 + c
@@ -51,9 +51,20 @@
 // (single, batch, prepared, gradient) by hapke::h_tabulated (models/hapke_h_table.h): a table of
 // Chebyshev interpolants of the quadrature, within 3e-14 of it for w <= 1 - 1e-5 and 2e-11 up to w = 1.
 //
+// Option legendre_terms = N (1..8, phase = legendre only; 2 is the two-term form above): p(g) =
+// 1 + sum_{n<=N} a_n P_n(cos g), a_1 = legendre_b, a_2 = legendre_c, then legendre_a3...; default box
+// |a_n| <= 1/N for N != 2, which keeps p >= 0 (models/hapke_phase.h). The multiple-scattering term stays
+// isotropic (IMSA) whatever N: the Legendre-dependent terms of Hapke (2002) belong to the anisotropic
+// approximation, which this model does not implement.
+// Option roughness = hapke1984: Hapke's (1984) macroscopic roughness, a last parameter theta_bar [rad]
+// in [0, 60 deg]: f = (w/4pi) mu0e/(mu0e + mue) (S/mu0) {[1 + B] p + H(mu0e) H(mue) - 1} with the
+// effective cosines and shadowing function of models/hapke_roughness.h; at theta_bar = 0 the smooth
+// formula itself (bit for bit). Its gradient is the automatic derivative (dH/dx from the H table).
 // Properties:
-//   - reciprocal: H(mu0) H(mu) and mu0 + mu are symmetric in the two directions, B and p depend on g only.
-//   - non-negative inside the bounds: B >= 0, p >= 0 (HG, hg2: p > 0 for |xi| < 1, b < 1; Legendre with |b| <= 1,
+//   - reciprocal: H(mu0) H(mu) and mu0 + mu are symmetric in the two directions, B and p depend on g only
+//     (roughness: (mu0e/mu0) S and mu0e + mue are symmetric, models/hapke_roughness.h).
+//   - non-negative inside the bounds: B >= 0, p >= 0 (N-term Legendre: models/hapke_phase.h; roughness: S,
+//     mu0e, mue > 0; HG, hg2: p > 0 for |xi| < 1, b < 1; Legendre with |b| <= 1,
 //     0 <= c <= 1: at the ends cos g = +-1, p = 1 +- b + c >= c >= 0 (0 only for c = 0, |b| = 1), and an
 //     interior minimum 1 - c/2 - b^2/(6c), reached when |b| < 3c, is >= 1 - 2c for c <= 1/3 and
 //     >= 1 - c/2 - 1/(6c) for c >= 1/3, both >= 1/3),
@@ -121,12 +132,14 @@ struct Hapke {
          "exact"},
         {"legendre_terms",
          "number N of Legendre terms of p(g) = 1 + sum_{n=1}^{N} a_n P_n(cos g) (phase = legendre only; a_1, a_2 "
-         "are legendre_b, legendre_c, then legendre_a3...)",
+         "are legendre_b, legendre_c, then legendre_a3...; for N != 2 the bounds are -1/N <= a_n <= 1/N, which keeps "
+         "p >= 0, within the physical range -(2n + 1) <= a_n <= 2n + 1)",
          {"1", "2", "3", "4", "5", "6", "7", "8"},
          "2"},
         {"roughness",
          "macroscopic roughness: none = smooth surface; hapke1984 = Hapke's shadowing function S(i, e, psi) and "
-         "effective cosines for a mean facet slope theta_bar (Hapke, Icarus 59:41, 1984)",
+         "effective cosines for a mean facet slope theta_bar (Hapke, Icarus 59:41, 1984), an added last "
+         "parameter theta_bar [rad] in [0, 60 deg], default 0 = the smooth model",
          {"none", "hapke1984"},
          "none"},
     };
@@ -174,7 +187,7 @@ struct Hapke {
         std::string what = "coefficient a_" + std::to_string(n) + " of P" + std::to_string(n) +
                            "(cos g) in p(g) = 1 + sum a_n P_n(cos g); g = phase angle";
         what += n == 1 ? ", so a_1 > 0 is backscattering" : "";
-        what += "; the default bounds keep p >= 0 (sum |a_n| <= 1)";
+        what += "; the default bounds keep p >= 0 (sum of the absolute values <= 1)";
         d.parameters.push_back({hapke::legendre_name(n), "1", what, 0.0, lower, upper, true, false});
         d.physical_bounds[hapke::legendre_name(n)] = hapke::legendre_physical_bounds(n, terms);
       }
