@@ -7,12 +7,17 @@
 //     mu0e = mue = chi(theta_bar) and S = 1; e = 0: mu0e = eta(i); i <= e and e <= i forms agree at i = e;
 //   - reciprocity: (mu0e/mu0) S is symmetric in i and e, and so is the BRDF;
 //   - values of mu0e, mue and S, and of the rough BRDF with H1 (Hapke 1981) written out, at a set of
-//     geometries and slopes.
+//     geometries and slopes;
+//   - the integrated parameter gradient of the black-sky albedo (albedo/gradient_integrals.h, which
+//     uses the model's gradient path) against central differences of the albedo itself, for the rough
+//     model and a 4-term Legendre phase function.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "roadbrdf/albedo/gradient_integrals.h"
+#include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/models/hapke.h"
@@ -239,6 +244,35 @@ TEST(HapkeRoughness, GradientMatchesCentralDifferences) {
       fixed->evaluate(g, out);
       for (int s = 0; s < 2; ++s) EXPECT_EQ(out[s], model->evaluate(sets.data() + s * p.size(), g));
     }
+  }
+}
+
+TEST(HapkeRoughness, AlbedoGradientIntegralEqualsCentralDifferences) {
+  const auto model = make_model("hapke", {{"phase", "legendre"}, {"legendre_terms", "4"}, {"roughness", "hapke1984"}});
+  const ModelDescription& d = model->description();
+  const std::size_t P = d.parameters.size();
+  ASSERT_EQ(P, 8u);
+  const std::vector<double> params = {0.7, 0.5, 0.1, 0.2, -0.1, 0.15, -0.05, 30.0 * kDeg};
+  std::vector<double> scale(P);
+  for (std::size_t k = 0; k < P; ++k) scale[k] = 0.02 * (d.parameters[k].upper - d.parameters[k].lower);
+  albedo::QuadratureSettings settings;
+  settings.tolerance = 1e-6;
+  albedo::QuadratureSettings reference;
+  reference.tolerance = 1e-8;
+  const double theta_s = 40.0 * kDeg;
+  const albedo::GradientIntegral g =
+      albedo::black_sky_gradient(*model, params.data(), 1, scale, theta_s, 0.0, false, settings);
+  ASSERT_EQ(g.gradient.size(), P);
+  for (std::size_t k = 0; k < P; ++k) {
+    const double h = 1e-3 * (d.parameters[k].upper - d.parameters[k].lower);
+    std::vector<double> up = params, down = params;
+    up[k] += h;
+    down[k] -= h;
+    const double difference = (albedo::black_sky(*model, up.data(), 1, theta_s, 0.0, reference).value[0] -
+                               albedo::black_sky(*model, down.data(), 1, theta_s, 0.0, reference).value[0]) /
+                              (2.0 * h);
+    // Scaled by the parameter's uncertainty, as the uncertainty propagation uses it (to 1e-4 of the albedo).
+    EXPECT_NEAR(scale[k] * g.gradient[k], scale[k] * difference, 1e-5) << d.parameters[k].name;
   }
 }
 
