@@ -6,7 +6,11 @@
 //   - N = 2 is the two-term model; N terms with the extra coefficients at 0 are the shorter series;
 //   - the default bounds keep p >= 0 (corners of the box on a fine grid of g), and the physical range
 //     |a_n| <= 2n + 1 contains the Legendre moments of a sharply peaked non-negative p;
-//   - the analytic Jacobian column of a_n is w (1 + B) P_n(cos g)/(4 pi (mu0 + mu)).
+//   - the analytic Jacobian column of a_n is w (1 + B) P_n(cos g)/(4 pi (mu0 + mu));
+//   - Hapke's (2002) anisotropic multiple scattering: A_n = int_{-1}^{0} P_n dx by Simpson; P(mu0) as the
+//     mean of p(g) over the directions of the lower hemisphere and P-bar as the mean of p over two
+//     directions of one hemisphere, both by quadrature written here; isotropic p gives IMSA; the BRDF
+//     with H1 written out; the analytic gradient against central differences.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -223,6 +227,118 @@ TEST(HapkeLegendre, JacobianColumnsAreTheLegendrePolynomials) {
     for (int s = 0; s < 2; ++s) {
       const double single = model->evaluate(sets.data() + s * p.size(), geometry);
       EXPECT_NEAR(out[s], single, 1e-13 * single);
+    }
+  }
+}
+
+// Mean over the hemisphere of directions v (z = sign * t, t in [0, 1] uniform: uniform in solid angle)
+// of p(u . v), u = (sqrt(1 - mu^2), 0, mu): midpoint rule in the azimuth (exact for the trigonometric
+// polynomials that p(u . v) is in it), Simpson in t (then a polynomial, by the addition theorem).
+double hemisphere_mean(const std::vector<double>& a, double mu, double sign) {
+  const int azimuths = 24, intervals = 400;
+  const double su = std::sqrt(1.0 - mu * mu);
+  double sum = 0.0;
+  for (int k = 0; k <= intervals; ++k) {
+    const double t = static_cast<double>(k) / intervals;
+    const double st = std::sqrt(std::fmax(0.0, 1.0 - t * t));
+    double ring = 0.0;
+    for (int j = 0; j < azimuths; ++j) {
+      const double phi = 2.0 * kPi * (j + 0.5) / azimuths;
+      ring += phase_closed_form(a, su * st * std::cos(phi) + mu * sign * t);
+    }
+    const double weight = k == 0 || k == intervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * ring / azimuths;
+  }
+  return sum / (3.0 * intervals);
+}
+
+TEST(HapkeAnisotropicScattering, HemisphereMomentsAndAverages) {
+  for (int n = 1; n <= 8; ++n) {
+    const int intervals = 20000;
+    double sum = 0.0;
+    for (int k = 0; k <= intervals; ++k) {
+      const double weight = k == 0 || k == intervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+      sum += weight * legendre_closed_form(n, -1.0 + static_cast<double>(k) / intervals);
+    }
+    EXPECT_NEAR(hapke::hemisphere_moment(n), sum / (3.0 * intervals), 1e-13) << n;
+  }
+  const std::vector<double> a = {0.4, -0.2, 0.3, 0.1, -0.25, 0.05, 0.12, -0.1};
+  for (int terms : {1, 3, 8}) {
+    const std::vector<double> head(a.begin(), a.begin() + terms);
+    for (double mu : {0.0, 0.3, 0.77, 1.0}) {
+      // P(mu): the incident direction at cosine mu above, the scattered ones below the surface.
+      EXPECT_NEAR(hapke::hemisphere_average(head.data(), terms, mu), hemisphere_mean(head, mu, -1.0), 1e-9);
+    }
+    // P-bar: both directions in one hemisphere, the outer mean over mu by Simpson.
+    const int intervals = 400;
+    double sum = 0.0;
+    for (int k = 0; k <= intervals; ++k) {
+      const double weight = k == 0 || k == intervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+      sum += weight * hemisphere_mean(head, static_cast<double>(k) / intervals, 1.0);
+    }
+    EXPECT_NEAR(hapke::double_hemisphere_average(head.data(), terms), sum / (3.0 * intervals), 1e-8) << terms;
+  }
+}
+
+OptionSet anisotropic_options(int terms, const char* h_function) {
+  OptionSet o = legendre_options(terms, h_function);
+  o["multiple_scattering"] = "anisotropic";
+  return o;
+}
+
+TEST(HapkeAnisotropicScattering, OptionChecksAndTheIsotropicLimit) {
+  EXPECT_THROW(make_model("hapke", {{"multiple_scattering", "anisotropic"}}), InputError);
+  EXPECT_THROW(make_model("hapke", {{"phase", "hg2"}, {"multiple_scattering", "anisotropic"}}), InputError);
+  const auto amsa = make_model("hapke", anisotropic_options(4, "exact"));
+  const auto imsa = make_model("hapke", legendre_options(4, "exact"));
+  EXPECT_NE(amsa->description().summary.find("AMSA"), std::string::npos);
+  const std::vector<double> p = {0.9, 0.3, 0.05, 0.0, 0.0, 0.0, 0.0};
+  for (const Geometry& g : geometries()) {
+    const double f = imsa->evaluate(p.data(), g);
+    EXPECT_NEAR(amsa->evaluate(p.data(), g), f, 1e-14 * f);  // P = P-bar = 1: M = H0 H1 - 1
+  }
+}
+
+TEST(HapkeAnisotropicScattering, BrdfEqualsHapke2002WithH1) {
+  const auto model = make_model("hapke", anisotropic_options(3, "hapke1981"));
+  const double w = 0.75, b0 = 0.2, h = 0.1;
+  const std::vector<double> a = {0.3, 0.2, -0.1};
+  const std::vector<double> p = {w, b0, h, a[0], a[1], a[2]};
+  auto h1 = [&](double x) { return (1.0 + 2.0 * x) / (1.0 + 2.0 * x * std::sqrt(1.0 - w)); };
+  // A_1 = -1/2, A_3 = 1/8 (the integrals above), A_2 = 0.
+  auto average = [&](double x) { return 1.0 - 0.5 * a[0] * x + 0.125 * a[2] * legendre_closed_form(3, x); };
+  const double p_bar = 1.0 + 0.25 * a[0] + a[2] / 64.0;
+  for (const Geometry& g : geometries()) {
+    const double mu0 = std::cos(g.theta_i), mu = std::cos(g.theta_r);
+    const double cos_g = dot(g.wi, g.wr);
+    const double phase_angle = std::acos(std::fmax(-1.0, std::fmin(1.0, cos_g)));
+    const double b = b0 / (1.0 + std::tan(0.5 * phase_angle) / h);
+    const double m =
+        average(mu0) * (h1(mu) - 1.0) + average(mu) * (h1(mu0) - 1.0) + p_bar * (h1(mu0) - 1.0) * (h1(mu) - 1.0);
+    const double expected = w / (4.0 * kPi) / (mu0 + mu) * ((1.0 + b) * phase_closed_form(a, cos_g) + m);
+    EXPECT_NEAR(model->evaluate(p.data(), g), expected, 1e-12 * expected);
+  }
+}
+
+TEST(HapkeAnisotropicScattering, GradientMatchesCentralDifferences) {
+  for (const char* h_function : {"hapke2002", "exact"}) {
+    for (int terms : {2, 5}) {
+      const auto model = make_model("hapke", anisotropic_options(terms, h_function));
+      std::vector<double> p = {0.8, 0.4, 0.07, 0.3, 0.2, 0.1, -0.1, 0.05};
+      p.resize(3 + terms);
+      for (const Geometry& g : geometries()) {
+        std::vector<double> gradient(p.size());
+        const double f = model->evaluate_with_gradient(p.data(), g, gradient.data());
+        EXPECT_NEAR(f, model->evaluate(p.data(), g), 1e-15 * f);
+        for (std::size_t k = 0; k < p.size(); ++k) {
+          const double step = 1e-6;
+          std::vector<double> up = p, down = p;
+          up[k] += step;
+          down[k] -= step;
+          const double difference = (model->evaluate(up.data(), g) - model->evaluate(down.data(), g)) / (2.0 * step);
+          EXPECT_NEAR(gradient[k], difference, 1e-6 * (std::fabs(difference) + f)) << h_function << " " << k;
+        }
+      }
     }
   }
 }

@@ -268,7 +268,7 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
   EXPECT_EQ(d.parameters[2].name, "h");
   EXPECT_EQ(d.parameters[3].name, "xi");
   EXPECT_EQ(d.option_values.at("phase"), "hg");
-  ASSERT_EQ(d.options.size(), 4u);
+  ASSERT_EQ(d.options.size(), 5u);
   EXPECT_EQ(d.options[0].name, "phase");
   EXPECT_EQ(d.options[0].values, (std::vector<std::string>{"hg", "legendre", "hg2"}));
   EXPECT_EQ(d.options[1].name, "h_function");
@@ -278,6 +278,9 @@ TEST(Hapke, NamesOptionsAndParametersArePinned) {
   EXPECT_EQ(d.options[3].name, "roughness");
   EXPECT_EQ(d.options[3].values, (std::vector<std::string>{"none", "hapke1984"}));
   EXPECT_EQ(d.options[3].default_value, "none");
+  EXPECT_EQ(d.options[4].name, "multiple_scattering");
+  EXPECT_EQ(d.options[4].values, (std::vector<std::string>{"isotropic", "anisotropic"}));
+  EXPECT_EQ(d.options[4].default_value, "isotropic");
   EXPECT_TRUE(d.reciprocal);
   EXPECT_TRUE(d.non_negative);
   EXPECT_FALSE(d.energy_conserving);

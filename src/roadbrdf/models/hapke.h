@@ -53,9 +53,12 @@
 //
 // Option legendre_terms = N (1..8, phase = legendre only; 2 is the two-term form above): p(g) =
 // 1 + sum_{n<=N} a_n P_n(cos g), a_1 = legendre_b, a_2 = legendre_c, then legendre_a3...; default box
-// |a_n| <= 1/N for N != 2, which keeps p >= 0 (models/hapke_phase.h). The multiple-scattering term stays
-// isotropic (IMSA) whatever N: the Legendre-dependent terms of Hapke (2002) belong to the anisotropic
-// approximation, which this model does not implement.
+// |a_n| <= 1/N for N != 2, which keeps p >= 0 (models/hapke_phase.h).
+// Option multiple_scattering: isotropic (IMSA, the default: H(mu0) H(mu) - 1 whatever p) or anisotropic
+// (phase = legendre only): Hapke's (2002) AMSA, M = P(mu0) [H(mu) - 1] + P(mu) [H(mu0) - 1] +
+// P-bar [H(mu0) - 1][H(mu) - 1] with P and P-bar from the Legendre coefficients (models/hapke_phase.h);
+// H stays the isotropic-scattering H, as in Hapke (2002). Reciprocal (symmetric in mu0, mu), and >= 0
+// where p >= 0 (P, P-bar are averages of p).
 // Option roughness = hapke1984: Hapke's (1984) macroscopic roughness, a last parameter theta_bar [rad]
 // in [0, 60 deg]: f = (w/4pi) mu0e/(mu0e + mue) (S/mu0) {[1 + B] p + H(mu0e) H(mue) - 1} with the
 // effective cosines and shadowing function of models/hapke_roughness.h; at theta_bar = 0 the smooth
@@ -142,7 +145,20 @@ struct Hapke {
          "parameter theta_bar [rad] in [0, 60 deg], default 0 = the smooth model",
          {"none", "hapke1984"},
          "none"},
+        {"multiple_scattering",
+         "isotropic = IMSA, H(mu0) H(mu) - 1 whatever p; anisotropic = Hapke (2002) AMSA, P(mu0) [H(mu) - 1] + "
+         "P(mu) [H(mu0) - 1] + P-bar [H(mu0) - 1][H(mu) - 1] from the Legendre coefficients (phase = legendre only)",
+         {"isotropic", "anisotropic"},
+         "isotropic"},
     };
+  }
+
+  static bool anisotropic_scattering(const OptionSet& options) {
+    const bool anisotropic = options.at("multiple_scattering") == "anisotropic";
+    if (anisotropic && options.at("phase") != "legendre") {
+      throw InputError("hapke: multiple_scattering=anisotropic applies only to phase=legendre");
+    }
+    return anisotropic;
   }
 
   static int legendre_term_count(const OptionSet& options) {
@@ -156,6 +172,7 @@ struct Hapke {
   static ModelDescription describe(const OptionSet& options) {
     const std::string& phase = options.at("phase");
     const int terms = legendre_term_count(options);
+    const bool anisotropic = anisotropic_scattering(options);
     const std::string legendre_name = std::to_string(terms) + "-term Legendre";
     const std::string phase_name = phase == "legendre" ? legendre_name
                                    : phase == "hg2"    ? "double Henyey-Greenstein"
@@ -168,6 +185,10 @@ struct Hapke {
         "for H2; Hapke, Theory of Reflectance and Emittance Spectroscopy, 2nd ed. (2012) eq. 6.7 for hg2; "
         "Chandrasekhar, Radiative Transfer (1960) for H; report eqs. 3.28-3.29 with B(g), HG and g corrected "
         "(docs/report-corrections.md)";
+    if (anisotropic) {
+      d.summary.replace(d.summary.find("IMSA"), 4, "AMSA (anisotropic multiple scattering)");
+      d.citation += "; Hapke, Icarus 157:523 (2002) eqs. 23-27 for the anisotropic multiple scattering";
+    }
     if (options.at("roughness") == "hapke1984") {
       d.summary += ", Hapke (1984) macroscopic roughness";
       d.citation += "; Hapke, Icarus 59:41 (1984) eqs. 46-51 for the roughness correction";
@@ -245,6 +266,7 @@ struct Hapke {
                                                               : HFunction::kExact),
         legendre_terms_(legendre_term_count(options)),
         roughness_(options.at("roughness") == "hapke1984"),
+        anisotropic_(anisotropic_scattering(options)),
         parameter_count_(3 +
                          (phase_ == Phase::kHenyeyGreenstein ? 1
                           : phase_ == Phase::kLegendre       ? legendre_terms_
@@ -313,6 +335,17 @@ struct Hapke {
   int parameter_count() const { return parameter_count_; }
   int legendre_terms() const { return legendre_terms_; }
   bool rough() const { return roughness_; }
+
+  // The multiple-scattering term of the bracket from H at the two cosines: IMSA H0 H1 - 1, or Hapke's
+  // (2002) AMSA P(mu0) (H1 - 1) + P(mu) (H0 - 1) + P-bar (H0 - 1)(H1 - 1) (models/hapke_phase.h).
+  template <typename T, typename X>
+  T multiple_scattering(const T* p, const X& mu0, const X& mu, const T& h0, const T& h1) const {
+    if (!anisotropic_) return h0 * h1 - 1.0;
+    const T* a = p + kLegendreB;
+    return hapke::hemisphere_average(a, legendre_terms_, mu0) * (h1 - 1.0) +
+           hapke::hemisphere_average(a, legendre_terms_, mu) * (h0 - 1.0) +
+           hapke::double_hemisphere_average(a, legendre_terms_) * ((h0 - 1.0) * (h1 - 1.0));
+  }
 
   template <typename T>
   T h_function(double x, const T& w) const {
@@ -396,7 +429,7 @@ struct Hapke {
     const T& w = p[kW];
     const T b = opposition(p[kB0], p[kH], g.tan_half_g);
     const T phase = phase_function(p, g.cos_g);
-    const T multiple = h_function(g.mu0, w) * h_function(g.mu, w) - 1.0;
+    const T multiple = multiple_scattering(p, g.mu0, g.mu, h_function(g.mu0, w), h_function(g.mu, w));
     return w * g.scale * ((1.0 + b) * phase + multiple);
   }
 
@@ -410,7 +443,7 @@ struct Hapke {
     const hapke::RoughCosines<T> c = hapke::rough_cosines(p[parameter_count_ - 1], g.rough);
     const T b = opposition(p[kB0], p[kH], g.tan_half_g);
     const T phase = phase_function(p, g.cos_g);
-    const T multiple = h_function_at(c.mu0e, w) * h_function_at(c.mue, w) - 1.0;
+    const T multiple = multiple_scattering(p, c.mu0e, c.mue, h_function_at(c.mu0e, w), h_function_at(c.mue, w));
     return w * (0.25 * kInvPi) * (c.mu0e / (c.mu0e + c.mue)) * c.shadow_over_mu0 * ((1.0 + b) * phase + multiple);
   }
 
@@ -474,8 +507,8 @@ struct Hapke {
       f.h.push_back(q[kH]);
       f.p1.push_back(q[3]);
       f.p2.push_back(f.n_params > 4 ? q[4] : 0.0);
-      // The rough model's H is taken at effective cosines that depend on theta_bar: operator().
-      if (roughness_ || h_function_ != HFunction::kExact || !(q[kW] >= 0.0 && q[kW] <= 1.0)) {
+      // Roughness (H at effective cosines that depend on theta_bar) and AMSA: operator().
+      if (roughness_ || anisotropic_ || h_function_ != HFunction::kExact || !(q[kW] >= 0.0 && q[kW] <= 1.0)) {
         f.by_operator.push_back(s);
         continue;
       }
@@ -485,67 +518,7 @@ struct Hapke {
     return f;
   }
 
-  void evaluate_fixed(const FixedSets& f, const Geometry& geometry, double* out) const {
-    const Prepared q = prepare(geometry);
-    hapke::HTablePoint point_i, point_r;
-    const bool inside = h_function_ == HFunction::kExact && f.by_operator.size() < f.n_sets && q.mu0 > 0.0 &&
-                        q.mu > 0.0 && hapke::h_table_point(q.mu0, point_i) && hapke::h_table_point(q.mu, point_r);
-    if (!inside) {
-      for (std::size_t s = 0; s < f.n_sets; ++s) out[s] = (*this)(f.params.data() + s * f.n_params, q);
-      return;
-    }
-    constexpr std::size_t kChunk = 16;
-    const std::size_t n = f.n_sets;
-    const double* rows_i = f.series.data() + static_cast<std::size_t>(point_i.octave) * hapke::kHTableNodesX * n;
-    const double* rows_r = f.series.data() + static_cast<std::size_t>(point_r.octave) * hapke::kHTableNodesX * n;
-    for (std::size_t first = 0; first < n; first += kChunk) {
-      const std::size_t m = std::min(kChunk, n - first);
-      double h_i[kChunk] = {}, h_r[kChunk] = {}, phase[kChunk];
-      for (int a = 0; a < hapke::kHTableNodesX; ++a) {
-        const double* row_i = rows_i + a * n + first;
-        const double* row_r = rows_r + a * n + first;
-        const double t_i = point_i.tx[a], t_r = point_r.tx[a];
-        for (std::size_t s = 0; s < m; ++s) {
-          h_i[s] += row_i[s] * t_i;
-          h_r[s] += row_r[s] * t_r;
-        }
-      }
-      const double* p1 = f.p1.data() + first;
-      const double* p2 = f.p2.data() + first;
-      switch (phase_) {
-        case Phase::kLegendre:
-          if (legendre_terms_ != 2) {
-            for (std::size_t s = 0; s < m; ++s) {
-              phase[s] = hapke::legendre_series(f.params.data() + (first + s) * f.n_params + kLegendreB,
-                                                legendre_terms_, q.cos_g);
-            }
-            break;
-          }
-          for (std::size_t s = 0; s < m; ++s) phase[s] = legendre(p1[s], p2[s], q.cos_g);
-          break;
-        case Phase::kDoubleHenyeyGreenstein:
-          for (std::size_t s = 0; s < m; ++s) phase[s] = double_henyey_greenstein(p1[s], p2[s], q.cos_g);
-          break;
-        case Phase::kHenyeyGreenstein:
-          for (std::size_t s = 0; s < m; ++s) phase[s] = henyey_greenstein(p1[s], q.cos_g);
-          break;
-      }
-      const double* w = f.w.data() + first;
-      const double* b0 = f.b0.data() + first;
-      const double* h = f.h.data() + first;
-      double* o = out + first;
-      if (q.tan_half_g < std::numeric_limits<double>::infinity()) {
-        for (std::size_t s = 0; s < m; ++s) {
-          const double b = b0[s] * h[s] / (h[s] + q.tan_half_g);  // opposition(), written out to vectorise
-          o[s] = w[s] * q.scale * ((1.0 + b) * phase[s] + (h_i[s] * h_r[s] - 1.0));
-        }
-      } else {
-        for (std::size_t s = 0; s < m; ++s)
-          o[s] = w[s] * q.scale * (phase[s] + (h_i[s] * h_r[s] - 1.0));  // B = 0 at g = pi
-      }
-    }
-    for (std::size_t s : f.by_operator) out[s] = (*this)(f.params.data() + s * f.n_params, q);
-  }
+  void evaluate_fixed(const FixedSets& f, const Geometry& geometry, double* out) const;
 
   // Values (bit for bit those of operator()) and, if `jacobian` is not null, the analytic gradient
   // jacobian[n * parameter count + k] (see the definition below).
@@ -561,6 +534,7 @@ struct Hapke {
   HFunction h_function_;
   int legendre_terms_;
   bool roughness_;
+  bool anisotropic_;
   int parameter_count_;
 };
 
