@@ -142,7 +142,8 @@ struct Hapke {
         {"roughness",
          "macroscopic roughness: none = smooth surface; hapke1984 = Hapke's shadowing function S(i, e, psi) and "
          "effective cosines for a mean facet slope theta_bar (Hapke, Icarus 59:41, 1984), an added last "
-         "parameter theta_bar [rad] in [0, 60 deg], default 0 = the smooth model",
+         "parameter theta_bar [rad] in [0, 60 deg], default 0 = the smooth model, where its derivative is 0: a fit "
+         "of it needs a `start` above 0 or several starts",
          {"none", "hapke1984"},
          "none"},
         {"multiple_scattering",
