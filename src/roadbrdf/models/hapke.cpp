@@ -177,20 +177,36 @@ void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t
   }
 }
 
-void Hapke::evaluate_with_jets(const Prepared* g, std::size_t n, const double* p, double* values,
-                               double* jacobian) const {
-  const std::size_t count = static_cast<std::size_t>(parameter_count_);
-  if (jacobian == nullptr) {
-    for (std::size_t k = 0; k < n; ++k) values[k] = (*this)(p, g[k]);
-    return;
-  }
-  using Jet = ceres::Jet<double, kMaxParameters>;
-  Jet q[kMaxParameters];
+namespace {
+
+// Values and Jacobian by ceres::Jet<double, N>, N >= the parameter count (each operation costs in
+// proportion to N, so the smallest size that holds the parameters is used).
+template <int N>
+void evaluate_by_jets(const Hapke& model, const Hapke::Prepared* g, std::size_t n, const double* p, double* values,
+                      double* jacobian) {
+  using Jet = ceres::Jet<double, N>;
+  const std::size_t count = static_cast<std::size_t>(model.parameter_count());
+  Jet q[N];
   for (std::size_t k = 0; k < count; ++k) q[k] = Jet(p[k], static_cast<int>(k));
   for (std::size_t k = 0; k < n; ++k) {
-    const Jet f = (*this)(q, g[k]);
+    const Jet f = model(q, g[k]);
     values[k] = f.a;
     for (std::size_t j = 0; j < count; ++j) jacobian[k * count + j] = f.v[static_cast<int>(j)];
+  }
+}
+
+}  // namespace
+
+void Hapke::evaluate_with_jets(const Prepared* g, std::size_t n, const double* p, double* values,
+                               double* jacobian) const {
+  if (jacobian == nullptr) {
+    for (std::size_t k = 0; k < n; ++k) values[k] = (*this)(p, g[k]);
+  } else if (parameter_count_ <= 5) {
+    evaluate_by_jets<5>(*this, g, n, p, values, jacobian);
+  } else if (parameter_count_ <= 8) {
+    evaluate_by_jets<8>(*this, g, n, p, values, jacobian);
+  } else {
+    evaluate_by_jets<kMaxParameters>(*this, g, n, p, values, jacobian);
   }
 }
 
