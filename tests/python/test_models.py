@@ -97,3 +97,36 @@ def test_cook_torrance_alias_fits_reloads_and_errors_alike(cli, root, tmp_path):
     # The library names the field (options.distribution), the CLI its flag (--option distribution).
     assert str(error.value).startswith("options.distribution: model 'cook-torrance' fixes")
     assert str(error.value).removeprefix("options.") in bad.stderr.replace("--option ", "")
+
+
+def test_hapke_roughness_and_legendre_terms_fit_alike_from_cli_and_python(cli, tmp_path):
+    """Hapke's options legendre_terms and roughness (Hapke 1984, parameter theta_bar [rad]): a synthetic
+    noise-free dataset from the rough model with a 3-term Legendre phase function is fitted back, from a
+    start away from theta_bar = 0 (where its derivative is 0), to the values that made it, by Python and
+    by the command line alike; theta_bar = 0 is the smooth model."""
+    import json
+    options = {"phase": "legendre", "legendre_terms": "3", "roughness": "hapke1984"}
+    rough = roadbrdf.Model("hapke", options=options)
+    smooth = roadbrdf.Model("hapke", options={"phase": "legendre", "legendre_terms": "3"})
+    truth = {"w": 0.6, "b0": 0.3, "h": 0.1, "legendre_b": 0.2, "legendre_c": 0.1, "legendre_a3": -0.1,
+             "theta_bar": math.radians(20)}
+    angles = np.array([(ti, 0.0, tr, pr) for ti in (10, 30, 50, 65) for tr in (5, 20, 35, 50, 65, 75)
+                       for pr in (0, 45, 90, 135, 180)], dtype=float)
+    columns = (angles[:, 0], angles[:, 1], angles[:, 2], angles[:, 3])
+    flat = {name: value for name, value in truth.items() if name != "theta_bar"}
+    assert np.array_equal(rough.evaluate(*columns, params=dict(truth, theta_bar=0.0)),
+                          smooth.evaluate(*columns, params=flat))
+    brdf = rough.evaluate(*columns, params=truth)
+    data = tmp_path / "rough.csv"
+    roadbrdf.Dataset(angles, [550.0], brdf.reshape(-1, 1)).write(data)
+    fit = roadbrdf.fit(data, "hapke", options=options, start={"theta_bar": 0.2}).model_fit("hapke")
+    for name, value in truth.items():
+        assert fit.parameter(name)[0] == pytest.approx(value, rel=1e-8, abs=1e-10), name
+    out = tmp_path / "rough.fit.json"
+    cli("fit", data, "--model", "hapke", "--option", "phase=legendre", "--option", "legendre_terms=3",
+        "--option", "roughness=hapke1984", "--start", "theta_bar=0.2", "-o", out)
+    content = json.loads(out.read_text())
+    for name, values in content["fits"][0]["parameters"].items():
+        assert fit.parameter(name)[0] == pytest.approx(values[0], rel=1e-12, abs=1e-15), name
+    with pytest.raises(roadbrdf.InputError, match="legendre_terms applies only to phase=legendre"):
+        roadbrdf.Model("hapke", options={"legendre_terms": "4"})

@@ -26,8 +26,8 @@
 // Reading of report eq. 3.29: it replaces [1 + B(g)] p(g) by the series 1 + sum_{n>=1} a_n P_n; the
 // leading 1 then cancels the "- 1" of eq. 3.28, which is why eq. 3.29 shows sum a_n P_n + H H without
 // either: it does not drop a term. Here the opposition factor [1 + B(g)] is kept in the legendre form
-// too (as in Hapke 1981): with b0 = 0 the model is exactly report eq. 3.29 with N = 2
-// (a_1 = legendre_b, a_2 = legendre_c); with b0 > 0 it adds the narrow SHOE peak that a two-term
+// too (as in Hapke 1981): with b0 = 0 the model is exactly report eq. 3.29 with N = legendre_terms
+// (a_1 = legendre_b, a_2 = legendre_c, ...); with b0 > 0 it adds the narrow SHOE peak that a short
 // series cannot represent.
 // Bounds of b and c (reviewed against the condition p >= 0, which is what makes p a phase function):
 // with x = cos g, p(x) = 1 - c/2 + b x + (3c/2) x^2 is >= 0 on [-1, 1] exactly when |b| <= 1 + c
@@ -51,9 +51,23 @@
 // (single, batch, prepared, gradient) by hapke::h_tabulated (models/hapke_h_table.h): a table of
 // Chebyshev interpolants of the quadrature, within 3e-14 of it for w <= 1 - 1e-5 and 2e-11 up to w = 1.
 //
+// Option legendre_terms = N (1..8, phase = legendre only; 2 is the two-term form above): p(g) =
+// 1 + sum_{n<=N} a_n P_n(cos g), a_1 = legendre_b, a_2 = legendre_c, then legendre_a3...; default box
+// |a_n| <= 1/N for N != 2, which keeps p >= 0 (models/hapke_phase.h).
+// Option multiple_scattering: isotropic (IMSA, the default: H(mu0) H(mu) - 1 whatever p) or anisotropic
+// (phase = legendre only): Hapke's (2002) AMSA, M = P(mu0) [H(mu) - 1] + P(mu) [H(mu0) - 1] +
+// P-bar [H(mu0) - 1][H(mu) - 1] with P and P-bar from the Legendre coefficients (models/hapke_phase.h);
+// H stays the isotropic-scattering H, as in Hapke (2002). Reciprocal (symmetric in mu0, mu), and >= 0
+// where p >= 0 (P, P-bar are averages of p).
+// Option roughness = hapke1984: Hapke's (1984) macroscopic roughness, a last parameter theta_bar [rad]
+// in [0, 60 deg]: f = (w/4pi) mu0e/(mu0e + mue) (S/mu0) {[1 + B] p + H(mu0e) H(mue) - 1} with the
+// effective cosines and shadowing function of models/hapke_roughness.h; at theta_bar = 0 the smooth
+// formula itself (bit for bit). Its gradient is the automatic derivative (dH/dx from the H table).
 // Properties:
-//   - reciprocal: H(mu0) H(mu) and mu0 + mu are symmetric in the two directions, B and p depend on g only.
-//   - non-negative inside the bounds: B >= 0, p >= 0 (HG, hg2: p > 0 for |xi| < 1, b < 1; Legendre with |b| <= 1,
+//   - reciprocal: H(mu0) H(mu) and mu0 + mu are symmetric in the two directions, B and p depend on g only
+//     (roughness: (mu0e/mu0) S and mu0e + mue are symmetric, models/hapke_roughness.h).
+//   - non-negative inside the bounds: B >= 0, p >= 0 (N-term Legendre: models/hapke_phase.h; roughness: S,
+//     mu0e, mue > 0; HG, hg2: p > 0 for |xi| < 1, b < 1; Legendre with |b| <= 1,
 //     0 <= c <= 1: at the ends cos g = +-1, p = 1 +- b + c >= c >= 0 (0 only for c = 0, |b| = 1), and an
 //     interior minimum 1 - c/2 - b^2/(6c), reached when |b| < 3c, is >= 1 - 2c for c <= 1/3 and
 //     >= 1 - c/2 - 1/(6c) for c >= 1/3, both >= 1/3),
@@ -77,23 +91,29 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <ceres/jet.h>
+
+#include "roadbrdf/core/error.h"
 
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/parameters.h"
 #include "roadbrdf/models/hapke_h_function.h"
 #include "roadbrdf/models/hapke_h_table.h"
+#include "roadbrdf/models/hapke_phase.h"
+#include "roadbrdf/models/hapke_roughness.h"
 
 namespace roadbrdf {
 
 struct Hapke {
   static constexpr const char* kName = "hapke";
-  static constexpr int kMaxParameters = 5;
-  // Parameter order: w, b0, h, then xi (phase = hg), legendre_b, legendre_c (phase = legendre) or
-  // hg2_b, hg2_c (phase = hg2).
+  static constexpr int kMaxParameters = 3 + hapke::kMaxLegendreTerms + 1;
+  // Parameter order: w, b0, h, then xi (phase = hg), legendre_b, legendre_c, legendre_a3..legendre_aN
+  // (phase = legendre, N = legendre_terms) or hg2_b, hg2_c (phase = hg2), then theta_bar (roughness =
+  // hapke1984).
   enum Parameter { kW = 0, kB0 = 1, kH = 2, kXi = 3, kLegendreB = 3, kLegendreC = 4, kHg2B = 3, kHg2C = 4 };
   enum class Phase { kHenyeyGreenstein, kLegendre, kDoubleHenyeyGreenstein };
   enum class HFunction { kHapke1981, kHapke2002, kExact };
@@ -113,14 +133,51 @@ struct Hapke {
          "eq. 13 (error < 1%); exact = isotropic-scattering H by quadrature of its integral representation",
          {"hapke1981", "hapke2002", "exact"},
          "exact"},
+        {"legendre_terms",
+         "number N of Legendre terms of p(g) = 1 + sum_{n=1}^{N} a_n P_n(cos g) (phase = legendre only; a_1, a_2 "
+         "are legendre_b, legendre_c, then legendre_a3...; for N != 2 the bounds are -1/N <= a_n <= 1/N, which keeps "
+         "p >= 0, within the physical range -(2n + 1) <= a_n <= 2n + 1)",
+         {"1", "2", "3", "4", "5", "6", "7", "8"},
+         "2"},
+        {"roughness",
+         "macroscopic roughness: none = smooth surface; hapke1984 = Hapke's shadowing function S(i, e, psi) and "
+         "effective cosines for a mean facet slope theta_bar (Hapke, Icarus 59:41, 1984), an added last "
+         "parameter theta_bar [rad] in [0, 60 deg], default 0 = the smooth model, where its derivative is 0: a fit "
+         "of it needs a `start` above 0 or several starts",
+         {"none", "hapke1984"},
+         "none"},
+        {"multiple_scattering",
+         "isotropic = IMSA, H(mu0) H(mu) - 1 whatever p; anisotropic = Hapke (2002) AMSA, P(mu0) [H(mu) - 1] + "
+         "P(mu) [H(mu0) - 1] + P-bar [H(mu0) - 1][H(mu) - 1] from the Legendre coefficients (phase = legendre only)",
+         {"isotropic", "anisotropic"},
+         "isotropic"},
     };
+  }
+
+  static bool anisotropic_scattering(const OptionSet& options) {
+    const bool anisotropic = options.at("multiple_scattering") == "anisotropic";
+    if (anisotropic && options.at("phase") != "legendre") {
+      throw InputError("hapke: multiple_scattering=anisotropic applies only to phase=legendre");
+    }
+    return anisotropic;
+  }
+
+  static int legendre_term_count(const OptionSet& options) {
+    const int terms = std::stoi(options.at("legendre_terms"));  // one of the declared values
+    if (terms != 2 && options.at("phase") != "legendre") {
+      throw InputError("hapke: legendre_terms applies only to phase=legendre");
+    }
+    return terms;
   }
 
   static ModelDescription describe(const OptionSet& options) {
     const std::string& phase = options.at("phase");
-    const char* phase_name = phase == "legendre" ? "two-term Legendre"
-                             : phase == "hg2"    ? "double Henyey-Greenstein"
-                                                 : "Henyey-Greenstein";
+    const int terms = legendre_term_count(options);
+    const bool anisotropic = anisotropic_scattering(options);
+    const std::string legendre_name = std::to_string(terms) + "-term Legendre";
+    const std::string phase_name = phase == "legendre" ? legendre_name
+                                   : phase == "hg2"    ? "double Henyey-Greenstein"
+                                                       : "Henyey-Greenstein";
     ModelDescription d;
     d.summary = std::string("Hapke IMSA particulate-medium BRDF with shadow-hiding opposition effect, ") + phase_name +
                 " phase function, " + options.at("h_function") + " H function";
@@ -129,6 +186,14 @@ struct Hapke {
         "for H2; Hapke, Theory of Reflectance and Emittance Spectroscopy, 2nd ed. (2012) eq. 6.7 for hg2; "
         "Chandrasekhar, Radiative Transfer (1960) for H; report eqs. 3.28-3.29 with B(g), HG and g corrected "
         "(docs/report-corrections.md)";
+    if (anisotropic) {
+      d.summary.replace(d.summary.find("IMSA"), 4, "AMSA (anisotropic multiple scattering)");
+      d.citation += "; Hapke, Icarus 157:523 (2002) eqs. 23-27 for the anisotropic multiple scattering";
+    }
+    if (options.at("roughness") == "hapke1984") {
+      d.summary += ", Hapke (1984) macroscopic roughness";
+      d.citation += "; Hapke, Icarus 59:41 (1984) eqs. 46-51 for the roughness correction";
+    }
     d.parameters = {
         {"w", "1", "single-scattering albedo of the particles", 0.5, 0.0, 1.0, true, false},
         {"b0", "1", "amplitude B0 of the shadow-hiding opposition peak: B(g) = B0/(1 + tan(g/2)/h)", 0.0, 0.0, 1.0,
@@ -138,7 +203,17 @@ struct Hapke {
          "porosity and grain-size distribution (structural, shared across wavelengths)",
          0.05, 1e-3, 2.0, false, false},
     };
-    if (phase == "legendre") {
+    if (phase == "legendre" && terms != 2) {
+      for (int n = 1; n <= terms; ++n) {
+        const auto [lower, upper] = hapke::legendre_default_bounds(terms);
+        std::string what = "coefficient a_" + std::to_string(n) + " of P" + std::to_string(n) +
+                           "(cos g) in p(g) = 1 + sum a_n P_n(cos g); g = phase angle";
+        what += n == 1 ? ", so a_1 > 0 is backscattering" : "";
+        what += "; the default bounds keep p >= 0 (sum of the absolute values <= 1)";
+        d.parameters.push_back({hapke::legendre_name(n), "1", what, 0.0, lower, upper, true, false});
+        d.physical_bounds[hapke::legendre_name(n)] = hapke::legendre_physical_bounds(n, terms);
+      }
+    } else if (phase == "legendre") {
       d.parameters.push_back({"legendre_b", "1",
                               "coefficient b of P1(cos g) in p(g) = 1 + b cos g + c P2(cos g); g = phase angle, "
                               "so b > 0 is backscattering",
@@ -165,10 +240,21 @@ struct Hapke {
                               "g = phase angle; xi > 0 forward scattering, xi < 0 backscattering",
                               0.0, -0.95, 0.95, true, false});
     }
+    if (options.at("roughness") == "hapke1984") {
+      d.parameters.push_back({"theta_bar", "rad",
+                              "mean slope angle of the macroscopic facets (Hapke 1984); 0 is the smooth surface, "
+                              "where the derivative is 0 (start a fit away from 0)",
+                              0.0, 0.0, kPi / 3.0, false, false});
+    }
     d.reciprocal = true;
     d.energy_conserving = false;  // SHOE term, IMSA, approximate H (see the header comment)
     d.non_negative = true;
     d.grazing_zero = "where both directions are grazing (f diverges like 1/(cos theta_i + cos theta_r))";
+    if (options.at("roughness") == "hapke1984") {
+      d.grazing_zero =
+          "where both directions are grazing (theta_bar = 0: f diverges like 1/(cos theta_i + cos theta_r); "
+          "theta_bar > 0: no irradiance and no projected area in view, and S is 0/0 at psi = pi)";
+    }
     return d;
   }
 
@@ -178,7 +264,15 @@ struct Hapke {
                                                  : Phase::kHenyeyGreenstein),
         h_function_(options.at("h_function") == "hapke1981"   ? HFunction::kHapke1981
                     : options.at("h_function") == "hapke2002" ? HFunction::kHapke2002
-                                                              : HFunction::kExact) {}
+                                                              : HFunction::kExact),
+        legendre_terms_(legendre_term_count(options)),
+        roughness_(options.at("roughness") == "hapke1984"),
+        anisotropic_(anisotropic_scattering(options)),
+        parameter_count_(3 +
+                         (phase_ == Phase::kHenyeyGreenstein ? 1
+                          : phase_ == Phase::kLegendre       ? legendre_terms_
+                                                             : 2) +
+                         (roughness_ ? 1 : 0)) {}
 
   // Shadow-hiding opposition term B(g) = B0 / (1 + tan(g/2)/h) (Hapke 1986), written
   // B0 h / (h + tan(g/2)). B = B0 at g = 0, 0 at g = pi (tan(g/2) = infinity).
@@ -211,7 +305,8 @@ struct Hapke {
     return -(2.0 * xi + 3.0 * (1.0 - xi * xi) * (cos_g + xi) / base) / (base * std::sqrt(base));
   }
 
-  // Two-term Legendre phase function of the phase angle g (normalised, as P1 and P2 integrate to 0).
+  // Two-term Legendre phase function of the phase angle g (normalised, as P1 and P2 integrate to 0);
+  // other numbers of terms: hapke::legendre_series (models/hapke_phase.h).
   template <typename T>
   static T legendre(const T& b, const T& c, double cos_g) {
     return 1.0 + b * cos_g + c * (1.5 * cos_g * cos_g - 0.5);
@@ -228,6 +323,7 @@ struct Hapke {
   T phase_function(const T* p, double cos_g) const {
     switch (phase_) {
       case Phase::kLegendre:
+        if (legendre_terms_ != 2) return hapke::legendre_series(p + kLegendreB, legendre_terms_, cos_g);
         return legendre(p[kLegendreB], p[kLegendreC], cos_g);
       case Phase::kDoubleHenyeyGreenstein:
         return double_henyey_greenstein(p[kHg2B], p[kHg2C], cos_g);
@@ -235,6 +331,21 @@ struct Hapke {
         break;
     }
     return henyey_greenstein(p[kXi], cos_g);
+  }
+
+  int parameter_count() const { return parameter_count_; }
+  int legendre_terms() const { return legendre_terms_; }
+  bool rough() const { return roughness_; }
+
+  // The multiple-scattering term of the bracket from H at the two cosines: IMSA H0 H1 - 1, or Hapke's
+  // (2002) AMSA P(mu0) (H1 - 1) + P(mu) (H0 - 1) + P-bar (H0 - 1)(H1 - 1) (models/hapke_phase.h).
+  template <typename T, typename X>
+  T multiple_scattering(const T* p, const X& mu0, const X& mu, const T& h0, const T& h1) const {
+    if (!anisotropic_) return h0 * h1 - 1.0;
+    const T* a = p + kLegendreB;
+    return hapke::hemisphere_average(a, legendre_terms_, mu0) * (h1 - 1.0) +
+           hapke::hemisphere_average(a, legendre_terms_, mu) * (h0 - 1.0) +
+           hapke::double_hemisphere_average(a, legendre_terms_) * ((h0 - 1.0) * (h1 - 1.0));
   }
 
   template <typename T>
@@ -250,13 +361,50 @@ struct Hapke {
     return hapke::h_tabulated(x, w);  // the exact H, interpolated from a table of h_exact
   }
 
+  // H at a cosine that depends on the parameters (the roughness option's effective cosines): for a
+  // Jet, dH/dx x' is added to the derivative of h_function. dH/dx: H1 = (1 + 2x)/(1 + 2x gamma) gives
+  // 2(1 - gamma)/(1 + 2x gamma)^2; H2 = 1/(1 - w x A), A = r0 + (1 - 2 r0 x) L/2, L = ln((1 + x)/x),
+  // gives H2^2 w [A - r0 x L - (1 - 2 r0 x)/(2(1 + x))]; exact: the table's slope (0 below the table,
+  // x < 2^-40, where H - 1 is below 1e-10).
+  template <typename T>
+  T h_function_at(const T& x, const T& w) const {
+    if constexpr (std::is_same_v<T, double>) {
+      return h_function(x, w);
+    } else {
+      const double xv = x.a, wv = w.a;
+      double slope = 0.0;
+      T value;
+      if (h_function_ == HFunction::kExact && hapke::h_table_covers(xv, wv)) {
+        double dh_dgamma = 0.0;
+        const double gamma = std::sqrt(1.0 - wv);
+        value = T(hapke::h_table_evaluate_slopes(xv, gamma, &slope, &dh_dgamma));
+        value.v = (gamma > 0.0 ? -0.5 * dh_dgamma / gamma : 0.0) * w.v;
+      } else {
+        value = h_function(xv, w);
+        const double gamma = std::sqrt(std::fmax(0.0, 1.0 - wv));
+        if (h_function_ == HFunction::kHapke1981) {
+          const double den = 1.0 + 2.0 * xv * gamma;
+          slope = 2.0 * (1.0 - gamma) / (den * den);
+        } else if (h_function_ == HFunction::kHapke2002 && xv > 0.0) {
+          const double r0 = (1.0 - gamma) / (1.0 + gamma), log_term = std::log1p(1.0 / xv);
+          const double a = r0 + (1.0 - 2.0 * r0 * xv) * 0.5 * log_term;
+          const double h2 = value.a;
+          slope = h2 * h2 * wv * (a - r0 * xv * log_term - (1.0 - 2.0 * r0 * xv) / (2.0 * (1.0 + xv)));
+        }
+      }
+      value.v += slope * x.v;
+      return value;
+    }
+  }
+
   // Geometry-only terms, computed once per geometry (model.h, "prepared geometry").
   struct Prepared {
-    double mu0 = 0.0;         // cos(theta_i), >= 0
-    double mu = 0.0;          // cos(theta_r), >= 0
-    double cos_g = 1.0;       // cosine of the phase angle
-    double tan_half_g = 0.0;  // tan(g/2); +infinity at g = pi
-    double scale = 0.0;       // 1 / (4 pi (mu0 + mu)), the sum floored at kMinCosineSum; 0 if both grazing
+    double mu0 = 0.0;                // cos(theta_i), >= 0
+    double mu = 0.0;                 // cos(theta_r), >= 0
+    double cos_g = 1.0;              // cosine of the phase angle
+    double tan_half_g = 0.0;         // tan(g/2); +infinity at g = pi
+    double scale = 0.0;              // 1 / (4 pi (mu0 + mu)), the sum floored at kMinCosineSum; 0 if both grazing
+    hapke::RoughnessGeometry rough;  // roughness = hapke1984 only
   };
 
   Prepared prepare(const Geometry& g) const {
@@ -267,6 +415,7 @@ struct Hapke {
     q.tan_half_g = tan_half_phase_angle(g);
     const double inv_sum = 1.0 / std::fmax(q.mu0 + q.mu, kMinCosineSum);
     q.scale = g.grazing_i() && g.grazing_r() ? 0.0 : 0.25 * kInvPi * inv_sum;
+    if (roughness_) q.rough = hapke::roughness_geometry(g.wi, g.wr);
     return q;
   }
 
@@ -277,11 +426,26 @@ struct Hapke {
 
   template <typename T>
   T operator()(const T* p, const Prepared& g) const {
+    if (roughness_ && scalar_value(p[parameter_count_ - 1]) != 0.0) return rough_value(p, g);
     const T& w = p[kW];
     const T b = opposition(p[kB0], p[kH], g.tan_half_g);
     const T phase = phase_function(p, g.cos_g);
-    const T multiple = h_function(g.mu0, w) * h_function(g.mu, w) - 1.0;
+    const T multiple = multiple_scattering(p, g.mu0, g.mu, h_function(g.mu0, w), h_function(g.mu, w));
     return w * g.scale * ((1.0 + b) * phase + multiple);
+  }
+
+  // Roughness = hapke1984 at theta_bar > 0 (models/hapke_roughness.h): f = r_R/mu0 =
+  // (w/4pi) mu0e/(mu0e + mue) (S/mu0) {[1 + B(g)] p(g) + H(mu0e) H(mue) - 1}, 0 where both directions
+  // are grazing (grazing_zero).
+  template <typename T>
+  T rough_value(const T* p, const Prepared& g) const {
+    if (g.scale == 0.0) return T(0.0);
+    const T& w = p[kW];
+    const hapke::RoughCosines<T> c = hapke::rough_cosines(p[parameter_count_ - 1], g.rough);
+    const T b = opposition(p[kB0], p[kH], g.tan_half_g);
+    const T phase = phase_function(p, g.cos_g);
+    const T multiple = multiple_scattering(p, c.mu0e, c.mue, h_function_at(c.mu0e, w), h_function_at(c.mue, w));
+    return w * (0.25 * kInvPi) * (c.mu0e / (c.mu0e + c.mue)) * c.shadow_over_mu0 * ((1.0 + b) * phase + multiple);
   }
 
   // Terms shared by the geometries of one set (model.h, "shared terms"). H depends on the geometry
@@ -333,7 +497,7 @@ struct Hapke {
   FixedSets fix(const double* p, std::size_t n) const {
     FixedSets f;
     f.n_sets = n;
-    f.n_params = phase_ == Phase::kHenyeyGreenstein ? 4 : 5;
+    f.n_params = static_cast<std::size_t>(parameter_count_);
     f.params.assign(p, p + n * f.n_params);
     f.series.assign(n * hapke::kHTableSeriesSize, 0.0);
     std::vector<double> one(hapke::kHTableSeriesSize);
@@ -344,7 +508,8 @@ struct Hapke {
       f.h.push_back(q[kH]);
       f.p1.push_back(q[3]);
       f.p2.push_back(f.n_params > 4 ? q[4] : 0.0);
-      if (h_function_ != HFunction::kExact || !(q[kW] >= 0.0 && q[kW] <= 1.0)) {
+      // Roughness (H at effective cosines that depend on theta_bar) and AMSA: operator().
+      if (roughness_ || anisotropic_ || h_function_ != HFunction::kExact || !(q[kW] >= 0.0 && q[kW] <= 1.0)) {
         f.by_operator.push_back(s);
         continue;
       }
@@ -354,60 +519,7 @@ struct Hapke {
     return f;
   }
 
-  void evaluate_fixed(const FixedSets& f, const Geometry& geometry, double* out) const {
-    const Prepared q = prepare(geometry);
-    hapke::HTablePoint point_i, point_r;
-    const bool inside = h_function_ == HFunction::kExact && f.by_operator.size() < f.n_sets && q.mu0 > 0.0 &&
-                        q.mu > 0.0 && hapke::h_table_point(q.mu0, point_i) && hapke::h_table_point(q.mu, point_r);
-    if (!inside) {
-      for (std::size_t s = 0; s < f.n_sets; ++s) out[s] = (*this)(f.params.data() + s * f.n_params, q);
-      return;
-    }
-    constexpr std::size_t kChunk = 16;
-    const std::size_t n = f.n_sets;
-    const double* rows_i = f.series.data() + static_cast<std::size_t>(point_i.octave) * hapke::kHTableNodesX * n;
-    const double* rows_r = f.series.data() + static_cast<std::size_t>(point_r.octave) * hapke::kHTableNodesX * n;
-    for (std::size_t first = 0; first < n; first += kChunk) {
-      const std::size_t m = std::min(kChunk, n - first);
-      double h_i[kChunk] = {}, h_r[kChunk] = {}, phase[kChunk];
-      for (int a = 0; a < hapke::kHTableNodesX; ++a) {
-        const double* row_i = rows_i + a * n + first;
-        const double* row_r = rows_r + a * n + first;
-        const double t_i = point_i.tx[a], t_r = point_r.tx[a];
-        for (std::size_t s = 0; s < m; ++s) {
-          h_i[s] += row_i[s] * t_i;
-          h_r[s] += row_r[s] * t_r;
-        }
-      }
-      const double* p1 = f.p1.data() + first;
-      const double* p2 = f.p2.data() + first;
-      switch (phase_) {
-        case Phase::kLegendre:
-          for (std::size_t s = 0; s < m; ++s) phase[s] = legendre(p1[s], p2[s], q.cos_g);
-          break;
-        case Phase::kDoubleHenyeyGreenstein:
-          for (std::size_t s = 0; s < m; ++s) phase[s] = double_henyey_greenstein(p1[s], p2[s], q.cos_g);
-          break;
-        case Phase::kHenyeyGreenstein:
-          for (std::size_t s = 0; s < m; ++s) phase[s] = henyey_greenstein(p1[s], q.cos_g);
-          break;
-      }
-      const double* w = f.w.data() + first;
-      const double* b0 = f.b0.data() + first;
-      const double* h = f.h.data() + first;
-      double* o = out + first;
-      if (q.tan_half_g < std::numeric_limits<double>::infinity()) {
-        for (std::size_t s = 0; s < m; ++s) {
-          const double b = b0[s] * h[s] / (h[s] + q.tan_half_g);  // opposition(), written out to vectorise
-          o[s] = w[s] * q.scale * ((1.0 + b) * phase[s] + (h_i[s] * h_r[s] - 1.0));
-        }
-      } else {
-        for (std::size_t s = 0; s < m; ++s)
-          o[s] = w[s] * q.scale * (phase[s] + (h_i[s] * h_r[s] - 1.0));  // B = 0 at g = pi
-      }
-    }
-    for (std::size_t s : f.by_operator) out[s] = (*this)(f.params.data() + s * f.n_params, q);
-  }
+  void evaluate_fixed(const FixedSets& f, const Geometry& geometry, double* out) const;
 
   // Values (bit for bit those of operator()) and, if `jacobian` is not null, the analytic gradient
   // jacobian[n * parameter count + k] (see the definition below).
@@ -415,83 +527,16 @@ struct Hapke {
                        double* jacobian) const;
 
  private:
+  // evaluate_shared for roughness = hapke1984: the effective cosines depend on theta_bar, so H is not
+  // shared between geometries; values and gradient by ceres::Jet (the automatic derivative).
+  void evaluate_with_jets(const Prepared* g, std::size_t n, const double* p, double* values, double* jacobian) const;
+
   Phase phase_;
   HFunction h_function_;
+  int legendre_terms_;
+  bool roughness_;
+  bool anisotropic_;
+  int parameter_count_;
 };
-
-// Value and analytic gradient of f = w s {[1 + B] p + H(mu0) H(mu) - 1}, s = 1/(4 pi (mu0 + mu)),
-// B = b0 h/(h + t), t = tan(g/2):
-//   df/dw  = s {...} + w s [H'(mu0) H(mu) + H(mu0) H'(mu)]        (H' = dH/dw, per distinct cosine)
-//   df/db0 = w s p h/(h + t),   df/dh = w s p b0 t/(h + t)^2       (0 at g = pi, where B = 0)
-//   HG:       df/dxi = w s (1 + B) dp/dxi, dp/dxi = -[2 xi + 3 (1 - xi^2)(cos g + xi)/D] / D^1.5,
-//             D = 1 + 2 xi cos g + xi^2
-//   Legendre: df/db = w s (1 + B) cos g,   df/dc = w s (1 + B) (3 cos^2 g - 1)/2.
-//   hg2:      df/db = w s (1 + B) [-(1 + c)/2 HG'(-b) + (1 - c)/2 HG'(b)],
-//             df/dc = w s (1 + B) [HG(-b) - HG(b)]/2   (HG' = dp/dxi of the HG line).
-// The value is computed by the same expressions as operator() (same rounding, bit for bit); dH/dw is
-// that of the ceres::Jet path of h_function, so the gradient equals the automatic derivative to
-// rounding. Every gradient path of the model (single, batch, prepared) comes here, so they agree
-// with each other bit for bit.
-inline void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p,
-                                   double* values, double* jacobian) const {
-  using Jet1 = ceres::Jet<double, 1>;
-  const double w = p[kW], b0 = p[kB0], h = p[kH];
-  const std::size_t distinct = s.cosines.size();
-  std::vector<double> hv(jacobian != nullptr ? 2 * distinct : distinct);
-  for (std::size_t c = 0; c < distinct; ++c) {
-    const double x = s.cosines[c];
-    if (jacobian == nullptr) {
-      hv[c] = h_function(x, w);
-    } else if (h_function_ == HFunction::kExact && hapke::h_table_covers(x, w)) {
-      // One table evaluation gives H (the same value as without the derivative) and dH/dgamma.
-      double dh_dgamma = 0.0;
-      const double gamma = std::sqrt(1.0 - w);
-      hv[c] = hapke::h_table_evaluate(x, gamma, &dh_dgamma);
-      hv[distinct + c] = gamma > 0.0 ? -0.5 * dh_dgamma / gamma : 0.0;
-    } else {
-      hv[c] = h_function(x, w);
-      hv[distinct + c] = h_function(x, Jet1(w, 0)).v[0];
-    }
-  }
-  const std::size_t P = phase_ == Phase::kHenyeyGreenstein ? 4 : 5;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Prepared& q = g[k];
-    const double b = opposition(b0, h, q.tan_half_g);
-    const double phase = phase_function(p, q.cos_g);
-    const double h0 = hv[s.index_i[k]], h1 = hv[s.index_r[k]];
-    const double bracket = (1.0 + b) * phase + (h0 * h1 - 1.0);
-    values[k] = w * q.scale * bracket;
-    if (jacobian == nullptr) continue;
-    double* d = jacobian + k * P;
-    const double ws = w * q.scale;
-    const double dh0 = hv[distinct + s.index_i[k]], dh1 = hv[distinct + s.index_r[k]];
-    d[kW] = q.scale * bracket + ws * (dh0 * h1 + h0 * dh1);
-    if (q.tan_half_g < std::numeric_limits<double>::infinity()) {
-      const double denominator = h + q.tan_half_g;
-      d[kB0] = ws * phase * h / denominator;
-      d[kH] = ws * phase * b0 * q.tan_half_g / (denominator * denominator);
-    } else {
-      d[kB0] = 0.0;
-      d[kH] = 0.0;
-    }
-    const double forward = ws * (1.0 + b);
-    switch (phase_) {
-      case Phase::kLegendre:
-        d[kLegendreB] = forward * q.cos_g;
-        d[kLegendreC] = forward * (1.5 * q.cos_g * q.cos_g - 0.5);
-        break;
-      case Phase::kDoubleHenyeyGreenstein: {
-        const double width = p[kHg2B], c = p[kHg2C];
-        d[kHg2B] = forward * (-0.5 * (1.0 + c) * henyey_greenstein_derivative(-width, q.cos_g) +
-                              0.5 * (1.0 - c) * henyey_greenstein_derivative(width, q.cos_g));
-        d[kHg2C] = forward * 0.5 * (henyey_greenstein(-width, q.cos_g) - henyey_greenstein(width, q.cos_g));
-        break;
-      }
-      case Phase::kHenyeyGreenstein:
-        d[kXi] = forward * henyey_greenstein_derivative(p[kXi], q.cos_g);
-        break;
-    }
-  }
-}
 
 }  // namespace roadbrdf

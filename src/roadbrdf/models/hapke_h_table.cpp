@@ -151,4 +151,40 @@ double h_table_evaluate(double x, double gamma, double* dh_dgamma) {
   return value;
 }
 
+double h_table_evaluate_slopes(double x, double gamma, double* dh_dx, double* dh_dgamma) {
+  const double value = h_table_evaluate(x, gamma, dh_dgamma);
+  // dH/dt = sum_a sum_b c_ab T_a'(t) T_b(s), T_a' by differentiating the recurrence (as for s).
+  int e = 0;
+  const double m = std::frexp(x, &e);
+  int octave = -e;
+  double t = 2.0 * std::log2(m) + 1.0;
+  if (octave < 0) {  // x = 1
+    octave = 0;
+    t = 1.0;
+  }
+  const int panel = std::min(static_cast<int>(gamma * kHTableGammaPanels), kHTableGammaPanels - 1);
+  const double s = 2.0 * kHTableGammaPanels * gamma - (2.0 * panel + 1.0);
+  const double* c = h_table_block(octave, panel);
+  double tx[kHTableNodesX], dx[kHTableNodesX], tg[kHTableNodesG];
+  tx[0] = 1.0;
+  tx[1] = t;
+  dx[0] = 0.0;
+  dx[1] = 1.0;
+  for (int a = 2; a < kHTableNodesX; ++a) {
+    tx[a] = 2.0 * t * tx[a - 1] - tx[a - 2];
+    dx[a] = 2.0 * tx[a - 1] + 2.0 * t * dx[a - 1] - dx[a - 2];
+  }
+  tg[0] = 1.0;
+  tg[1] = s;
+  for (int b = 2; b < kHTableNodesG; ++b) tg[b] = 2.0 * s * tg[b - 1] - tg[b - 2];
+  double slope = 0.0;
+  for (int a = 1; a < kHTableNodesX; ++a) {
+    double row = 0.0;
+    for (int b = 0; b < kHTableNodesG; ++b) row += c[a * kHTableNodesG + b] * tg[b];
+    slope += row * dx[a];
+  }
+  if (dh_dx != nullptr) *dh_dx = slope * 2.0 / (x * std::log(2.0));
+  return value;
+}
+
 }  // namespace roadbrdf::hapke

@@ -45,6 +45,12 @@ const double* h_table_block(int octave, int gamma_panel);
 // derivative with respect to gamma. The value does not depend on whether the derivative is asked for.
 double h_table_evaluate(double x, double gamma, double* dh_dgamma);
 
+// The interpolant and its derivatives with respect to x and gamma (the model's roughness option
+// evaluates H at effective cosines that depend on a fitted parameter). Same value as
+// h_table_evaluate. dH/dx = (dH/dt) 2/(x ln 2), t = 2 log2(x 2^k) + 1: within 1e-6 relative of central
+// differences of h_exact for x >= 1e-3 and 1e-5 below (tests/models/hapke_h_table_test.cpp).
+double h_table_evaluate_slopes(double x, double gamma, double* dh_dx, double* dh_dgamma);
+
 // The table at one albedo, for callers that evaluate H at many x for a few fixed w (the path tracer:
 // one parameter set per wavelength for a whole render). With gamma fixed, the panel j and the
 // T_b(s) are fixed, so each block collapses to a one-variable Chebyshev series in t:
