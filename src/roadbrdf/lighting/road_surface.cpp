@@ -11,7 +11,7 @@
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/photometry/rtable_request.h"
@@ -97,7 +97,7 @@ RoadSurface make_surface(const SurfaceSpec& spec, Diagnostics& diagnostics) {
       return surface_from_table(std::move(table), description);
     }
     case SurfaceSpec::Kind::model_file:
-      return surface_from_model(mixing::read_spectral_model_file(spec.path, spec.selection), spec.path, diagnostics);
+      return surface_from_model(read_spectral_model_file(spec.path, spec.selection), spec.path, diagnostics);
     case SurfaceSpec::Kind::model:
       return surface_from_model(model_with_parameters(spec), spec.name, diagnostics);
   }

@@ -1,7 +1,12 @@
-#include "roadbrdf/io/model_source.h"
+#include "roadbrdf/modelfile/model_source.h"
+
+#include <memory>
+#include <utility>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/number.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
+#include "roadbrdf/modelfile/mix_file_read.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -67,6 +72,37 @@ SpectralModel spectral_model_from_assignments(const std::string& name, const std
     throw FieldError("parameters", e.what());
   }
   return SpectralModel(std::shared_ptr<const Model>(std::move(model)), std::move(p));
+}
+
+ResolvedModel read_model_file(const std::string& path, const std::string& selection) {
+  if (is_mix_file(path)) {
+    MixFileEntry mix = read_mix_file_entry(path, selection);
+    return {std::move(mix.model), "mix", std::move(mix.entry)};
+  }
+  FitFileEntry fit = read_fit_file_entry(path, selection);  // reports a file that is neither as a fit file
+  return {std::move(fit.model), "fit", std::move(fit.entry)};
+}
+
+SpectralModel read_spectral_model_file(const std::string& path, const std::string& selection) {
+  return read_model_file(path, selection).model;
+}
+
+ResolvedModel resolve_model(const std::string& source, const std::vector<std::string>& parameters,
+                            const std::vector<std::string>& options, const std::string& fit) {
+  if (source_kind(source) == "fit") {
+    if (!parameters.empty()) throw FieldError("parameters", "apply to a model, not to a fit file ('" + source + "')");
+    if (!options.empty()) throw FieldError("options", "apply to a model, not to a fit file ('" + source + "')");
+    return read_model_file(source, fit);
+  }
+  if (!fit.empty()) throw FieldError("fit", "selects a fit of a fit file; '" + source + "' is a model name");
+  SpectralModel model = spectral_model_from_assignments(source, parameters, options);
+  std::string name = model.model().name();
+  return {std::move(model), "model", std::move(name)};
+}
+
+SpectralModel spectral_model_of(const std::string& source, const std::vector<std::string>& parameters,
+                                const std::vector<std::string>& options, const std::string& fit) {
+  return resolve_model(source, parameters, options, fit).model;
 }
 
 SpectralModel spectral_model_of(const std::string& source, const std::vector<std::string>& parameters,
