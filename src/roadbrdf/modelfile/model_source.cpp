@@ -7,6 +7,7 @@
 #include "roadbrdf/core/number.h"
 #include "roadbrdf/modelfile/fit_file_read.h"
 #include "roadbrdf/modelfile/mix_file_read.h"
+#include "roadbrdf/modelfile/model_by_name.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -46,32 +47,37 @@ std::map<std::string, std::string> assignments(const std::vector<std::string>& i
   return out;
 }
 
-SpectralModel spectral_model_from_assignments(const std::string& name, const std::vector<std::string>& parameters,
-                                              const std::vector<std::string>& options) {
-  const std::map<std::string, std::string> option_map = assignments(options, "options");
+SpectralModel spectral_model_with(const std::string& name, const std::map<std::string, double>& parameters,
+                                  const OptionSet& options) {
   std::unique_ptr<Model> model;
   try {
-    model = make_model(name, OptionSet(option_map.begin(), option_map.end()));
+    model = make_model(name, options);
   } catch (const FieldError&) {
     throw;
   } catch (const InputError& e) {
     throw FieldError("options", e.what());
   }
-  std::map<std::string, double> values;
-  for (const auto& [key, text] : assignments(parameters, "parameters")) {
-    double v = 0.0;
-    if (!parse_finite_double(text, v)) throw FieldError("parameters", "'" + text + "' is not a finite number");
-    values[key] = v;
-  }
   std::vector<double> p;
   try {
-    p = parameters_from_assignments(model->description(), values);
+    p = parameters_from_assignments(model->description(), parameters);
   } catch (const FieldError&) {
     throw;
   } catch (const InputError& e) {
     throw FieldError("parameters", e.what());
   }
   return SpectralModel(std::shared_ptr<const Model>(std::move(model)), std::move(p));
+}
+
+SpectralModel spectral_model_from_assignments(const std::string& name, const std::vector<std::string>& parameters,
+                                              const std::vector<std::string>& options) {
+  const std::map<std::string, std::string> option_map = assignments(options, "options");
+  std::map<std::string, double> values;
+  for (const auto& [key, text] : assignments(parameters, "parameters")) {
+    double v = 0.0;
+    if (!parse_finite_double(text, v)) throw FieldError("parameters", "'" + text + "' is not a finite number");
+    values[key] = v;
+  }
+  return spectral_model_with(name, values, OptionSet(option_map.begin(), option_map.end()));
 }
 
 ResolvedModel read_model_file(const std::string& path, const std::string& selection) {
