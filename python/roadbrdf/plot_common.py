@@ -17,6 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
 from .core import read_json_file, write_atomic  # noqa: E402
+from . import _roadbrdf  # noqa: E402
 
 __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
 
@@ -152,14 +153,10 @@ def model_file(path, member=None):
     """A fit file or MIX.json: (SpectralModel, label, kind) with kind "fit" or "mix"; ``member``: the
     fit (model name) or mixing method, default the file's best."""
     path = os.fspath(path)
-    content = read_json_file(path)
-    kind = "mix" if content.get("format") == "roadbrdf-mix" else "fit"
-    chosen = member or content.get("best")
-    if not chosen and kind == "mix" and content.get("methods"):
-        chosen = content["methods"][0]["method"]
-    spectral = read_fit(path, member)
-    what = f"{chosen} mixing prediction" if kind == "mix" else f"{chosen or spectral.model.name} fit"
-    return spectral, f"{stem(path)} ({what})", kind
+    # The library's one resolver says which entry it chose (the file's best by default).
+    spectral, kind, chosen = _roadbrdf.resolve_model(path, fit=member or "")
+    what = f"{chosen} mixing prediction" if kind == "mix" else f"{chosen} fit"
+    return SpectralModel(spectral), f"{stem(path)} ({what})", kind
 
 
 def model_name(model) -> str:

@@ -288,7 +288,7 @@ def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Se
                   wavelengths: Wavelengths = None, white_sky_nodes: int = 8, samples: Optional[int] = None,
                   target_error: Optional[float] = None, max_samples: int = 1 << 20, acceptance_deg: float = 1.0,
                   sampling: str = "brdf", seed: int = 1, threads: int = 0, max_bounces: int = 0,
-                  error_floor: float = 1e-5) -> dict:
+                  error_floor: float = 1e-5, output: Optional[PathLike] = None) -> dict:
     """Albedo of a virtual sample, as ``roadbrdf render SURFACE --albedo`` computes it: black-sky
     (directional-hemispherical reflectance) at the sun zenith angles [deg, 0 <= theta < 90] and white-sky by a
     ``white_sky_nodes``-point Gauss-Legendre rule in cos(theta) (0 = none). Same sampling options as
@@ -297,14 +297,17 @@ def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Se
     Returns a dict: ``wavelengths`` [nm], ``sun_zenith`` [deg], ``black_sky`` and ``black_sky_error``
     [angle, wavelength], ``white_sky`` and ``white_sky_error`` [wavelength] (None when white_sky_nodes = 0),
     dimensionless, errors = Monte Carlo standard errors; ``white_sky_nodes``, ``paths`` (total) and
-    ``converged`` (per black-sky angle, then per white-sky node).
+    ``converged`` (per black-sky angle, then per white-sky node). ``output``: also write the albedo table
+    (CSV) the command writes with ``-o``.
     """
     s = _as_surface(surface)
+    name = os.fspath(surface) if _is_path(surface) else s.name
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
     r = _roadbrdf.render_surface_albedo(s._field, zeniths, _wavelength_list(wavelengths),
                                         as_int(white_sky_nodes, "white_sky_nodes"),
                                         *_render_options(samples, target_error, max_samples, error_floor,
-                                                         acceptance_deg, sampling, seed, threads, max_bounces))
+                                                         acceptance_deg, sampling, seed, threads, max_bounces),
+                                        "" if output is None else as_text(output, "output"), name)
     m = len(r["wavelengths"])
     out = {"wavelengths": np.asarray(r["wavelengths"], dtype=float),
            "sun_zenith": np.asarray(r["sun_zenith"], dtype=float),

@@ -31,7 +31,7 @@ void bind_marking(pybind11::module_& m) {
       [](const py::args& args, const py::kwargs& kwargs) {
         const auto request = request_from_arguments<ExportRequest>(args, kwargs);
         check_request_files(request);
-        const ExportResult result = export_model(request, mixing::read_spectral_model_file);
+        const ExportResult result = export_model(request);
         return python_result(result.to_json(), result.diagnostics, result.summary_text());
       },
       request_docstring<ExportRequest>(

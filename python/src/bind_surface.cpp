@@ -265,31 +265,34 @@ void bind_surface(py::module_& m) {
         });
 
   // `roadbrdf render SURFACE --albedo`.
-  m.def("render_surface_albedo", [](const Field& f, const std::vector<double>& sun_zenith,
-                                    const std::vector<double>& wavelengths, int white_sky_nodes,
-                                    std::optional<long> samples, std::optional<double> target_error, long max_samples,
-                                    double error_floor, double acceptance_deg, const std::string& sampling,
-                                    std::uint64_t seed, int threads, int max_bounces) {
-    const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor, acceptance_deg,
-                                                      sampling, seed, threads, max_bounces, white_sky_nodes);
-    surface::VirtualAlbedo r;
-    {
-      SigintGuard interruptible;
-      py::gil_scoped_release release;
-      r = surface::render_albedo(f, sun_zenith, wavelengths_or_default(f, wavelengths), s, white_sky_nodes);
-    }
-    py::dict out;
-    out["wavelengths"] = r.wavelengths;
-    out["sun_zenith"] = r.sun_zenith_deg;
-    out["black_sky"] = r.black_sky;
-    out["black_sky_error"] = r.black_sky_error;
-    out["white_sky"] = r.white_sky;
-    out["white_sky_error"] = r.white_sky_error;
-    out["white_sky_nodes"] = r.white_sky_nodes;
-    out["paths"] = r.paths;
-    out["converged"] = r.converged;
-    return out;
-  });
+  m.def("render_surface_albedo",
+        [](const Field& f, const std::vector<double>& sun_zenith, const std::vector<double>& wavelengths,
+           int white_sky_nodes, std::optional<long> samples, std::optional<double> target_error, long max_samples,
+           double error_floor, double acceptance_deg, const std::string& sampling, std::uint64_t seed, int threads,
+           int max_bounces, const std::string& output, const std::string& surface_name) {
+          const surface::RenderSettings s =
+              render_settings(samples, target_error, max_samples, error_floor, acceptance_deg, sampling, seed, threads,
+                              max_bounces, white_sky_nodes);
+          surface::VirtualAlbedo r;
+          {
+            SigintGuard interruptible;
+            py::gil_scoped_release release;
+            r = surface::render_albedo(f, sun_zenith, wavelengths_or_default(f, wavelengths), s, white_sky_nodes);
+          }
+          // The albedo table the command writes (`output`; "" = none).
+          if (!output.empty()) surface::write_virtual_albedo(output, r, surface_name);
+          py::dict out;
+          out["wavelengths"] = r.wavelengths;
+          out["sun_zenith"] = r.sun_zenith_deg;
+          out["black_sky"] = r.black_sky;
+          out["black_sky_error"] = r.black_sky_error;
+          out["white_sky"] = r.white_sky;
+          out["white_sky_error"] = r.white_sky_error;
+          out["white_sky_nodes"] = r.white_sky_nodes;
+          out["paths"] = r.paths;
+          out["converged"] = r.converged;
+          return out;
+        });
 }
 
 }  // namespace roadbrdf::python

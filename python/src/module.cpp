@@ -20,6 +20,7 @@
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/manifest.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/models/description_json.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
@@ -188,6 +189,17 @@ PYBIND11_MODULE(_roadbrdf, m) {
       .def("evaluate_flat", &evaluate_spectral_flat);
   m.def("read_fit_file", &read_fit_file, py::arg("path"), py::arg("model") = "");
   m.def("parse_fit_file", &parse_fit_file, py::arg("json_text"), py::arg("name"), py::arg("model") = "");
+  // The one resolver of a model argument (modelfile/model_source.h): (SpectralModel, kind, entry),
+  // kind "fit", "mix" or "model", entry the fit or mixing method chosen or the model's name.
+  m.def(
+      "resolve_model",
+      [](const std::string& source, const std::vector<std::string>& parameters, const std::vector<std::string>& options,
+         const std::string& fit) {
+        ResolvedModel resolved = resolve_model(source, parameters, options, fit);
+        return py::make_tuple(std::move(resolved.model), resolved.kind, resolved.entry);
+      },
+      py::arg("source"), py::arg("parameters") = std::vector<std::string>{},
+      py::arg("options") = std::vector<std::string>{}, py::arg("fit") = "");
   // A plain model with one parameter set, as the wavelength-independent spectral model the
   // command line makes of `MODEL -p ...`.
   m.def(

@@ -22,7 +22,7 @@
 #include "roadbrdf/lighting/installation.h"
 #include "roadbrdf/lighting/luminaire.h"
 #include "roadbrdf/mixing/mixing.h"
-#include "roadbrdf/mixing/mixture_model.h"
+#include "roadbrdf/models/mixture_model.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/surface/render.h"

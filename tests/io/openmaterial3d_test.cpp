@@ -140,8 +140,6 @@ TEST(OpenMaterial3d, RandomUuidIsVersion4) {
   EXPECT_NE(a, b);
 }
 
-SpectralModel no_fit_files(const std::string&, const std::string&) { throw InputError("no fit file here"); }
-
 // A Lambertian model exported on a grid: every value rho/pi, in all three formats.
 TEST(ModelExport, LambertGridInEveryFormat) {
   ExportRequest r;
@@ -152,7 +150,7 @@ TEST(ModelExport, LambertGridInEveryFormat) {
   r.theta_r = {0.0, 60.0};
   r.phi = {0.0, 90.0, 180.0};
   r.output = test::scratch_path("lambert_brdf.xompt");
-  const ExportResult result = export_model(r, no_fit_files);
+  const ExportResult result = export_model(r);
   EXPECT_EQ(result.sources, "simulation");
   EXPECT_EQ(result.metadata["typicalSensorTechnology"], "lidar");
   const SpectralDataset back = read(r.output);
@@ -162,20 +160,20 @@ TEST(ModelExport, LambertGridInEveryFormat) {
 
   r.format = "csv";
   r.output = test::scratch_path("lambert_grid.csv");
-  export_model(r, no_fit_files);
+  export_model(r);
   EXPECT_EQ(read(r.output).brdf, back.brdf);
 
   r.format = "alta";
   r.output = test::scratch_path("lambert_grid.alta");
   try {
-    export_model(r, no_fit_files);
+    export_model(r);
     FAIL() << "two wavelengths in ALTA";
   } catch (const FieldError& e) {
     EXPECT_EQ(e.field(), "wavelengths");
   }
   r.preset = "none";
   r.wavelengths = {905.0};
-  export_model(r, no_fit_files);
+  export_model(r);
   AltaReadOptions ao;
   ao.wavelength_nm = 905.0;
   const SpectralDataset alta = read_alta(r.output, ao);
@@ -191,7 +189,7 @@ TEST(ModelExport, CameraPresetIs380To780By10) {
   r.theta_r = {30.0};
   r.phi = {0.0};
   r.output = test::scratch_path("camera_brdf.xompt");
-  const ExportResult result = export_model(r, no_fit_files);
+  const ExportResult result = export_model(r);
   ASSERT_EQ(result.wavelengths.size(), 41u);
   EXPECT_EQ(result.wavelengths.front(), 380.0);
   EXPECT_EQ(result.wavelengths.back(), 780.0);

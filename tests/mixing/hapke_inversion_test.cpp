@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "mixing_test_util.h"
-#include "roadbrdf/mixing/hapke_imsa.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "mixing_test_util.h"
 #include "roadbrdf/core/random.h"
-#include "roadbrdf/mixing/hapke_imsa.h"
+#include "roadbrdf/models/hapke_imsa.h"
 #include "roadbrdf/models/model.h"
 
 namespace {

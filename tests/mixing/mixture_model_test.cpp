@@ -8,7 +8,7 @@
 #include "mixing_test_util.h"
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/mixing/mix_file.h"
-#include "roadbrdf/mixing/mixture_model.h"
+#include "roadbrdf/models/mixture_model.h"
 
 namespace {
 

@@ -83,7 +83,7 @@ def test_fit_member_is_chosen_with_fit_everywhere(cli, root, tmp_path):
         message = _cli_error(cli, *command, "--fit-model", "lambert")
         assert message.startswith("--fit-model: renamed: use --fit NAME"), message
     message = _cli_error(cli, "albedo", "lambert", "--fit", "lambert")
-    assert "--fit selects a fit of a fit file" in message
+    assert "--fit: selects a fit of a fit file" in message
     grid = root / "data/examples/grid/cerema-like-grid.csv"
     cli("simulate", fit, "--fit", "oren-nayar", "--grid", grid, "-o", tmp_path / "s.csv")
     message = _cli_error(cli, "simulate", fit, "--fit", "no-such", "--grid", grid, "-o", tmp_path / "s.csv")

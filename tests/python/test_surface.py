@@ -135,7 +135,12 @@ def test_render_albedo_equals_cli(cli, rough, tmp_path):
     rows = [line.split(",") for line in out.read_text().splitlines() if not line.startswith("#")]
     header, values = rows[0], dict(zip(rows[0], map(float, rows[1])))
     assert header[:3] == ["wavelength_nm", "white_sky", "white_sky_error"]
-    a = roadbrdf.render_albedo(rough, [20, 60], wavelengths=[500, 600], white_sky_nodes=3, samples=1024)
+    written = tmp_path / "python-albedo.csv"
+    a = roadbrdf.render_albedo(rough, [20, 60], wavelengths=[500, 600], white_sky_nodes=3, samples=1024,
+                               output=written)
+    # Both write the table by the library's one writer: the same lines below the comment naming the sample.
+    assert written.read_text().splitlines()[1:] == out.read_text().splitlines()[1:]
+    assert written.read_text().startswith("# virtual albedo of ")
     # The CLI prints 8 decimals (values) and 3 significant digits (errors).
     assert a["white_sky"][0] == pytest.approx(values["white_sky"], abs=6e-9)
     assert a["black_sky"][0, 0] == pytest.approx(values["black_sky_20deg"], abs=6e-9)

@@ -10,7 +10,6 @@
 #include "roadbrdf/cli/request_options.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/io/model_export.h"
-#include "roadbrdf/mixing/mix_file.h"
 
 namespace roadbrdf::cli {
 
@@ -25,7 +24,7 @@ void run(const ExportArgs& a) {
   ExportResult result;
   run_request<ExportRequest>([&] {
     check_request_files(a.request);
-    result = export_model(a.request, mixing::read_spectral_model_file);
+    result = export_model(a.request);
   });
   print_diagnostics<ExportRequest>(result.diagnostics);
   // The summary goes to standard error when the table went to standard output.

@@ -22,8 +22,8 @@
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/length.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/core/number.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -62,21 +62,6 @@ struct SurfaceArgs {
   bool quiet = false;
 };
 
-double parse_length_mm(const std::string& text) {
-  std::string t = text;
-  double scale = 1.0;
-  if (t.size() > 2 && t.substr(t.size() - 2) == "mm") {
-    t = t.substr(0, t.size() - 2);
-  } else if (t.size() > 2 && t.substr(t.size() - 2) == "cm") {
-    t = t.substr(0, t.size() - 2);
-    scale = 10.0;
-  }
-  double v = 0.0;
-  if (!parse_finite_double(t, v) || !(v > 0.0))
-    throw InputError("--size: expected a length such as 60mm, got '" + text + "'");
-  return v * scale;
-}
-
 // The material argument: a fit file or a model name with -p/--option (checked by the library).
 surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
   const std::map<std::string, double> parameters = parse_numeric_assignments(a.parameter_items, "-p");
@@ -113,7 +98,7 @@ void run_surface(const SurfaceArgs& a) {
   request.cell_mm = a.cell;
   request.seed = a.seed;
   // A size given for a validation surface is refused by validate(), whatever its text.
-  if (!a.size.empty()) request.size_mm = request.kind == Kind::formulation ? parse_length_mm(a.size) : 0.0;
+  if (!a.size.empty()) request.size_mm = request.kind == Kind::formulation ? parse_length_mm(a.size, "size_mm") : 0.0;
   request.matrix_level = a.matrix_level;
   request.target_mpd = a.target_mpd;
   request.mastic_fraction = a.mastic_fraction;
@@ -281,24 +266,7 @@ void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
   settings.progress = bar.callback();
   const surface::VirtualAlbedo r = surface::render_albedo(field, zeniths, wavelengths, settings, a.white_sky_nodes);
   bar.finish();
-  AtomicFile file(a.output);
-  std::ostream& out = file.stream();
-  out << "# virtual albedo of " << a.surface << " (roadbrdf render --albedo); dimensionless reflectances, "
-      << "Monte Carlo standard errors; sun azimuth 0 in the sample frame";
-  if (r.white_sky_nodes > 0) out << "; white-sky by " << r.white_sky_nodes << "-point Gauss-Legendre in cos(theta)";
-  out << "\nwavelength_nm";
-  if (r.white_sky_nodes > 0) out << ",white_sky,white_sky_error";
-  for (double z : zeniths) out << fmt::format(",black_sky_{:g}deg,black_sky_error_{:g}deg", z, z);
-  out << "\n";
-  for (std::size_t w = 0; w < wavelengths.size(); ++w) {
-    out << fmt::format("{:g}", wavelengths[w]);
-    if (r.white_sky_nodes > 0) out << fmt::format(",{:.8f},{:.2e}", r.white_sky[w], r.white_sky_error[w]);
-    for (std::size_t k = 0; k < zeniths.size(); ++k) {
-      out << fmt::format(",{:.8f},{:.2e}", r.black_sky[k][w], r.black_sky_error[k][w]);
-    }
-    out << "\n";
-  }
-  file.commit();
+  surface::write_virtual_albedo(a.output, r, a.surface);
   std::size_t missed = 0;
   for (bool c : r.converged) missed += c ? 0 : 1;
   fmt::print(report, "rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n",

@@ -12,9 +12,8 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/number.h"
-#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
-#include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf::cli {
@@ -66,15 +65,7 @@ SpectralModel spectral_model_from_command_line(const std::string& argument,
                                                const std::vector<std::string>& parameter_items,
                                                const std::vector<std::string>& option_items,
                                                const std::string& fit_model) {
-  if (is_fit_file_argument(argument)) {
-    if (!parameter_items.empty() || !option_items.empty()) {
-      throw InputError("-p/--option cannot be combined with a fit file ('" + argument + "')");
-    }
-    return mixing::read_spectral_model_file(argument, fit_model);  // a fit file or a MIX.json
-  }
-  if (!fit_model.empty()) throw InputError("--fit selects a fit of a fit file; '" + argument + "' is a model name");
-  ModelWithParameters m = model_from_command_line(argument, parameter_items, option_items);
-  return SpectralModel(std::shared_ptr<const Model>(std::move(m.model)), std::move(m.parameters));
+  return resolve_model(argument, parameter_items, option_items, fit_model).model;
 }
 
 void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,

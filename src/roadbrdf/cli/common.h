@@ -28,10 +28,9 @@ struct ModelWithParameters {
 ModelWithParameters model_from_command_line(const std::string& name, const std::vector<std::string>& parameter_items,
                                             const std::vector<std::string>& option_items);
 
-// A model or a fit file, as accepted by every command that takes "MODEL -p ... | FIT.json":
-// an argument ending in ".json" is a fit file or a MIX.json (then -p/--option are refused), else a
-// model name.
-// `fit_model` selects a fit inside the file (default: the best-ranked one).
+// A model or a fit file, as accepted by every command that takes "MODEL -p ... | FIT.json": the
+// library's one resolver (modelfile/model_source.h resolve_model); `fit_model` selects a fit or a
+// mixing method inside the file (default: the file's best).
 SpectralModel spectral_model_from_command_line(const std::string& argument,
                                                const std::vector<std::string>& parameter_items,
                                                const std::vector<std::string>& option_items,

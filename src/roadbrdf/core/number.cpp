@@ -1,8 +1,11 @@
 #include "roadbrdf/core/number.h"
+#include "roadbrdf/core/length.h"
 
 #include <charconv>
 #include <cmath>
 #include <system_error>
+
+#include "roadbrdf/core/error.h"
 
 namespace roadbrdf {
 
@@ -35,6 +38,22 @@ bool is_number_text(std::string_view text) {
   bool whole = false;
   const std::errc ec = read_double(text, value, whole);
   return whole && (ec == std::errc() || ec == std::errc::result_out_of_range);
+}
+
+double parse_length_mm(const std::string& text, const std::string& field) {
+  std::string_view number = text;
+  double scale = 1.0;  // millimetres per unit
+  if (number.size() > 2 && number.substr(number.size() - 2) == "mm") {
+    number.remove_suffix(2);
+  } else if (number.size() > 2 && number.substr(number.size() - 2) == "cm") {
+    number.remove_suffix(2);
+    scale = 10.0;
+  }
+  double value = 0.0;
+  if (!parse_finite_double(number, value) || !(value > 0.0)) {
+    throw FieldError(field, "expected a length such as 60mm, got '" + text + "'");
+  }
+  return value * scale;
 }
 
 }  // namespace roadbrdf

@@ -1,6 +1,6 @@
 // Fit files (JSON) and residual tables written by `roadbrdf fit`.
 //
-// The fit file (read back as a model by read_fit_file):
+// The fit file (read back as a model by modelfile/fit_file_read.h read_fit_file):
 // {
 //   "format": "roadbrdf-fit", "version": 1 (2 when grouped: "group_by" [columns] at the top level,
 //   and each fit has "group" {column: deg}),
@@ -34,39 +34,11 @@
 #include <utility>
 #include <vector>
 
-#include "roadbrdf/core/input_file.h"
-#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/modelfile/fit_file_read.h"  // the reader of this format
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf {
-
-// Which fit of a fit file (`--fit`): comma-separated items, a model name and COLUMN=DEGREES for the
-// columns the file is grouped by ("oren-nayar,theta_i=40", "theta_i=40"). No model: the file's best.
-struct FitSelector {
-  std::string model;
-  std::vector<std::pair<std::string, double>> group;
-};
-// Throws FieldError("fit", ...).
-FitSelector parse_fit_selector(const std::string& text);
-
-// A fit file as a spectral model: the fit chosen by `selection` (parse_fit_selector; default: the
-// file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
-// InputError (FieldError "fit" for a selection matching no fit or several).
-SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
-// What a fit file (or a mix file, read as a model the same way) may be: at most 256 MiB (a fit of a
-// few models at a few thousand wavelengths with covariances takes a few MB).
-InputLimits fit_file_limits();
-// The same from a fit file's content held in memory (Python: a fit file as a dict): `name` stands
-// for the file in error messages, which name the JSON key as for a file.
-SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection = "");
-
-// The parameter covariance per wavelength (SpectralModel::parameter_covariance) of a fit object of a
-// fit file, or of a method of a MIX.json (the same keys), from its "stderr" {name: [per wavelength]}
-// and "correlation" [per wavelength: p x p]: cov_ab = r_ab s_a s_b, 0 for a parameter in "fixed", NaN
-// where either is null (undefined). Empty when the object has neither, or orders its parameters
-// ("parameter_order") otherwise than `description`. `m` wavelengths. Throws FileError at a bad shape.
-std::vector<double> read_parameter_covariance(const JsonNode& fit, const ModelDescription& description, std::size_t m);
 
 // The SpectralModel of a fit held in memory, the same as read_fit_file gives for it from the file:
 // parameters per wavelength, the data's angular coverage and the parameter covariance per wavelength
@@ -74,9 +46,6 @@ std::vector<double> read_parameter_covariance(const JsonNode& fit, const ModelDe
 // uncertainties of a Python FitResult equal those of its fit file. `model` is the fitted model
 // (FitResult holds its name and options only).
 SpectralModel spectral_model_of(const FitResult& fit, std::shared_ptr<const Model> model);
-
-// True if `argument` names a fit file rather than a model (ends in ".json").
-bool is_fit_file_argument(const std::string& argument);
 
 nlohmann::json fit_to_json(const FitResult& fit);
 

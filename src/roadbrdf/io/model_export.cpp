@@ -179,11 +179,10 @@ SpectralDataset export_grid(const ExportRequest& request, const SpectralModel& m
   return d;
 }
 
-ExportResult export_model(const ExportRequest& request, const SpectralModelFileReader& read_model_file) {
+ExportResult export_model(const ExportRequest& request) {
   request.validate();
   ExportResult result;
-  const SpectralModel model =
-      spectral_model_of(request.source, request.parameters, request.options, request.fit, read_model_file);
+  const SpectralModel model = spectral_model_of(request.source, request.parameters, request.options, request.fit);
   SpectralDataset d = export_grid(request, model, result.diagnostics);
   const bool fitted = source_kind(request.source) == "fit" && model.coverage().has_value();
   result.model = model.model().name();

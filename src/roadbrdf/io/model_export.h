@@ -20,7 +20,7 @@
 #include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/request_fields.h"
 #include "roadbrdf/io/dataset.h"
-#include "roadbrdf/io/model_source.h"
+#include "roadbrdf/modelfile/model_source.h"
 
 namespace roadbrdf {
 
@@ -89,7 +89,7 @@ struct ExportResult {
 // phi_i = 0). Throws FieldError.
 SpectralDataset export_grid(const ExportRequest& request, const SpectralModel& model, Diagnostics& diagnostics);
 
-// Validates, resolves the source (fit files through `read_model_file`), tabulates and writes.
-ExportResult export_model(const ExportRequest& request, const SpectralModelFileReader& read_model_file);
+// Validates, resolves the source (modelfile/model_source.h resolve_model), tabulates and writes.
+ExportResult export_model(const ExportRequest& request);
 
 }  // namespace roadbrdf

@@ -150,6 +150,8 @@ SurfaceSpec surface_from_json(const JsonNode& node, const std::string& base_dir)
     if (const auto o = node.find("options")) spec.options = o->string_map();
     try {
       model_with_parameters(spec);  // the model, its options and parameters, located here
+    } catch (const FieldError& e) {
+      node.fail(e.detail());
     } catch (const InputError& e) {
       node.fail(e.what());
     }

@@ -5,13 +5,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <memory>
 
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/data_path.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/modelfile/model_by_name.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/photometry/rtable_request.h"
@@ -33,16 +35,8 @@ void scale_table(photometry::RTable& table, double q0_wanted) {
 }  // namespace
 
 SpectralModel model_with_parameters(const SurfaceSpec& spec) {
-  std::shared_ptr<const Model> model(make_model(spec.name, spec.options));
-  const ModelDescription& description = model->description();
-  std::vector<double> parameters = description.default_parameters();
-  for (const auto& [name, value] : spec.parameters) {
-    const auto index = description.parameter_index(name);
-    if (!index) throw InputError("model '" + spec.name + "' has no parameter '" + name + "'");
-    parameters[*index] = value;
-  }
-  check_parameters(description, parameters);
-  return SpectralModel(model, parameters);
+  const std::map<std::string, double> parameters(spec.parameters.begin(), spec.parameters.end());
+  return spectral_model_with(spec.name, parameters, spec.options);
 }
 
 std::vector<double> RoadSurface::brdf(const std::vector<Geometry>& geometries) const {
@@ -98,7 +92,7 @@ RoadSurface make_surface(const SurfaceSpec& spec, Diagnostics& diagnostics) {
       return surface_from_table(std::move(table), description);
     }
     case SurfaceSpec::Kind::model_file:
-      return surface_from_model(mixing::read_spectral_model_file(spec.path, spec.selection), spec.path, diagnostics);
+      return surface_from_model(read_spectral_model_file(spec.path, spec.selection), spec.path, diagnostics);
     case SurfaceSpec::Kind::model:
       return surface_from_model(model_with_parameters(spec), spec.name, diagnostics);
   }

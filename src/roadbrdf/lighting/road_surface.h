@@ -49,7 +49,7 @@ struct RoadSurface {
 // r-table computation (extrapolation, weighting) go to `diagnostics`. Throws InputError / FileError.
 RoadSurface make_surface(const SurfaceSpec& spec, Diagnostics& diagnostics);
 // The model of a SurfaceSpec::Kind::model with its parameters (the others at their defaults),
-// checked against the model's bounds. Throws InputError.
+// checked against the model's bounds. Throws FieldError (`options`, `parameters`).
 SpectralModel model_with_parameters(const SurfaceSpec& spec);
 // A surface from a BRDF: its r-table computed as `roadbrdf rtable` does (photometric, CIE A).
 RoadSurface surface_from_model(const SpectralModel& model, std::string description, Diagnostics& diagnostics);

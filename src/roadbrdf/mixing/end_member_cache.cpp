@@ -6,7 +6,7 @@
 #include <system_error>
 
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
 
 namespace roadbrdf::mixing {
 

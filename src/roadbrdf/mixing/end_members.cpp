@@ -2,8 +2,8 @@
 #include <filesystem>
 
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
 
 namespace roadbrdf::mixing {
 

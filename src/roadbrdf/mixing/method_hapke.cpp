@@ -5,9 +5,9 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/mixing/calibration.h"
-#include "roadbrdf/mixing/hapke_imsa.h"
 #include "roadbrdf/mixing/method_support.h"
 #include "roadbrdf/mixing/method_table.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 namespace roadbrdf::mixing {
 

@@ -1,4 +1,4 @@
-// MIX.json: what `roadbrdf mix` writes, and how a mixture is read back as a SpectralModel.
+// MIX.json: what `roadbrdf mix` writes (read back as a SpectralModel by modelfile/mix_file_read.h).
 //
 // {
 //   "format": "roadbrdf-mix", "version": 1,
@@ -38,6 +38,8 @@
 #include <vector>
 
 #include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/modelfile/mix_file_read.h"
+#include "roadbrdf/modelfile/model_source.h"
 
 namespace roadbrdf::mixing {
 
@@ -55,16 +57,10 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content);
 // Write atomically. Throws InputError / FileError.
 void write_mix_file(const std::string& path, const MixFileContent& content);
 
-// Read one method of a MIX.json as a spectral model ("" = the file's "best", else its first method).
-// End-member models are rebuilt with make_model(model, options). Throws FileError.
-SpectralModel read_mix_file(const std::string& path, const std::string& method = "");
-
-// True when a JSON file is a MIX.json ("format": "roadbrdf-mix").
-bool is_mix_file(const std::string& path);
-
-// A fit file or a MIX.json as a spectral model: `selection` names the fit's model (fit file) or the
-// method (mix file); "" = the file's best. The one call a command needs to accept mixtures wherever
-// it accepts FIT.json (e.g. in cli/common.cpp spectral_model_from_command_line).
-SpectralModel read_spectral_model_file(const std::string& path, const std::string& selection = "");
+// The readers of this format and of fit files (the modelfile layer, below every consumer of a model),
+// by their names in this namespace.
+using ::roadbrdf::is_mix_file;
+using ::roadbrdf::read_mix_file;
+using ::roadbrdf::read_spectral_model_file;
 
 }  // namespace roadbrdf::mixing

@@ -63,13 +63,13 @@
 
 #include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/progress.h"
-#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/mixing/albedo_cache.h"
-#include "roadbrdf/mixing/mixture_model.h"
 #include "roadbrdf/mixing/nnls.h"
 #include "roadbrdf/mixing/spectral_evaluation.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
+#include "roadbrdf/models/mixture_model.h"
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::mixing {

@@ -1,8 +1,8 @@
 // White-sky albedo of a mixing result from its end-members' albedos (mixing.h mixture_white_sky_albedo).
 #include <algorithm>
 
-#include "roadbrdf/mixing/hapke_imsa.h"
 #include "roadbrdf/mixing/mixing.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 namespace roadbrdf::mixing {
 

@@ -6,7 +6,7 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/propagation.h"
-#include "roadbrdf/mixing/hapke_imsa.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 namespace roadbrdf::mixing {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "roadbrdf/mixing/hapke_imsa.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 namespace roadbrdf::mixing {
 

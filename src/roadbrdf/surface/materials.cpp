@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/fitting/fit_file.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 

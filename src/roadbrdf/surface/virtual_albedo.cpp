@@ -1,9 +1,12 @@
 #include "roadbrdf/surface/virtual_albedo.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/progress.h"
@@ -66,6 +69,28 @@ VirtualAlbedo render_albedo(const HeightField& field, const std::vector<double>&
   }
   progress.finish();
   return out;
+}
+
+void write_virtual_albedo(const std::string& path, const VirtualAlbedo& albedo, const std::string& surface_name) {
+  const bool white_sky = albedo.white_sky_nodes > 0;
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  out << "# virtual albedo of " << surface_name << " (virtual gonioreflectometer); dimensionless reflectances, "
+      << "Monte Carlo standard errors; sun azimuth 0 in the sample frame";
+  if (white_sky) out << "; white-sky by " << albedo.white_sky_nodes << "-point Gauss-Legendre in cos(theta)";
+  out << "\nwavelength_nm";
+  if (white_sky) out << ",white_sky,white_sky_error";
+  for (double z : albedo.sun_zenith_deg) out << fmt::format(",black_sky_{:g}deg,black_sky_error_{:g}deg", z, z);
+  out << "\n";
+  for (std::size_t w = 0; w < albedo.wavelengths.size(); ++w) {
+    out << fmt::format("{:g}", albedo.wavelengths[w]);
+    if (white_sky) out << fmt::format(",{:.8f},{:.2e}", albedo.white_sky[w], albedo.white_sky_error[w]);
+    for (std::size_t k = 0; k < albedo.sun_zenith_deg.size(); ++k) {
+      out << fmt::format(",{:.8f},{:.2e}", albedo.black_sky[k][w], albedo.black_sky_error[k][w]);
+    }
+    out << "\n";
+  }
+  file.commit();
 }
 
 }  // namespace roadbrdf::surface

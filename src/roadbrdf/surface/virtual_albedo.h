@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "roadbrdf/surface/height_field.h"
@@ -41,5 +42,11 @@ struct VirtualAlbedo {
 VirtualAlbedo render_albedo(const HeightField& field, const std::vector<double>& sun_zenith_deg,
                             const std::vector<double>& wavelengths, const RenderSettings& settings,
                             int white_sky_nodes = 8);
+
+// The albedo table of a virtual sample (CSV, laid out like the albedo command's): a comment line
+// naming `surface_name`, then wavelength_nm, white_sky, white_sky_error (when computed) and
+// black_sky_<Z>deg, black_sky_error_<Z>deg per sun zenith Z; dimensionless reflectances with their
+// Monte Carlo standard errors. Written atomically (core/atomic_file.h).
+void write_virtual_albedo(const std::string& path, const VirtualAlbedo& albedo, const std::string& surface_name);
 
 }  // namespace roadbrdf::surface

@@ -1,4 +1,4 @@
-#include "roadbrdf/mixing/hapke_imsa.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 #include <algorithm>
 #include <cmath>

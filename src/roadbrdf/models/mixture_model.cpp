@@ -1,11 +1,11 @@
-#include "roadbrdf/mixing/mixture_model.h"
+#include "roadbrdf/models/mixture_model.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
-#include "roadbrdf/mixing/hapke_imsa.h"
+#include "roadbrdf/models/hapke_imsa.h"
 
 namespace roadbrdf::mixing {
 

@@ -1,0 +1,59 @@
+// Reading a fit file (FIT.json, written by fitting/fit_file.h write_fit_file) back as a spectral model.
+// The format is described in fitting/fit_file.h next to its writer; the reader sits here, below every
+// module that takes a fitted model (albedo, photometry, mixing, surface, lighting), so that none of
+// them links the fitting module to read one.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "roadbrdf/core/input_file.h"
+#include "roadbrdf/core/json_input.h"
+#include "roadbrdf/models/spectral_model.h"
+
+namespace roadbrdf {
+
+// Which fit of a fit file (request field `fit`): comma-separated items, a model name and
+// COLUMN=DEGREES for the columns the file is grouped by ("oren-nayar,theta_i=40", "theta_i=40").
+// No model: the file's best.
+struct FitSelector {
+  std::string model;
+  std::vector<std::pair<std::string, double>> group;
+};
+// Throws FieldError("fit", ...).
+FitSelector parse_fit_selector(const std::string& text);
+
+// A fit of a fit file and which one it is: `entry` is the fit's model name, followed by its group
+// ("oren-nayar,theta_i=40") in a grouped file.
+struct FitFileEntry {
+  SpectralModel model;
+  std::string entry;
+};
+
+// A fit file as a spectral model: the fit chosen by `selection` (parse_fit_selector; default: the
+// file's "best"). In a grouped file (version 2) the selection must name one group. Throws FileError /
+// InputError (FieldError "fit" for a selection matching no fit or several).
+SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
+FitFileEntry read_fit_file_entry(const std::string& path, const std::string& selection = "");
+// What a fit file (or a mix file, read as a model the same way) may be: at most 256 MiB (a fit of a
+// few models at a few thousand wavelengths with covariances takes a few MB).
+InputLimits fit_file_limits();
+// The same from a fit file's content held in memory (Python: a fit file as a dict): `name` stands
+// for the file in error messages, which name the JSON key as for a file.
+SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection = "");
+FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name,
+                                  const std::string& selection = "");
+
+// The parameter covariance per wavelength (SpectralModel::parameter_covariance) of a fit object of a
+// fit file, or of a method of a MIX.json (the same keys), from its "stderr" {name: [per wavelength]}
+// and "correlation" [per wavelength: p x p]: cov_ab = r_ab s_a s_b, 0 for a parameter in "fixed", NaN
+// where either is null (undefined). Empty when the object has neither, or orders its parameters
+// ("parameter_order") otherwise than `description`. `m` wavelengths. Throws FileError at a bad shape.
+std::vector<double> read_parameter_covariance(const JsonNode& fit, const ModelDescription& description, std::size_t m);
+
+// True if `argument` names a fit file or a MIX.json rather than a model (ends in ".json").
+bool is_fit_file_argument(const std::string& argument);
+
+}  // namespace roadbrdf
