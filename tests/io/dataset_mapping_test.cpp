@@ -133,6 +133,19 @@ TEST(DatasetMapping, ErrorsNameTheFieldAndTheNearestHeaderName) {
   EXPECT_THROW(read_dataset(kLab + "sand_brdf.csv", c.options(DatasetQuantity::kBrf)), FileError);
 }
 
+TEST(DatasetMapping, TheMappedColumnWinsOverOneNamedLikeItsField) {
+  const std::string path = roadbrdf::test::scratch_path("mapping_both.csv");
+  std::ofstream(path) << "theta_i,phi_i,theta_r,phi_r,measured_view,500\n30,0,20,180,20.4,0.1\n";
+  std::vector<std::string> warnings;
+  DatasetReadOptions o;
+  o.columns = {{"theta_r", "Measured_View"}};  // case differs from the header
+  o.warn = [&](const std::string& w) { warnings.push_back(w); };
+  const SpectralDataset d = read_dataset(path, o);
+  EXPECT_NEAR(rad_to_deg(d.geometries[0].theta_r), 20.4, 1e-12);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("'theta_r'"), std::string::npos) << warnings[0];
+}
+
 TEST(DatasetMapping, PerFileItemsOverrideTheGeneralOnes) {
   DatasetReadFields f;
   f.set = {"theta_i=30", "run_theta45.csv:theta_i=45", "phi_i=0"};

@@ -251,9 +251,12 @@ WideColumns wide_columns(Reading& r, std::string_view header, const std::vector<
   CellScanner cells(header, r.delimiter);
   std::string_view text;
   long column = 0;
+  // The canonical name of each named header cell (numeric cells, the wavelengths, have none).
+  std::vector<const std::string*> canonical_of(column_count, nullptr);
+  for (const HeaderCell& n : names) canonical_of[n.index] = &n.canonical;
   for (std::size_t k = 0; cells.next(text, column); ++k) {
     if (roles[k].kind == Role::kAngle) continue;
-    if (ignores_other_columns(r.options) && !known_name(canonical_column_name(text), r.delimiter)) {
+    if (ignores_other_columns(r.options) && canonical_of[k] && !known_name(*canonical_of[k], r.delimiter)) {
       roles[k] = {Role::kOther, 0};
       r.ignored_columns.emplace_back(text);
       continue;
