@@ -92,7 +92,7 @@ def draw_all(r) -> None:
     _draw(r, "fit-quality", esc(f"Fit quality of {best} (all configurations): fitted against measured at {band:g} "
                                 "nm, residuals, and the RMSE of every model against wavelength (plot.fit_quality)."),
           lambda: plot.fit_quality(r.path, r.fit_all_path, best, wavelength=band,
-                                   title=f"{r.sample}: fit quality"))
+                                   title=f"{r.sample}: fit quality", average_duplicates=r.average_duplicates))
     if r.fit_all.wavelengths.size > 1:
         free = [p for p in r.best.parameter_names if p not in r.fixed]
         _draw(r, "params-by-wavelength", esc(f"Parameters of {best} against wavelength, ± one standard error "
