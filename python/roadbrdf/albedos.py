@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import os
-import warnings
 from typing import TYPE_CHECKING, Any, Sequence, Union
 
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError, as_float
+from .core import InputError, as_float, warn_at_caller
 from .fitting import read_fit
 from .model import Model, SpectralModel, model_argument
 
@@ -134,5 +133,5 @@ def _warn_notes(report: AlbedoResult) -> AlbedoResult:
     """The command line's warnings: notes on mostly extrapolated or non-physical results."""
     for note in report.get("notes", []):
         if note.startswith(("WARNING: mostly", "WARNING: non-physical")):
-            warnings.warn(note[len("WARNING: "):], UserWarning, stacklevel=3)
+            warn_at_caller(note[len("WARNING: "):])
     return report

@@ -9,6 +9,7 @@ import re
 import stat
 import sys
 import tempfile
+import warnings
 from typing import Any, Tuple
 
 import numpy as np
@@ -24,6 +25,21 @@ __all__ = ["InputError", "data_directory", "road_to_zenith_azimuth", "build_fing
 
 #: Errors in the input: a ValueError with the same message as the command line.
 InputError = _roadbrdf.InputError
+
+
+_PACKAGE_DIRECTORY = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn_at_caller(message: str, category: type = UserWarning) -> None:
+    """Issue a warning at the line of the user's code that called into roadbrdf: the first frame
+    outward that is not a file of this package (the C++ module's frames are not Python frames). When
+    every frame is the package's (``python -m roadbrdf.plot_cli``), at the outermost of them."""
+    frame = sys._getframe(0)
+    level = 1
+    while frame.f_back is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIRECTORY):
+        frame = frame.f_back
+        level += 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 def as_float_array(value: ArrayLike, name: str) -> np.ndarray:

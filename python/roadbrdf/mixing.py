@@ -9,11 +9,10 @@ line prints the same notes as warnings).
 from __future__ import annotations
 
 import os
-import warnings
 from typing import TYPE_CHECKING, Any, Sequence, Union
 
 from . import _roadbrdf
-from .core import InputError, as_float, as_int, as_text
+from .core import InputError, as_float, as_int, as_text, warn_at_caller
 from .model import SpectralModel
 
 if TYPE_CHECKING:
@@ -149,7 +148,7 @@ def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all"
                         path(reference, "reference"), path(output, "output"), bool(use_sigma),
                         path(residuals, "residuals"), path(cross_sections, "cross_sections"), bool(uncertainty))
     for note in run.notes:
-        warnings.warn(note, UserWarning, stacklevel=2)
+        warn_at_caller(note)
     result = MixResult(run)
     if output is not None:
         result.write(output)

@@ -168,7 +168,7 @@ inline pybind11::object python_result(const nlohmann::json& value, const Diagnos
   const py::module_ result_module = py::module_::import("roadbrdf.result");
   const py::object warning_type = result_module.attr("RoadbrdfWarning");
   for (const Diagnostic& d : diagnostics.warnings) {
-    py::module_::import("warnings").attr("warn")(d.message, warning_type, 1);
+    py::module_::import("roadbrdf.core").attr("warn_at_caller")(d.message, warning_type);
   }
   const nlohmann::json diagnostics_json = diagnostics.to_json();
   return result_module.attr("Result")(json_to_python(value), json_to_python(diagnostics_json["notes"]),

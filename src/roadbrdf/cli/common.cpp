@@ -116,7 +116,8 @@ std::string flag_for_field(const std::string& field) {
                                                              {"formulation", "FORMULATION"},
                                                              {"size_mm", "--size"},
                                                              {"cell_mm", "--cell"},
-                                                             {"sigma_rad", "--gaussian-slopes"}};
+                                                             {"sigma_rad", "--gaussian-slopes"},
+                                                             {"columns", "--column"}};
   const auto dot = field.find('.');
   const std::string head = field.substr(0, dot);
   std::string flag;
