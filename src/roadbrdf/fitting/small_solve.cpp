@@ -97,11 +97,11 @@ class WavelengthProblem {
   mutable std::vector<double> residuals_;
 };
 
-// Bounded Levenberg-Marquardt by projection with an active set (the box-constrained variant of
+// Bounded Levenberg-Marquardt by projection with an active set (a projected Levenberg-Marquardt as in
 // Kanzow, Yamashita & Fukushima, J. Comput. Appl. Math. 172 (2004) 375, with Ceres' trust-region
 // update of the regularisation):
-//  - a free parameter on a bound whose gradient component points out of the box is held there for
-//    the iteration (active); the step of the others solves (A_FF + D_FF / mu) s_F = -g_F;
+//  - a free parameter on a bound whose gradient component (or step, below) points out of the box is
+//    held there for the iteration (active); the step of the others solves (A_FF + D_FF / mu) s_F = -g_F;
 //  - the trial point is the step projected onto the box, and the step's quality compares the actual
 //    decrease with the decrease the quadratic model predicts for the PROJECTED step, so a projection
 //    that spoils the step is rejected and followed by a shorter one. As mu -> 0 the step tends to the
