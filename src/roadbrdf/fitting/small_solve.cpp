@@ -181,15 +181,19 @@ bool solve_sized(const FitData& d, const ParameterLayout& L, const FitOptions& o
     }
     trial.x = (current.x + step).cwiseMax(lower).cwiseMin(upper);
     const Vector s = trial.x - current.x;
-    if (!s.allFinite()) return false;
+    // A singular Gauss-Newton matrix at a large radius gives no finite step: rejected, as a step to
+    // an undefined point, so that the next one is more regularised.
+    const bool finite = s.allFinite();
     ++iterations;
-    if (s.norm() <= (current.x.norm() + o.parameter_tolerance) * o.parameter_tolerance) {
+    if (finite && s.norm() <= (current.x.norm() + o.parameter_tolerance) * o.parameter_tolerance) {
       message = "Parameter tolerance reached (bounded Levenberg-Marquardt).";
       break;
     }
-    const double predicted = -(current.g.dot(s) + 0.5 * s.dot(current.A * s));
     double quality = -std::numeric_limits<double>::infinity();
-    if (problem.evaluate(trial) && predicted > 0.0) quality = (current.cost - trial.cost) / predicted;
+    if (finite) {
+      const double predicted = -(current.g.dot(s) + 0.5 * s.dot(current.A * s));
+      if (problem.evaluate(trial) && predicted > 0.0) quality = (current.cost - trial.cost) / predicted;
+    }
     if (quality > kMinRelativeDecrease) {
       const double change = current.cost - trial.cost;
       done = change <= o.function_tolerance * current.cost;
