@@ -68,7 +68,7 @@ void run(const AlbedoArgs& a) {
   request.illuminant = a.illuminant;
   request.tolerance = a.tolerance;
   request.uncertainty = !a.no_uncertainty;
-  ProgressBar bar("albedo: integrals", stderr, ProgressBar::terminal_enabled(a.quiet));
+  ProgressBar bar("albedo: integrals", stderr, ProgressBar::stderr_style(a.quiet));
   request.progress = bar.callback();
   const nlohmann::json report = albedo::compute_albedo(sm, request);
   bar.finish();

@@ -96,9 +96,9 @@ void run(const FitArgs& a) {
 
   const SpectralDataset data = read_dataset(a.data, dataset_read_options(a.read));
   // One bar per model; the models are fitted one after the other, so a new bar ends the previous one.
-  // core/progress.h: on standard error when it is a terminal, unless --quiet.
+  // core/progress.h: on standard error, a bar on a terminal, a heartbeat line in a log; none with --quiet.
   std::unique_ptr<ProgressBar> bar;
-  const bool show = ProgressBar::terminal_enabled(a.quiet);
+  const ProgressStyle show = ProgressBar::stderr_style(a.quiet);
   const FitSummary summary = run_fit(request, data, [&bar, show](const std::string& label) {
     bar.reset();  // ends the previous model's line
     bar = std::make_unique<ProgressBar>(label, stderr, show);

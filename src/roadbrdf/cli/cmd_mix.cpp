@@ -67,7 +67,7 @@ void run(const MixArgs& a) {
   request.cross_sections = a.cross_sections;
   request.uncertainty = a.uncertainty;
   request.residuals = !a.residuals.empty();
-  ProgressBar bar("mix: mixes (methods x folds)", stderr, ProgressBar::terminal_enabled(a.quiet));
+  ProgressBar bar("mix: mixes (methods x folds)", stderr, ProgressBar::stderr_style(a.quiet));
   request.progress = bar.callback();
   const MixRun run = run_mix(request, {{"-o", a.output}, {"--residuals", a.residuals}}, [](const std::string& field) {
     return field == "formulation" ? std::string("FORMULATION") : flag_for_field(field);
