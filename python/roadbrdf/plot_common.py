@@ -18,7 +18,7 @@ if os.environ.get("MPLBACKEND") is None and not os.environ.get("DISPLAY"):
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
-from .core import read_json_file, write_atomic  # noqa: E402
+from .core import write_figure_atomic  # noqa: E402
 from . import _roadbrdf  # noqa: E402
 
 __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
@@ -70,8 +70,7 @@ def save(fig, output, dpi=None):
     output = os.fspath(output)
     check_output_folder(output)
     root = fig.figure  # a SubFigure saves its whole figure
-    write_atomic(output, lambda tmp: root.savefig(tmp, dpi=dpi or DEFAULT_DPI, bbox_inches="tight"),
-                 os.path.splitext(output)[1])
+    write_figure_atomic(root, output, dpi=dpi or DEFAULT_DPI, bbox_inches="tight")
     return output
 
 

@@ -329,11 +329,6 @@ def render_report(r, command: str = "") -> str:
     return page(f"roadbrdf report: {r.sample}", subtitle, s.summary(r), sections, footer)
 
 
-def _write_atomic(path: str, text: str) -> None:
-    """The page to ``path`` atomically (core.write_text_atomic), or to standard output for ``-``."""
-    write_text_atomic(path, text, ".html")
-
-
 def _check_output(output: str, inputs) -> None:
     if output != "-":
         folder = os.path.dirname(os.path.abspath(output))
@@ -364,7 +359,7 @@ def write_report(data, output, models=DEFAULT_MODELS, formulation=None, waveleng
                fix, free_weights, folds, threads, quiet, installation=installation, lighting_class=lighting_class,
                average_duplicates=average_duplicates)
     text = render_report(r, command)
-    _write_atomic(output, text)
+    write_text_atomic(output, text)
     r.html = text
     total = time.monotonic() - r.steps.start
     r.steps.say(f"wrote {output} ({len(text.encode()) / 1024:.0f} KiB, {total:.1f} s)")

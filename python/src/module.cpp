@@ -221,4 +221,6 @@ PYBIND11_MODULE(_roadbrdf, m) {
   roadbrdf::python::bind_marking(m);
   roadbrdf::python::bind_lighting(m);
   roadbrdf::python::bind_lighting_calc(m);
+  roadbrdf::python::bind_output(m);
+  roadbrdf::python::bind_requests(m);
 }
