@@ -29,7 +29,7 @@ import sys
 import numpy as np
 
 import roadbrdf
-from roadbrdf.core import write_atomic, write_text_atomic
+from roadbrdf.core import write_figure_atomic, write_text_atomic
 
 METHODS = ("hapke", "areal")
 CALIBRATED = ("insample", "calibrated")
@@ -87,8 +87,7 @@ def draw(results, path, title):
         ax.set_ylabel("reflectance factor")
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    suffix = "." + path.rsplit(".", 1)[-1]
-    write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=110), suffix=suffix)
+    write_figure_atomic(fig, path, dpi=110)
     plt.close(fig)
 
 
