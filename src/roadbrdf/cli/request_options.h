@@ -44,7 +44,10 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
         using Value = std::remove_reference_t<decltype(request.*member)>;
         Value& value = request.*member;
         if constexpr (std::is_same_v<Value, bool>) {
-          option = command->add_flag(flag, value, help);
+          // A switch on by default ("uncertainty") is spelt as its negation ("--no-uncertainty"): the
+          // flag turns it off (CLI11's "!" names a flag that sets false).
+          const bool negated = field.long_flag().starts_with("--no-") && !field.name.starts_with("no_");
+          option = command->add_flag(negated ? "!" + flag : flag, value, help);
         } else if constexpr (std::is_same_v<Value, std::optional<double>>) {
           option = command->add_option_function<double>(
               flag, [&value](const double& v) { value = v; }, help);
