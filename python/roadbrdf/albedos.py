@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import numbers
 import os
-import warnings
 from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError, as_float
+from .core import InputError, as_float, warn_at_caller
 from .model import Model, SpectralModel, model_argument
 from .result import RoadbrdfWarning
 
@@ -130,5 +129,5 @@ if "Arguments" in _doc:
 def _warn_notes(report: AlbedoResult) -> AlbedoResult:
     """The result's warnings (mostly extrapolated, non-physical or implausible results), issued at the caller."""
     for warning in report.get("warnings", []):
-        warnings.warn(warning["message"], RoadbrdfWarning, stacklevel=3)
+        warn_at_caller(warning["message"], RoadbrdfWarning)
     return report

@@ -6,9 +6,8 @@ import hashlib
 import json
 import os
 import re
-import stat
 import sys
-import tempfile
+import warnings
 from typing import Any, Tuple
 
 import numpy as np
@@ -24,6 +23,21 @@ __all__ = ["InputError", "data_directory", "road_to_zenith_azimuth", "build_fing
 
 #: Errors in the input: a ValueError with the same message as the command line.
 InputError = _roadbrdf.InputError
+
+
+_PACKAGE_DIRECTORY = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn_at_caller(message: str, category: type = UserWarning) -> None:
+    """Issue a warning at the line of the user's code that called into roadbrdf: the first frame
+    outward that is not a file of this package (the C++ module's frames are not Python frames). When
+    every frame is the package's (``python -m roadbrdf.plot_cli``), at the outermost of them."""
+    frame = sys._getframe(0)
+    level = 1
+    while frame.f_back is not None and os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIRECTORY):
+        frame = frame.f_back
+        level += 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 def as_float_array(value: ArrayLike, name: str) -> np.ndarray:
@@ -205,65 +219,21 @@ def road_to_zenith_azimuth(gamma: ArrayLike, alpha: ArrayLike, beta: ArrayLike,
     return theta_i, phi_i, theta_r, phi_r
 
 
-def umask() -> int:
-    """The process's umask, read without changing it where /proc tells it."""
-    try:
-        with open("/proc/self/status", encoding="ascii") as fh:
-            for line in fh:
-                if line.startswith("Umask:"):
-                    return int(line.split()[1], 8)
-    except (OSError, ValueError, IndexError):
-        pass
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
-def write_atomic(path, write, suffix: str = "") -> str:
-    """Write an output file as the library's AtomicFile does: ``write(temporary_path)`` fills a temporary
-    file in the target's folder, which is synced, given the mode of the file it replaces (a new file:
-    0666 & ~umask, as any program's output) and renamed over the target; the folder is synced. A symbolic
-    link is followed and kept; a device or FIFO (``/dev/null``, ``/dev/full``) is written directly. On any
-    error the temporary file is removed and the target is untouched. Returns ``path``."""
-    target = os.path.realpath(os.fspath(path))
-    folder = os.path.dirname(target)
-    try:
-        st = os.stat(target)
-        mode = st.st_mode & 0o7777
-    except FileNotFoundError:
-        st, mode = None, 0o666 & ~umask()
-    if st is not None and (stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode) or stat.S_ISBLK(st.st_mode)):
-        # A device or a FIFO is written directly, as AtomicFile does: renaming a file over it would replace it.
-        write(target)
-        return path
-    fd, tmp = tempfile.mkstemp(prefix=".roadbrdf-", suffix=suffix, dir=folder)
-    os.close(fd)
-    try:
-        write(tmp)
-        with open(tmp, "rb") as fh:
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, target)
-        dir_fd = os.open(folder, os.O_RDONLY)
-        try:
-            os.fsync(dir_fd)
-        finally:
-            os.close(dir_fd)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-    return path
-
-
 def write_text_atomic(path, text: str, suffix: str = "") -> None:
-    """``text`` (UTF-8) to ``path`` by :func:`write_atomic`, or to standard output for ``-``."""
+    """``text`` (UTF-8) to ``path`` by the library's AtomicFile (core/atomic_file.h: a temporary file in the
+    target's folder, synced, given the mode of the file it replaces and renamed over it; links followed,
+    devices written directly, the target untouched on any error), or to standard output for ``-``.
+    ``suffix`` is not needed any more and kept for callers."""
     if os.fspath(path) == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
         return
+    _roadbrdf.write_text_atomic(os.fspath(path), text)
 
-    def fill(tmp):
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(text)
 
-    write_atomic(path, fill, suffix)
+def write_figure_atomic(figure, path, **savefig) -> None:
+    """A matplotlib figure saved to ``path`` by the library's AtomicFile (the format from the extension)."""
+    import io
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format=os.path.splitext(os.fspath(path))[1].lstrip(".") or None, **savefig)
+    _roadbrdf.write_bytes_atomic(os.fspath(path), buffer.getvalue())

@@ -9,13 +9,13 @@ line names its flag, ``--option distribution``).
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence, Union
+from typing import TYPE_CHECKING, Any, Sequence, Union
 
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError, as_float_array, as_int, as_mapping, as_options, as_text
-from .io import Dataset, read_dataset
+from .core import InputError
+from .io import Dataset
 from .model import SpectralModel
 
 if TYPE_CHECKING:
@@ -242,101 +242,26 @@ class FitResult:
         return "roadbrdf.FitResult(\n" + self.summary.rstrip("\n") + "\n)"
 
 
-def _numbers(values: Mapping[str, Any] | None, what: str) -> dict:
-    out = {}
-    for k, v in as_mapping(values, what).items():
-        try:
-            out[str(k)] = float(v)
-        except (TypeError, ValueError):
-            raise InputError(f"{what}.{k}: '{v}' is not a number") from None
-    return out
-
-
-def fit(data: Dataset | PathLike, models: str | Sequence[str], options: Mapping[str, Any] | None = None,
-        shared: str | Iterable[str] = (), fixed: Mapping[str, float] | None = None,
-        start: Mapping[str, float] | None = None, bounds: Mapping[str, Sequence[float]] | None = None,
-        loss: str = "plain", robust: str = "none", use_sigma: bool = True, solid_angle_weights: bool = False,
-        multistart: int = 1, seed: int = 1, wavelengths: str | Sequence[float] | None = None, threads: int = 1,
-        max_iterations: int = 200, covariance: bool = True, warm_start: bool = True, solve_amplitudes: bool = True,
-        joint_solver: str = "dense-schur", output: PathLike | None = None,
-        fix: Mapping[str, float] | None = None, where: str = "",
-        group_by: str | Sequence[str] = (),
-        bands: str | Sequence[float] | Sequence[str | Sequence[float]] | None = None) -> FitResult:
+def fit(data: Dataset | PathLike, models: str | Sequence[str] | None = None, **request: Any) -> FitResult:
     """Fit one or more models to a dataset, exactly as ``roadbrdf fit`` does.
 
-    Parameters
-    ----------
-    data : Dataset or path
-        The measured spectral BRDF.
-    models : str or list of str
-        Model names, e.g. ``["oren-nayar", "oren-nayar+torrance-sparrow"]``.
-    options : dict
-        Model options for every model that declares them; a plain name also reaches the components of
-        a composite (``{"distribution": "beckmann"}``), ``"component.option"`` one component. A name
-        no model declares is an error.
-    shared : list of str, comma-separated str, or "auto"
-        Joint spectral mode: parameters shared by all wavelengths; ``"auto"`` = the non-spectral ones.
-    fixed, start : dict
-        Parameters held at a value / starting values, ``{name: value}`` (``fix`` is an alias of ``fixed``).
-    bounds : dict
-        Narrower bounds ``{name: (lower, upper)}`` inside the model's.
-    loss : "plain" | "relative" | "log" | "cosine"
-    robust : "none" | "huber:SCALE" | "cauchy:SCALE"
-    use_sigma : bool
-        Weights 1/sigma^2 when the data have uncertainties.
-    multistart : int
-        Starting points (Latin hypercube over the nonlinear parameters, seeded by ``seed``).
-    wavelengths : list of float or str
-        Subset [nm]: numbers, or text in the command line's range grammar (``"400:1000:10"``).
-    where : str
-        Fit only the geometries where every comparison holds, e.g. ``"theta_r<=70"`` (``fit --where``).
-    group_by : str or list of str
-        Fit each group of geometries with equal angles separately, e.g. ``"theta_i"`` (``fit --group-by``);
-        each :class:`ModelFit` has its ``group``.
-    bands : "LOWER:UPPER", (lower, upper), or a list of those [nm]
-        Fit the mean of the measured spectrum over each band, at the band's centre (``fit --band``;
-        not with ``wavelengths``), e.g. ``bands="590:610"`` on a 20 nm grid.
-    output : path, optional
-        Also write the fit file (JSON), as ``roadbrdf fit -o``.
-
-    Returns
-    -------
-    FitResult
+    ``data`` is a :class:`Dataset` or its file (read with ``delimiter``, ``decimal``,
+    ``average_duplicates``); ``models`` a name or a list of names. Every other keyword is a field of
+    the library's request, the same as the command's options (the list below is made from the one
+    table both front ends use); ``fix`` is an alias of ``fixed``. With ``output`` the fit file is
+    written, with ``residuals`` the residuals CSV. Returns a :class:`FitResult`.
     """
-    d = data if isinstance(data, Dataset) else read_dataset(as_text(data, "data"))
-    if isinstance(models, str):
-        models = [models]
-    elif isinstance(models, (list, tuple)) and all(isinstance(m, str) for m in models):
-        models = list(models)
-    else:
-        raise TypeError(f"models: expected a model name or a list of names, got {type(models).__name__}")
-    if isinstance(shared, str):
-        shared = [s.strip() for s in shared.split(",") if s.strip()]
-    if isinstance(group_by, str):
-        group_by = [s.strip() for s in group_by.split(",") if s.strip()]
-    if fix is not None:
-        if fixed is not None:
+    if models is not None:
+        request["models"] = models
+    if "fix" in request:
+        if "fixed" in request:
             raise InputError("fixed: give either fixed or its alias fix, not both")
-        fixed = fix
-    bound_pairs = {}
-    for k, v in as_mapping(bounds, "bounds").items():
-        pair = as_float_array(v, f"bounds.{k}").reshape(-1)
-        if pair.size != 2:
-            raise InputError(f"bounds.{k}: expected (lower, upper), got {v!r}")
-        bound_pairs[str(k)] = (float(pair[0]), float(pair[1]))
-    summary = _roadbrdf.fit(
-        np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths), np.ascontiguousarray(d.brdf),
-        None if d.sigma is None else np.ascontiguousarray(d.sigma), {str(k): str(v) for k, v in d.metadata.items()},
-        d.convention, models, as_options(options, "options"),
-        [str(s) for s in shared], _numbers(fixed, "fixed"), _numbers(start, "start"), bound_pairs, str(loss),
-        str(robust), bool(use_sigma), bool(solid_angle_weights), as_int(multistart, "multistart"),
-        as_int(seed, "seed"), wavelengths, as_int(threads, "threads"), as_int(max_iterations, "max_iterations"),
-        bool(covariance), bool(warm_start), bool(solve_amplitudes),
-        str(joint_solver), str(where), [str(c) for c in group_by], bands)
-    result = FitResult(summary)
-    if output is not None:
-        result.write(output)
-    return result
+        request["fixed"] = request.pop("fix")
+    return FitResult(_roadbrdf.fit(data, **request))
+
+
+fit.__doc__ = (fit.__doc__ or "") + "\n    " + "\n    ".join(
+    (_roadbrdf.fit.__doc__ or "").split("\n\n", 2)[-1].splitlines())
 
 
 def spectral_model_from_fit(fit_result: FitResult | dict, model: str | None = None) -> SpectralModel:

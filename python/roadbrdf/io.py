@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import Any, Iterable, Mapping, Optional, Union
+from typing import Any, Iterable, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -39,7 +39,21 @@ class Dataset:
 
     def __init__(self, angles: ArrayLike, wavelengths: ArrayLike, brdf: ArrayLike, sigma: Optional[ArrayLike] = None,
                  metadata: Optional[Mapping[str, Any]] = None, convention: str = "zenith",
-                 comments: Optional[Iterable[str]] = None) -> None:
+                 comments: Optional[Iterable[str]] = None, average_duplicates: bool = False) -> None:
+        """Repeated geometries follow the readers' duplicate policy: an InputError naming both rows,
+        or, with ``average_duplicates``, averaged (values and sigma as duplicate rows of a file)."""
+        self._set(angles, wavelengths, brdf, sigma, metadata, convention, comments)
+        if self.angles.shape[0] > 1:
+            checked = _roadbrdf.dataset_duplicate_policy(
+                np.ascontiguousarray(self.angles), np.ascontiguousarray(self.wavelengths),
+                np.ascontiguousarray(self.brdf), None if self.sigma is None else np.ascontiguousarray(self.sigma),
+                {str(k): str(v) for k, v in self.metadata.items()}, self.convention,
+                as_bool(average_duplicates, "average_duplicates"))
+            if checked["angles"].shape[0] != self.angles.shape[0]:
+                self._set(checked["angles"], checked["wavelengths"], checked["brdf"], checked["sigma"],
+                          checked["metadata"], self.convention, self.comments)
+
+    def _set(self, angles, wavelengths, brdf, sigma, metadata, convention, comments) -> None:
         self.angles = as_float_array(angles, "angles").reshape(-1, 4)
         self.wavelengths = as_float_array(wavelengths, "wavelengths").reshape(-1)
         self.brdf = as_float_array(brdf, "brdf").reshape(self.angles.shape[0], self.wavelengths.size)
@@ -50,7 +64,11 @@ class Dataset:
 
     @classmethod
     def _from_dict(cls, d):
-        return cls(d["angles"], d["wavelengths"], d["brdf"], d["sigma"], d["metadata"], d["convention"], d["comments"])
+        # Read by the library, which applied the duplicate policy already.
+        dataset = cls.__new__(cls)
+        dataset._set(d["angles"], d["wavelengths"], d["brdf"], d["sigma"], d["metadata"], d["convention"],
+                     d["comments"])
+        return dataset
 
     @property
     def theta_i(self) -> np.ndarray:
@@ -81,8 +99,34 @@ class Dataset:
         write_dataset(self, path, format)
 
 
-def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing: bool = True,
-                 delimiter: str = "auto", decimal: str = "auto") -> Dataset:
+def as_bool(value, name: str) -> bool:
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise TypeError(f"{name}: expected True or False, got {type(value).__name__}")
+
+
+def _items(value, name: str) -> list:
+    """``columns`` / ``set`` as the command line's [FILE:]FIELD=VALUE items: a mapping {field: value}
+    (a key may be "FILE:field"), or a list of "FIELD=VALUE" strings."""
+    if value is None:
+        return []
+    if isinstance(value, Mapping):
+        return [f"{as_text(k, name)}={v if isinstance(v, str) else repr(as_float(v, name))}" for k, v in value.items()]
+    if isinstance(value, str):
+        return [value]
+    return [as_text(item, name) for item in value]
+
+
+def _paths(path) -> list:
+    if isinstance(path, (str, os.PathLike)):
+        return [as_text(path, "path")]
+    return [as_text(p, "path") for p in path]
+
+
+def read_dataset(path: Union[PathLike, Sequence[PathLike]], average_duplicates: bool = False,
+                 allow_missing: bool = True, delimiter: str = "auto", decimal: str = "auto", quantity: str = "brdf",
+                 columns: Optional[Union[Mapping[str, str], Sequence[str]]] = None,
+                 set: Optional[Union[Mapping[str, float], Sequence[str]]] = None) -> Dataset:
     """Read a wide or long CSV dataset (the format is detected from the header).
 
     Duplicate geometries are an error unless ``average_duplicates`` (which averages the measured
@@ -93,9 +137,19 @@ def read_dataset(path: PathLike, average_duplicates: bool = False, allow_missing
     ``delimiter`` ("auto", ",", ";", "tab") and ``decimal`` ("auto", ".", ",") are the command line's
     ``--delimiter`` / ``--decimal``: by default the dialect is detected (docs/data.md). A file whose name
     ends in ``.xompt`` is read as an ASAM OpenMATERIAL 3D BRDF look-up table (docs/data.md).
+
+    Laboratory tables (docs/data.md, "Any laboratory table"): ``quantity`` is what the values are
+    ("brdf", "brf" = pi BRDF, "brdf-cos" = BRDF cos theta_i, "percent-brf"), converted to BRDF;
+    ``columns`` maps dataset fields to header names (``{"theta_r": "True_Average_View_Zenith"}``);
+    ``set`` gives angles the file has no column for (``{"theta_i": 30, "phi_i": 0}``; a key
+    ``"run2.csv:theta_i"`` applies to that file only). Other columns are then not read (a warning
+    lists them). ``path`` may be a list of files: runs of one sample combined into one dataset (the
+    same wavelengths; a geometry in several runs follows ``average_duplicates``).
     """
-    return Dataset._from_dict(_roadbrdf.read_dataset(str(path), average_duplicates, allow_missing, str(delimiter),
-                                                     str(decimal)))
+    return Dataset._from_dict(_roadbrdf.read_dataset(_paths(path), as_bool(average_duplicates, "average_duplicates"),
+                                                     as_bool(allow_missing, "allow_missing"), str(delimiter),
+                                                     str(decimal), as_text(quantity, "quantity"),
+                                                     _items(columns, "columns"), _items(set, "set")))
 
 
 def write_dataset(dataset: Dataset, path: PathLike, format: str = "wide") -> None:
@@ -123,11 +177,22 @@ def read_alta(path: PathLike, wavelength: float, assumed_output: str = "", exclu
                                                   assumed_output, exclude_grazing))
 
 
-def check(path: PathLike, average_duplicates: bool = False, delimiter: str = "auto", decimal: str = "auto") -> dict:
+def check(path: Union[PathLike, Dataset], average_duplicates: bool = False, delimiter: str = "auto",
+          decimal: str = "auto", quantity: str = "brdf", columns: Optional[Union[Mapping[str, str], Sequence[str]]] = None,
+          set: Optional[Union[Mapping[str, float], Sequence[str]]] = None) -> dict:
     """The quality report of a dataset file, as ``roadbrdf check DATA.csv --json`` gives it (default
     thresholds): ``geometries``, ``wavelengths`` (count, min_nm, max_nm), ``coverage`` (incidence and
     viewing zenith angles, azimuth planes, forward/backward/perpendicular/in-plane counts),
     ``negative_values``, ``missing_values``, ``reciprocity``, ``noise`` (noisy bands, SNR per wavelength),
     ``outliers``, ``specular_peaks_not_counted_as_outliers``, ``units``, ``file``, and ``text``: the report
-    ``roadbrdf check`` prints. Missing values are counted, not an error."""
-    return _roadbrdf.check_dataset(str(path), bool(average_duplicates), str(delimiter), str(decimal))
+    ``roadbrdf check`` prints. Missing values are counted, not an error. ``path`` may be a
+    :class:`Dataset` in memory (``file`` is then None; the reading options do not apply)."""
+    if isinstance(path, Dataset):
+        d = path
+        return _roadbrdf.check_dataset_object(
+            np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths), np.ascontiguousarray(d.brdf),
+            None if d.sigma is None else np.ascontiguousarray(d.sigma), {str(k): str(v) for k, v in d.metadata.items()},
+            d.convention)
+    return _roadbrdf.check_dataset(as_text(path, "path"), as_bool(average_duplicates, "average_duplicates"),
+                                   str(delimiter), str(decimal), as_text(quantity, "quantity"),
+                                   _items(columns, "columns"), _items(set, "set"))

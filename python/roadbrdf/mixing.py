@@ -8,12 +8,12 @@ line prints the same notes as warnings).
 
 from __future__ import annotations
 
+import json
 import os
-import warnings
 from typing import TYPE_CHECKING, Any, Sequence, Union
 
 from . import _roadbrdf
-from .core import InputError, as_float, as_int, as_text
+from .core import InputError, warn_at_caller
 from .model import SpectralModel
 
 if TYPE_CHECKING:
@@ -122,40 +122,29 @@ class MixResult:
         return "roadbrdf.MixResult(\n" + self.summary.rstrip("\n") + "\n)"
 
 
-def mix(formulation: PathLike, data: PathLike | None = None, method: str = "all", folds: int = 5, seed: int = 1,
-        per_wavelength: bool = False, sum_to_one: bool = False, binder_coverage: float | None = None,
-        mastic_fraction: float | None = None, reference: PathLike | None = None, output: PathLike | None = None,
-        use_sigma: bool = True, residuals: PathLike | None = None,
-        cross_sections: PathLike | None = None, uncertainty: bool = False) -> MixResult:
+def mix(formulation: PathLike, **request: Any) -> MixResult:
     """Predict the BRDF of a road formulation from its components' fits, as ``roadbrdf mix`` does.
 
-    ``formulation``: a formulation JSON file (see docs/mixing.md); ``data``: the measured mixture
-    (CSV path) to compare the methods on held-out geometries (``folds``-fold); ``method``: areal,
-    fitted, mastic, hapke, shadowed or all; ``reference``: the fit file of the measured mixture (for
-    the albedo difference); ``use_sigma``: weight the fitted methods by 1/sigma^2 when the data have
-    sigma (False = ``--no-sigma-weights``); ``output``: also write MIX.json; ``residuals``: CSV path for the
-    held-out residuals (needs ``data``); ``cross_sections``: calibration file of :func:`mix_calibrate`
-    (``--cross-sections``, hapke only); ``uncertainty``: carry the components' fit covariances into the
-    areal, mastic and hapke mixtures (``--uncertainty``; their albedo is then much slower). Methods skipped with ``method="all"`` are reported as
-    :class:`UserWarning` (and in ``notes``).
+    ``formulation``: a formulation JSON file (see docs/mixing.md) or its content as a dict; ``fits``: fit
+    files given as values ({reference: fit file content, a FitResult or its dict}), used for the
+    formulation's ``fit`` references of the same name instead of files. Every other keyword is a field of the
+    library's request, the same as the command's options (the list below is made from the one table
+    both front ends use): ``data`` compares the methods on a measured mixture's held-out geometries,
+    ``output`` writes MIX.json, ``residuals`` the held-out residuals. Methods skipped with
+    ``method="all"`` are reported as :class:`UserWarning` (and in ``notes``).
     """
-    def path(value, name):
-        return "" if value is None else as_text(value, name)
-
-    run = _roadbrdf.mix(as_text(formulation, "formulation"), path(data, "data"), as_text(method, "method"),
-                        as_int(folds, "folds"), as_int(seed, "seed"), bool(per_wavelength), bool(sum_to_one),
-                        None if binder_coverage is None else as_float(binder_coverage, "binder_coverage"),
-                        None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"),
-                        path(reference, "reference"), path(output, "output"), bool(use_sigma),
-                        path(residuals, "residuals"), path(cross_sections, "cross_sections"), bool(uncertainty))
+    fits = request.get("fits")
+    if fits is not None:  # fit contents by reference: texts, dicts or FitResults
+        request["fits"] = {str(k): v if isinstance(v, str) else json.dumps(v.to_dict() if hasattr(v, "to_dict") else v)
+                           for k, v in fits.items()}
+    run = _roadbrdf.mix(formulation, **request)
     for note in run.notes:
-        warnings.warn(note, UserWarning, stacklevel=2)
-    result = MixResult(run)
-    if output is not None:
-        result.write(output)
-    if residuals is not None:
-        result.write_residuals(residuals)
-    return result
+        warn_at_caller(note)
+    return MixResult(run)
+
+
+mix.__doc__ = (mix.__doc__ or "") + "\n    " + "\n    ".join(
+    (_roadbrdf.mix.__doc__ or "").split("\n\n", 2)[-1].splitlines())
 
 
 def mix_calibrate(mixtures: Sequence[tuple[PathLike, PathLike]], reference: str | None = None,

@@ -115,6 +115,14 @@ def _output(p):
                                             "vector files keep their lines and text as vectors)")
 
 
+def _dataset_flags(p):
+    """The dataset-reading and BRDF-axis options of the figures that draw datasets and models."""
+    p.add_argument("--average-duplicates", action="store_true",
+                   help="average dataset rows with the same geometry (else an error), as every command does")
+    p.add_argument("--units", choices=["brdf", "brf"], default="brdf",
+                   help="BRDF axes as BRDF [sr^-1] (default) or as the reflectance factor BRF = pi x BRDF")
+
+
 def _model_flags(p, options=True):
     p.add_argument("-p", "--parameter", action="append", metavar="NAME=VALUE",
                    help="model parameter (repeatable); defaults otherwise")
@@ -140,6 +148,7 @@ def _parser():
                         "nearest measured geometry, up to a turn about the normal (default 30,0,30,0)")
     p.add_argument("--fit", metavar="NAME", help="which fit (model name) or mixing method of each JSON file "
                                                  "(default: its best)")
+    _dataset_flags(p)
     _output(p)
     p = sub.add_parser("hemisphere", help="BRDF over the viewing hemisphere (heat map and lobe) of a model, fit "
                                           "file, mixture or dataset")
@@ -152,6 +161,7 @@ def _parser():
                                                     "nearest band)")
     p.add_argument("--log", action="store_true", help="logarithmic colour scale")
     p.add_argument("--no-lobe", action="store_true", help="only the polar maps, no 3-D lobe")
+    _dataset_flags(p)
     _output(p)
     p = sub.add_parser("plane", help="BRDF in the plane of incidence: measured points and model curves")
     p.add_argument("inputs", nargs="*", metavar="FILE", help="datasets (measured points) and fit files / MIX.json")
@@ -164,6 +174,7 @@ def _parser():
     p.add_argument("--log", action="store_true", help="logarithmic radius (y axis) with labelled decades; "
                                                       "otherwise the radius starts at 0")
     p.add_argument("--cartesian", action="store_true", help="BRDF against signed theta_r instead of a polar plot")
+    _dataset_flags(p)
     _output(p)
     p = sub.add_parser("fit", help="fit quality: measured vs fitted, residuals, RMSE vs wavelength")
     p.add_argument("data", help="the dataset CSV that was fitted")
@@ -171,6 +182,7 @@ def _parser():
     p.add_argument("--fit", metavar="NAME", help="which fit of FIT.json (its model name; default: the best-ranked)")
     p.add_argument("--model", action=_renamed("--fit NAME"), help=argparse.SUPPRESS)
     p.add_argument("--wavelength", type=float, help="wavelength [nm] of the left panels (default: 550 or the middle)")
+    _dataset_flags(p)
     _output(p)
     p = sub.add_parser("albedo", help="black-sky vs sun zenith, white-sky, blue-sky per atmosphere, spectral albedo")
     p.add_argument("result", nargs="+", metavar="FILE",
@@ -209,6 +221,8 @@ def _parser():
 def _draw(a):
     from . import plot
     out = dict(title=a.title, output=a.output, dpi=a.dpi)
+    if a.kind in ("spectral", "hemisphere", "plane", "fit"):
+        out.update(average_duplicates=a.average_duplicates, units=a.units)
     if a.kind == "spectral":
         plot.spectral(a.data, a.geometry, fit=a.fit, **out)
     elif a.kind == "hemisphere":
@@ -299,7 +313,8 @@ def run(argv=None):
     except OutputFolderError as e:
         print(f"roadbrdf plot: error: {e}", file=sys.stderr)
     except ValueError as e:
-        print(f"roadbrdf: error: {e}", file=sys.stderr)
+        # The library names its fields; this command line spells the dataset options as flags.
+        print(f"roadbrdf: error: {str(e).replace('`average_duplicates`', '--average-duplicates')}", file=sys.stderr)
     except OSError as e:
         where = f"{e.filename}: " if e.filename else ""
         print(f"roadbrdf: error: {where}{e.strerror or e}", file=sys.stderr)

@@ -4,6 +4,8 @@ evaluation of a model, fit file or mixture at a wavelength."""
 
 from __future__ import annotations
 
+import copy
+import functools
 import math
 import os
 
@@ -16,7 +18,7 @@ if os.environ.get("MPLBACKEND") is None and not os.environ.get("DISPLAY"):
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import Dataset, Model, SpectralModel, read_dataset, read_fit  # noqa: E402
-from .core import read_json_file, write_atomic  # noqa: E402
+from .core import write_figure_atomic  # noqa: E402
 from . import _roadbrdf  # noqa: E402
 
 __all__ = ["plt", "save", "finish", "panels", "UNIT", "DEFAULT_DPI", "OutputFolderError", "check_output_folder"]
@@ -68,8 +70,7 @@ def save(fig, output, dpi=None):
     output = os.fspath(output)
     check_output_folder(output)
     root = fig.figure  # a SubFigure saves its whole figure
-    write_atomic(output, lambda tmp: root.savefig(tmp, dpi=dpi or DEFAULT_DPI, bbox_inches="tight"),
-                 os.path.splitext(output)[1])
+    write_figure_atomic(root, output, dpi=dpi or DEFAULT_DPI, bbox_inches="tight")
     return output
 
 
@@ -112,8 +113,49 @@ def panels(projections, ax=None, fig=None, ncols=None, size=(5.0, 4.2), what="pa
     return fig, axes
 
 
+# How the figure being drawn reads its datasets and scales its BRDF axes (set by dataset_options).
+_READING = {"average_duplicates": False, "units": "brdf"}
+#: The BRF axis label (reflectance factor, Nicodemus et al. 1977: pi x BRDF).
+BRF_UNIT = "BRF (π·BRDF)"
+
+
+def dataset_options(function):
+    """A figure function's keywords ``average_duplicates`` (the readers' duplicate policy for the dataset
+    files it reads) and ``units`` ("brdf", or "brf": the BRDF axes of datasets and models drawn as the
+    reflectance factor pi x BRDF)."""
+    @functools.wraps(function)
+    def with_options(*args, average_duplicates=False, units="brdf", **kwargs):
+        if units not in ("brdf", "brf"):
+            raise ValueError(f"units: expected 'brdf' or 'brf', got {units!r}")
+        if not isinstance(average_duplicates, (bool, np.bool_)):
+            raise TypeError(f"average_duplicates: expected True or False, got {type(average_duplicates).__name__}")
+        previous = dict(_READING)
+        _READING.update(average_duplicates=bool(average_duplicates), units=units)
+        try:
+            return function(*args, **kwargs)
+        finally:
+            _READING.update(previous)
+    return with_options
+
+
+def brdf_scale() -> float:
+    """The factor of the BRDF axes: pi when the figure shows BRF, else 1."""
+    return math.pi if _READING["units"] == "brf" else 1.0
+
+
+def unit_label() -> str:
+    """The BRDF axis label of the figure being drawn (BRDF or BRF)."""
+    return BRF_UNIT if _READING["units"] == "brf" else UNIT
+
+
 def as_dataset(x):
-    return x if isinstance(x, Dataset) else read_dataset(x)
+    d = x if isinstance(x, Dataset) else read_dataset(x, average_duplicates=_READING["average_duplicates"])
+    if brdf_scale() == 1.0:
+        return d
+    scaled = copy.copy(d)
+    scaled.brdf = d.brdf * brdf_scale()
+    scaled.sigma = None if d.sigma is None else d.sigma * brdf_scale()
+    return scaled
 
 
 def stem(path) -> str:
@@ -177,10 +219,10 @@ def evaluate(model, params, wavelength, ti, pi, tr, pr):
     if isinstance(model, SpectralModel):
         if wavelength is None:
             wavelength = float(model.wavelengths[wavelength_index(model.wavelengths, None)[0]])
-        return model.evaluate(ti, pi, tr, pr, wavelength), wavelength, label or model.model.name
+        return brdf_scale() * model.evaluate(ti, pi, tr, pr, wavelength), wavelength, label or model.model.name
     if isinstance(model, str):
         model = Model(model)
-    return model.evaluate(ti, pi, tr, pr, params=params or {}), None, label or model.name
+    return brdf_scale() * model.evaluate(ti, pi, tr, pr, params=params or {}), None, label or model.name
 
 
 def incidences(theta_i) -> list:

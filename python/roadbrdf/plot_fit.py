@@ -10,12 +10,14 @@ import numpy as np
 
 from . import read_fit
 from .core import read_json_file
-from .plot_common import (UNIT, as_dataset, finish, panels, plain, plain_title, readable_log_axis, sample_label,
+from .plot_common import (as_dataset, finish, panels, plain, plain_title, readable_log_axis, sample_label,
                           stem, wavelength_index)
+from .plot_common import brdf_scale, dataset_options, unit_label
 
 __all__ = ["fit_quality"]
 
 
+@dataset_options
 def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None, *, ax=None, fig=None, dpi=None):
     """Measured vs fitted BRDF per geometry (with residuals) at one wavelength, and RMSE against wavelength
     for every model of the fit file (that panel only when the file has several bands: no empty panels).
@@ -34,14 +36,15 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
     index, note = wavelength_index(d.wavelengths, wavelength)
     wl = float(d.wavelengths[index])
     a = d.angles
-    predicted = np.asarray(spectral_model.evaluate(a[:, 0], a[:, 1], a[:, 2], a[:, 3], wl))
+    predicted = brdf_scale() * np.asarray(spectral_model.evaluate(a[:, 0], a[:, 1], a[:, 2], a[:, 3], wl))
     measured = d.brdf[:, index]
     rmse = {}
     for f in fits["fits"]:
         if "rmse" not in f:  # a fit file written by hand
             continue
         group = "".join(f", {k}={v:g}" for k, v in (f.get("group") or {}).items())
-        rmse[f["model"] + group] = (np.asarray(f["wavelengths"], dtype=float), np.asarray(f["rmse"], dtype=float))
+        rmse[f["model"] + group] = (np.asarray(f["wavelengths"], dtype=float),
+                                    brdf_scale() * np.asarray(f["rmse"], dtype=float))
     several_bands = any(x.size > 1 for x, _ in rmse.values())
     fig, axes = panels([None] * (3 if several_bands else 2), ax=ax, fig=fig, size=(4.6, 4.2),
                        what="panels (measured vs fitted, residuals" + (", RMSE)" if several_bands else ")"))
@@ -59,8 +62,8 @@ def fit_quality(data, fit, model=None, wavelength=None, title=None, output=None,
         for which in (axis.xaxis, axis.yaxis):
             readable_log_axis(which, lo, hi)
         axis.legend(fontsize=8)
-    axis.set_xlabel("measured " + UNIT)
-    axis.set_ylabel("fitted " + UNIT)
+    axis.set_xlabel("measured " + unit_label())
+    axis.set_ylabel("fitted " + unit_label())
     axis.set_title(f"{chosen} at {wl:g} nm" + (f" ({note})" if note else ""), fontsize=9)
     axis = axes[1]
     order = np.argsort(a[:, 0] * 1000 + a[:, 2])

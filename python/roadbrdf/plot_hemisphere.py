@@ -11,8 +11,9 @@ import matplotlib.colors as mcolors
 import numpy as np
 
 from . import Dataset
-from .plot_common import (UNIT, as_dataset, evaluate, finish, incidences, is_model_file, measured_at_incidence,
+from .plot_common import (as_dataset, evaluate, finish, incidences, is_model_file, measured_at_incidence,
                           model_file, model_name, panels, plain, plain_title, plt, sample_label, wavelength_index)
+from .plot_common import dataset_options, unit_label
 
 __all__ = ["hemisphere"]
 
@@ -41,6 +42,7 @@ def _lobe_xyz(theta_r, dphi, f):
     return f * np.sin(t) * np.cos(p), f * np.sin(t) * np.sin(p), f * np.cos(t)
 
 
+@dataset_options
 def hemisphere(model=None, params=None, theta_i=45.0, wavelength=None, log=False, resolution=90, title=None,
                output=None, *, data=None, lobe=True, fit=None, label=None, ax=None, fig=None, dpi=None):
     """BRDF over the viewing hemisphere for one incidence theta_i [deg] or several (one column of panels each;
@@ -127,7 +129,7 @@ def hemisphere(model=None, params=None, theta_i=45.0, wavelength=None, log=False
         axis.set_title(f"$\\theta_i$ = {t:g}°  (radius $\\theta_r$, angle $\\phi_r-\\phi_i$;\n"
                        "● source side, ★ mirror)", fontsize=9)
     colourbar = fig.colorbar(mappable, ax=maps, shrink=0.85, pad=0.08)
-    colourbar.set_label(UNIT + (" (logarithmic colours)" if log else ""))
+    colourbar.set_label(unit_label() + (" (logarithmic colours)" if log else ""))
     for k, item in enumerate(per_incidence):
         if not lobes:
             break

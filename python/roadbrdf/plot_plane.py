@@ -9,9 +9,10 @@ import matplotlib.ticker as mticker
 import numpy as np
 
 from . import SpectralModel
-from .plot_common import (UNIT, as_dataset, decade_floor, evaluate, finish, incidences, is_model_file,
+from .plot_common import (as_dataset, decade_floor, evaluate, finish, incidences, is_model_file,
                           label_log_radius, log_radius, measured_at_incidence, model_file, panels, plain, plain_title,
                           sample_label, wavelength_index)
+from .plot_common import dataset_options, unit_label
 
 __all__ = ["plane", "in_plane_points"]
 
@@ -45,6 +46,7 @@ def _curves(models, params, wavelength, labels, fit, theta_i):
     return out
 
 
+@dataset_options
 def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, labels=None, title=None, output=None,
           *, log=False, cartesian=False, fit=None, ax=None, fig=None, dpi=None):
     """BRDF in the plane of incidence for an incidence theta_i [deg] or several (one panel each): theta_r from
@@ -102,10 +104,10 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
             axis.set_xlim(-90, 90)
             if log:
                 axis.set_yscale("log")
-                axis.set_ylabel(UNIT + ", logarithmic")
+                axis.set_ylabel(unit_label() + ", logarithmic")
             else:
                 axis.set_ylim(0, top * 1.05)
-                axis.set_ylabel(UNIT)
+                axis.set_ylabel(unit_label())
             for where, text in ((-t, "retro"), (t, "specular")):
                 axis.axvline(where, color="gray", lw=0.8, ls=":")
                 axis.text(where, 0.98, f" {text}", transform=axis.get_xaxis_transform(), fontsize=7, color="gray",
@@ -120,12 +122,12 @@ def plane(models=(), samples=(), theta_i=45.0, params=None, wavelength=None, lab
             axis.set_theta_direction(-1)
             if log:
                 label_log_radius(axis, floor, float(np.nanmax(log_radius(every, floor))))
-                axis.set_xlabel(f"radius: {UNIT}, logarithmic (centre {floor:g})", fontsize=8)
+                axis.set_xlabel(f"radius: {unit_label()}, logarithmic (centre {floor:g})", fontsize=8)
             else:
                 axis.set_rlim(0, top * 1.05)
                 axis.yaxis.set_major_locator(mticker.MaxNLocator(4))
                 axis.tick_params(axis="y", labelsize=7)
-                axis.set_xlabel("radius: " + UNIT + " (from 0)", fontsize=8)
+                axis.set_xlabel("radius: " + unit_label() + " (from 0)", fontsize=8)
             axis.set_rlabel_position(0)
             axis.text(0.02, 0.98, "backward\n(source side)", transform=axis.transAxes, ha="left", va="top",
                       fontsize=8)

@@ -9,8 +9,9 @@ import sys
 import numpy as np
 
 from . import SpectralModel
-from .plot_common import (UNIT, as_dataset, finish, is_model_file, model_file, panels, plain, plain_title,
+from .plot_common import (as_dataset, finish, is_model_file, model_file, panels, plain, plain_title,
                           sample_label, stem)
+from .plot_common import brdf_scale, dataset_options, unit_label
 from .plot_geometry import TOLERANCE_DEG, nearest_geometry, parse_geometry
 
 __all__ = ["spectral"]
@@ -20,6 +21,7 @@ def _geometry_text(ti, pi, tr, pr):
     return f"$\\theta_i$={ti:.0f}°, $\\theta_r$={tr:.0f}°, $\\Delta\\phi$={(pr - pi) % 360:.0f}°"
 
 
+@dataset_options
 def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=None, output=None, *, models=(),
              fit=None, model_labels=None, ax=None, dpi=None):
     """BRDF against wavelength at one geometry: measured datasets and predicted (fitted or mixed) curves.
@@ -84,7 +86,7 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
         if k < len(model_labels):
             label = model_labels[k]
         wl = np.asarray(spectral_model.wavelengths, dtype=float)
-        y = np.asarray(spectral_model.evaluate(*geometry, wl), dtype=float).reshape(-1)
+        y = brdf_scale() * np.asarray(spectral_model.evaluate(*geometry, wl), dtype=float).reshape(-1)
         colour = colours.get(key) or colours.get(label.split(" (")[0])
         ax.plot(wl, y, "--" if kind == "mix" else ":", lw=1.6, color=colour, marker="s" if wl.size < 8 else None,
                 ms=4, label=f"{label}  (at {_geometry_text(*geometry)})")
@@ -95,7 +97,7 @@ def spectral(samples=(), geometry=(30.0, 0.0, 30.0, 0.0), labels=None, title=Non
     hi = max(float(x[-1]) for x, _ in data.values())
     ax.set_xlim(lo - 50.0, hi + 50.0) if hi - lo < 1.0 else ax.set_xlim(lo, hi)
     ax.set_xlabel("wavelength [nm]")
-    ax.set_ylabel(UNIT)
+    ax.set_ylabel(unit_label())
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
     measured_stems = {stem(s) for s in sources if isinstance(s, (str, os.PathLike))}

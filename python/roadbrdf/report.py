@@ -130,12 +130,13 @@ def _collect(r, key):
 # ---- gathering the results -----------------------------------------------------------------------
 def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None, sun_zenith="0:60:30",
            atmosphere="spectrl2", illuminant="A", multistart=8, fix=None, free_weights=False, folds=5, threads=None,
-           quiet=True, workdir=None, installation=None, lighting_class=None):
+           quiet=True, workdir=None, installation=None, lighting_class=None, average_duplicates=False):
     """Every result of the report (a namespace), computed with the public API; ``workdir`` holds the fit
     files the figures and tables read (a temporary folder when None, removed afterwards). ``threads``: of
     the fit over all wavelengths (None: every core; the fit does not depend on it, bit for bit);
     ``installation``: a road-lighting installation file for the lighting section (report_lighting.py),
-    ``lighting_class`` its M class."""
+    ``lighting_class`` its M class; ``average_duplicates``: the duplicate policy of every command (else
+    repeated geometries are an error)."""
     from . import Model, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
     from . import albedo as albedo_of, rtable as rtable_of
     models = list(dict.fromkeys(models or DEFAULT_MODELS))
@@ -155,11 +156,12 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     steps = _Steps(quiet)
     r = SimpleNamespace(path=os.fspath(data), models=models, wavelength_asked=float(wavelength),
                         multistart=int(multistart), warnings={}, figures={}, figure_errors={}, folds=int(folds),
-                        illuminant=illuminant, steps=steps, mix=None, formulation=None, lighting=None)
+                        illuminant=illuminant, steps=steps, mix=None, formulation=None, lighting=None,
+                        average_duplicates=bool(average_duplicates))
     with steps.step("read", f"reading and checking {r.path}"), _collect(r, "read"):
         r.file = _file_info(r.path)
-        r.dataset = read_dataset(r.path)
-        r.check = check(r.path)
+        r.dataset = read_dataset(r.path, average_duplicates=r.average_duplicates)
+        r.check = check(r.path, average_duplicates=r.average_duplicates)
     d = r.dataset
     r.sample = d.metadata.get("sample") or os.path.splitext(r.file["name"])[0]
     r.fixed = {} if free_weights else _composite_weights(models)
@@ -328,11 +330,6 @@ def render_report(r, command: str = "") -> str:
     return page(f"roadbrdf report: {r.sample}", subtitle, s.summary(r), sections, footer)
 
 
-def _write_atomic(path: str, text: str) -> None:
-    """The page to ``path`` atomically (core.write_text_atomic), or to standard output for ``-``."""
-    write_text_atomic(path, text, ".html")
-
-
 def _check_output(output: str, inputs) -> None:
     if output != "-":
         folder = os.path.dirname(os.path.abspath(output))
@@ -346,7 +343,7 @@ def _check_output(output: str, inputs) -> None:
 def write_report(data, output, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None,
                  sun_zenith="0:60:30", atmosphere="spectrl2", illuminant="A", multistart=8, fix=None,
                  free_weights=False, folds=5, threads=None, quiet=True, command="", installation=None,
-                 lighting_class=None):
+                 lighting_class=None, average_duplicates=False):
     """Write the report of the dataset ``data`` to ``output`` (HTML, atomically; ``"-"``: standard output)
     and return the gathered results. Arguments as ``roadbrdf report``'s options; ``atmosphere=None``: no
     sky model (no blue-sky). Errors in the input are :class:`roadbrdf.InputError`, raised before the
@@ -360,9 +357,10 @@ def write_report(data, output, models=DEFAULT_MODELS, formulation=None, waveleng
         inputs += _roadbrdf.formulation_input_files(os.fspath(formulation))
     _check_output(output, inputs)
     r = gather(data, models, formulation, wavelength, theta_i, sun_zenith, atmosphere, illuminant, multistart,
-               fix, free_weights, folds, threads, quiet, installation=installation, lighting_class=lighting_class)
+               fix, free_weights, folds, threads, quiet, installation=installation, lighting_class=lighting_class,
+               average_duplicates=average_duplicates)
     text = render_report(r, command)
-    _write_atomic(output, text)
+    write_text_atomic(output, text)
     r.html = text
     total = time.monotonic() - r.steps.start
     r.steps.say(f"wrote {output} ({len(text.encode()) / 1024:.0f} KiB, {total:.1f} s)")
@@ -427,12 +425,15 @@ def main(argv=None) -> int:
                         "(docs/lighting.md)")
     p.add_argument("--lighting-class", metavar="M", help="with --installation: the M class (M1-M6) whose least "
                    "flux and power per km the section gives")
+    p.add_argument("--average-duplicates", action="store_true",
+                   help="average dataset rows with the same geometry (else an error), as every command does")
     a = p.parse_args(argv)
     command = "roadbrdf report " + " ".join(argv if argv is not None else sys.argv[1:])
     atmosphere = None if a.atmosphere.lower() == "none" else a.atmosphere
     write_report(a.data, a.output, a.model or DEFAULT_MODELS, a.formulation, a.wavelength, a.theta_i, a.sun_zenith,
                  atmosphere, a.illuminant, a.multistart, _fix_items(a.fix), a.free_weights, a.folds, a.threads,
-                 a.quiet, command, installation=a.installation, lighting_class=a.lighting_class)
+                 a.quiet, command, installation=a.installation, lighting_class=a.lighting_class,
+                 average_duplicates=a.average_duplicates)
     return 0
 
 
@@ -451,6 +452,7 @@ def _run() -> int:
         return main()
     except (ValueError, OSError) as e:  # InputError is a ValueError
         text = str(e) if not isinstance(e, OSError) or not e.filename else f"{e.filename}: {e.strerror}"
+        text = text.replace("`average_duplicates`", "--average-duplicates")  # the library's field, as a flag
         print(f"roadbrdf report: error: {text}", file=sys.stderr)
         return 2
     except Exception as e:  # noqa: BLE001 - a bug: its traceback, and the program's status for internal errors

@@ -215,7 +215,8 @@ def _early_jobs(r) -> list:
                                         f"{band:g} nm, residuals, and the RMSE of every model against wavelength "
                                         "(plot.fit_quality)."),
                      lambda: plot.fit_quality(r.path, r.fit_all_path, best, wavelength=band,
-                                              title=f"{r.sample}: fit quality"), cost=2))
+                                              title=f"{r.sample}: fit quality",
+                                              average_duplicates=r.average_duplicates), cost=2))
     if r.fit_all.wavelengths.size > 1:
         free = [p for p in r.best.parameter_names if p not in r.fixed]
         jobs.append(_Job("params-by-wavelength", esc(f"Parameters of {best} against wavelength, ± one standard "

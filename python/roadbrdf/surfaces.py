@@ -8,7 +8,7 @@ from typing import Any, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import ArrayLike, InputError, as_float, as_float_array, as_int, as_mapping, as_text
+from .core import ArrayLike, InputError, as_float, as_float_array, as_int, as_mapping, as_text, warn_at_caller
 from .io import Dataset
 from .model import Model
 
@@ -172,14 +172,13 @@ def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 
     Fit files are resolved relative to the formulation's folder (they are needed only to render).
     ``output``: also write the SURFACE file. Generator notes (e.g. jamming) are issued as UserWarning.
     """
-    import warnings
     handle, report = _roadbrdf.surface_from_formulation(
         as_text(formulation_path, "formulation_path"), as_float(size_mm, "size_mm"), as_float(cell_mm, "cell_mm"),
         as_int(seed, "seed"), None if matrix_level is None else as_float(matrix_level, "matrix_level"),
         None if target_mpd is None else as_float(target_mpd, "target_mpd"),
         None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"))
     for note in report["notes"]:
-        warnings.warn(note, UserWarning, stacklevel=2)
+        warn_at_caller(note)
     s = Surface(handle, dict(report))
     if output is not None:
         s.write(output)

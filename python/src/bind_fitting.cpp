@@ -8,8 +8,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "binding.h"
+#include "request_kwargs.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -168,50 +170,38 @@ void bind_fitting(py::module_& m) {
 
   m.def(
       "fit",
-      [](const DoubleArray& angles, const DoubleArray& wavelengths, const DoubleArray& brdf, const py::object& sigma,
-         const std::map<std::string, std::string>& metadata, const std::string& convention,
-         const std::vector<std::string>& models, const OptionSet& options, const std::vector<std::string>& shared,
-         const std::map<std::string, double>& fixed, const std::map<std::string, double>& start,
-         const std::map<std::string, std::pair<double, double>>& bounds, const std::string& loss,
-         const std::string& robust, bool use_sigma, bool solid_angle_weights, int multistart, unsigned seed,
-         const py::object& wavelength_selection, int threads, int max_iterations, bool covariance, bool warm_start,
-         bool solve_amplitudes, const std::string& joint_solver, const std::string& where,
-         const std::vector<std::string>& group_by, const py::object& bands) {
-        FitRequest request;
-        request.models = models;
-        request.options = options;
-        request.shared = shared;
-        request.fixed = fixed;
-        request.start = start;
-        request.bounds = bounds;
-        request.loss = loss;
-        request.robust = robust;
-        request.use_sigma = use_sigma;
-        request.solid_angle_weights = solid_angle_weights;
-        request.multistart = multistart;
-        request.seed = seed;
-        request.wavelengths = values_argument(wavelength_selection, "wavelengths");
-        request.threads = threads;
-        request.max_iterations = max_iterations;
-        request.covariance = covariance;
-        request.warm_start = warm_start;
-        request.solve_amplitudes = solve_amplitudes;
-        request.joint_solver = joint_solver;
-        request.where = where;
-        request.group_by = group_by;
-        request.bands = intervals_argument(bands, "bands");
+      [](const py::args& args, const py::kwargs& kwargs) {
+        // The dataset: a roadbrdf.Dataset (its values) first, or its file (`data`, read with the
+        // request's dataset-reading fields).
+        std::optional<SpectralDataset> given;
+        py::tuple rest = args;
+        if (!args.empty() && py::hasattr(args[0], "brdf")) {
+          const py::handle d = args[0];
+          std::map<std::string, std::string> metadata;
+          for (const auto& [key, value] : py::dict(d.attr("metadata"))) metadata[py::str(key)] = py::str(value);
+          given = dataset_from_arrays(d.attr("angles").cast<DoubleArray>(), d.attr("wavelengths").cast<DoubleArray>(),
+                                      d.attr("brdf").cast<DoubleArray>(), d.attr("sigma"), metadata,
+                                      py::str(d.attr("convention")));
+          rest = args[py::slice(1, static_cast<py::ssize_t>(args.size()), 1)];
+        }
+        const auto request = request_from_arguments<FitRequest>(py::args(rest), kwargs);
         request.validate();
-        const SpectralDataset data = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
-        SigintGuard interruptible;
-        py::gil_scoped_release release;
-        return std::make_shared<FitSummary>(run_fit(request, data));
+        check_request_files(request);
+        const SpectralDataset data = given ? std::move(*given) : read_fit_data(request);
+        std::shared_ptr<FitSummary> summary;
+        {
+          SigintGuard interruptible;
+          py::gil_scoped_release release;
+          summary = std::make_shared<FitSummary>(run_fit(request, data));
+        }
+        write_fit_outputs(request, *summary, data);
+        return summary;
       },
-      py::arg("angles"), py::arg("wavelengths"), py::arg("brdf"), py::arg("sigma"), py::arg("metadata"),
-      py::arg("convention"), py::arg("models"), py::arg("options"), py::arg("shared"), py::arg("fixed"),
-      py::arg("start"), py::arg("bounds"), py::arg("loss"), py::arg("robust"), py::arg("use_sigma"),
-      py::arg("solid_angle_weights"), py::arg("multistart"), py::arg("seed"), py::arg("wavelength_selection"),
-      py::arg("threads"), py::arg("max_iterations"), py::arg("covariance"), py::arg("warm_start"),
-      py::arg("solve_amplitudes"), py::arg("joint_solver"), py::arg("where"), py::arg("group_by"), py::arg("bands"));
+      request_docstring<FitRequest>(
+          "Fit models to a measured spectral BRDF, as `roadbrdf fit` does: `data` is a roadbrdf.Dataset or its "
+          "file.",
+          "Returns the fit summary (roadbrdf.FitResult wraps it); `output` and `residuals` are written.")
+          .c_str());
   m.def(
       "params_table",
       [](const std::string& fit_file, const py::object& wavelength_selection, const std::vector<std::string>& models,
@@ -233,30 +223,16 @@ void bind_fitting(py::module_& m) {
         py::list columns;
         for (const auto& c : t.csv_columns()) columns.append(c);
         out["columns"] = columns;
+        // The columns of the library's CSV cells (ParamsTable::csv_cells), as lists.
+        std::vector<py::list> columns_data(t.csv_columns().size());
+        for (const ParamsRow& r : t.rows) {
+          const auto cells = t.csv_cells(r);
+          for (std::size_t c = 0; c < cells.size(); ++c) {
+            std::visit([&](const auto& value) { columns_data[c].append(value); }, cells[c]);
+          }
+        }
         py::dict data;
-        std::size_t c = 0;
-        const auto names = t.csv_columns();
-        auto column = [&t](auto get) {
-          py::list l;
-          for (const ParamsRow& r : t.rows) l.append(get(r));
-          return l;
-        };
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.model; });
-        for (std::size_t g = 0; g < t.group_columns.size(); ++g) {
-          data[py::str(names[c++])] = column([g](const ParamsRow& r) { return r.group[g]; });
-        }
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.wavelength; });
-        for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
-          data[py::str(names[c++])] = column([k](const ParamsRow& r) { return r.values[k]; });
-          data[py::str(names[c++])] = column([k](const ParamsRow& r) { return r.standard_errors[k]; });
-        }
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.rmse; });
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return 100.0 * r.relative_rmse; });
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return 100.0 * r.max_relative_error; });
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.aic; });
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.bic; });
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.converged; });
-        data[py::str(names[c++])] = column([](const ParamsRow& r) { return r.at_bounds; });
+        for (std::size_t c = 0; c < columns_data.size(); ++c) data[py::str(t.csv_columns()[c])] = columns_data[c];
         out["data"] = data;
         return out;
       },

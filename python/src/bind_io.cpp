@@ -16,6 +16,7 @@
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/dataset_runs.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/quality.h"
@@ -59,9 +60,7 @@ py::dict dataset_to_dict(const SpectralDataset& d) {
 }
 
 std::function<void(const std::string&)> python_warning() {
-  return [](const std::string& message) {
-    py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 3);
-  };
+  return [](const std::string& message) { py::module_::import("roadbrdf.core").attr("warn_at_caller")(message); };
 }
 
 Array vector_array(const std::vector<double>& v) { return Array(static_cast<py::ssize_t>(v.size()), v.data()); }
@@ -192,33 +191,55 @@ SpectralDataset dataset_from_arrays(const DoubleArray& angles, const DoubleArray
 }
 
 void bind_io(py::module_& m) {
+  // Every dataset-reading field of the command line (io/dataset_runs.h DatasetReadFields), for one file
+  // or several runs of one sample (combined as `convert A.csv B.csv` does).
   m.def(
       "read_dataset",
-      [](const std::string& path, bool average_duplicates, bool allow_missing, const std::string& delimiter,
-         const std::string& decimal) {
-        DatasetReadOptions options;
-        options.average_duplicates = average_duplicates;
-        options.allow_missing = allow_missing;
-        // The same names and the same validation as the command line's --delimiter / --decimal.
-        options.delimiter = delimiter_from_name(delimiter, "delimiter");
-        options.decimal = decimal_from_name(decimal, "decimal");
-        validate_read_options(options);
-        options.warn = python_warning();
-        return dataset_to_dict(read_dataset(path, options));
+      [](const std::vector<std::string>& paths, bool average_duplicates, bool allow_missing,
+         const std::string& delimiter, const std::string& decimal, const std::string& quantity,
+         const std::vector<std::string>& columns, const std::vector<std::string>& set) {
+        DatasetReadFields fields;
+        fields.average_duplicates = average_duplicates;
+        fields.delimiter = delimiter;
+        fields.decimal = decimal;
+        fields.quantity = quantity;
+        fields.columns = columns;
+        fields.set = set;
+        std::vector<DatasetRun> runs;
+        for (const std::string& path : paths) {
+          DatasetReadOptions options = fields.options_for(path, paths);
+          options.allow_missing = allow_missing;
+          options.warn = python_warning();
+          runs.push_back({path, read_dataset(path, options)});
+        }
+        return dataset_to_dict(combine_runs(runs, average_duplicates, python_warning()));
       },
-      py::arg("path"), py::arg("average_duplicates") = false, py::arg("allow_missing") = true,
-      py::arg("delimiter") = "auto", py::arg("decimal") = "auto");
+      py::arg("paths"), py::arg("average_duplicates") = false, py::arg("allow_missing") = true,
+      py::arg("delimiter") = "auto", py::arg("decimal") = "auto", py::arg("quantity") = "brdf",
+      py::arg("columns") = std::vector<std::string>{}, py::arg("set") = std::vector<std::string>{});
+  // A dataset made in Python under the readers' duplicate policy: repeated geometries are an error, or
+  // averaged as duplicate rows of a file are.
+  m.def("dataset_duplicate_policy",
+        [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
+           const std::map<std::string, std::string>& metadata, const std::string& convention, bool average_duplicates) {
+          const SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+          return dataset_to_dict(combine_runs({{"dataset", d}}, average_duplicates, python_warning()));
+        });
   // The quality report of `roadbrdf check` (io/quality.h) with its default thresholds: the JSON of
   // `check --json` as a dict, plus its text under "text".
   m.def(
       "check_dataset",
-      [](const std::string& path, bool average_duplicates, const std::string& delimiter, const std::string& decimal) {
-        DatasetReadOptions options;
-        options.average_duplicates = average_duplicates;
+      [](const std::string& path, bool average_duplicates, const std::string& delimiter, const std::string& decimal,
+         const std::string& quantity, const std::vector<std::string>& columns, const std::vector<std::string>& set) {
+        DatasetReadFields fields;
+        fields.average_duplicates = average_duplicates;
+        fields.delimiter = delimiter;
+        fields.decimal = decimal;
+        fields.quantity = quantity;
+        fields.columns = columns;
+        fields.set = set;
+        DatasetReadOptions options = fields.options_for(path, {path});
         options.allow_missing = true;  // counted in the report, as `check` does
-        options.delimiter = delimiter_from_name(delimiter, "delimiter");
-        options.decimal = decimal_from_name(decimal, "decimal");
-        validate_read_options(options);
         options.warn = python_warning();
         DatasetReadStats stats;
         const SpectralDataset d = read_dataset(path, options, stats);
@@ -229,7 +250,20 @@ void bind_io(py::module_& m) {
         return json_to_python(j);
       },
       py::arg("path"), py::arg("average_duplicates") = false, py::arg("delimiter") = "auto",
-      py::arg("decimal") = "auto");
+      py::arg("decimal") = "auto", py::arg("quantity") = "brdf", py::arg("columns") = std::vector<std::string>{},
+      py::arg("set") = std::vector<std::string>{});
+  // The same report of a dataset in memory (no reading statistics: the repeatability of averaged
+  // duplicates is that of a file's reading).
+  m.def("check_dataset_object",
+        [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
+           const std::map<std::string, std::string>& metadata, const std::string& convention) {
+          const SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+          const QualityReport r = check_dataset(d, QualityOptions{});
+          nlohmann::json j = quality_report_json(d, r);
+          j["file"] = nullptr;
+          j["text"] = quality_report_text(d, r);
+          return json_to_python(j);
+        });
   m.def("write_dataset",
         [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
            const std::map<std::string, std::string>& metadata, const std::string& convention,

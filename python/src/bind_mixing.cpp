@@ -3,12 +3,14 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "binding.h"
+#include "request_kwargs.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mix_file.h"
@@ -51,40 +53,38 @@ void bind_mixing(py::module_& m) {
 
   m.def(
       "mix",
-      [](const std::string& formulation_path, const std::string& data_path, const std::string& method, int folds,
-         unsigned seed, bool per_wavelength, bool sum_to_one, std::optional<double> binder_coverage,
-         std::optional<double> mastic_fraction, const std::string& reference_path, const std::string& output,
-         bool use_sigma, const std::string& residuals, const std::string& cross_sections, bool uncertainty,
-         std::shared_ptr<mixing::EndMemberCache> cache) {
-        mixing::MixRequest request;
-        request.formulation = formulation_path;
-        request.data = data_path;
-        request.method = method;
-        request.folds = folds;
-        request.seed = seed;
-        request.per_wavelength = per_wavelength;
-        request.sum_to_one = sum_to_one;
-        request.binder_coverage = binder_coverage;
-        request.mastic_fraction = mastic_fraction;
-        request.reference = reference_path;
-        request.use_sigma = use_sigma;
-        request.residuals = !residuals.empty();
-        request.cross_sections = cross_sections;
-        request.uncertainty = uncertainty;
+      [](const py::args& args, py::kwargs kwargs) {
+        // The end-member cache is Python's own argument (the studies keep one per worker), not a field.
+        std::shared_ptr<mixing::EndMemberCache> cache;
+        if (kwargs.contains("cache")) {
+          cache = kwargs["cache"].cast<std::shared_ptr<mixing::EndMemberCache>>();
+          PyDict_DelItemString(kwargs.ptr(), "cache");
+        }
+        // Fit files given as values, by the reference the formulation gives (not a field: the command
+        // line has the files).
+        std::map<std::string, std::string> fits;
+        if (kwargs.contains("fits")) {
+          fits = kwargs["fits"].cast<std::map<std::string, std::string>>();
+          PyDict_DelItemString(kwargs.ptr(), "fits");
+        }
+        auto request = request_from_arguments<mixing::MixRequest>(args, kwargs);
         request.end_member_cache = std::move(cache);
+        request.fits = std::move(fits);
         std::shared_ptr<MixRun> run;
         {
           SigintGuard interruptible;
           py::gil_scoped_release release;
-          run = std::make_shared<MixRun>(mixing::run_mix(request, {{"output", output}, {"residuals", residuals}}));
+          run = std::make_shared<MixRun>(mixing::run_mix(request));
+          mixing::write_mix_outputs(*run);
         }
         return run;
       },
-      py::arg("formulation"), py::arg("data") = "", py::arg("method") = "all", py::arg("folds") = 5,
-      py::arg("seed") = 1u, py::arg("per_wavelength") = false, py::arg("sum_to_one") = false,
-      py::arg("binder_coverage") = py::none(), py::arg("mastic_fraction") = py::none(), py::arg("reference") = "",
-      py::arg("output") = "", py::arg("use_sigma") = true, py::arg("residuals") = "", py::arg("cross_sections") = "",
-      py::arg("uncertainty") = false, py::arg("cache") = py::none());
+      request_docstring<mixing::MixRequest>(
+          "Predict the BRDF of a road formulation from its components' fits, as `roadbrdf mix` does. The "
+          "formulation may be given as a dict, and `fits` gives fit files' JSON texts by the references the "
+          "formulation names them with (not read from disk).",
+          "Returns the run (roadbrdf.MixResult wraps it); `output` and `residuals` are written.")
+          .c_str());
   // Calibrated intimate mixing (mixing/calibration.h): a CrossSectionRequest; returns the calibration
   // file's content (written to `output` when given) and the report.
   m.def(

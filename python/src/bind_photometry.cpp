@@ -105,7 +105,7 @@ py::dict report_to_dict(const RTableReport& report) {
   d["warnings"] = report.warnings;
   d["note"] = report.notes.empty() ? py::object(py::none()) : py::object(py::str(report.notes.front()));
   for (const std::string& warning : report.warnings) {
-    py::module_::import("warnings").attr("warn")(warning, py::module_::import("builtins").attr("UserWarning"), 3);
+    py::module_::import("roadbrdf.core").attr("warn_at_caller")(warning);
   }
   return d;
 }

@@ -41,6 +41,8 @@ void bind_surface(pybind11::module_& m);        // bind_surface.cpp: virtual sur
 void bind_marking(pybind11::module_& m);        // bind_marking.cpp: road markings, model export
 void bind_lighting(pybind11::module_& m);       // bind_lighting.cpp: luminaires
 void bind_lighting_calc(pybind11::module_& m);  // bind_lighting_calc.cpp: roadbrdf.lighting
+void bind_output(pybind11::module_& m);         // bind_output.cpp: AtomicFile writes
+void bind_requests(pybind11::module_& m);       // bind_output.cpp: request tables
 
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 

@@ -97,7 +97,7 @@ PYBIND11_MODULE(_roadbrdf, m) {
   // a reader may run while the GIL is released, so the sink takes it.
   set_front_end_warning_sink([](const std::string& message) {
     const py::gil_scoped_acquire gil;
-    py::module_::import("warnings").attr("warn")(message, py::module_::import("builtins").attr("UserWarning"), 2);
+    py::module_::import("roadbrdf.core").attr("warn_at_caller")(message);
   });
 
   // InputError and FileError become roadbrdf.InputError (a ValueError) with the CLI's message.
@@ -221,4 +221,6 @@ PYBIND11_MODULE(_roadbrdf, m) {
   roadbrdf::python::bind_marking(m);
   roadbrdf::python::bind_lighting(m);
   roadbrdf::python::bind_lighting_calc(m);
+  roadbrdf::python::bind_output(m);
+  roadbrdf::python::bind_requests(m);
 }

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -79,7 +80,7 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
     }
     into = big.cast<int>();
   } else if constexpr (std::is_same_v<Value, std::string>) {
-    into = text(value, field);
+    into = value.is_none() ? std::string() : text(value, field);  // None: not given (no file, no name)
   } else if constexpr (std::is_same_v<Value, std::optional<double>>) {
     if (value.is_none()) {
       into.reset();
@@ -95,9 +96,41 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
     }
     if (!py::isinstance<py::sequence>(value)) throw FieldError(field, "expected a string or a list of strings");
     for (const py::handle item : py::reinterpret_borrow<py::sequence>(value)) into.push_back(text(item, field));
-  } else {
-    static_assert(std::is_same_v<Value, std::vector<double>>);
+  } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
     into = values_argument(py::reinterpret_borrow<py::object>(value), field);
+  } else if constexpr (std::is_same_v<Value, Source>) {
+    // A file, or the content itself (a dict or list, as its JSON text; named `<field>` in messages).
+    if (value.is_none()) {
+      into = Source{};
+    } else if (py::isinstance<py::dict>(value) || py::isinstance<py::list>(value)) {
+      into = Source{"<" + field + ">", py::module_::import("json").attr("dumps")(value).cast<std::string>()};
+    } else {
+      into = Source{text(value, field), {}};
+    }
+  } else if constexpr (std::is_same_v<Value, std::vector<std::pair<double, double>>>) {
+    into = intervals_argument(py::reinterpret_borrow<py::object>(value), field);
+  } else {
+    // A dict {name: value}; None is an empty one. Model options are names (any value as its text),
+    // numbers are numbers, bounds (lower, upper) pairs or "LOWER:UPPER".
+    into.clear();
+    if (value.is_none()) return;
+    if (!py::isinstance<py::dict>(value)) {
+      throw FieldError(field, "expected a dict {name: value}, got " + type_name(value));
+    }
+    for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+      const std::string name = py::str(key);
+      const std::string at = field + "." + name;
+      if constexpr (std::is_same_v<Value, std::map<std::string, std::string>>) {
+        into[name] = py::str(item).cast<std::string>();
+      } else if constexpr (std::is_same_v<Value, std::map<std::string, double>>) {
+        into[name] = number(item, at);
+      } else {
+        static_assert(std::is_same_v<Value, std::map<std::string, std::pair<double, double>>>);
+        const auto pair = intervals_argument(py::reinterpret_borrow<py::object>(item), at);
+        if (pair.size() != 1) throw FieldError(at, "expected (lower, upper)");
+        into[name] = pair.front();
+      }
+    }
   }
 }
 
@@ -105,8 +138,9 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
 
 // The request from a Python call's arguments (see above). Fields not given keep their defaults.
 template <class Request>
-Request request_from_arguments(const pybind11::args& args, const pybind11::kwargs& kwargs, Request request = {}) {
+Request request_from_arguments(const pybind11::args& args, const pybind11::kwargs& kwargs) {
   namespace py = pybind11;
+  Request request;
   const RequestFields<Request> fields = Request::fields();
   std::vector<const RequestField<Request>*> positionals;
   for (const RequestField<Request>& field : fields) {
@@ -124,6 +158,11 @@ Request request_from_arguments(const pybind11::args& args, const pybind11::kwarg
     }
     given.push_back(name);
     std::visit([&](auto member) { request_detail::assign(request.*member, value, name); }, field.member);
+    if (field.comma_separated) {
+      if (auto list = std::get_if<std::vector<std::string> Request::*>(&field.member)) {
+        request.*(*list) = split_name_list(request.*(*list));
+      }
+    }
   };
   for (std::size_t k = 0; k < args.size(); ++k) set(*positionals[k], args[k]);
   for (const auto& [key, value] : kwargs) {
@@ -150,14 +189,17 @@ Request request_from_arguments(const pybind11::args& args, const pybind11::kwarg
 
 // "SUMMARY\n\nArguments:\n    name [unit]: help\n..." from the request's table.
 template <class Request>
-std::string request_docstring(const std::string& summary) {
+std::string request_docstring(
+    const std::string& summary,
+    const std::string& returns =
+        "Returns a roadbrdf.Result (value, notes, warnings, summary); warnings are also issued.") {
   std::string doc = summary + "\n\nArguments (positional first; all may be given by keyword):\n";
   for (const RequestField<Request>& field : Request::fields()) {
     doc += "    " + std::string(field.name);
     if (!field.unit.empty()) doc += " [" + std::string(field.unit) + "]";
     doc += ": " + std::string(field.help) + "\n";
   }
-  return doc + "\nReturns a roadbrdf.Result (value, notes, warnings, summary); warnings are also issued.\n";
+  return doc + "\n" + returns + "\n";
 }
 
 // A task's result as a roadbrdf.Result; its warnings are issued as roadbrdf.RoadbrdfWarning at the
@@ -168,7 +210,7 @@ inline pybind11::object python_result(const nlohmann::json& value, const Diagnos
   const py::module_ result_module = py::module_::import("roadbrdf.result");
   const py::object warning_type = result_module.attr("RoadbrdfWarning");
   for (const Diagnostic& d : diagnostics.warnings) {
-    py::module_::import("warnings").attr("warn")(d.message, warning_type, 1);
+    py::module_::import("roadbrdf.core").attr("warn_at_caller")(d.message, warning_type);
   }
   const nlohmann::json diagnostics_json = diagnostics.to_json();
   return result_module.attr("Result")(json_to_python(value), json_to_python(diagnostics_json["notes"]),

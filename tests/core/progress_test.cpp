@@ -70,7 +70,55 @@ TEST(Progress, DisabledOrShortWorkWritesNothing) {
   }
   EXPECT_EQ(contents(f), "");
   std::fclose(f);
-  EXPECT_FALSE(ProgressBar::terminal_enabled(true));  // --quiet: never, whatever the stream
+  EXPECT_EQ(ProgressBar::stderr_style(true), ProgressStyle::kOff);  // --quiet: never, whatever the stream
+}
+
+// On a log (not a terminal): one plain line at the first update after each multiple of the interval
+// (here 10 s of a fake clock), none before, and the final count when the work ends.
+TEST(Progress, HeartbeatWritesOneLineEveryIntervalAndTheEnd) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  double now = 0.0;
+  {
+    ProgressBar log(
+        "fit hapke", f, ProgressStyle::kHeartbeat, [&now] { return now; }, 1.0, 0.1, 10.0);
+    now = 9.9;
+    log.update(3, 40);  // before the first interval: nothing
+    EXPECT_FALSE(log.shown());
+    now = 10.0;
+    log.update(4, 40);  // written
+    now = 19.0;
+    log.update(10, 40);  // within the second interval: nothing
+    now = 35.0;
+    log.update(20, 40);  // late: written once, the next at 40 s
+    now = 39.0;
+    log.update(30, 40);
+    now = 41.0;
+    log.update(40, 40);  // done: left to finish()
+    now = 41.5;
+  }
+  const std::string out = contents(f);
+  std::fclose(f);
+  EXPECT_EQ(out,
+            "fit hapke: 4/40 10%  10.0 s, ~1 min 30 s left\n"
+            "fit hapke: 20/40 50%  35.0 s, ~35.0 s left\n"
+            "fit hapke: 40/40 100%  41.5 s\n");
+}
+
+TEST(Progress, HeartbeatOfShortWorkWritesNothing) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  double now = 0.0;
+  {
+    ProgressBar log(
+        "mix", f, ProgressStyle::kHeartbeat, [&now] { return now; }, 1.0, 0.1, 10.0);
+    now = 5.0;
+    log.update(1, 2);
+    now = 9.0;
+    log.update(2, 2);
+  }
+  EXPECT_EQ(contents(f), "");
+  std::fclose(f);
 }
 
 }  // namespace

@@ -19,12 +19,14 @@ struct ToyRequest {
   std::string output;
   std::vector<std::string> extra;
   double height_m = 10.0;
+  Source source;
   static RequestFields<ToyRequest> fields() {
     static const RequestField<ToyRequest> table[] = {
         {"input", "INPUT", "", "What is read", &ToyRequest::input, FileRole::input, true},
         {"output", "-o,--output", "", "What is written", &ToyRequest::output, FileRole::output},
         {"extra", "--extra", "", "More inputs", &ToyRequest::extra, FileRole::input},
         {"height_m", "--height", "m", "Mounting height", &ToyRequest::height_m},
+        {"source", "--source,--src", "", "A file or its content", &ToyRequest::source, FileRole::input},
     };
     return table;
   }
@@ -34,6 +36,8 @@ TEST(RequestFields, FindsFieldsByNameAndByTheirFirstPart) {
   ASSERT_NE(find_field(ToyRequest::fields(), "height_m"), nullptr);
   EXPECT_EQ(find_field(ToyRequest::fields(), "height_m")->long_flag(), "--height");
   EXPECT_EQ(find_field(ToyRequest::fields(), "output")->long_flag(), "--output");
+  EXPECT_EQ(find_field(ToyRequest::fields(), "source")->long_flag(), "--source");
+  EXPECT_EQ(find_field(ToyRequest::fields(), "input")->long_flag(), "INPUT");
   EXPECT_EQ(find_field(ToyRequest::fields(), "extra.first")->name, "extra");
   EXPECT_EQ(find_field(ToyRequest::fields(), "height"), nullptr);
   EXPECT_TRUE(find_field(ToyRequest::fields(), "input")->positional());
@@ -52,6 +56,26 @@ TEST(RequestFields, FileRowsBecomeInputsAndOutputsNamedByTheirField) {
   EXPECT_EQ(inputs[0].role, "`input`");
   EXPECT_EQ(inputs[2].path, "d.csv");
   EXPECT_EQ(outputs[0].path, "b.csv");
+}
+
+TEST(RequestFields, ASourceIsAFileOnlyWhenNotGivenAsAValue) {
+  ToyRequest request;
+  request.source = Source{"s.json", {}};
+  std::vector<FileArgument> inputs, outputs;
+  file_arguments(request, ToyRequest::fields(), inputs, outputs);
+  ASSERT_EQ(inputs.size(), 1u);
+  EXPECT_EQ(inputs[0].role, "`source`");
+  EXPECT_EQ(inputs[0].path, "s.json");
+  request.source = Source{"<source>", "{}"};
+  inputs.clear();
+  file_arguments(request, ToyRequest::fields(), inputs, outputs);
+  EXPECT_TRUE(inputs.empty());
+}
+
+TEST(RequestFields, ANameListIsSplitAtCommas) {
+  EXPECT_EQ(split_name_list({"theta_i, phi_i", "gamma", ",,"}),
+            (std::vector<std::string>{"theta_i", "phi_i", "gamma"}));
+  EXPECT_TRUE(split_name_list({}).empty());
 }
 
 TEST(RequestFields, AnOutputThatIsAnInputIsRefused) {

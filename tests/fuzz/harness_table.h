@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "fuzz/dataset_mapped_harness.h"
 #include "fuzz/installation_harnesses.h"
 #include "fuzz/instrument_harnesses.h"
 #include "fuzz/luminaire_harnesses.h"
@@ -26,6 +27,7 @@ inline const std::map<std::string, Harness>& harnesses() {
       {"cross_sections", cross_sections_one_input},
       {"curet", curet_one_input},
       {"dataset", dataset_one_input},
+      {"dataset_mapped", dataset_mapped_one_input},
       {"eulumdat", eulumdat_one_input},
       {"fit_file", fit_file_one_input},
       {"formulation", formulation_one_input},

@@ -60,19 +60,6 @@ def test_simulate_takes_a_wavelength_list(cli, root, tmp_path):
     assert message.startswith("--wavelengths: values must increase"), message
 
 
-def test_fit_wavelength_selection_errors_are_the_same(cli, root, tmp_path):
-    data = root / "data/examples/single/lazard.csv"
-    cli_message = _cli_error(cli, "fit", data, "--model", "lambert", "--wavelengths", "510:700:40",
-                             "-o", tmp_path / "f.json")
-    with pytest.raises(roadbrdf.InputError) as e:
-        roadbrdf.fit(data, "lambert", wavelengths="510:700:40")
-    assert _detail(cli_message, "--wavelengths") == _detail(str(e.value), "wavelengths")
-    # A list of numbers is the same selection as the text.
-    a = roadbrdf.fit(data, "lambert", wavelengths=[510, 550])
-    b = roadbrdf.fit(data, "lambert", wavelengths="510,550")
-    assert a["fits"][0]["parameters"] == b["fits"][0]["parameters"]
-
-
 def test_fit_member_is_chosen_with_fit_everywhere(cli, root, tmp_path):
     fit = tmp_path / "two.fit.json"
     cli("fit", root / "data/examples/single/lazard.csv", "--model", "lambert", "--model", "oren-nayar",

@@ -1,5 +1,5 @@
-"""Progress bars of long commands: drawn on standard error only when it is a terminal,
-never with --quiet, and nothing in a pipe or log but the usual summary (core/progress.h)."""
+"""Progress bars of long commands: drawn on standard error only when it is a terminal, never with
+--quiet; a pipe or log gets no bar (at most a plain heartbeat line every 10 s, core/progress.h)."""
 import os
 import pty
 import subprocess

@@ -433,13 +433,13 @@ def test_errors(tmp_path, args, message):
 
 
 def test_atomic_write_keeps_mode_and_follows_links(tmp_path):
-    from roadbrdf.report import _write_atomic
+    from roadbrdf.core import write_text_atomic
     target = tmp_path / "kept.html"
     target.write_text("old")
     target.chmod(0o600)
     link = tmp_path / "link.html"
     link.symlink_to(target)
-    _write_atomic(str(link), "new")
+    write_text_atomic(str(link), "new")
     assert link.is_symlink() and target.read_text() == "new"
     assert (target.stat().st_mode & 0o777) == 0o600
     assert sorted(p.name for p in tmp_path.iterdir()) == ["kept.html", "link.html"]

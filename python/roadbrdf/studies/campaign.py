@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import glob
 import hashlib
-import inspect
 import json
 import math
 import os
@@ -26,7 +25,8 @@ from .spec import InputError, _copy_json, _fail, _object, _read_json, _string
 _TOP_KEYS = {"format", "version", "name", "description", "samples", "fit", "fits_folder"}
 _SAMPLE_KEYS = {"data", "name", "attributes"}
 # roadbrdf.fit's own arguments that a campaign sets itself.
-_NOT_SETTINGS = {"data", "output", "threads"}
+# The fit's fields a campaign sets itself (its samples, one thread per task) or that write files per sample.
+_NOT_SETTINGS = {"data", "output", "residuals", "threads", "delimiter", "decimal", "average_duplicates"}
 
 
 class Campaign:
@@ -90,8 +90,8 @@ def _samples(where, folder, value):
 
 def _settings(where, value):
     """The keyword arguments of roadbrdf.fit (checked by name here, by value by the fit itself)."""
-    from ..fitting import fit
-    allowed = set(inspect.signature(fit).parameters) - _NOT_SETTINGS
+    from .. import _roadbrdf
+    allowed = ({row["name"] for row in _roadbrdf.request_fields("fit")} | {"fix"}) - _NOT_SETTINGS
     settings = dict(_object(where, "fit", value, allowed, ("models",)))
     models = settings["models"]
     if isinstance(models, str):

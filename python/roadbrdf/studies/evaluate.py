@@ -1,8 +1,9 @@
 """One study task: a candidate formulation predicted by the fast or the physical path.
 
 :func:`run_task` is a pure function of the task (a dict that ``run.make_tasks`` builds) and of the fit files'
-contents (``fits``: SHA-256 -> text): it writes them to a private folder (once per process), writes the
-candidate's formulation there, and returns its result rows. It uses one thread, so a process pool or a Dask
+contents (``fits``: SHA-256 -> text): the fast path mixes the candidate's formulation and the fits as values (no
+file is written); the physical path, whose surface generator reads files, writes them to a private folder (once
+per process) and the candidate's formulation to a temporary one. It returns the candidate's result rows. It uses one thread, so a process pool or a Dask
 worker runs one task per core, and the same task gives the same numbers, bit for bit, everywhere.
 """
 
@@ -42,7 +43,8 @@ def _fit_folder(fits):
 
 
 def _materialise(formulation, folder):
-    """The formulation with its "sha256:..." fit references pointing to the fit files in ``folder``."""
+    """The formulation with its "sha256:..." fit references pointing to the fit files in ``folder`` (or, with
+    ``folder`` "", named as the fits given as values: ``<digest>.json``)."""
     f = json.loads(json.dumps(formulation))
 
     def fix(entry):
@@ -137,20 +139,22 @@ def _end_members():
     return _END_MEMBERS
 
 
-def _fast(task, path):
+def _fast(task, candidate):
     """The candidate mixed by each method in this process, as ``roadbrdf mix`` + ``albedo`` + ``rtable`` on its
     MIX.json would give (the r-table bit for bit; the albedo of a linear method from its end-members' integrals,
     within the quadrature's error estimates: docs/studies.md "Speed")."""
     import warnings
     from .. import _roadbrdf
     from ..albedos import _warn_notes
+    # The candidate's formulation: its file, or (its content, the fit files' texts by reference) as values.
+    formulation, values = (candidate, {}) if isinstance(candidate, str) else (candidate[0], {"fits": candidate[1]})
     p = task["predictions"]
     cache = _end_members()
     zeniths = _roadbrdf.values(p["sun_zenith_deg"], "sun_zenith")
     diffuse = "" if p["diffuse_fraction"] is None else str(p["diffuse_fraction"])
     rows = []
     for method in p["methods"]:
-        run = _roadbrdf.mix(path, "", method, 5, 1, False, False, None, None, "", "", True, "", "", cache=cache)
+        run = _roadbrdf.mix(formulation, method=method, cache=cache, **values)
         for note in run.notes:
             warnings.warn(note, UserWarning, stacklevel=2)
         a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, zeniths, None, False, diffuse,
@@ -315,16 +319,22 @@ def run_task(task, fits):
 
 def _run(task, fits):
     from .spec import InputError
+    if task.get("error"):
+        return {"rows": [], "error": task["error"]}
+    if task["predictions"]["path"] == "fast":
+        try:
+            rows = _fast(task, (_materialise(task["formulation"], ""), {d + ".json": t for d, t in fits.items()}))
+        except InputError as e:
+            return {"rows": [], "error": str(e).replace("<formulation>", "<candidate formulation>")}
+        return {"rows": rows, "error": None}
     folder = _fit_folder(fits)
     work = tempfile.mkdtemp(prefix="roadbrdf-study-task-")
     try:
-        if task.get("error"):
-            return {"rows": [], "error": task["error"]}
         path = os.path.join(work, "candidate.json")
         with open(path, "w", encoding="utf-8") as f:
             json.dump(_materialise(task["formulation"], folder), f)
         try:
-            rows = _fast(task, path) if task["predictions"]["path"] == "fast" else _physical(task, path)
+            rows = _physical(task, path)
         except InputError as e:
             return {"rows": [], "error": str(e).replace(path, "<candidate formulation>")}
         return {"rows": rows, "error": None}

@@ -26,7 +26,7 @@ void run(AlbedoArgs& a) {
     std::vector<FileArgument> inputs, outputs{{"-o", a.output}};
     file_arguments(a.request, albedo::AlbedoRequest::fields(), inputs, outputs);
     check_distinct_files(inputs, outputs);
-    ProgressBar bar("albedo: integrals", stderr, ProgressBar::terminal_enabled(a.quiet));
+    ProgressBar bar("albedo: integrals", stderr, ProgressBar::stderr_style(a.quiet));
     a.request.progress = bar.callback();
     result = albedo::albedo(a.request);
     bar.finish();

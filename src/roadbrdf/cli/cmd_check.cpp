@@ -27,7 +27,7 @@ struct CheckArgs {
 
 void run(CheckArgs& a) {
   check_distinct_files({{"DATA", a.data}, {"--panel-reflectance", a.panel}}, {});
-  DatasetReadOptions read = dataset_read_options(a.read);
+  DatasetReadOptions read = dataset_read_options(a.read, a.data, {a.data});
   read.allow_missing = true;  // counted in the report
   DatasetReadStats stats;
   const SpectralDataset d = read_dataset(a.data, read, stats);
@@ -53,7 +53,7 @@ void run(CheckArgs& a) {
     out.commit();
   } else {
     AtomicFile out("-");
-    out.stream() << a.data << '\n' << quality_report_text(d, r) << solid_angle_text;
+    out.stream() << a.data << '\n' << with_dataset_flags(quality_report_text(d, r)) << solid_angle_text;
     out.commit();
   }
 }

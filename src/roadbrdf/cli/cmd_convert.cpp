@@ -1,4 +1,5 @@
-// roadbrdf convert INPUT [--from SOURCE] [--to wide|long] -o OUT.csv
+// roadbrdf convert INPUT... [--from SOURCE] [--to wide|long] -o OUT.csv
+// (several dataset CSV files: runs of one sample combined into one dataset, io/dataset_runs.h)
 // (instrument files and manifests: cli/instruments.h)
 #include <fmt/core.h>
 
@@ -16,12 +17,14 @@
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/dataset_runs.h"
 
 namespace roadbrdf::cli {
 
 namespace {
 
 struct ConvertArgs {
+  std::vector<std::string> inputs;
   std::string input;
   std::string from = "auto";
   std::string to = "wide";
@@ -36,12 +39,18 @@ struct ConvertArgs {
   InstrumentArgs instrument;
 };
 
-void run(const ConvertArgs& a) {
-  const std::vector<FileArgument> inputs = {{"INPUT", a.input}, {"--curet-table", a.curet_table}};
+void run(ConvertArgs& a) {
+  a.input = a.inputs.front();
+  std::vector<FileArgument> inputs = {{"--curet-table", a.curet_table}};
+  for (const std::string& path : a.inputs) inputs.push_back({"INPUT", path});
   const std::vector<FileArgument> outputs = {{"-o", a.output}};
   check_distinct_files(inputs, outputs);
   const ConvertSource from = parse_name<ConvertSource>(a.from, "from");
   SpectralDataset d;
+  const bool runs = from == ConvertSource::kAuto || from == ConvertSource::kWide || from == ConvertSource::kLong;
+  if (a.inputs.size() > 1 && !(runs && !is_instrument_input(from, a.input))) {
+    throw InputError("several INPUT files combine only as dataset CSV files (wide or long)");
+  }
   if (is_instrument_input(from, a.input)) {
     d = convert_instrument_input(from, a.input, a.instrument, inputs, outputs);
   } else if (from == ConvertSource::kCuret) {
@@ -69,7 +78,9 @@ void run(const ConvertArgs& a) {
     o.average_duplicates = a.read.average_duplicates;
     d = read_alta(a.input, o);
   } else {  // auto (not an instrument file), wide or long: the CSV reader tells wide from long
-    d = read_dataset(a.input, dataset_read_options(a.read));
+    if (!a.instrument.quantity.empty()) a.read.quantity = a.instrument.quantity;
+    dataset_read_options(a.read, a.input, a.inputs);  // the fields' errors spelt as flags
+    d = read_dataset_runs(a.inputs, a.read);
   }
   if (!a.convention.empty()) d.convention = parse_name<AngleConvention>(a.convention, "convention");
   write_dataset_output(d, a.output, a.to, "to");
@@ -82,7 +93,9 @@ void register_convert_command(CLI::App& app) {
   auto* c = app.add_subcommand("convert",
                                "Convert a dataset between wide/long CSV, and from CUReT, ALTA, instrument (.asd, .sed, "
                                ".sig), manifest and USGS splib07a files");
-  c->add_option("input", args.input, "Input file (for CUReT: abrdf.dat)")->required();
+  c->add_option("input", args.inputs,
+                "Input file (for CUReT: abrdf.dat); several dataset CSV files (runs of one sample) are combined")
+      ->required();
   c->add_option("--from", args.from, "Input format: " + described_names_text<ConvertSource>());
   c->add_option("--to", args.to, "Output format: " + names_text<DatasetFormat>() + " (default wide)");
   c->add_option("--curet-table", args.curet_table, "CUReT geometry table (default: table.txt next to the input)");
@@ -93,7 +106,7 @@ void register_convert_command(CLI::App& app) {
                 "ALTA output unit when the file lacks #PARAM_OUT: " + described_names_text<AltaOutput>());
   c->add_flag("--exclude-grazing", args.exclude_grazing,
               "ALTA BRDF x cos(theta_v): leave out (and report) rows at grazing view, which cannot be converted");
-  add_dataset_read_flags(c, args.read);
+  add_dataset_read_flags(c, args.read, false);
   c->add_option("--convention", args.convention,
                 "Angle columns of the output: " + described_names_text<AngleConvention>() + " (default: as read)");
   add_instrument_flags(c, args.instrument, true);

@@ -125,7 +125,7 @@ void run_surface(const SurfaceArgs& a) {
     check_distinct_files(inputs, outputs);
     const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
     surface::GeneratorSettings s = request.generator_settings();
-    ProgressBar bar("surface: packing grains", stderr, ProgressBar::terminal_enabled(a.quiet));
+    ProgressBar bar("surface: packing grains", stderr, ProgressBar::stderr_style(a.quiet));
     s.progress = bar.callback();
     const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
     bar.finish();
@@ -193,7 +193,7 @@ void run_render(const RenderArgs& a) {
                                               ? surface::default_wavelengths(field)
                                               : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   surface::RenderSettings s = render_settings(a);
-  ProgressBar bar("render: blocks of paths", stderr, ProgressBar::terminal_enabled(a.quiet));
+  ProgressBar bar("render: blocks of paths", stderr, ProgressBar::stderr_style(a.quiet));
   s.progress = bar.callback();
   std::vector<surface::Estimate> estimates;
   SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
@@ -262,7 +262,7 @@ void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
                                               ? surface::default_wavelengths(field)
                                               : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
   surface::RenderSettings settings = render_settings(a);
-  ProgressBar bar("render: albedo estimates", stderr, ProgressBar::terminal_enabled(a.quiet));
+  ProgressBar bar("render: albedo estimates", stderr, ProgressBar::stderr_style(a.quiet));
   settings.progress = bar.callback();
   const surface::VirtualAlbedo r = surface::render_albedo(field, zeniths, wavelengths, settings, a.white_sky_nodes);
   bar.finish();

@@ -106,17 +106,12 @@ std::string flag_for_field(const std::string& field) {
   static const std::map<std::string, std::string> renamed = {{"models", "--model"},
                                                              {"options", "--option"},
                                                              {"parameters", "-p"},
-                                                             {"fixed", "--fix"},
-                                                             {"bounds", "--bound"},
-                                                             {"bands", "--band"},
-                                                             {"methods", "--method"},
-                                                             {"use_sigma", "--no-sigma-weights"},
                                                              {"fit", "--fit"},
                                                              {"acceptance_deg", "--acceptance"},
-                                                             {"formulation", "FORMULATION"},
                                                              {"size_mm", "--size"},
                                                              {"cell_mm", "--cell"},
-                                                             {"sigma_rad", "--gaussian-slopes"}};
+                                                             {"sigma_rad", "--gaussian-slopes"},
+                                                             {"columns", "--column"}};
   const auto dot = field.find('.');
   const std::string head = field.substr(0, dot);
   std::string flag;

@@ -1,25 +1,22 @@
 #include "roadbrdf/cli/dataset_flags.h"
 
-#include "roadbrdf/io/dataset_dialect.h"
+#include "roadbrdf/cli/request_options.h"
 
 namespace roadbrdf::cli {
 
-void add_dataset_read_flags(CLI::App* command, DatasetReadFlags& flags) {
-  command->add_option("--delimiter", flags.delimiter,
-                      "Dataset cell delimiter: auto (default: from the header line), ',', ';' or tab");
-  command->add_option("--decimal", flags.decimal,
-                      "Dataset decimal separator: auto (default: from the numbers), '.' or ',' (with ';' or tab)");
-  command->add_flag("--average-duplicates", flags.average_duplicates,
-                    "Average dataset rows with the same geometry (else an error)");
+void add_dataset_read_flags(CLI::App* command, DatasetReadFlags& flags, bool with_quantity) {
+  for (const RequestField<DatasetReadFields>& field : DatasetReadFields::fields()) {
+    if (with_quantity || field.name != "quantity") detail::add_field(command, flags, field);
+  }
 }
 
-DatasetReadOptions dataset_read_options(const DatasetReadFlags& flags) {
-  DatasetReadOptions o;
-  o.delimiter = delimiter_from_name(flags.delimiter);
-  o.decimal = decimal_from_name(flags.decimal);
-  o.average_duplicates = flags.average_duplicates;
-  validate_read_options(o);
-  return o;
+DatasetReadOptions dataset_read_options(const DatasetReadFlags& flags, const std::string& file,
+                                        const std::vector<std::string>& files) {
+  DatasetReadOptions options;
+  run_request<DatasetReadFields>([&] { options = flags.options_for(file, files); });
+  return options;
 }
+
+std::string with_dataset_flags(const std::string& message) { return with_flags<DatasetReadFields>(message); }
 
 }  // namespace roadbrdf::cli

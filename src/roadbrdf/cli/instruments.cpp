@@ -7,6 +7,7 @@
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/io/calibration.h"
+#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
@@ -59,8 +60,12 @@ void add_instrument_flags(CLI::App* c, InstrumentArgs& args, bool convert) {
     c->add_option("--geometry", args.geometry,
                   "Geometry of a single instrument file: theta_i=D,phi_i=D,theta_r=D,phi_r=D or "
                   "gamma=D,alpha=D,beta=D,delta=D [deg]");
+    // One --quantity for both kinds of input: an instrument file's signal to store, or what a dataset
+    // CSV's values are (DatasetReadFields::quantity).
     c->add_option("--quantity", args.quantity,
-                  "Instrument signal to store: " + described_names_text<InstrumentQuantity>() + " (default target)");
+                  "Instrument signal to store: " + described_names_text<InstrumentQuantity>() +
+                      " (default target); for a dataset CSV what its values are, converted to BRDF: " +
+                      described_names_text<DatasetQuantity>() + " (default brdf)");
     c->add_option("--usgs-wavelengths", args.usgs_wavelengths,
                   "--from usgs: the splib07a wavelength file of the spectrum's instrument, e.g. "
                   "splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt (micrometres)");
@@ -107,7 +112,8 @@ Manifest read_checked_manifest(const std::string& path, std::vector<FileArgument
 SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args,
                                          const std::vector<FileArgument>& inputs,
                                          const std::vector<FileArgument>& outputs) {
-  const InstrumentQuantity quantity = parse_name<InstrumentQuantity>(args.quantity, "quantity");
+  const InstrumentQuantity quantity =
+      parse_name<InstrumentQuantity>(args.quantity.empty() ? "target" : args.quantity, "quantity");
   const ManifestOptions options = manifest_options(args);
   if (from == ConvertSource::kManifest) {
     if (!args.geometry.empty())

@@ -15,7 +15,7 @@ namespace roadbrdf::cli {
 
 struct InstrumentArgs {
   std::string geometry;  // "theta_i=..,phi_i=..,theta_r=..,phi_r=.." or "gamma=..,alpha=..,beta=..,delta=.."
-  std::string quantity = "target";
+  std::string quantity;  // "" = target (instrument files) or brdf (dataset CSV)
   std::string overlap = "upper";
   std::string usgs_wavelengths;  // --from usgs: the splib07a wavelength file of the spectrum
 };

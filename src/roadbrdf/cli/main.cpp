@@ -27,7 +27,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "roadbrdf " + roadbrdf::version());
   // Warnings of readers called without a sink of their own (core/diagnostics.h): the library never prints.
   roadbrdf::set_front_end_warning_sink(
-      [](const std::string& message) { fmt::print(stderr, "roadbrdf: warning: {}\n", message); });
+      // Library warnings name request fields (`like_this`); the command line names its flags.
+      [](const std::string& message) {
+        fmt::print(stderr, "roadbrdf: warning: {}\n", roadbrdf::cli::name_flags(message));
+      });
   roadbrdf::cli::register_models_command(app);
   roadbrdf::cli::register_eval_command(app);
   roadbrdf::cli::register_rtable_command(app);

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -19,6 +20,7 @@
 #include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
+#include "roadbrdf/core/number.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/core/request_fields.h"
 
@@ -33,34 +35,137 @@ std::string option_help(const RequestField<Request>& field) {
   return help;
 }
 
+// "NAME=VALUE" of a repeated option, split at its first '='; `field` names the option.
+inline std::pair<std::string, std::string> assignment(const std::string& item, const std::string& field) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos || eq == 0) throw FieldError(field, "expects NAME=VALUE, got '" + item + "'");
+  return {item.substr(0, eq), item.substr(eq + 1)};
+}
+
+// NAME=VALUE items as a map of `Value`s, `convert`ing each value; a name given twice is an error.
+template <class Value, class Convert>
+std::map<std::string, Value> assignments(const std::vector<std::string>& items, const std::string& field,
+                                         Convert convert) {
+  std::map<std::string, Value> out;
+  for (const std::string& item : items) {
+    auto [key, text] = assignment(item, field);
+    if (out.count(key) != 0) throw FieldError(field + "." + key, "is given twice");
+    out[key] = convert(text, field + "." + key);
+  }
+  return out;
+}
+
+template <class Request>
+std::string flag_of_field(const std::string& field_name);
+
+// Runs a conversion made while the command line is parsed; a FieldError is spelt with the flag.
+template <class Request, class Conversion>
+void converting(Conversion&& conversion) {
+  try {
+    conversion();
+  } catch (const FieldError& e) {
+    throw InputError(flag_of_field<Request>(e.field()) + ": " + e.detail());
+  }
+}
+
 template <class Request>
 void add_field(CLI::App* command, Request& request, const RequestField<Request>& field) {
   const std::string flag(field.flag);
   const std::string help = option_help(field);
   const std::string name(field.name);
   CLI::Option* option = nullptr;
+  using Items = std::vector<std::string>;
   std::visit(
       [&](auto member) {
         using Value = std::remove_reference_t<decltype(request.*member)>;
         Value& value = request.*member;
         if constexpr (std::is_same_v<Value, bool>) {
-          // A switch on by default ("uncertainty") is spelt as its negation ("--no-uncertainty"): the
-          // flag turns it off (CLI11's "!" names a flag that sets false).
-          const bool negated = field.long_flag().starts_with("--no-") && !field.name.starts_with("no_");
-          option = command->add_flag(negated ? "!" + flag : flag, value, help);
+          // A switch turns its default around: --no-sigma-weights sets use_sigma (true) to false.
+          const bool given = !value;
+          option = command->add_flag_callback(
+              flag, [&value, given] { value = given; }, help);
         } else if constexpr (std::is_same_v<Value, std::optional<double>>) {
           option = command->add_option_function<double>(
               flag, [&value](const double& v) { value = v; }, help);
         } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
           // Lists of numbers in the one grammar of core/range.h; the request validates the values.
           option = command->add_option_function<std::string>(
-              flag, [&value, name](const std::string& text) { value = parse_range_list(text, name); }, help);
+              flag,
+              [&value, name](const std::string& text) {
+                converting<Request>([&] { value = parse_range_list(text, name); });
+              },
+              help);
+        } else if constexpr (std::is_same_v<Value, std::map<std::string, std::string>>) {
+          option = command->add_option_function<Items>(
+              flag,
+              [&value, name](const Items& items) {
+                converting<Request>([&] {
+                  value = assignments<std::string>(items, name,
+                                                   [](const std::string& text, const std::string&) { return text; });
+                });
+              },
+              help);
+        } else if constexpr (std::is_same_v<Value, std::map<std::string, double>>) {
+          option = command->add_option_function<Items>(
+              flag,
+              [&value, name](const Items& items) {
+                converting<Request>([&] {
+                  value = assignments<double>(items, name, [](const std::string& text, const std::string& key) {
+                    double number = 0.0;
+                    if (!parse_finite_double(text, number)) {
+                      throw FieldError(key, "'" + text + "' is not a finite number");
+                    }
+                    return number;
+                  });
+                });
+              },
+              help);
+        } else if constexpr (std::is_same_v<Value, std::map<std::string, std::pair<double, double>>>) {
+          option = command->add_option_function<Items>(
+              flag,
+              [&value, name](const Items& items) {
+                converting<Request>([&] {
+                  value = assignments<std::pair<double, double>>(
+                      items, name,
+                      [](const std::string& text, const std::string& key) { return parse_interval(text, key); });
+                });
+              },
+              help);
+        } else if constexpr (std::is_same_v<Value, std::vector<std::pair<double, double>>>) {
+          option = command->add_option_function<Items>(
+              flag,
+              [&value, name](const Items& items) {
+                converting<Request>([&] {
+                  value.clear();
+                  for (const std::string& item : items) value.push_back(parse_interval(item, name));
+                });
+              },
+              help);
+        } else if constexpr (std::is_same_v<Value, Source>) {
+          option = command->add_option_function<std::string>(
+              flag,
+              [&value](const std::string& path) {
+                value = Source{path, {}};
+              },
+              help);
+        } else if constexpr (std::is_same_v<Value, Items>) {
+          if (field.comma_separated) {
+            option = command->add_option_function<Items>(
+                flag, [&value](const Items& items) { value = split_name_list(items); }, help);
+          } else {
+            option = command->add_option(flag, value, help);
+          }
         } else {
           option = command->add_option(flag, value, help);
           if constexpr (std::is_same_v<Value, double> || std::is_same_v<Value, int>) option->capture_default_str();
+          if constexpr (std::is_same_v<Value, std::string>) {
+            if (!value.empty()) option->capture_default_str();
+          }
         }
       },
       field.member);
+  // A repeated option takes one value each time: "--model a --model b", not "--model a b DATA".
+  if (!field.positional() && option->get_expected_max() > 1) option->allow_extra_args(false);
   if (field.required) option->required();
 }
 
@@ -76,6 +181,11 @@ void add_request_options(CLI::App* command, Request& request) {
 // not in the table is spelt by the general rule (cli/common.h flag_for_field).
 template <class Request>
 std::string flag_of(const std::string& field_name) {
+  return detail::flag_of_field<Request>(field_name);
+}
+
+template <class Request>
+std::string detail::flag_of_field(const std::string& field_name) {
   const RequestField<Request>* field = find_field(Request::fields(), field_name);
   if (field == nullptr) return flag_for_field(field_name);
   std::string flag(field->long_flag());

@@ -1,11 +1,15 @@
-// A progress bar with an estimate of the time left, for long work (fits over many wavelengths,
-// multistart...). Drawn on a stream only when enabled: the command line enables it for standard
-// error when that is a terminal and --quiet is not given (terminal_enabled), so that logs and pipes
-// get nothing but the usual summary. The clock is injectable for tests.
+// Progress of long work (fits over many wavelengths, multistart...) on a stream, in one of three
+// styles (ProgressStyle): the command line picks it for standard error with stderr_style: a bar
+// redrawn in place on a terminal; on a log or a pipe, where a redrawn line would be garbage, one
+// plain "heartbeat" line every `heartbeat_interval` seconds (10 s), so that a script never waits in
+// silence; nothing with --quiet. The clock is injectable for tests.
 //
-// Line: "LABEL [########............] 12/40  30%  2.1 s, ~4.9 s left", redrawn with '\r' at most
+// Bar: "LABEL [########............] 12/40  30%  2.1 s, ~4.9 s left", redrawn with '\r' at most
 // every `min_interval` seconds (and at 100 %), first drawn after `delay` seconds (short work shows
 // no bar); finish() ends the line.
+// Heartbeat: "LABEL: 12/40 30%  10.0 s, ~23.3 s left" and a newline, at the first update of unfinished
+// work after each multiple of `heartbeat_interval` seconds; when at least one was written, finish()
+// writes the last count and the time the same way. Work shorter than the interval writes nothing.
 #pragma once
 
 #include <atomic>
@@ -65,18 +69,23 @@ class ProgressCounter {
   bool finished_ = false;
 };
 
+enum class ProgressStyle { kOff, kBar, kHeartbeat };
+
 class ProgressBar {
  public:
   using Clock = std::function<double()>;  // seconds, monotonic
 
+  ProgressBar(std::string label, std::FILE* out, ProgressStyle style, Clock clock = {}, double delay = 1.0,
+              double min_interval = 0.1, double heartbeat_interval = 10.0);
+  // `enabled`: ProgressStyle::kBar, else kOff.
   ProgressBar(std::string label, std::FILE* out, bool enabled, Clock clock = {}, double delay = 1.0,
               double min_interval = 0.1);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  // Whether a bar on standard error should be drawn: it is a terminal and not `quiet`.
-  static bool terminal_enabled(bool quiet);
+  // The style for standard error: off when `quiet`, a bar on a terminal, heartbeat lines otherwise.
+  static ProgressStyle stderr_style(bool quiet);
 
   void update(std::size_t done, std::size_t total);
   void finish();
@@ -84,20 +93,23 @@ class ProgressBar {
   ProgressCallback callback() {
     return [this](std::size_t done, std::size_t total) { update(done, total); };
   }
-  bool enabled() const { return enabled_; }
+  bool enabled() const { return style_ != ProgressStyle::kOff; }
   bool shown() const { return shown_; }
 
-  // The line for a state (no '\r'), e.g. for tests: elapsed and estimated seconds left
+  // The bar's line for a state (no '\r'), e.g. for tests: elapsed and estimated seconds left
   // (elapsed * (total - done) / done; unknown while done = 0).
   static std::string line(const std::string& label, std::size_t done, std::size_t total, double elapsed);
+  // The heartbeat's line for a state (no newline).
+  static std::string heartbeat_line(const std::string& label, std::size_t done, std::size_t total, double elapsed);
 
  private:
   std::string label_;
   std::FILE* out_;
-  bool enabled_;
+  ProgressStyle style_;
   Clock clock_;
-  double delay_, min_interval_;
-  double start_ = 0.0, last_draw_ = -1.0;
+  double delay_, min_interval_, heartbeat_interval_;
+  double start_ = 0.0, last_draw_ = -1.0, next_heartbeat_ = 0.0;
+  std::size_t last_done_ = 0, last_total_ = 0;
   bool shown_ = false, finished_ = false;
 };
 

@@ -9,9 +9,9 @@
 // r-table tests check it against brute-force sampling of the parameter distribution.
 //
 // The albedo integrates g with the albedo itself (albedo/gradient_integrals.h) and uses propagate()
-// only; the step rule below serves quantities that are cheap to evaluate again (the r-table's values
-// at its few geometries, derivative_step; a mixture's single-scattering albedo inversion,
-// parameter_gradient).
+// only, and so do r-tables (photometry/rtable_uncertainty.h: the model's gradient at the table's
+// geometries; derivative_step only decides which parameters propagate); the step rule below serves
+// a quantity without a gradient (a mixture's single-scattering albedo inversion, parameter_gradient).
 //
 // Step rule: g is a central difference with step h_k = 0.01 u(p_k), one-sided where p_k +- h_k
 // would leave the parameter's physical range (ModelDescription::physical_range); a parameter whose

@@ -17,10 +17,12 @@
 //   };
 #pragma once
 
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -28,15 +30,36 @@
 
 namespace roadbrdf {
 
+// An input of a request given as its file or as its content: Python may pass the value itself (a
+// formulation as a dict) where the command line names a file. With `text` (the content, JSON) set,
+// `path` only names the input in messages and relative references inside it are taken as they are;
+// without, the file at `path` is read.
+struct Source {
+  std::string path;
+  std::string text;
+  bool empty() const { return path.empty() && text.empty(); }
+  bool in_memory() const { return !text.empty(); }
+};
+
 // What a field holds: a pointer to one member of the request, of one of these types.
 //   double, int, bool (a switch: present or not), std::string (a name, a path or a value in the
 //   grammar the field's help states), std::optional<double> (absent = not given),
-//   std::vector<std::string> (repeatable: NAME=VALUE items, several paths),
-//   std::vector<double> (a list of numbers in core/range.h's grammar).
+//   std::vector<std::string> (repeatable: NAME=VALUE items, several paths; names, also
+//   comma-separated when the row says so),
+//   std::vector<double> (a list of numbers in core/range.h's grammar),
+//   std::map<std::string, std::string> (NAME=VALUE items; a dict in Python),
+//   std::map<std::string, double> (NAME=NUMBER items; a dict of numbers),
+//   std::map<std::string, std::pair<double, double>> (NAME=LOWER:UPPER items; a dict of pairs),
+//   std::vector<std::pair<double, double>> (LOWER:UPPER items; pairs or "LOWER:UPPER" texts),
+//   Source (a file; in Python also its content as a dict).
+// A bool whose default is true is a switch that turns it off (`use_sigma`, --no-sigma-weights).
 template <class Request>
 using FieldMember =
     std::variant<double Request::*, int Request::*, bool Request::*, std::string Request::*,
-                 std::optional<double> Request::*, std::vector<std::string> Request::*, std::vector<double> Request::*>;
+                 std::optional<double> Request::*, std::vector<std::string> Request::*, std::vector<double> Request::*,
+                 std::map<std::string, std::string> Request::*, std::map<std::string, double> Request::*,
+                 std::map<std::string, std::pair<double, double>> Request::*,
+                 std::vector<std::pair<double, double>> Request::*, Source Request::*>;
 
 // Whether a field names a file the task reads or writes (for check_distinct_files).
 enum class FileRole { none, input, output };
@@ -55,17 +78,44 @@ struct RequestField {
   FieldMember<Request> member;
   FileRole file = FileRole::none;
   bool required = false;
+  // A list of names may also be given comma-separated ("theta_i,phi_i"): each item is split.
+  bool comma_separated = false;
 
   bool positional() const { return !flag.empty() && flag.front() != '-'; }
-  // The long spelling of the flag ("--output" of "-o,--output"); the placeholder of a positional.
+  // The first long spelling of the flag ("--output" of "-o,--output", "--bound" of "--bound,--bounds");
+  // the placeholder of a positional.
   std::string_view long_flag() const {
-    const auto comma = flag.rfind(',');
-    return comma == std::string_view::npos ? flag : flag.substr(comma + 1);
+    std::string_view rest = flag;
+    while (!rest.empty()) {
+      const auto comma = rest.find(',');
+      const std::string_view item = rest.substr(0, comma);
+      if (item.substr(0, 2) == "--" || comma == std::string_view::npos) return item;
+      rest = rest.substr(comma + 1);
+    }
+    return flag;
   }
 };
 
 template <class Request>
 using RequestFields = std::span<const RequestField<Request>>;
+
+// Items of a comma-separated list of names ("theta_i, phi_i"): split at commas, blanks removed,
+// empty parts skipped (RequestField::comma_separated).
+inline std::vector<std::string> split_name_list(const std::vector<std::string>& items) {
+  std::vector<std::string> out;
+  for (const std::string& item : items) {
+    std::string part;
+    for (const char c : item + ",") {
+      if (c == ',') {
+        if (!part.empty()) out.push_back(part);
+        part.clear();
+      } else if (c != ' ') {
+        part += c;
+      }
+    }
+  }
+  return out;
+}
 
 // The row named `name` ("options.distribution" is found by its first part), or nullptr.
 template <class Request>
@@ -92,6 +142,9 @@ void file_arguments(const Request& request, RequestFields<Request> fields, std::
     role += "`";
     if (const auto* text = std::get_if<std::string Request::*>(&field.member)) {
       if (!(request.*(*text)).empty()) into.push_back({role, request.*(*text)});
+    } else if (const auto* source = std::get_if<Source Request::*>(&field.member)) {
+      const Source& s = request.*(*source);
+      if (!s.in_memory() && !s.path.empty()) into.push_back({role, s.path});
     } else if (const auto* list = std::get_if<std::vector<std::string> Request::*>(&field.member)) {
       for (const std::string& path : request.*(*list)) into.push_back({role, path});
     }

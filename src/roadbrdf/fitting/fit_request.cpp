@@ -59,7 +59,8 @@ FitOptions settings_of(const FitRequest& r) {
   o.use_sigma = r.use_sigma;
   o.solid_angle_weights = r.solid_angle_weights;
   o.multistart = r.multistart;
-  o.seed = r.seed;
+  if (r.seed < 0) throw FieldError("seed", fmt::format("{} is negative (a seed is 0 or more)", r.seed));
+  o.seed = static_cast<unsigned>(r.seed);
   o.threads = r.threads;
   o.max_iterations = r.max_iterations;
   o.compute_covariance = r.covariance;

@@ -11,7 +11,8 @@
 // not fixed is shared by all wavelengths (joint mode).
 //
 // Errors are FieldError with the field names of FitRequest ("multistart", "fixed.roughness",
-// "options.distribution", ...); the command line maps them to its flags (cli/common.h).
+// "options.distribution", ...); the front ends spell them from the request's table (fields():
+// the command line's flags and Python's keyword arguments, core/request_fields.h).
 #pragma once
 
 #include <functional>
@@ -21,13 +22,19 @@
 #include <utility>
 #include <vector>
 
+#include "roadbrdf/core/request_fields.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/io/dataset_read_fields.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf {
 
-struct FitRequest {
+// The dataset-reading fields (DatasetReadFields: delimiter, decimal, average_duplicates, quantity,
+// columns, set) read `data`.
+struct FitRequest : DatasetReadFields {
+  // The measured dataset's file. Python may give the dataset itself instead (its values).
+  std::string data;
   std::vector<std::string> models;                          // model names, e.g. "oren-nayar"
   OptionSet options;                                        // NAME or component.NAME -> value
   std::map<std::string, double> fixed;                      // held at a value at every wavelength
@@ -50,13 +57,20 @@ struct FitRequest {
   bool use_sigma = true;
   bool solid_angle_weights = false;
   int multistart = 1;
-  unsigned seed = 1;
+  int seed = 1;  // 0 or more
   int threads = 1;
   int max_iterations = 200;
   bool covariance = true;
   bool warm_start = true;
   bool solve_amplitudes = true;
   std::string joint_solver = "dense-schur";
+  // Files written: the fit file (fitting/fit_file.h) and the residuals per geometry and wavelength
+  // (write_fit_outputs); empty: not written.
+  std::string output;
+  std::string residuals;
+
+  // The table of the fields: the command line's options and Python's keyword arguments.
+  static RequestFields<FitRequest> fields();
 
   // Checks everything that does not need the dataset: model names and options, parameter names
   // and values, settings. Throws FieldError.
@@ -119,5 +133,12 @@ void flag_worse_than_nested(std::vector<FitResult>& fits, std::size_t first);
 
 // Validate, select the wavelengths, and fit every model. Throws FieldError / InputError.
 FitSummary run_fit(const FitRequest& request, const SpectralDataset& data, const FitProgress& progress = {});
+
+// The request's dataset file read with its reading fields (FieldError `data` when none is named).
+SpectralDataset read_fit_data(const FitRequest& request);
+// Writes the request's `output` (the fit file) and `residuals` (measured, fitted and residual value
+// per geometry and wavelength) of `summary`, fitted to `data`; a field left empty is not written.
+// The front ends check the files first (check_request_files, before fitting).
+void write_fit_outputs(const FitRequest& request, const FitSummary& summary, const SpectralDataset& data);
 
 }  // namespace roadbrdf

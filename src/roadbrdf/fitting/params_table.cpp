@@ -196,6 +196,21 @@ std::vector<std::string> ParamsTable::csv_columns() const {
   return c;
 }
 
+std::vector<ParamsTable::Cell> ParamsTable::csv_cells(const ParamsRow& r) const {
+  std::vector<Cell> c = {r.model};
+  c.reserve(r.group.size() + 2 * parameter_names.size() + 9);
+  for (double g : r.group) c.emplace_back(g);
+  c.emplace_back(r.wavelength);
+  for (std::size_t k = 0; k < parameter_names.size(); ++k) {
+    c.emplace_back(r.values[k]);
+    c.emplace_back(r.standard_errors[k]);
+  }
+  for (double x : {r.rmse, 100.0 * r.relative_rmse, 100.0 * r.max_relative_error, r.aic, r.bic}) c.emplace_back(x);
+  c.emplace_back(r.converged);
+  c.emplace_back(r.at_bounds);
+  return c;
+}
+
 namespace {
 
 std::string render_csv(const ParamsTable& t) {
@@ -209,19 +224,16 @@ std::string render_csv(const ParamsTable& t) {
   for (const auto& n : t.notes) out += "# note: " + n + "\n";
   out += fmt::format("{}\n", fmt::join(t.csv_columns(), ","));
   for (const ParamsRow& r : t.rows) {
-    std::vector<std::string> c = {csv_text(r.model)};
-    c.reserve(r.group.size() + 2 * t.parameter_names.size() + 9);
-    for (double g : r.group) c.push_back(fmt::format("{:.10g}", g));
-    c.push_back(fmt::format("{:.10g}", r.wavelength));
-    for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
-      c.push_back(cell(r.values[k], "{:.10g}"));
-      c.push_back(cell(r.standard_errors[k], "{:.10g}"));
+    std::vector<std::string> c;
+    for (const ParamsTable::Cell& value : t.csv_cells(r)) {
+      if (const auto* text = std::get_if<std::string>(&value)) {
+        c.push_back(csv_text(*text));
+      } else if (const auto* number = std::get_if<double>(&value)) {
+        c.push_back(cell(*number, "{:.10g}"));
+      } else {
+        c.emplace_back(std::get<bool>(value) ? "true" : "false");
+      }
     }
-    for (double x : {r.rmse, 100.0 * r.relative_rmse, 100.0 * r.max_relative_error, r.aic, r.bic}) {
-      c.push_back(cell(x, "{:.10g}"));
-    }
-    c.emplace_back(r.converged ? "true" : "false");
-    c.push_back(csv_text(r.at_bounds));
     out += fmt::format("{}\n", fmt::join(c, ","));
   }
   return out;

@@ -10,6 +10,7 @@
 
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "roadbrdf/core/enum_names.h"
@@ -72,6 +73,10 @@ struct ParamsTable {
   // NAME_stderr, rmse_per_sr, relative_rmse_percent, max_relative_error_percent, aic, bic, converged,
   // at_bounds.
   std::vector<std::string> csv_columns() const;
+  // One row's cells in the order of csv_columns(): text, numbers (relative errors in percent; NaN where
+  // there is none) and the convergence flag. The CSV and Python's DataFrame are both made of them.
+  using Cell = std::variant<std::string, double, bool>;
+  std::vector<Cell> csv_cells(const ParamsRow& row) const;
 };
 
 // Reads the fit file and builds the table. Throws FileError (with the JSON key path) / FieldError.

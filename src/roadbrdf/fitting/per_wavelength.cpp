@@ -49,8 +49,8 @@ SingleSolve solve_one(const FitData& d, const ParameterLayout& L, const FitOptio
     s.summary.message = "no free parameter";
     return s;
   }
-  // The plain loss without active bounds is solved by the low-overhead TinySolver; the full Ceres
-  // solve (bounds projected, robust losses) when that does not apply.
+  // The plain loss is solved by the small bounded Levenberg-Marquardt of small_solve.h; the full
+  // Ceres solve (robust losses, an undefined start) when that does not apply.
   if (d.robust == RobustLoss::kNone && solve_small(d, L, o, w, free, s.x, s.summary, s.free_jacobian)) return s;
   std::vector<double> block(free.size());
   for (std::size_t i = 0; i < free.size(); ++i) block[i] = x[free[i]];

@@ -76,6 +76,7 @@ void validate_read_options(const DatasetReadOptions& o) {
   if (o.delimiter == ',' && o.decimal == ',') {
     throw InputError("a decimal comma needs another delimiter: pass `delimiter` ';' (or tab) with `decimal` ','");
   }
+  validate_mapping_options(o);
 }
 
 void validate_dataset(const SpectralDataset& d) {

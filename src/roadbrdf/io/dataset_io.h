@@ -10,6 +10,11 @@
 //   increasing. The optional sigma_<nm> block holds standard uncertainties [sr^-1] and must list
 //   exactly the same wavelengths in the same order.
 //
+// Foreign tables (laboratory goniometers, spreadsheets): DatasetReadOptions maps header names to the
+// dataset's columns (`columns`), fixes angles the file has no column for (`fixed_angles`) and converts
+// the quantity stored (`quantity`: BRF, BRDF cos theta_i, percent). With a mapping or fixed angles,
+// the other header columns are not read, with a warning listing them.
+//
 // Long CSV: the four angle columns plus wavelength,brdf[,sigma]; one row per (geometry, wavelength).
 //   The wavelengths are those of all rows; a (geometry, wavelength) pair without a row is a
 //   missing cell (NaN), like an empty one. Two rows of the same pair are duplicates.
@@ -26,6 +31,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -43,6 +49,25 @@ inline constexpr EnumName<DatasetFormat> kDatasetFormatNames[] = {
     {DatasetFormat::kLong, "long", "one row per geometry and wavelength"},
 };
 constexpr std::span<const EnumName<DatasetFormat>> enum_names(DatasetFormat) { return kDatasetFormatNames; }
+
+// The quantity a file's values hold; the reader converts them to BRDF [sr^-1] (and their sigma alike)
+// and records the quantity in the dataset's metadata `quantity_read`.
+//   brdf        BRDF [sr^-1] (no conversion)
+//   brf         reflectance factor R = pi BRDF (Nicodemus et al. 1977, NBS Monograph 160, eq. 5.1 for a
+//               Lambertian reference), most remote-sensing and laboratory goniometers
+//   brdf-cos    BRDF cos(theta_i) [sr^-1] (ALTA's INV_STERADIAN_COSINE_FACTOR): divided by cos(theta_i);
+//               a value at theta_i = 90 deg (no irradiance) becomes missing (NaN), counted in a warning
+//   percent-brf 100 R (reflectance factor in percent)
+enum class DatasetQuantity { kBrdf, kBrf, kBrdfCos, kPercentBrf };
+inline constexpr EnumName<DatasetQuantity> kDatasetQuantityNames[] = {
+    {DatasetQuantity::kBrdf, "brdf", "BRDF in sr^-1"},
+    {DatasetQuantity::kBrf, "brf", "reflectance factor, pi x BRDF"},
+    {DatasetQuantity::kBrdfCos, "brdf-cos", "BRDF x cos(theta_i) in sr^-1"},
+    {DatasetQuantity::kPercentBrf, "percent-brf", "reflectance factor in percent, 100 pi x BRDF"},
+};
+constexpr std::span<const EnumName<DatasetQuantity>> enum_names(DatasetQuantity) { return kDatasetQuantityNames; }
+// The factor f(cos theta_i) with BRDF = value / f: pi, cos(theta_i), 100 pi or 1.
+double quantity_factor(DatasetQuantity quantity, double cos_theta_i);
 
 // How a dataset file is read. The same options, validated by validate_read_options, are offered
 // by every command that reads datasets (cli/dataset_flags.h) and by Python (read_dataset, fit, ...).
@@ -62,6 +87,15 @@ struct DatasetReadOptions {
   // long file's (geometry, wavelength) pair without a row is missing too (DatasetReadStats
   // absent_rows).
   bool allow_missing = true;
+  // What the values are (see DatasetQuantity); converted to BRDF on reading.
+  DatasetQuantity quantity = DatasetQuantity::kBrdf;
+  // Column mapping: dataset field (theta_i, phi_i, theta_r, phi_r, gamma, alpha, beta, delta,
+  // wavelength, brdf, sigma) -> the file's header name (compared as written, then ignoring case and
+  // surrounding blanks). A mapped name that is not in the header is an error naming the nearest one.
+  std::map<std::string, std::string> columns;
+  // Angles the file has no column for, one value [deg] for every row: field -> value. An angle given
+  // here and present as a column is an error.
+  std::map<std::string, double> fixed_angles;
   // Accept any "# units:" metadata (e.g. radiances read by `calibrate`); otherwise only sr^-1.
   bool any_units = false;
   // Where warnings go (negative values, missing values, averaged duplicates). Default: the front
@@ -69,8 +103,17 @@ struct DatasetReadOptions {
   std::function<void(const std::string&)> warn;
 };
 
-// Throws InputError for contradictory options (e.g. decimal ',' with delimiter ',').
+// Values of `quantity` (read from `source`) converted to BRDF in place, sigma alike; the quantity is
+// recorded in metadata `quantity_read` (a units line becomes `source_units`). A dataset whose metadata
+// already has `quantity_read` was converted before: an error. brdf-cos values at theta_i = 90 deg become
+// missing, counted through `warn` (default: the front end's sink).
+void convert_to_brdf(SpectralDataset& dataset, DatasetQuantity quantity, const std::string& source,
+                     const std::function<void(const std::string&)>& warn = {});
+
+// Throws InputError/FieldError for contradictory options (e.g. decimal ',' with delimiter ',').
 void validate_read_options(const DatasetReadOptions& options);
+// The part of it that checks `columns` and `fixed_angles` (FieldError "columns" / "set").
+void validate_mapping_options(const DatasetReadOptions& options);
 
 // How far repeated measurements of one geometry (duplicate rows, averaged when asked) disagree: per
 // wavelength, the relative spread (max - min) / |mean| of each duplicated cell, and its median and

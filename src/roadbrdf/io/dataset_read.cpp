@@ -20,6 +20,8 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/nearest_name.h"
+#include "roadbrdf/core/text.h"
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/dataset_read_support.h"
@@ -51,6 +53,15 @@ bool known_name(std::string_view n, char delimiter) {
   return numbers.parse(n, v, 1, 1) && v > 0.0;
 }
 
+// A mapped header name and a header cell: equal as written, or ignoring case and surrounding blanks.
+bool same_header_name(std::string_view mapped, std::string_view cell) {
+  if (mapped == cell) return true;
+  const std::string a = trimmed_copy(std::string(mapped)), b = trimmed_copy(std::string(cell));
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
 struct HeaderCell {
   std::string canonical;
   std::string_view text;
@@ -67,11 +78,35 @@ std::vector<HeaderCell> header_names(Reading& r, std::string_view header, std::s
   long column = 0;
   count = 0;
   is_long = false;
+  const auto& mapping = r.options.columns;
+  std::vector<bool> mapped_found(mapping.size(), false);
+  std::vector<std::string> all_names;
   while (cells.next(text, column)) {
     const std::size_t index = count++;
+    all_names.emplace_back(text);
+    // A column the mapping names is that field, whatever it is called; another column of the same
+    // canonical name is then not read (the mapping chose).
+    std::size_t k = 0;
+    const std::string* mapped = nullptr;
+    for (const auto& [field, name] : mapping) {
+      if (same_header_name(name, text)) {
+        if (mapped_found[k]) {
+          r.reader.fail(column, fmt::format("column '{}' matches `columns` {}={} a second time", text, field, name));
+        }
+        mapped_found[k] = true;
+        mapped = &field;
+      }
+      ++k;
+    }
+    if (mapped) {
+      names.push_back({*mapped, text, column, index});
+      if (*mapped == "wavelength") is_long = true;
+      continue;
+    }
     if (!text.empty() && (std::isdigit(static_cast<unsigned char>(text.front())) || text.front() == '.')) continue;
     bool radians = false;
     std::string canonical = canonical_column_name(text, &radians);
+    if (mapping.count(canonical)) canonical = "(not the mapped column) " + canonical;
     if (radians) {
       r.reader.fail(column, fmt::format("column '{}' is in radians: dataset angles are in degrees (convert them, "
                                         "e.g. x 180/pi)",
@@ -80,6 +115,13 @@ std::vector<HeaderCell> header_names(Reading& r, std::string_view header, std::s
     if (canonical == "wavelength") is_long = true;
     names.push_back({std::move(canonical), text, column, index});
   }
+  std::size_t k = 0;
+  for (const auto& [field, name] : mapping) {
+    if (!mapped_found[k++]) {
+      r.reader.fail(0, fmt::format("`columns` {}={}: the header has no column '{}'{}", field, name, name,
+                                   did_you_mean(name, all_names)));
+    }
+  }
   return names;
 }
 
@@ -87,11 +129,39 @@ std::vector<HeaderCell> header_names(Reading& r, std::string_view header, std::s
 std::vector<std::size_t> angle_columns_of(Reading& r, const std::vector<HeaderCell>& names, long header_line,
                                           AngleConvention& convention) {
   std::vector<std::string> canonical;
-  canonical.reserve(names.size());
+  canonical.reserve(names.size() + r.options.fixed_angles.size());
   for (const auto& n : names) canonical.push_back(n.canonical);
+  // A fixed angle stands for a column the file lacks; given as a column too, it is a contradiction.
+  for (const auto& [field, value] : r.options.fixed_angles) {
+    const auto it = std::find(canonical.begin(), canonical.end(), field);
+    if (it != canonical.end()) {
+      r.reader.fail(names[static_cast<std::size_t>(it - canonical.begin())].column,
+                    fmt::format("column '{}' holds {}, which `set` fixes to {:g} deg too: give one of them",
+                                names[static_cast<std::size_t>(it - canonical.begin())].text, field, value));
+    }
+    canonical.push_back(field);
+  }
   std::vector<std::size_t> columns = find_angle_columns(canonical, r.reader.path(), header_line, convention);
+  for (const auto& [field, value] : r.options.fixed_angles) {
+    const auto it = std::find(canonical.begin(), canonical.end(), field);
+    const auto k = static_cast<std::size_t>(it - canonical.begin());
+    const auto where = std::find(columns.begin(), columns.end(), k);
+    if (where == columns.end()) {
+      throw FileError(r.reader.path(), header_line, 0,
+                      fmt::format("`set` {}: the file's angles are in the other convention (theta_i,phi_i,theta_r,"
+                                  "phi_r or gamma,alpha,beta,delta; one convention per file)",
+                                  field));
+    }
+    const auto a = static_cast<std::size_t>(where - columns.begin());
+    r.fixed[a] = true;
+    r.fixed_value[a] = value;
+  }
   for (auto& c : columns) {
     const std::size_t k = c;
+    if (k >= names.size()) {
+      c = kFixedAngle;
+      continue;
+    }
     c = names[k].index;
     // An angle column given twice (e.g. "theta_i" and its alias "inc") is an error, not a choice.
     for (std::size_t j = 0; j < names.size(); ++j) {
@@ -107,7 +177,7 @@ std::vector<std::size_t> angle_columns_of(Reading& r, const std::vector<HeaderCe
 // ---- wide ---------------------------------------------------------------------------------------
 
 struct Role {
-  enum Kind : std::uint8_t { kAngle, kValue, kSigma } kind;
+  enum Kind : std::uint8_t { kAngle, kValue, kSigma, kOther } kind;
   std::uint32_t index;  // angle 0-3, or wavelength index
 };
 
@@ -171,16 +241,26 @@ WideColumns wide_columns(Reading& r, std::string_view header, const std::vector<
   WideColumns w;
   auto& roles = w.roles;
   roles.assign(column_count, Role{Role::kValue, 0});
-  for (int k = 0; k < 4; ++k)
-    roles[angle_columns[static_cast<std::size_t>(k)]] = {Role::kAngle, static_cast<std::uint32_t>(k)};
+  for (int k = 0; k < 4; ++k) {
+    const std::size_t c = angle_columns[static_cast<std::size_t>(k)];
+    if (c != kFixedAngle) roles[c] = {Role::kAngle, static_cast<std::uint32_t>(k)};
+  }
   SigmaColumns sigma_columns;
   auto& sigma_wavelengths = sigma_columns.wavelengths;
   std::vector<std::string_view> value_header_texts;
   CellScanner cells(header, r.delimiter);
   std::string_view text;
   long column = 0;
+  // The canonical name of each named header cell (numeric cells, the wavelengths, have none).
+  std::vector<const std::string*> canonical_of(column_count, nullptr);
+  for (const HeaderCell& n : names) canonical_of[n.index] = &n.canonical;
   for (std::size_t k = 0; cells.next(text, column); ++k) {
     if (roles[k].kind == Role::kAngle) continue;
+    if (ignores_other_columns(r.options) && canonical_of[k] && !known_name(*canonical_of[k], r.delimiter)) {
+      roles[k] = {Role::kOther, 0};
+      r.ignored_columns.emplace_back(text);
+      continue;
+    }
     bool sigma = false;
     const double wl = header_wavelength(r, text, column, header_line, sigma);
     if (sigma) {
@@ -243,6 +323,8 @@ void read_wide_cells(Reading& r, std::string_view line, const std::vector<Role>&
       case Role::kSigma:
         sigmas[role.index] = parse_sigma(r, text, column);
         break;
+      case Role::kOther:
+        break;
     }
   }
   if (k != column_count) ragged(r, line, column_count, text, column, false);
@@ -260,7 +342,8 @@ class WideRows {
         m_(d.wavelengths.size()),
         with_sigma_(columns.with_sigma),
         row_(m_),
-        srow_(with_sigma_ ? m_ : 0) {}
+        srow_(with_sigma_ ? m_ : 0),
+        angles_(initial_angles(r)) {}
 
   void read(std::string_view line) {
     if (!reserved_) reserve(line);
@@ -398,10 +481,9 @@ SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector
 
 }  // namespace
 
-SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options, DatasetReadStats& stats) {
-  validate_read_options(options);
-  stats = {};
-  if (is_openmaterial3d_path(path)) return read_openmaterial3d(path, options, stats);  // JSON, not CSV
+namespace {
+
+SpectralDataset read_csv_dataset(const std::string& path, const DatasetReadOptions& options, DatasetReadStats& stats) {
   CsvReader reader(path);
   std::string_view first;
   if (!reader.next_line(first))
@@ -417,7 +499,8 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
       throw FileError(reader.path(), reader.line_number(), 0, e.what());
     }
   }
-  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0, {}, false};
+  Reading r{options, stats, reader, delimiter, NumberParser(delimiter, options.decimal), {}, {}, {}, 0.0, {},
+            false,   {},    {},     {}};
   std::size_t column_count = 0;
   bool is_long = false;
   const std::vector<HeaderCell> names = header_names(r, header, column_count, is_long);
@@ -446,6 +529,17 @@ SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& 
     d = read_wide(r, header, names, column_count);
   }
   finish_warnings(r, d);
+  return d;
+}
+
+}  // namespace
+
+SpectralDataset read_dataset(const std::string& path, const DatasetReadOptions& options, DatasetReadStats& stats) {
+  validate_read_options(options);
+  stats = {};
+  SpectralDataset d = is_openmaterial3d_path(path) ? read_openmaterial3d(path, options, stats)  // JSON, not CSV
+                                                   : read_csv_dataset(path, options, stats);
+  convert_to_brdf(d, options.quantity, path, options.warn);
   return d;
 }
 

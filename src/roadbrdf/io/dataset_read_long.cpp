@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "roadbrdf/core/diagnostics.h"
+#include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/huge_pages.h"
 #include "roadbrdf/core/math.h"
@@ -83,17 +84,38 @@ void read_metadata(Reading& r, SpectralDataset& d) {
       throw FileError(r.reader.path(), k < lines.size() ? lines[k] : 0, 0,
                       fmt::format("metadata key '{}' is given twice", key));
     }
-    if (key == "units" && !r.options.any_units) {
+    // With a quantity other than BRDF the units line describes that quantity (kept as source_units).
+    if (key == "units" && !r.options.any_units && r.options.quantity == DatasetQuantity::kBrdf) {
       if (value != "sr^-1" && value != "1/sr" && value != "sr-1") {
         throw FileError(r.reader.path(), k < lines.size() ? lines[k] : 0, 0,
-                        fmt::format("units '{}' are not supported: a BRDF dataset holds sr^-1 "
-                                    "(convert reflectance factors with BRDF = BRF/pi)",
+                        fmt::format("units '{}' are not supported: a BRDF dataset holds sr^-1 (a reflectance "
+                                    "factor BRF = pi BRDF is read with `quantity` brf, in percent with percent-brf)",
                                     value));
       }
+    }
+    // A reflectance factor has no unit: a file that says sr^-1 holds a BRDF, whatever the options say.
+    const bool factor =
+        r.options.quantity == DatasetQuantity::kBrf || r.options.quantity == DatasetQuantity::kPercentBrf;
+    if (key == "units" && factor && (value == "sr^-1" || value == "1/sr" || value == "sr-1")) {
+      throw FileError(r.reader.path(), k < lines.size() ? lines[k] : 0, 0,
+                      fmt::format("units '{}' are those of a BRDF, but `quantity` is {} (a reflectance factor, "
+                                  "without unit): read the file as brdf, or correct its units line",
+                                  value, name_of(r.options.quantity)));
     }
     d.metadata[key] = value;
   }
   if (!d.metadata.count("units")) d.metadata["units"] = "sr^-1";
+}
+
+AngleCells initial_angles(const Reading& r) {
+  AngleCells a;
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (r.fixed[k]) {
+      a.value[k] = r.fixed_value[k];
+      a.text[k] = "(fixed)";
+    }
+  }
+  return a;
 }
 
 double number(Reading& r, std::string_view text, long column, std::string_view what) {
@@ -213,6 +235,14 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
     warn(fmt::format("{}: {} (geometry, wavelength) pairs of {} have no row (kept as missing NaN cells; first: {})",
                      r.reader.path(), r.stats.absent_rows, total, r.first_absent));
   }
+  if (!r.ignored_columns.empty()) {
+    std::string listed;
+    for (std::size_t k = 0; k < std::min<std::size_t>(r.ignored_columns.size(), 5); ++k) {
+      listed += fmt::format("{}'{}'", k ? ", " : "", r.ignored_columns[k]);
+    }
+    warn(fmt::format("{}: {} column(s) hold no dataset field and were not read: {}{} (map one with `columns`)",
+                     r.reader.path(), r.ignored_columns.size(), listed, r.ignored_columns.size() > 5 ? ", ..." : ""));
+  }
   if (r.stats.averaged_duplicate_rows > 0) {
     warn(fmt::format("{}: {} duplicate geometry rows were averaged", r.reader.path(), r.stats.averaged_duplicate_rows));
   }
@@ -267,7 +297,8 @@ void finish_warnings(Reading& r, const SpectralDataset& d) {
 
 namespace {
 
-// The role of each column of a long dataset: 0-3 the angles, 4 wavelength, 5 brdf, 6 sigma.
+// The role of each column of a long dataset: 0-3 the angles, 4 wavelength, 5 brdf, 6 sigma, 7 not read.
+constexpr int kIgnoredColumn = 7;
 struct LongLayout {
   std::vector<int> role;
   bool with_sigma = false;
@@ -282,6 +313,10 @@ LongLayout long_layout(Reading& r, const std::vector<LongColumn>& columns, std::
                           : c.canonical == "brdf"     ? &brdf_col
                           : c.canonical == "sigma"    ? &sigma_col
                                                       : nullptr;
+    if (!target && ignores_other_columns(r.options)) {
+      r.ignored_columns.push_back(c.text);
+      continue;
+    }
     if (!target) {
       reader.fail(c.column, fmt::format("unexpected column '{}' in a long dataset (expected the angle columns and "
                                         "wavelength,brdf[,sigma])",
@@ -295,8 +330,11 @@ LongLayout long_layout(Reading& r, const std::vector<LongColumn>& columns, std::
   }
   LongLayout l;
   l.with_sigma = sigma_col != column_count;
-  l.role.assign(column_count, -1);
-  for (int k = 0; k < 4; ++k) l.role[angle_columns[static_cast<std::size_t>(k)]] = k;
+  l.role.assign(column_count, kIgnoredColumn);
+  for (int k = 0; k < 4; ++k) {
+    const std::size_t c = angle_columns[static_cast<std::size_t>(k)];
+    if (c != kFixedAngle) l.role[c] = k;
+  }
   l.role[wl_col] = 4;
   l.role[brdf_col] = 5;
   if (l.with_sigma) l.role[sigma_col] = 6;
@@ -320,6 +358,7 @@ void read_long_row(Reading& r, std::string_view line, const std::vector<int>& ro
   while (cells.next(text, column)) {
     if (k == column_count) ragged(r, line, column_count, text, column, true);
     const int what = role[k++];
+    if (what == kIgnoredColumn) continue;
     if (what < 4) {
       angles.text[static_cast<std::size_t>(what)] = text;
       angles.column[static_cast<std::size_t>(what)] = column;
@@ -343,7 +382,7 @@ std::vector<Record> read_records(Reading& r, const std::vector<int>& role, Spect
   CsvReader& reader = r.reader;
   std::vector<Record> records;
   std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen;
-  AngleCells angles;
+  AngleCells angles = initial_angles(r);
   std::string_view line;
   while (reader.next_line(line)) {
     Record rec{0, 0.0, 0.0, 0.0, 0, 0};

@@ -39,7 +39,19 @@ struct Reading {
   double largest = 0.0;
   std::string first_absent;  // the first (geometry, wavelength) pair of a long file without a row
   bool long_format = false;  // wavelengths in a column (long) or in the header (wide)
+  // Angles without a column, one value for every row (DatasetReadOptions::fixed_angles), in the
+  // convention's column order.
+  std::array<bool, 4> fixed{};
+  std::array<double, 4> fixed_value{};
+  // Header cells that are no dataset column, not read (only with a mapping or fixed angles).
+  std::vector<std::string> ignored_columns;
 };
+
+// The column index standing for an angle that has no column (a fixed value).
+constexpr std::size_t kFixedAngle = static_cast<std::size_t>(-1);
+// Whether header cells that are no dataset column are ignored (with a note) rather than refused: when
+// the options map columns or fix angles, the table is a foreign one.
+inline bool ignores_other_columns(const DatasetReadOptions& o) { return !o.columns.empty() || !o.fixed_angles.empty(); }
 
 // Key identifying a geometry: zenith angles and azimuths (azimuth mod 360, undefined azimuth at
 // zenith 0 set to 0), rounded to 1e-7 degree.
@@ -63,6 +75,8 @@ struct AngleCells {
   std::array<double, 4> value{};
 };
 
+// The angle cells of a row before its cells are read: the fixed angles set, the others zero.
+AngleCells initial_angles(const Reading& r);
 // Metadata from the comment lines seen before the header.
 void read_metadata(Reading& r, SpectralDataset& d);
 // A finite number (with the file's decimal separator); FileError naming `what` otherwise.

@@ -54,14 +54,15 @@ void check_scale(const SpectralDataset& d, QualityReport& r) {
     r.warnings.push_back(fmt::format(
         "the Lambertian-equivalent albedo (pi x median BRDF) is below {:g} at {} of {} wavelengths (lowest {:.3g} at "
         "{:g} nm): darker than any natural material (asphalt ~0.04); check the scale of the data (BRDF in sr^-1, not "
-        "BRDF x cos theta_i, a radiance or a reflectance in percent)",
+        "BRDF x cos theta_i, a radiance or a reflectance in percent: read such a file with `quantity` brdf-cos or "
+        "percent-brf)",
         kPlausibleAlbedoMin, r.scale.below, m, lowest, d.wavelengths[lowest_at]));
   }
   if (r.scale.above > 0) {
     r.warnings.push_back(fmt::format(
         "the Lambertian-equivalent albedo (pi x median BRDF) is above {:g} at {} of {} wavelengths (highest {:.3g} "
         "at {:g} nm): brighter than any natural material; check the scale of the data (a reflectance factor "
-        "BRF = pi x BRDF, or percent, read as a BRDF?)",
+        "BRF = pi x BRDF, or percent, read as a BRDF? read it with `quantity` brf or percent-brf)",
         kPlausibleAlbedoMax, r.scale.above, m, highest, d.wavelengths[highest_at]));
   }
 }
@@ -104,7 +105,7 @@ void check_cosine_factor(const SpectralDataset& d, QualityReport& r) {
   if (t.likely) {
     r.warnings.push_back(fmt::format(
         "the values look like BRDF x cos theta_i, not a BRDF: {} reciprocity pairs disagree by {:.3g} on average "
-        "as stored and by {:.3g} once divided by cos theta_i (read the file as BRDF x cos theta_i, or divide it)",
+        "as stored and by {:.3g} once divided by cos theta_i (read the file with `quantity` brdf-cos)",
         pairs, t.disagreement, t.divided_disagreement));
   }
 }

@@ -47,8 +47,9 @@ namespace roadbrdf::mixing {
 class EndMemberCache {
  public:
   // A FitLoader (mixing.h) that reads each fit file (path, selected fit) once; a file whose size or
-  // modification time changed since is read again.
-  FitLoader loader();
+  // modification time changed since is read again. A fit given as a value (`texts`: JSON text by path,
+  // fit_loader) is parsed once per distinct text.
+  FitLoader loader(const std::map<std::string, std::string>& texts = {});
 
   // Black-sky (white_sky = false) or white-sky albedo of `model` for the parameter sets `params`
   // (n_sets x parameter_count), as albedo::HemisphericalIntegrals computes it, once per distinct input.

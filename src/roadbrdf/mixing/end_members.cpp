@@ -22,6 +22,13 @@ std::string stem_of_fit(const std::string& path) {
 
 }  // namespace
 
+FitLoader fit_loader(const std::map<std::string, std::string>& texts) {
+  return [texts](const std::string& path, const std::string& model) {
+    const auto given = texts.find(path);
+    return given == texts.end() ? read_fit_file(path, model) : parse_fit_file(given->second, path, model);
+  };
+}
+
 MixInputs load_mix_inputs(const Formulation& formulation, const FitLoader& loader_in) {
   const FitLoader loader = loader_in ? loader_in : FitLoader([](const std::string& path, const std::string& model) {
     return read_fit_file(path, model);

@@ -11,6 +11,7 @@
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mixture_covariance.h"
+#include "roadbrdf/mixing/residual_file.h"
 
 namespace roadbrdf::mixing {
 
@@ -45,11 +46,12 @@ void MixRequest::validate() const {
     throw FieldError("method", not_one_of(method, choices));
   }
   if (folds < 2) throw FieldError("folds", "must be at least 2");
+  if (seed < 0) throw FieldError("seed", fmt::format("{} is negative (a seed is 0 or more)", seed));
   for (const auto& [name, value] :
        {std::pair{"binder_coverage", binder_coverage}, std::pair{"mastic_fraction", mastic_fraction}}) {
     if (value && !(*value >= 0.0 && *value <= 1.0)) throw FieldError(name, fmt::format("{} is outside [0, 1]", *value));
   }
-  if (residuals && data.empty())
+  if (!residuals.empty() && data.empty())
     throw FieldError("residuals", "needs data (the held-out residuals of a measured mixture)");
   if (!reference.empty() && data.empty()) {
     throw FieldError("reference", "needs data (the albedo is compared at the data's wavelengths)");
@@ -62,24 +64,25 @@ void MixRequest::validate() const {
   }
 }
 
-MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outputs,
-               const std::function<std::string(const std::string&)>& role) {
+MixRun run_mix(const MixRequest& request) {
   request.validate();
-  auto named = [&](const std::string& field) { return role ? role(field) : field; };
-  std::vector<FileArgument> read = {{named("formulation"), request.formulation},
-                                    {named("data"), request.data},
-                                    {named("reference"), request.reference},
-                                    {named("cross_sections"), request.cross_sections}};
+  std::vector<FileArgument> read, outputs;
+  file_arguments(request, MixRequest::fields(), read, outputs);
   check_distinct_files(read, outputs);
   MixRun run;
   run.request = request;
   run.request.progress = nullptr;  // the caller's callback does not outlive this call
-  const Formulation formulation = read_formulation(request.formulation);
-  const std::vector<FileArgument> fits = formulation_input_files(formulation);
-  read.insert(read.end(), fits.begin(), fits.end());
+  const Source& given = request.formulation;
+  // A formulation given as a value names fit files that may be values too: they are checked when loaded.
+  const Formulation formulation =
+      given.in_memory() ? parse_formulation(given.text, given.path, false) : read_formulation(given.path);
+  for (const FileArgument& fit : formulation_input_files(formulation)) {
+    if (request.fits.count(fit.path) == 0) read.push_back(fit);
+  }
   check_distinct_files(read, outputs);
   run.inputs = std::make_unique<MixInputs>(
-      load_mix_inputs(formulation, request.end_member_cache ? request.end_member_cache->loader() : FitLoader{}));
+      load_mix_inputs(formulation, request.end_member_cache ? request.end_member_cache->loader(request.fits)
+                                                            : fit_loader(request.fits)));
   MixSettings settings;
   settings.binder_coverage = request.binder_coverage;
   settings.mastic_area_fraction = request.mastic_fraction;
@@ -94,13 +97,13 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
       std::string known;
       for (const auto& [name, k] : settings.cross_section_factors) known += (known.empty() ? "" : ", ") + name;
       throw FieldError("cross_sections", request.cross_sections + " has no factor for end-member '" + em.name +
-                                             "' of " + request.formulation + " (it has: " + known + ")");
+                                             "' of " + request.formulation.path + " (it has: " + known + ")");
     }
   }
   const bool all = request.method == "all";
   const std::vector<Method> methods =
       all ? values_of<Method>() : std::vector<Method>{parse_name<Method>(request.method, "method")};
-  if (!request.data.empty()) run.data = read_dataset(request.data, request.data_read);
+  if (!request.data.empty()) run.data = read_dataset(request.data, request.options_for(request.data));
   std::optional<SpectralModel> reference;
   if (!request.reference.empty()) reference = read_spectral_model_file(request.reference);
 
@@ -140,8 +143,13 @@ MixRun run_mix(const MixRequest& request, const std::vector<FileArgument>& outpu
     }
   }
   progress.finish();
-  if (run.content.results.empty()) throw InputError("no mixing method could be applied to " + request.formulation);
+  if (run.content.results.empty()) throw InputError("no mixing method could be applied to " + request.formulation.path);
   return run;
+}
+
+void write_mix_outputs(const MixRun& run) {
+  if (!run.request.output.empty()) write_mix_file(run.request.output, run.content);
+  if (!run.request.residuals.empty()) write_residual_file(run.request.residuals, *run.data, run.content.comparisons);
 }
 
 std::string MixRun::table() const {

@@ -95,6 +95,9 @@ struct MixInputs {
 
 // Load every distinct fit file of the formulation (errors name the formulation key).
 MixInputs load_mix_inputs(const Formulation& formulation, const FitLoader& loader = {});
+// The FitLoader of fit files, except those given as values: `texts` holds a fit file's JSON text by
+// the path a formulation resolves it to, parsed instead of a file read.
+FitLoader fit_loader(const std::map<std::string, std::string>& texts);
 
 // The mixing methods, their names (command line, MIX.json) and the line that describes each (MIX.json).
 enum class Method { kAreal, kFitted, kMastic, kHapke, kShadowed };

@@ -49,40 +49,33 @@ std::optional<RTableUncertainty> summary_uncertainty(const SpectralModel& model,
     to_scaled[i] = kRScale * std::pow(1.0 + t * t, -1.5);
   }
 
+  // The model's values and parameter gradients at the table's geometries for every set of the
+  // reduction, once: df/dp_k(p(l), geometry g) = set_gradient[(l * G + g) * P + k].
+  std::vector<double> set_gradient(sets.size() * G * P), values(G);
+  for (std::size_t l = 0; l < sets.size(); ++l) {
+    m.evaluate_batch_with_gradient(geometries.data(), G, sets[l].data(), values.data(),
+                                   set_gradient.data() + l * G * P);
+  }
+
   std::array<std::vector<double>, kFigures> gradient;  // [figure][j * P + k] = dY/dp_jk
   for (auto& g : gradient) g.assign(J * P, 0.0);
-  std::vector<double> batch, values;
   for (std::size_t j = 0; j < J; ++j) {
     const std::vector<std::pair<std::size_t, double>>& sets_j = entered[j];
     if (sets_j.empty()) continue;  // a fit wavelength outside the weighting: no effect
-    const std::size_t n = sets_j.size();
     for (std::size_t k = 0; k < P; ++k) {
+      // The parameters that propagate (core/propagation.h): a positive variance and room in the
+      // physical range; the derivative itself is the model's analytic (or Jet) gradient.
       const auto [lower, upper] = description.physical_range(k);
       const double p = model.parameter_table()[j * P + k];
-      const DerivativeStep step = derivative_step(p, covariance[(j * P + k) * P + k], lower, upper);
-      if (!(step.span() > 0.0)) continue;
-      // Sets 0..n-1 with p_jk at step.up, n..2n-1 at step.down, as the interpolation carries them.
-      batch.clear();
-      for (int side = 0; side < 2; ++side) {
-        const double shift = (side == 0 ? step.up : step.down) - p;
-        for (const auto& [l, a] : sets_j) {
-          std::vector<double> q = sets[l];
-          q[k] += a * shift;
-          batch.insert(batch.end(), q.begin(), q.end());
-        }
-      }
-      values.resize(G * 2 * n);
-      m.evaluate_batch(geometries.data(), G, batch.data(), 2 * n, values.data());
-      // dT/dp_jk, the table's derivative (R = 1e4 r per unit of p_jk).
+      if (!(derivative_step(p, covariance[(j * P + k) * P + k], lower, upper).span() > 0.0)) continue;
+      // dT/dp_jk, the table's derivative (R = 1e4 r per unit of p_jk): p_jk enters set l with the
+      // interpolation weight a_lj, and set l the reduction with the weight w_l.
       RTable derivative;
       derivative.alpha_deg = table.alpha_deg;
       for (std::size_t g = 0; g < G; ++g) {
         double sum = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          const double w = reduction.weights[sets_j[i].first];
-          sum += w * (values[g * 2 * n + i] - values[g * 2 * n + n + i]);
-        }
-        derivative.scaled[g] = to_scaled[g / kColumns] * sum / step.span();
+        for (const auto& [l, a] : sets_j) sum += reduction.weights[l] * a * set_gradient[(l * G + g) * P + k];
+        derivative.scaled[g] = to_scaled[g / kColumns] * sum;
       }
       // Q0 and Qd are linear in the table; S1 and S2 are ratios (quotient rule).
       const double d_q0 = q0(derivative, region);

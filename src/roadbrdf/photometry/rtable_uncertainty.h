@@ -6,19 +6,18 @@
 // photometric weighting), p(l) interpolated linearly between the fit's wavelengths j (weights a_lj,
 // SpectralModel::interpolation_weights). A figure Y (Q0, S1, S2, Qd) then depends on the fitted
 // parameter p_jk through every l next to j, and its gradient is
-//   dY/dp_jk  from  dT/dp_jk = sum_l w_l a_lj (f(p(l) + h a_lj e_k) - f(p(l) - h a_lj e_k)) / (2 h),
-// the central difference of the table with the step rule of core/propagation.h (h = 0.01 u(p_jk),
-// one-sided at a physical bound). Q0 and Qd are linear in the table, so q0(dT), qd(dT) are exactly
-// the difference quotients of Q0 and Qd; S1 = T(8,0)/T(0,0) and S2 = Q0/r(0,0) are ratios, whose
-// derivatives follow by the quotient rule (the difference quotient of the ratio to O(h^2)).
+//   dY/dp_jk  from  dT/dp_jk = sum_l w_l a_lj df/dp_k(p(l)),
+// the model's analytic (or Jet) parameter gradient at the table's geometries, evaluated once per set
+// l for all parameters. Q0 and Qd are linear in the table, so q0(dT), qd(dT) are their derivatives;
+// S1 = T(8,0)/T(0,0) and S2 = Q0/r(0,0) are ratios, whose derivatives follow by the quotient rule.
 // Fits at different wavelengths are independent (per-wavelength fits share no parameter), so
 //   u^2(Y) = sum_j g_j^T Sigma_j g_j,
 // Sigma_j the fit's covariance at wavelength j. A per-wavelength covariance cannot tell whether
 // errors are correlated across wavelengths (e.g. a reference-panel calibration common to every band);
 // for that case sum_j sqrt(g_j^T Sigma_j g_j) is given as well, the bound for fully correlated errors
-// (as the albedo's broadband values do, albedo/uncertainty.h). Cost: each parameter moves only the sets between
-// its neighbouring fit wavelengths, so all gradients together evaluate the model about 4 P times
-// as often as the table itself (P parameters). Fixed parameters (variance 0) contribute nothing;
+// (as the albedo's broadband values do, albedo/uncertainty.h). Cost: one evaluation with gradient
+// per set, instead of the 4 P evaluations per set of central differences (P parameters). Fixed
+// parameters (variance 0) contribute nothing;
 // an undefined covariance (NaN) of a parameter that matters makes the uncertainty undefined (NaN).
 //
 // Class: with S1 ~ Normal(S1, u(S1)) the probability of the class [lower, upper) is
