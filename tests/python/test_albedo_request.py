@@ -1,19 +1,18 @@
-"""The albedo request's field table (albedo/albedo_request.cpp) seen from both front ends, row by row:
-`roadbrdf albedo --help` shows each row's flag with its help, `roadbrdf.albedo`'s docstring shows its
-keyword, and a bad value gives the same error from both (the command line naming the flag, Python the
-keyword). The rows come from the table itself (the docstring made from it), so a new field without a
-bad value here fails."""
+"""The albedo request's field table (AlbedoRequest::fields, albedo/albedo_request.cpp) seen from both front
+ends, row by row: `roadbrdf albedo --help` shows each row's flag, `roadbrdf.albedo`'s docstring its keyword
+and help, and a bad value is refused with the same text by both (the command line naming the flag, Python
+the keyword). The rows come from the table itself, so a new field without a bad value here fails."""
 import json
-import re
 
 import pytest
+from request_table import check_every_row_is_shown, check_refused_alike, fields
 
 import roadbrdf
-from roadbrdf import _roadbrdf
-from conftest import assert_same_error
+
+FIELDS = fields("albedo")
 
 # A bad value per field: (Python keyword value, command-line value). None for a switch: a flag has no
-# value on the command line to get wrong, so only Python's type check is compared.
+# value on the command line to get wrong, so Python's type check alone is compared with the table.
 BAD = {
     "model": ("no-such-model", "no-such-model"),
     "parameters": (["albedo=2"], "albedo=2"),
@@ -32,16 +31,6 @@ BAD = {
 }
 
 
-def _rows():
-    """(name, unit, help) of every row, from the docstring the table makes."""
-    doc = _roadbrdf.albedo.__doc__
-    body = doc[doc.index("Arguments"):doc.rindex("Returns")]
-    return re.findall(r"^    ([a-z_]+)(?: \[([^\]]+)\])?: (.*)$", body, re.M)
-
-
-ROWS = _rows()
-
-
 def _fit(path):
     """A Lambertian fit over 400-700 nm (albedo 0.1 to 0.4), for the rows that need a fit file."""
     wavelengths = list(range(400, 701, 50))
@@ -54,49 +43,32 @@ def _fit(path):
 
 
 def test_every_row_has_a_bad_value():
-    assert sorted(name for name, _, _ in ROWS) == sorted(BAD)
+    assert sorted(row["name"] for row in FIELDS) == sorted(BAD)
 
 
-@pytest.fixture(scope="module")
-def help_text():
-    import os
-    import subprocess
-    exe = os.environ.get("ROADBRDF_CLI")
-    if exe is None:
-        pytest.skip("ROADBRDF_CLI is set by ctest")
-    return subprocess.run([exe, "albedo", "--help"], capture_output=True, text=True, check=True).stdout
+def test_every_row_is_an_option_and_a_keyword(cli):
+    check_every_row_is_shown(cli, "albedo", roadbrdf.albedo)
 
 
-def _flag(help_text, name, unit, text):
-    """The flag (or positional placeholder) of the --help line that holds the row's help text."""
-    described = text + (f" [{unit}]" if unit else "")
-    lines = [line for line in help_text.splitlines() if described in line]
-    assert len(lines) == 1, f"{name}: '{described}' not in --help once:\n{help_text}"
-    spellings = lines[0].split()[0].split(",")
-    return spellings[-1]
-
-
-@pytest.mark.parametrize("name,unit,text", ROWS, ids=[r[0] for r in ROWS])
-def test_row(cli, tmp_path, help_text, name, unit, text):
-    flag = _flag(help_text, name, unit, text)
-    assert re.search(rf"^    {name}( \[[^\]]+\])?: ", roadbrdf.albedo.__doc__, re.M), roadbrdf.albedo.__doc__
-    if BAD[name] is None:  # a switch: only a True/False from Python
+@pytest.mark.parametrize("row", FIELDS, ids=[row["name"] for row in FIELDS])
+def test_a_bad_value_is_refused_alike(cli, tmp_path, row):
+    name = row["name"]
+    if BAD[name] is None:  # a switch: only True or False from Python
         with pytest.raises(roadbrdf.InputError, match=f"^{name}: expected True or False, got str"):
             roadbrdf.albedo("lambert", {"albedo": 0.3}, **{name: "yes"})
         return
     py_value, cli_value = BAD[name]
     fit = str(_fit(tmp_path / "lambert.fit.json"))
     if name == "model":
-        cli_args, kwargs = [cli_value], {}
-        source = py_value
+        cli_args, source, kwargs = [cli_value], py_value, {}
     elif name in ("parameters", "options"):
-        cli_args, kwargs, source = ["lambert", flag, cli_value], {name: py_value}, "lambert"
+        cli_args, source, kwargs = ["lambert", row["long_flag"], cli_value], "lambert", {name: py_value}
     else:
-        cli_args, kwargs, source = [fit, flag, cli_value], {name: py_value}, fit
+        cli_args, source, kwargs = [fit, row["long_flag"], cli_value], fit, {name: py_value}
     result = cli("albedo", *cli_args, "--quiet", check=False)
     with pytest.raises(roadbrdf.InputError) as error:
         roadbrdf.albedo(source, **kwargs)
-    assert_same_error(result, error.value, flag, name)
+    check_refused_alike("albedo", row, result, error.value)
 
 
 def test_numbers_and_writer_are_the_command_lines(cli, tmp_path):
