@@ -12,7 +12,7 @@
 #include "roadbrdf/lighting/calculation.h"
 #include "roadbrdf/lighting/installation.h"
 #include "roadbrdf/lighting/luminaire_file.h"
-#include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/spectra/cie.h"
 
 namespace roadbrdf::lighting {
@@ -252,7 +252,7 @@ photometry::MarkingContrast marking_contrast(const photometry::MarkingRequest& r
 }
 
 photometry::MarkingResult marking(const photometry::MarkingRequest& request) {
-  return photometry::marking(request, mixing::read_spectral_model_file, marking_contrast);
+  return photometry::marking(request, read_spectral_model_file, marking_contrast);
 }
 
 }  // namespace roadbrdf::lighting
