@@ -80,14 +80,15 @@ TEST(AlbedoCli, WarningsAreTypedAndPrintedOnce) {
   for (const auto& note : j.at("notes")) EXPECT_EQ(note.get<std::string>().find("WARNING"), std::string::npos);
 }
 
-// A Lambertian fit with u(albedo) = 0.01: its white-sky albedo is the albedo itself, so u = 0.01 too;
-// --no-uncertainty (the request's `uncertainty` switched off) leaves it out and says so.
+// A Lambertian fit (300-2500 nm: most of the solar energy, so no warning) with u(albedo) = 0.01: its
+// white-sky albedo is the albedo itself, so u = 0.01 too; --no-uncertainty (the request's
+// `uncertainty` switched off) leaves it out and says so.
 TEST(AlbedoCli, NoUncertaintyTurnsTheUncertaintiesOff) {
   const std::string fit = ::testing::TempDir() + "albedo_uncertainty.fit.json";
   FILE* f = std::fopen(fit.c_str(), "w");
   ASSERT_NE(f, nullptr);
   std::fputs(R"({"format": "roadbrdf-fit", "version": 1, "best": "lambert", "fits": [{"model": "lambert",
-    "options": {}, "wavelengths": [500, 600], "parameters": {"albedo": [0.3, 0.3]}, "parameter_order": ["albedo"],
+    "options": {}, "wavelengths": [300, 2500], "parameters": {"albedo": [0.3, 0.3]}, "parameter_order": ["albedo"],
     "fixed": [], "stderr": {"albedo": [0.01, 0.01]}, "correlation": [[[1.0]], [[1.0]]]}]})",
              f);
   std::fclose(f);
