@@ -4,6 +4,7 @@ and help, and a bad value is refused with the same text by both (the command lin
 the keyword). The rows come from the table itself, so a new field without a bad value here fails."""
 import json
 
+import numpy as np
 import pytest
 from request_table import check_every_row_is_shown, check_refused_alike, fields
 
@@ -112,9 +113,9 @@ def test_albedo_result_arrays_follow_the_lambert_closed_form(tmp_path):
     result = roadbrdf.albedo(fit, sun_zenith=[0, 45], diffuse_fraction=0.3)
     assert result.wavelengths.tolist() == wavelengths
     assert result.black_sky.shape == (2, len(wavelengths))
-    assert result.black_sky.tolist() == pytest.approx([albedos, albedos], rel=1e-9)
-    assert result.white_sky.tolist() == pytest.approx(albedos, rel=1e-9)
-    assert result.blue_sky.tolist() == pytest.approx([albedos, albedos], rel=1e-9)
+    np.testing.assert_allclose(result.black_sky, [albedos, albedos], rtol=1e-9)
+    np.testing.assert_allclose(result.white_sky, albedos, rtol=1e-9)
+    np.testing.assert_allclose(result.blue_sky, [albedos, albedos], rtol=1e-9)
     df = result.to_dataframe()
     assert list(df["wavelength_nm"]) == wavelengths
     assert list(df["black_sky_45deg"]) == pytest.approx(albedos, rel=1e-9)

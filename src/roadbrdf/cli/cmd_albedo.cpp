@@ -42,6 +42,7 @@ void register_albedo_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "albedo", "Black-sky, white-sky and blue-sky albedo per wavelength and solar-weighted (report eqs. 2.19-2.22)");
   add_request_options(command, args.request);
+  refuse_fit_model_flag(command);
   command->add_flag("--json", args.as_json, "JSON output");
   command->add_option("-o,--output", args.output, "Output file (default: standard output)");
   add_quiet_flag(command, args.quiet);
