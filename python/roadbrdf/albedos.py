@@ -2,15 +2,16 @@
 
 from __future__ import annotations
 
+import numbers
 import os
-from typing import TYPE_CHECKING, Any, Sequence, Union
+from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
 from . import _roadbrdf
 from .core import InputError, as_float, warn_at_caller
-from .fitting import read_fit
 from .model import Model, SpectralModel, model_argument
+from .result import RoadbrdfWarning
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -86,20 +87,13 @@ class AlbedoResult(dict):
         return "roadbrdf.AlbedoResult(\n" + self.summary.rstrip("\n") + "\n)"
 
 
-def albedo(model: Model | SpectralModel | str, params: dict | None = None,
-           sun_zenith: float | str | Sequence[float] = 30.0, sun_azimuth: float | None = None,
-           azimuth_mean: bool = False,
-           diffuse_fraction: float | str | None = None, atmosphere: str | None = None,
-           spectrum: str | None = None, wavelengths: float | str | Sequence[float] | None = None,
-           illuminant: str | None = None, tolerance: float = 1e-5,
-           uncertainty: bool = True) -> AlbedoResult:
+def albedo(model: Model | SpectralModel | str | os.PathLike, params: dict | None = None, **kwargs) -> AlbedoResult:
     """Black-sky, white-sky and blue-sky albedo, as ``roadbrdf albedo --json`` computes them.
 
-    ``model``: a :class:`Model` (with ``params``), a :class:`SpectralModel`, or a fit / MIX.json file.
-    ``sun_zenith`` [deg]: a number, a list or a range string such as ``"0:60:30"`` (both ends included); ``diffuse_fraction``: a number in [0, 1] or a CSV file
-    (wavelength_nm, diffuse_fraction); ``atmosphere``: e.g. ``"spectrl2:aod=0.2"`` (SPECTRL2 clear sky);
-    ``spectrum``: broadband weighting ``"astm-g173-global"`` (default), ``"astm-g173-direct"`` or a CSV
-    file; ``illuminant``: also the luminous albedo under "A", "D65" or a lamp file.
+    ``model``: a :class:`Model` (with ``params``, a dict NAME: VALUE), a :class:`SpectralModel`, or a fit file,
+    a MIX.json or a model name (resolved as the command line resolves it; ``params`` then become its
+    ``parameters``). The other arguments are keywords, one per field of the request (listed below, the
+    command line's options); ``None`` leaves a field at its default, and ``diffuse_fraction`` may be a number.
 
     Returns an :class:`AlbedoResult`, a dict: ``wavelengths`` [nm], ``sun_zenith_deg``, ``black_sky`` [zenith][wavelength],
     ``white_sky`` [wavelength], ``blue_sky``, ``diffuse_fraction``, their ``*_error`` estimates,
@@ -107,31 +101,33 @@ def albedo(model: Model | SpectralModel | str, params: dict | None = None,
     the fractions of the black- and white-sky integrals outside them, ``None`` when unknown),
     ``uncertainty`` (standard uncertainties of the same albedos from the parameter covariance of a fit, or
     of a mixture from its end-members' fits; ``None`` when unknown or with ``uncertainty=False``, which skips
-    their computation), ``units`` and ``notes``. Mostly extrapolated or non-physical results are also reported as :class:`UserWarning`.
+    their computation), ``units``, ``notes`` and ``warnings`` (each a dict ``kind``, ``message``: mostly
+    extrapolated, non-physical or implausible results), which are also issued as :class:`RoadbrdfWarning`.
     """
-    zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
-    common = (zeniths, None if sun_azimuth is None else as_float(sun_azimuth, "sun_azimuth"), bool(azimuth_mean),
-              "" if diffuse_fraction is None else str(diffuse_fraction), atmosphere or "", spectrum or "",
-              _roadbrdf.values(wavelengths, "wavelengths", True), illuminant or "",
-              as_float(tolerance, "tolerance"), _flag(uncertainty, "uncertainty"))
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    fraction = kwargs.get("diffuse_fraction")
+    if isinstance(fraction, numbers.Real) and not isinstance(fraction, (bool, np.bool_)):
+        kwargs["diffuse_fraction"] = str(fraction)
+    if isinstance(model, str) or hasattr(model, "__fspath__"):
+        if params:
+            kwargs["parameters"] = [f"{name}={as_float(value, name)!r}" for name, value in params.items()]
+        return _warn_notes(AlbedoResult(_roadbrdf.albedo(os.fspath(model), **kwargs)))
     model = model_argument(model, "model")
     if isinstance(model, SpectralModel):
         if params:
             raise InputError("params cannot be combined with a spectral model")
-        return _warn_notes(AlbedoResult(_roadbrdf.albedo_spectral(model._spectral, *common)))
-    return _warn_notes(AlbedoResult(_roadbrdf.albedo_model(model._model, model.parameter_values(params), *common)))
+        return _warn_notes(AlbedoResult(_roadbrdf.albedo_spectral(model._spectral, **kwargs)))
+    return _warn_notes(AlbedoResult(_roadbrdf.albedo_model(model._model, model.parameter_values(params), **kwargs)))
 
 
-def _flag(value, name: str) -> bool:
-    """A True/False argument; anything else is a TypeError naming it (not silently truthy)."""
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    raise TypeError(f"{name}: expected True or False, got {type(value).__name__}")
+# The keywords, from the request's field table (the same rows as `roadbrdf albedo --help`).
+_doc = _roadbrdf.albedo.__doc__ or ""
+if "Arguments" in _doc:
+    albedo.__doc__ += "\n    " + _doc[_doc.index("Arguments"):_doc.rindex("Returns")].strip().replace("\n", "\n    ") + "\n"
 
 
 def _warn_notes(report: AlbedoResult) -> AlbedoResult:
-    """The command line's warnings: notes on mostly extrapolated or non-physical results."""
-    for note in report.get("notes", []):
-        if note.startswith(("WARNING: mostly", "WARNING: non-physical")):
-            warn_at_caller(note[len("WARNING: "):])
+    """The result's warnings (mostly extrapolated, non-physical or implausible results), issued at the caller."""
+    for warning in report.get("warnings", []):
+        warn_at_caller(warning["message"], RoadbrdfWarning)
     return report

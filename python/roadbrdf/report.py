@@ -224,8 +224,9 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
             with steps.step("lighting", f"road lighting of {os.path.basename(installation)}"), _collect(r, "lighting"):
                 report_lighting.gather(r, installation, lighting_class, r.fit_all_path)
         r.all_caveats = list(dict.fromkeys(
-            [n[len("WARNING: "):] if n.startswith("WARNING: ") else n for n in (r.albedo or {}).get("notes", [])
-             if n.startswith(("WARNING", "coverage"))] + list((r.rtable or {}).get("warnings") or []) +
+            [w["message"] for w in (r.albedo or {}).get("warnings", [])] +
+            [n for n in (r.albedo or {}).get("notes", []) if n.startswith("coverage")] +
+            list((r.rtable or {}).get("warnings") or []) +
             [n for n in (r.rtable or {}).get("notes") or [] if n.startswith("coverage")]))
         with steps.step("figures", "drawing the figures"):
             drawing.finish(r)

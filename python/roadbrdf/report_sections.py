@@ -408,8 +408,9 @@ def albedo(r) -> Section:
         f"</strong>" + (f" ±\u00a0{number(u['white_sky'][k], 2)}" if u.get("white_sky") and
                         u["white_sky"][k] is not None else "") + \
         " (± standard uncertainty from the fit's covariance, where defined).</p>"
-    html += caveats([n for n in a.get("notes", []) if n.startswith(("WARNING", "coverage"))])
-    html += caveats([n for n in a.get("notes", []) if not n.startswith(("WARNING", "coverage"))], info=True)
+    html += caveats([w["message"] for w in a.get("warnings", [])] +
+                    [n for n in a.get("notes", []) if n.startswith("coverage")])
+    html += caveats([n for n in a.get("notes", []) if not n.startswith("coverage")], info=True)
     html += _figure(r, "albedo")
     return Section("albedo", "7. Albedo", html)
 

@@ -1,4 +1,5 @@
-// Python binding of albedo: the same request (albedo/report.h) and report as `roadbrdf albedo --json`.
+// Python binding of albedo: the same request (albedo/report.h, its field table) and report as
+// `roadbrdf albedo --json`, the arguments converted by the request contract (request_kwargs.h).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -6,6 +7,7 @@
 #include <optional>
 
 #include "binding.h"
+#include "request_kwargs.h"
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
@@ -18,45 +20,27 @@ namespace roadbrdf::python {
 
 namespace {
 
-albedo::AlbedoRequest request_from(const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth,
-                                   bool azimuth_mean, const std::string& diffuse_fraction,
-                                   const std::string& atmosphere, const std::string& spectrum,
-                                   const std::vector<double>& wavelengths, const std::string& illuminant,
-                                   double tolerance, bool uncertainty = true) {
-  albedo::AlbedoRequest request;
-  request.sun_zenith_deg = sun_zenith;
-  request.sun_azimuth_deg = sun_azimuth;
-  request.azimuth_mean = azimuth_mean;
-  request.diffuse_fraction = diffuse_fraction;
-  request.atmosphere = atmosphere;
-  request.spectrum = spectrum;
-  request.wavelengths = wavelengths;
-  request.illuminant = illuminant;
-  request.tolerance = tolerance;
-  request.uncertainty = uncertainty;
-  return request;
-}
-
 // The report of compute_albedo (`roadbrdf albedo --json`), kept as the library's document so that
 // Python writes it with the command line's writer (albedo::write_albedo_report).
 struct AlbedoReport {
   nlohmann::json json;
 };
 
-std::shared_ptr<AlbedoReport> report(const SpectralModel& model, const std::vector<double>& sun_zenith,
-                                     std::optional<double> sun_azimuth, bool azimuth_mean,
-                                     const std::string& diffuse_fraction, const std::string& atmosphere,
-                                     const std::string& spectrum, const std::vector<double>& wavelengths,
-                                     const std::string& illuminant, double tolerance, bool uncertainty) {
-  const albedo::AlbedoRequest request =
-      request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum, wavelengths,
-                   illuminant, tolerance, uncertainty);
-  auto result = std::make_shared<AlbedoReport>();
-  {
-    SigintGuard interruptible;
-    py::gil_scoped_release release;
-    result->json = albedo::compute_albedo(model, request);
+// The request of a call that passes the model itself: the keywords of the other fields.
+albedo::AlbedoRequest request_without_source(const py::kwargs& kwargs) {
+  for (const char* source : {"model", "parameters", "options", "fit"}) {
+    if (kwargs.contains(source)) {
+      throw FieldError(source, "is given by the model argument itself (a Model or SpectralModel object)");
+    }
   }
+  return request_from_arguments<albedo::AlbedoRequest>(py::args(), kwargs);
+}
+
+std::shared_ptr<AlbedoReport> report(const SpectralModel& model, const albedo::AlbedoRequest& request) {
+  auto result = std::make_shared<AlbedoReport>();
+  SigintGuard interruptible;
+  py::gil_scoped_release release;
+  result->json = albedo::compute_albedo(model, request);
   return result;
 }
 
@@ -69,7 +53,28 @@ void bind_albedo(py::module_& m) {
       .def("write", [](const AlbedoReport& r, const std::string& path, bool as_json) {
         albedo::write_albedo_report(r.json, path, as_json);
       });
-  m.def("albedo_spectral", &report);
+  m.def(
+      "albedo",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<albedo::AlbedoRequest>(args, kwargs);
+        auto result = std::make_shared<AlbedoReport>();
+        SigintGuard interruptible;
+        py::gil_scoped_release release;
+        result->json = albedo::albedo(request).report;
+        return result;
+      },
+      request_docstring<albedo::AlbedoRequest>(
+          "Black-sky, white-sky and blue-sky albedo per wavelength and solar-weighted, as `roadbrdf albedo --json`.")
+          .c_str());
+  m.def("albedo_spectral", [](const SpectralModel& model, const py::kwargs& kwargs) {
+    return report(model, request_without_source(kwargs));
+  });
+  m.def("albedo_model",
+        [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters, const py::kwargs& kwargs) {
+          const albedo::AlbedoRequest request = request_without_source(kwargs);
+          check_parameters(model->description(), parameters);
+          return report(SpectralModel(std::const_pointer_cast<const Model>(model), parameters), request);
+        });
   // The same report for method `index` of a mix run, its end-members' integrals shared through
   // `cache` (mixing/end_member_cache.h; the design studies' fast path).
   m.def("mixture_albedo",
@@ -77,8 +82,16 @@ void bind_albedo(py::module_& m) {
            const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
            const std::string& diffuse_fraction, const std::string& atmosphere, const std::string& spectrum,
            const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
-          const albedo::AlbedoRequest request = request_from(sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction,
-                                                             atmosphere, spectrum, wavelengths, illuminant, tolerance);
+          albedo::AlbedoRequest request;
+          request.sun_zenith_deg = sun_zenith;
+          request.sun_azimuth_deg = sun_azimuth;
+          request.azimuth_mean = azimuth_mean;
+          request.diffuse_fraction = diffuse_fraction;
+          request.atmosphere = atmosphere;
+          request.spectrum = spectrum;
+          request.wavelengths = wavelengths;
+          request.illuminant = illuminant;
+          request.tolerance = tolerance;
           nlohmann::json result;
           {
             SigintGuard interruptible;
@@ -86,16 +99,6 @@ void bind_albedo(py::module_& m) {
             result = mixing::mixture_albedo(run.content.results.at(index), request, cache);
           }
           return json_to_python(result);
-        });
-  m.def("albedo_model",
-        [](const std::shared_ptr<Model>& model, const std::vector<double>& parameters,
-           const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
-           const std::string& diffuse_fraction, const std::string& atmosphere, const std::string& spectrum,
-           const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance, bool uncertainty) {
-          check_parameters(model->description(), parameters);
-          const SpectralModel sm(std::const_pointer_cast<const Model>(model), parameters);
-          return report(sm, sun_zenith, sun_azimuth, azimuth_mean, diffuse_fraction, atmosphere, spectrum, wavelengths,
-                        illuminant, tolerance, uncertainty);
         });
 }
 

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "binding.h"
+#include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/mixing/mix_request.h"
@@ -79,6 +80,7 @@ void bind_requests(py::module_& m) {
       [](const std::string& command) -> py::list {
         if (command == "fit") return rows<FitRequest>();
         if (command == "mix") return rows<mixing::MixRequest>();
+        if (command == "albedo") return rows<albedo::AlbedoRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

@@ -59,4 +59,52 @@ TEST(AlbedoCli, RejectsBadInput) {
   EXPECT_NE(status, 0);
 }
 
+// A white-sky albedo of 1e-4 lies below the 0.005 no natural material reaches (docs/data.md): a
+// warning of kind "implausibly_dark", printed once on standard error and listed in the JSON.
+TEST(AlbedoCli, WarningsAreTypedAndPrintedOnce) {
+  int status = 0;
+  std::string out = run("albedo lambert -p albedo=1e-4 --quiet", status);
+  ASSERT_EQ(status, 0) << out;
+  const std::string line = "roadbrdf: warning: implausible: a white-sky albedo of 0.0001";
+  ASSERT_NE(out.find(line), std::string::npos) << out;
+  EXPECT_EQ(out.find(line, out.find(line) + 1), std::string::npos) << out;
+  const std::string json_file = ::testing::TempDir() + "albedo_warnings.json";
+  out = run("albedo lambert -p albedo=1e-4 --quiet --json -o " + json_file, status);
+  ASSERT_EQ(status, 0) << out;
+  FILE* f = std::fopen(json_file.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  const auto j = nlohmann::json::parse(f);
+  std::fclose(f);
+  ASSERT_EQ(j.at("warnings").size(), 1u) << j.at("warnings").dump();
+  EXPECT_EQ(j.at("warnings")[0].at("kind"), "implausibly_dark");
+  for (const auto& note : j.at("notes")) EXPECT_EQ(note.get<std::string>().find("WARNING"), std::string::npos);
+}
+
+// A Lambertian fit (300-2500 nm: most of the solar energy, so no warning) with u(albedo) = 0.01: its
+// white-sky albedo is the albedo itself, so u = 0.01 too; --no-uncertainty (the request's
+// `uncertainty` switched off) leaves it out and says so.
+TEST(AlbedoCli, NoUncertaintyTurnsTheUncertaintiesOff) {
+  const std::string fit = ::testing::TempDir() + "albedo_uncertainty.fit.json";
+  FILE* f = std::fopen(fit.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(R"({"format": "roadbrdf-fit", "version": 1, "best": "lambert", "fits": [{"model": "lambert",
+    "options": {}, "wavelengths": [300, 2500], "parameters": {"albedo": [0.3, 0.3]}, "parameter_order": ["albedo"],
+    "fixed": [], "stderr": {"albedo": [0.01, 0.01]}, "correlation": [[[1.0]], [[1.0]]]}]})",
+             f);
+  std::fclose(f);
+  int status = 0;
+  std::string out = run("albedo " + fit + " --json --quiet", status);
+  ASSERT_EQ(status, 0) << out;
+  auto j = nlohmann::json::parse(out);
+  EXPECT_NEAR(j.at("uncertainty").at("white_sky")[0].get<double>(), 0.01, 1e-9);
+  out = run("albedo " + fit + " --no-uncertainty --json --quiet", status);
+  ASSERT_EQ(status, 0) << out;
+  j = nlohmann::json::parse(out);
+  EXPECT_TRUE(j.at("uncertainty").is_null());
+  bool noted = false;
+  for (const auto& note : j.at("notes"))
+    noted = noted || note.get<std::string>().find("values only") != std::string::npos;
+  EXPECT_TRUE(noted) << j.at("notes").dump();
+}
+
 }  // namespace

@@ -116,8 +116,8 @@ TEST(Coverage, FitFileRecordsItAndAlbedoReportsIt) {
   EXPECT_LE(b0, 1.0 - (cap4 + (to50 - cap4) / 18.0) + 1e-3);
   EXPECT_DOUBLE_EQ(cov.at("black_sky_outside_fraction")[1].get<double>(), 1.0);  // 80 > 60 + 5
   bool warned = false;
-  for (const auto& n : report.at("notes")) warned = warned || n.get<std::string>().rfind("WARNING: mostly", 0) == 0;
-  EXPECT_TRUE(warned);
+  for (const auto& w : report.at("warnings")) warned = warned || w.at("kind") == "mostly_extrapolated";
+  EXPECT_TRUE(warned) << report.at("warnings").dump();
 }
 
 TEST(Coverage, RTableOutsideCellsAndNegativeCells) {
@@ -146,13 +146,16 @@ TEST(Coverage, RTableOutsideCellsAndNegativeCells) {
 }
 
 TEST(Coverage, AlbedoAboveOneIsFlagged) {
-  std::vector<std::string> notes;
-  albedo::flag_non_physical({0.0, 60.0}, {500.0, 600.0}, {{0.4, 0.5}, {1.2, 0.9}}, {0.6, 0.7}, notes);
-  ASSERT_EQ(notes.size(), 1u);
-  EXPECT_NE(notes[0].find("largest black-sky 1.2 at sun zenith 60 deg, 500 nm"), std::string::npos) << notes[0];
-  notes.clear();
-  albedo::flag_non_physical({0.0}, {500.0}, {{0.99}}, {0.98}, notes);
-  EXPECT_TRUE(notes.empty());
+  Diagnostics diagnostics;
+  albedo::flag_non_physical({0.0, 60.0}, {500.0, 600.0}, {{0.4, 0.5}, {1.2, 0.9}}, {0.6, 0.7}, diagnostics);
+  ASSERT_EQ(diagnostics.warnings.size(), 1u);
+  EXPECT_EQ(diagnostics.warnings[0].kind, "albedo_above_one");
+  const std::string& message = diagnostics.warnings[0].message;
+  EXPECT_NE(message.find("largest black-sky 1.2 at sun zenith 60 deg, 500 nm"), std::string::npos) << message;
+  EXPECT_TRUE(diagnostics.notes.empty());
+  diagnostics = {};
+  albedo::flag_non_physical({0.0}, {500.0}, {{0.99}}, {0.98}, diagnostics);
+  EXPECT_TRUE(diagnostics.warnings.empty());
 }
 
 }  // namespace

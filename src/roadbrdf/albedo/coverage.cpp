@@ -69,7 +69,7 @@ nlohmann::json coverage_json(const AngularCoverage& c) {
 
 nlohmann::json albedo_coverage(const Model& model, const double* params, double wavelength_nm,
                                const std::vector<double>& sun_zenith_deg, const AngularCoverage& coverage,
-                               std::vector<std::string>& notes) {
+                               std::vector<std::string>& notes, Diagnostics& diagnostics) {
   nlohmann::json j = coverage_json(coverage);
   std::vector<double> black;
   std::size_t negative = 0, samples = 0;
@@ -95,21 +95,22 @@ nlohmann::json albedo_coverage(const Model& model, const double* params, double 
   if (!mostly.empty()) {
     std::string list;
     for (const auto& m : mostly) list += (list.empty() ? "" : ", ") + m;
-    notes.push_back(
-        "WARNING: mostly extrapolation (more than half of the integral lies outside the measured "
-        "directions): " +
-        list);
+    diagnostics.warn("mostly_extrapolated",
+                     "mostly extrapolation (more than half of the integral lies outside the measured "
+                     "directions): " +
+                         list);
   }
   if (negative + ws.negative_samples > 0) {
-    notes.push_back(fmt::format("WARNING: non-physical: the BRDF is negative at {} of {} quadrature directions",
-                                negative + ws.negative_samples, samples + ws.samples));
+    diagnostics.warn("negative_brdf",
+                     fmt::format("non-physical: the BRDF is negative at {} of {} quadrature directions",
+                                 negative + ws.negative_samples, samples + ws.samples));
   }
   return j;
 }
 
 void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vector<double>& wavelengths,
                        const std::vector<std::vector<double>>& black_sky, const std::vector<double>& white_sky,
-                       std::vector<std::string>& notes) {
+                       Diagnostics& diagnostics) {
   double worst = 1.0;
   std::string where;
   for (std::size_t z = 0; z < black_sky.size(); ++z) {
@@ -129,10 +130,10 @@ void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vec
     }
   }
   if (!where.empty()) {
-    notes.push_back(
-        "WARNING: non-physical: an albedo above 1 (the model reflects more than it receives; e.g. a "
-        "lobe amplitude too large): largest " +
-        where);
+    diagnostics.warn("albedo_above_one",
+                     "non-physical: an albedo above 1 (the model reflects more than it receives; e.g. a "
+                     "lobe amplitude too large): largest " +
+                         where);
   }
   // Below kImplausibleAlbedo no natural material reflects (fresh asphalt ~0.04, coal and carbon black
   // ~0.02-0.03 in the visible): a white-sky albedo that low is a scale error of the data (a BRDF cos theta_i,
@@ -146,11 +147,13 @@ void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vec
     }
   }
   if (darkest >= 0.0 && darkest < kImplausibleAlbedo) {
-    notes.push_back(fmt::format(
-        "WARNING: implausible: a white-sky albedo of {:.3g}{} is below {:g}, darker than any natural material "
-        "(asphalt ~0.04): check the scale of the data (BRDF in sr^-1, not BRDF x cos theta_i, a radiance or a "
-        "reflectance in percent)",
-        darkest, at < wavelengths.size() ? fmt::format(" at {:g} nm", wavelengths[at]) : "", kImplausibleAlbedo));
+    diagnostics.warn(
+        "implausibly_dark",
+        fmt::format(
+            "implausible: a white-sky albedo of {:.3g}{} is below {:g}, darker than any natural material "
+            "(asphalt ~0.04): check the scale of the data (BRDF in sr^-1, not BRDF x cos theta_i, a radiance or a "
+            "reflectance in percent)",
+            darkest, at < wavelengths.size() ? fmt::format(" at {:g} nm", wavelengths[at]) : "", kImplausibleAlbedo));
   }
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "roadbrdf/core/coverage.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/models/model.h"
 
 namespace roadbrdf::albedo {
@@ -29,21 +30,23 @@ OutsideFraction black_sky_outside(const Model& model, const double* params, doub
 OutsideFraction white_sky_outside(const Model& model, const double* params, const AngularCoverage& coverage);
 
 // The "coverage" object of the albedo report: the fit's coverage, the fractions outside it per sun
-// zenith and for white-sky at `wavelength_nm` (parameter set `params`), and notes (WARNING when a
-// result is mostly, > 50 %, extrapolation, or the BRDF is negative somewhere).
+// zenith and for white-sky at `wavelength_nm` (parameter set `params`), a note on the coverage, and
+// warnings when a result is mostly, > 50 %, extrapolation ("mostly_extrapolated") or the BRDF is
+// negative somewhere ("negative_brdf").
 nlohmann::json albedo_coverage(const Model& model, const double* params, double wavelength_nm,
                                const std::vector<double>& sun_zenith_deg, const AngularCoverage& coverage,
-                               std::vector<std::string>& notes);
+                               std::vector<std::string>& notes, Diagnostics& diagnostics);
 
 // White-sky albedos below this are warned about: darker than any natural material (docs/data.md,
 // "Implausible values"; physical range taken as 0.005-1).
 inline constexpr double kImplausibleAlbedo = 0.005;
 
-// Notes on non-physical values: a directional (black-sky) or white-sky albedo above 1; and on
-// implausible ones: a white-sky albedo below kImplausibleAlbedo.
+// Warnings on non-physical values: a directional (black-sky) or white-sky albedo above 1
+// ("albedo_above_one"); and on implausible ones: a white-sky albedo below kImplausibleAlbedo
+// ("implausibly_dark").
 void flag_non_physical(const std::vector<double>& sun_zenith_deg, const std::vector<double>& wavelengths,
                        const std::vector<std::vector<double>>& black_sky, const std::vector<double>& white_sky,
-                       std::vector<std::string>& notes);
+                       Diagnostics& diagnostics);
 
 nlohmann::json coverage_json(const AngularCoverage& coverage);
 

@@ -2,12 +2,14 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <limits>
 
 #include "roadbrdf/albedo/coverage.h"
 #include "roadbrdf/albedo/report_stages.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
+#include "roadbrdf/core/range.h"
 
 namespace roadbrdf::albedo {
 
@@ -65,6 +67,8 @@ void AlbedoRequest::validate() const {
     throw FieldError("diffuse_fraction", "excludes atmosphere: give one of the two");
   }
   if (sun_zenith_deg.empty()) throw FieldError("sun_zenith", "no sun zenith given");
+  if (sun_azimuth_deg && !std::isfinite(*sun_azimuth_deg)) throw FieldError("sun_azimuth", "expected a finite number");
+  if (!wavelengths.empty()) check_range_values(wavelengths, "wavelengths", wavelength_rules());
   for (double z : sun_zenith_deg) {
     if (!(z >= 0.0 && z < 90.0)) throw FieldError("sun_zenith", fmt::format("must be in [0, 90) deg, got {:g}", z));
   }
@@ -101,24 +105,31 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
                                     : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",
                                                   a.sun_azimuth_deg.value_or(0.0)));
   }
+  Diagnostics diagnostics;  // the warnings; the notes stay plain text in the document
   if (!albedos.converged) {
-    notes.emplace_back("WARNING: the quadrature stopped before meeting the tolerance; see the error estimates");
+    diagnostics.warn("not_converged", "the quadrature stopped before meeting the tolerance; see the error estimates");
   }
   const detail::Sky sky = detail::sky_conditions(sets, a, albedos);
   const detail::Broadband broadband = detail::broadband_albedos(sets, a, albedos, sky, notes);
+  if (broadband.formed && broadband.outside > 0.5) {
+    diagnostics.warn("partial_solar_spectrum",
+                     fmt::format("the fit's wavelengths ({:g}-{:g} nm) hold only {:.0f}% of the solar energy: the "
+                                 "broadband values weigh that part only",
+                                 sets.wavelengths.front(), sets.wavelengths.back(), 100.0 * (1.0 - broadband.outside)));
+  }
   const nlohmann::json luminous = detail::luminous_albedos(sets, a, albedos, notes);
   const nlohmann::json uncertainty = detail::albedo_uncertainty(sm, sets, a, azimuth, sky, broadband, progress, notes);
   progress.finish();
 
   // Non-physical values, and how much of the result the model extrapolates beyond the fit's data
   // (albedo/coverage.h; at the middle parameter set).
-  flag_non_physical(zeniths, sets.wavelengths, albedos.black, albedos.white.value, notes);
+  flag_non_physical(zeniths, sets.wavelengths, albedos.black, albedos.white.value, diagnostics);
   nlohmann::json coverage = nullptr;  // null: no coverage known (a model, a mixture, an older fit file)
   if (sm.coverage()) {
     const std::size_t mid = sets.n_sets / 2;
     coverage = albedo_coverage(model, sets.params.data() + mid * model.parameter_count(),
                                sets.spectral ? sets.wavelengths[mid] : std::numeric_limits<double>::quiet_NaN(),
-                               zeniths, *sm.coverage(), notes);
+                               zeniths, *sm.coverage(), notes, diagnostics);
   }
 
   nlohmann::json j;
@@ -142,6 +153,7 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
   j["coverage"] = coverage;
   j["uncertainty"] = uncertainty;
   j["notes"] = notes;
+  j["warnings"] = diagnostics.to_json().at("warnings");
   return j;
 }
 

@@ -6,16 +6,26 @@
 
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/albedo/hemisphere.h"
+#include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/progress.h"
+#include "roadbrdf/core/request_fields.h"
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf::albedo {
 
 struct AlbedoRequest {
+  // The BRDF (modelfile/model_source.h resolve_model): a fit file, a MIX.json or a model name with
+  // NAME=VALUE `parameters` and `options`; `fit` selects an entry of a file. Empty when the caller
+  // passes the spectral model itself (compute_albedo).
+  std::string model;
+  std::vector<std::string> parameters;
+  std::vector<std::string> options;
+  std::string fit;
   std::vector<double> sun_zenith_deg = {30.0};  // each in [0, 90)
   std::optional<double> sun_azimuth_deg;        // anisotropic models (default 0)
   bool azimuth_mean = false;                    // anisotropic models: average black-sky over the sun azimuth
@@ -35,10 +45,26 @@ struct AlbedoRequest {
   // white-sky one.
   ProgressCallback progress;
 
+  // One row per field (core/request_fields.h): the command line's options, Python's keywords.
+  static std::span<const RequestField<AlbedoRequest>> fields();
   // Throws FieldError naming the request's field (tolerance, sun_zenith, diffuse_fraction,
   // atmosphere) for a request that is invalid whatever the model; compute_albedo calls it.
   void validate() const;
 };
+
+// What albedo() returns: the document of compute_albedo (keys in docs/albedo.md; its "warnings" are
+// `diagnostics.warnings`), and its summary, the table of albedo_table.
+struct AlbedoResult {
+  nlohmann::json report;
+  Diagnostics diagnostics;
+
+  const nlohmann::json& to_json() const { return report; }
+  std::string summary_text() const;
+};
+
+// The request's task: resolves `model` (resolve_model), then compute_albedo. Throws FieldError
+// (`model` when none is given), FileError, InputError.
+AlbedoResult albedo(const AlbedoRequest& request);
 
 // The hemispherical integrals compute_albedo starts from, for n_sets parameter sets of a model at once:
 // black-sky at sun zenith theta_s [rad] (at sun azimuth phi_s [rad], or averaged over it) and white-sky.
@@ -54,6 +80,9 @@ class HemisphericalIntegrals {
                                      const QuadratureSettings& settings) const;
 };
 
+// The albedos of `model` (the request's model source fields are not used). The document carries
+// "notes" (text) and "warnings" ({"kind", "message"}: "not_converged", "partial_solar_spectrum",
+// "mostly_extrapolated", "negative_brdf", "albedo_above_one", "implausibly_dark").
 // Throws FieldError for a request that is invalid (validate(), and what depends on the model:
 // wavelengths of a model without any, a diffuse-fraction table for it), InputError or FileError for
 // unreadable spectra.

@@ -130,6 +130,7 @@ std::string albedo_table(const nlohmann::json& j) {
                       j.at("model").get<std::string>(), c.spectral ? "fit file" : "constant parameters",
                       j.at("tolerance").get<double>());
   for (const auto& n : j.at("notes").get<std::vector<std::string>>()) text << "# " << n << '\n';
+  for (const auto& w : j.at("warnings")) text << "# WARNING: " << w.at("message").get<std::string>() << '\n';
   write_heading(c, text);
   for (std::size_t s = 0; s < c.white.size(); ++s) write_row(c, s, text);
   if (!j.at("broadband").is_null()) write_broadband(j.at("broadband"), c, text);

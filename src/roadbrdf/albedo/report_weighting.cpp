@@ -116,12 +116,6 @@ Broadband broadband_albedos(const ParameterSets& sets, const AlbedoRequest& a, c
     }
   }
   if (!fixed) notes.push_back("broadband white-sky is weighted by SPECTRL2's global spectrum at the first sun zenith");
-  if (b.outside > 0.5) {
-    notes.push_back(
-        fmt::format("WARNING: the fit's wavelengths ({:g}-{:g} nm) hold only {:.0f}% of the solar energy: "
-                    "the broadband values weigh that part only",
-                    wavelengths.front(), wavelengths.back(), 100.0 * (1.0 - b.outside)));
-  }
   return b;
 }
 

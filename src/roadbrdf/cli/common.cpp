@@ -155,6 +155,10 @@ void add_fit_flag(CLI::App* command, std::string& fit) {
   command->add_option("--fit", fit,
                       "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a "
                       "MIX.json (default: the best-ranked)");
+  refuse_fit_model_flag(command);
+}
+
+void refuse_fit_model_flag(CLI::App* command) {
   static std::string refused;
   command->add_option("--fit-model", refused, "")->group("")->each([](const std::string&) {
     throw CLI::ValidationError("--fit-model", "renamed: use --fit NAME");

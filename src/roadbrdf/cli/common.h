@@ -68,6 +68,8 @@ std::string replace_field_references(const std::string& message,
 // Adds "--fit NAME": which fit of a fit file (its model name) or which method of a MIX.json, the
 // option name every command uses; the old spelling --fit-model is refused with a message naming --fit.
 void add_fit_flag(CLI::App* command, std::string& fit);
+// The old spelling --fit-model alone, refused (for a command whose --fit comes from its request table).
+void refuse_fit_model_flag(CLI::App* command);
 // --quiet: no progress bar (core/progress.h; it is only drawn when standard error is a terminal).
 void add_quiet_flag(CLI::App* command, bool& quiet);
 
