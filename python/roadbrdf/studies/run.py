@@ -127,6 +127,7 @@ def _local(pending, shared, workers, store, progress, function):
     import concurrent.futures as cf
     import multiprocessing
     import shutil
+    import signal
     from ..scratch import make_scratch
     method = _start_method()
     ctx = multiprocessing.get_context(method)
@@ -137,17 +138,29 @@ def _local(pending, shared, workers, store, progress, function):
     # A forked worker's parent is this process; a fork-server worker's is the fork server.
     pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_init_worker,
                                   initargs=(function, shared, os.getpid() if method == "fork" else None, scratch))
+    # The workers are born with SIGINT blocked: a Ctrl-C reaches the whole process group, and one arriving
+    # while a worker starts would kill it before _init_worker ignores SIGINT (the pool then breaks and the
+    # study reports a dead worker instead of the interruption). The pool starts its workers (or its fork
+    # server, whose children inherit its mask) at the first submission; this process's own SIGINT stays
+    # pending until then and is delivered when the mask is restored.
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+
+    def started():
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+
     try:
-        _submit_and_collect(pool, pending, workers, store, progress)
+        _submit_and_collect(pool, pending, workers, store, progress, started)
     except BaseException:
         _stop(pool)
         raise
     finally:
+        started()
         shutil.rmtree(scratch, ignore_errors=True)
 
 
-def _submit_and_collect(pool, pending, workers, store, progress):
-    """Hand the pending tasks to the pool a few at a time, store each result as it arrives."""
+def _submit_and_collect(pool, pending, workers, store, progress, started=lambda: None):
+    """Hand the pending tasks to the pool a few at a time, store each result as it arrives; ``started`` is
+    called once the first tasks are submitted (the pool's workers exist)."""
     import concurrent.futures as cf
     in_flight = {}
     pending = iter(pending)
@@ -159,6 +172,7 @@ def _submit_and_collect(pool, pending, workers, store, progress):
                 more = False
             else:
                 in_flight[pool.submit(_run_cached, item[1])] = item[0]
+        started()
         if not in_flight:
             break
         done, _ = cf.wait(in_flight, timeout=1.0, return_when=cf.FIRST_COMPLETED)
@@ -233,6 +247,7 @@ def _init_worker(function, shared, parent_pid, scratch):
     # Ctrl-C reaches the whole foreground process group: the study ends its workers itself (_stop), and a worker
     # must not report a KeyboardInterrupt as the candidate's failure.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})  # blocked at birth (_local)
     _FUNCTION, _SHARED = function, shared
 
 
