@@ -156,7 +156,7 @@ struct Lafortune {
         f += lobe.rho * power;
         if (row == nullptr) continue;
         double* d = row + 1 + static_cast<std::size_t>(k) * stride;
-        const double slope = lobe.rho * (lobe.n * std::pow(base, lobe.n - 1.0));  // rho d(b^n)/db
+        const double slope = lobe.rho * (lobe.n * power / base);  // rho d(b^n)/db = rho n b^(n-1), b > 0
         d[0] = power;
         if (isotropic_) {
           d[1] = slope * (q.px + q.py);
