@@ -87,7 +87,7 @@ class AlbedoResult(dict):
         return "roadbrdf.AlbedoResult(\n" + self.summary.rstrip("\n") + "\n)"
 
 
-def albedo(model: Model | SpectralModel | str | os.PathLike, params: dict | None = None, **kwargs) -> AlbedoResult:
+def albedo(model: Model | SpectralModel | str | os.PathLike, params: dict | None = None, **kwargs: Any) -> AlbedoResult:
     """Black-sky, white-sky and blue-sky albedo, as ``roadbrdf albedo --json`` computes them.
 
     ``model``: a :class:`Model` (with ``params``, a dict NAME: VALUE), a :class:`SpectralModel`, or a fit file,

@@ -131,8 +131,11 @@ TEST(FewBand, PerWavelengthValuesAndNotesForWhatCannotBeFormed) {
   ASSERT_FALSE(j["broadband"].is_null());
   EXPECT_GT(j["broadband"]["solar_fraction_outside_range"].get<double>(), 0.5);
   EXPECT_TRUE(j["luminous"].is_null());
+  // The partial solar spectrum is a typed warning; the omitted luminous value a note.
+  const std::string warnings = j["warnings"].dump();
+  EXPECT_NE(warnings.find("partial_solar_spectrum"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("of the solar energy"), std::string::npos) << warnings;
   const std::string notes = j["notes"].dump();
-  EXPECT_NE(notes.find("of the solar energy"), std::string::npos) << notes;
   EXPECT_NE(notes.find("luminous values are omitted"), std::string::npos) << notes;
   // r-table: photometric weighting is impossible; the error says which options to use.
   const auto r = run_cli("rtable " + fit);
