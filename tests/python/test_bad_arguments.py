@@ -121,22 +121,17 @@ LIBRARY_COUNT_LIMITS = {("fit", "multistart"), ("fit", "max_iterations"), ("rend
                         ("render", "max_samples"), ("render_albedo", "samples"), ("render_albedo", "max_samples"),
                         ("mix", "folds"), ("albedo", "nodes"), ("surface", "size_mm")}
 
-SWEEP = textwrap.dedent("""
-    import resource, sys, json, warnings
-    resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
-    sys.path.insert(0, sys.argv[2])
-    warnings.simplefilter("ignore")
-    import test_bad_arguments as t
-    import roadbrdf
-    calls = t.base_calls(sys.argv[1])
+def sweep(calls, skipped=lambda name, argument, label: False):
+    """Every base call with one argument at a time replaced by each bad value: the calls that raised anything
+    but TypeError or ValueError (InputError is a ValueError), as "name(argument=label): error" lines."""
     wrong = []
     for name, (function, base) in calls.items():
         function(**base)  # the valid call works
-        for argument, parameter in t.swept_parameters(function, base):
+        for argument, parameter in swept_parameters(function, base):
             if parameter.kind in (parameter.VAR_POSITIONAL,):
                 continue
-            for label, value in t.BAD_VALUES.items():
-                if label == "10**9" and (name, argument) in t.LIBRARY_COUNT_LIMITS:
+            for label, value in BAD_VALUES.items():
+                if skipped(name, argument, label):
                     continue
                 kwargs = dict(base)
                 if parameter.kind == parameter.VAR_KEYWORD:
@@ -145,22 +140,41 @@ SWEEP = textwrap.dedent("""
                     kwargs[argument] = value
                 try:
                     function(**kwargs)
-                except (TypeError, ValueError):  # InputError is a ValueError
+                except (TypeError, ValueError):
                     pass
                 except BaseException as e:  # noqa: BLE001 - what the test looks for
                     wrong.append(f"{name}({argument}={label}): {type(e).__name__}: {str(e)[:120]}")
-    print(json.dumps(wrong))
-""")
+    return wrong
+
+
+def run_sweep(module, *arguments):
+    """``module``.base_calls(*arguments) swept (``module``.skipped, if any, leaves values out) in a child
+    process whose address space is bounded; returns the wrong calls."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    script = textwrap.dedent(f"""
+        import resource, sys, json, warnings
+        resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+        sys.path.insert(0, {here!r})
+        warnings.simplefilter("ignore")
+        import test_bad_arguments as t
+        import {module} as m
+        calls = m.base_calls(*sys.argv[1:])
+        print(json.dumps(t.sweep(calls, getattr(m, "skipped", lambda *a: False))))
+    """)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(roadbrdf.__file__)),
+                                                       os.environ.get("PYTHONPATH", "")]))
+    result = subprocess.run([sys.executable, "-c", script, *map(str, arguments)], capture_output=True, text=True,
+                            cwd=arguments[0], env=env, timeout=1200)
+    assert result.returncode == 0, result.stderr[-3000:]
+    return json.loads(result.stdout.strip().splitlines()[-1])
+
+
+def skipped(name, argument, label):
+    return label == "10**9" and (name, argument) in LIBRARY_COUNT_LIMITS
 
 
 def test_bad_values_of_every_argument_raise_input_or_type_errors(tmp_path):
-    here = os.path.dirname(os.path.abspath(__file__))
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(roadbrdf.__file__)),
-                                                       os.environ.get("PYTHONPATH", "")]))
-    result = subprocess.run([sys.executable, "-c", SWEEP, str(tmp_path), here], capture_output=True, text=True,
-                            cwd=tmp_path, env=env, timeout=1200)
-    assert result.returncode == 0, result.stderr[-3000:]
-    wrong = json.loads(result.stdout.strip().splitlines()[-1])
+    wrong = run_sweep("test_bad_arguments", tmp_path)
     assert wrong == [], "\n".join(wrong)
 
 

@@ -4,11 +4,9 @@ ValueError or TypeError; never AttributeError, OverflowError, MemoryError, KeyEr
 import json
 import math
 import os
-import subprocess
-import sys
-import textwrap
 
 import roadbrdf
+from test_bad_arguments import run_sweep
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CURET = os.path.join(ROOT, "data", "third-party", "curet")
@@ -84,44 +82,10 @@ def base_calls(folder, instruments):
     }
 
 
-SWEEP = textwrap.dedent("""
-    import resource, sys, json, warnings
-    resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
-    sys.path.insert(0, sys.argv[3])
-    warnings.simplefilter("ignore")
-    import test_bad_arguments as t
-    import test_bad_arguments_readers as r
-    calls = r.base_calls(sys.argv[1], sys.argv[2])
-    wrong = []
-    for name, (function, base) in calls.items():
-        function(**base)  # the valid call works
-        for argument, parameter in t.swept_parameters(function, base):
-            if parameter.kind in (parameter.VAR_POSITIONAL,):
-                continue
-            for label, value in t.BAD_VALUES.items():
-                if label == "10**9" and argument in ("samples", "max_samples"):
-                    continue  # bounded by the library's render request (its own tests)
-                kwargs = dict(base)
-                if parameter.kind == parameter.VAR_KEYWORD:
-                    kwargs["unknown_option"] = value
-                else:
-                    kwargs[argument] = value
-                try:
-                    function(**kwargs)
-                except (TypeError, ValueError):  # InputError is a ValueError
-                    pass
-                except BaseException as e:  # noqa: BLE001 - what the test looks for
-                    wrong.append(f"{name}({argument}={label}): {type(e).__name__}: {str(e)[:120]}")
-    print(json.dumps(wrong))
-""")
+def skipped(name, argument, label):
+    return label == "10**9" and argument in ("samples", "max_samples")  # bounded by the render request (its tests)
 
 
 def test_bad_values_of_every_reader_argument_raise_input_or_type_errors(tmp_path, instruments):
-    here = os.path.dirname(os.path.abspath(__file__))
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(roadbrdf.__file__)),
-                                                       os.environ.get("PYTHONPATH", "")]))
-    result = subprocess.run([sys.executable, "-c", SWEEP, str(tmp_path), str(instruments), here],
-                            capture_output=True, text=True, cwd=tmp_path, env=env, timeout=1200)
-    assert result.returncode == 0, result.stderr[-3000:]
-    wrong = json.loads(result.stdout.strip().splitlines()[-1])
+    wrong = run_sweep("test_bad_arguments_readers", tmp_path, instruments)
     assert wrong == [], "\n".join(wrong)
