@@ -22,6 +22,7 @@ so that (S - D)/(W - D) = F_k (1 + l/10000) exactly (up to rounding of the text 
 reflectance file rho.txt is rho(l) = 0.95 + 0.00001 (l - 350).
 """
 import os
+import re
 import struct
 import sys
 
@@ -187,10 +188,19 @@ def main():
                  "sed": ["sed_001.sed", "sed_no_reflectance.sed"],
                  "sig": ["sig_overlap.sig", "sig_no_overlap.sig"],
                  "manifest": ["run.csv", "run_sed.csv"]}
+        # Regression inputs of crashes once found, made from our own synthetic files (never from a real one): a
+        # channel count beyond every integer (an out-of-range float-to-integer cast) and a line holding only
+        # carriage returns (an empty row reached cells.back()).
+        sed = files["sed_001.sed"].decode()
+        seeds_made = {("sed", "regression-channel-count-beyond-integers.sed"):
+                      re.sub(r"Channels: *[0-9]+", "Channels: 1e30", sed, count=1).encode(),
+                      ("sig", "regression-carriage-return-only-line.sig"): files["sig_no_overlap.sig"] + b"\r\r\n"}
         for parser, names in seeds.items():
             os.makedirs(os.path.join(sys.argv[2], parser), exist_ok=True)
             for name in names:
                 write(os.path.join(sys.argv[2], parser, name), files[name])
+        for (parser, name), data in seeds_made.items():
+            write(os.path.join(sys.argv[2], parser, name), data)
 
 
 def write(path, data):
