@@ -71,11 +71,13 @@ def test_a_scheduler_without_workers_is_an_error(tmp_path):
     address, processes, log = _scheduler(tmp_path, workers=0)
     try:
         result = subprocess.run([sys.executable, "-m", "roadbrdf.studies", str(study), "-o", str(tmp_path / "r.csv"),
-                                 "--scheduler", address], capture_output=True, text=True, env=_env(), timeout=300)
+                                 "--scheduler", address, "--worker-wait", "3"], capture_output=True, text=True, env=_env(),
+                                timeout=300)
     finally:
         _stop(processes, log)
     assert result.returncode == 2, result.stderr
     assert "roadbrdf: error: --scheduler" in result.stderr and "no workers" in result.stderr
+    assert "within 3 s" in result.stderr
     assert "Traceback" not in result.stderr
 
 

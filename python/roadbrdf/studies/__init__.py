@@ -33,14 +33,16 @@ def _is_campaign(source):
         return False  # read_study reports what is wrong with the file
 
 
-def study(source, output=None, store=None, scheduler=None, workers=None, progress=True, retry_failed=False):
+def study(source, output=None, store=None, scheduler=None, workers=None, progress=True, retry_failed=False,
+          worker_wait=30.0):
     """Run a design study (or a campaign fit) and return its table as a list of dicts (CSV header -> value).
 
     ``source``: a study file (``"format": "roadbrdf-study"``) or its content as a dict. ``output``: the results
     CSV (``-`` = standard output), written once every candidate is done. ``store``: the results store (JSON
     lines, appended as tasks finish; default ``OUTPUT.store.jsonl``, none without ``output``): a re-run computes
     only what it lacks. ``scheduler``: a Dask scheduler address (``tcp://HOST:PORT``; default
-    ``$ROADBRDF_SCHEDULER``), else ``workers`` local processes (default: all cores). ``progress``: report on
+    ``$ROADBRDF_SCHEDULER``), else ``workers`` local processes (default: all cores). ``worker_wait``: seconds to
+    wait for the scheduler's first worker before giving up (default 30). ``progress``: report on
     standard error. ``retry_failed``: run failed candidates again. Errors in the study raise InputError naming
     the file and the JSON key.
 
@@ -65,6 +67,8 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
         raise InputError(f"workers: expected a positive integer, got {workers!r}")
     if scheduler is not None and workers is not None:
         raise InputError("give workers (local processes) or a scheduler (Dask), not both")
+    if isinstance(worker_wait, bool) or not isinstance(worker_wait, (int, float)) or not 0 < worker_wait < 1e6:
+        raise InputError(f"worker_wait: expected seconds in (0, 1e6), got {worker_wait!r}")
     if store is None and output is not None and os.fspath(output) != "-" and (
             not os.path.exists(os.fspath(output)) or os.path.isfile(os.fspath(output))):
         store = os.fspath(output) + ".store.jsonl"  # not next to a device or FIFO (/dev/stdout): no store then
@@ -84,9 +88,10 @@ def study(source, output=None, store=None, scheduler=None, workers=None, progres
             tasks = c.make_tasks(s, _roadbrdf.__version__)
             remote = c.texts_of(s) if scheduler else None
             run_pending(f"campaign '{s.name}'", tasks, None, c.fit_sample, results, scheduler, workers, progress,
-                        retry_failed, shared_remote=remote, noun="samples")
+                        retry_failed, shared_remote=remote, noun="samples", worker_wait=worker_wait)
         else:
-            tasks, _ = execute(s, results, scheduler, workers, progress, retry_failed, _roadbrdf.__version__)
+            tasks, _ = execute(s, results, scheduler, workers, progress, retry_failed, _roadbrdf.__version__,
+                               worker_wait)
     finally:
         results.close()
     if campaign:
@@ -117,10 +122,12 @@ def main(argv=None):
     parser.add_argument("--store", help="results store (default: OUTPUT.store.jsonl)")
     parser.add_argument("--scheduler", help="Dask scheduler tcp://HOST:PORT (default: $ROADBRDF_SCHEDULER)")
     parser.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    parser.add_argument("--worker-wait", type=float, default=30.0, metavar="SECONDS",
+                        help="with --scheduler: how long to wait for a first Dask worker (default 30 s)")
     parser.add_argument("--retry-failed", action="store_true", help="run failed candidates again")
     parser.add_argument("--quiet", action="store_true", help="no progress on standard error")
     a = parser.parse_args(argv)
-    rows = study(a.study, a.output, a.store, a.scheduler, a.workers, not a.quiet, a.retry_failed)
+    rows = study(a.study, a.output, a.store, a.scheduler, a.workers, not a.quiet, a.retry_failed, a.worker_wait)
     if a.output != "-" and not a.quiet:
         failed = sum(1 for r in rows if r["status"] == "failed")
         print(f"{a.output}: {len(rows)} rows, {failed} failed", file=sys.stderr)

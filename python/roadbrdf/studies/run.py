@@ -255,7 +255,7 @@ def _run_cached(task):
     return _FUNCTION(task, _SHARED)
 
 
-def _dask(pending, shared, scheduler, store, progress, function):
+def _dask(pending, shared, scheduler, store, progress, function, worker_wait=30.0):
     try:
         from distributed import Client, as_completed
     except ImportError:
@@ -274,9 +274,9 @@ def _dask(pending, shared, scheduler, store, progress, function):
         raise InputError(f"--scheduler {scheduler}: cannot connect: {e}") from None
     try:
         try:
-            client.wait_for_workers(1, timeout=30)
+            client.wait_for_workers(1, timeout=worker_wait)
         except (TimeoutError, cf.TimeoutError):
-            raise InputError(f"--scheduler {scheduler}: the scheduler has no workers (none joined within 30 s); "
+            raise InputError(f"--scheduler {scheduler}: the scheduler has no workers (none joined within {worker_wait:g} s); "
                              f"start some (dask-worker {scheduler}) and run again") from None
         limit = _in_flight_limit(max(1, len(client.scheduler_info().get("workers", {}))))
         scattered = client.scatter(shared, broadcast=True)
@@ -402,17 +402,18 @@ def check_size(study, progress=True, available=None):
               file=sys.stderr, flush=True)
 
 
-def execute(study, store, scheduler=None, workers=None, progress=True, retry_failed=False, version=""):
+def execute(study, store, scheduler=None, workers=None, progress=True, retry_failed=False, version="",
+            worker_wait=30.0):
     """Run the study's tasks that the store lacks; return (tasks, number computed). ``tasks`` is a :class:`Tasks`:
     iterating it makes the tasks again (they are never all in memory)."""
     tasks = Tasks(study, version)
     computed = run_pending(f"study '{study.name}'", tasks, study.fits, run_task, store, scheduler, workers, progress,
-                           retry_failed)
+                           retry_failed, worker_wait=worker_wait)
     return tasks, computed
 
 
 def run_pending(title, tasks, shared, function, store, scheduler, workers, progress, retry_failed, shared_remote=None,
-                noun="candidates"):
+                noun="candidates", worker_wait=30.0):
     """Run function(task, shared) for every distinct task key the store lacks (or failed, with retry_failed), on
     local processes or the Dask scheduler, adding each result to the store as it arrives; return how many ran.
     ``tasks``: (..., key, task) tuples, the key in the last but one place; iterated twice (first for the keys,
@@ -458,7 +459,8 @@ def run_pending(title, tasks, shared, function, store, scheduler, workers, progr
 
     if count:
         if scheduler:
-            _dask(pending(), shared if shared_remote is None else shared_remote, scheduler, store, bar, function)
+            _dask(pending(), shared if shared_remote is None else shared_remote, scheduler, store, bar, function,
+                  worker_wait)
         else:
             n = workers or os.cpu_count() or 1
             _local(pending(), shared, min(n, count), store, bar, function)
