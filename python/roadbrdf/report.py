@@ -185,7 +185,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
                 # With the end-members' covariances (cheap for the mixing itself; the r-table of one method is
                 # propagated below, the albedo's propagation would take minutes and is left to the commands).
                 r.mix = mix(formulation, data=r.path, method="all", folds=r.folds, reference=r.fit_all_path,
-                            uncertainty=True)
+                            uncertainty=True, average_duplicates=r.average_duplicates)
         band_index = int(np.argmin(np.abs(d.wavelengths - r.wavelength_asked)))
         r.band = float(d.wavelengths[band_index])
         r.all_params = params(r.fit_all_path, wavelengths=[r.band])

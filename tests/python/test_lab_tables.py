@@ -174,3 +174,27 @@ def test_the_openmaterial_lidar_table_read_as_brdf_cos(real_data):
     expected = raw.brdf / np.cos(np.radians(raw.theta_i))[:, None]
     expected[grazing, :] = np.nan
     np.testing.assert_allclose(divided.brdf, expected, rtol=1e-12)
+
+
+def test_the_report_mixes_a_formulation_on_averaged_duplicates(root, tmp_path):
+    """The duplicate policy reaches the report's mixing step: repeated scans of F1 (exact copies of three rows)
+    averaged are F1 itself, so the mixing comparison equals the one on the original file."""
+    f1 = root / "data" / "examples" / "mixed" / "F1.csv"
+    formulation = root / "data" / "examples" / "formulations" / "F1.json"
+    lines = f1.read_text(encoding="utf-8").splitlines(keepends=True)
+    rows = [line for line in lines if not line.startswith("#")]
+    data = tmp_path / "F1-repeated.csv"
+    data.write_text("".join(lines + rows[1:4]), encoding="utf-8")
+    with pytest.raises(roadbrdf.InputError, match="`average_duplicates`"):
+        roadbrdf.mix(formulation, data=data, method="areal")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        repeated = roadbrdf.mix(formulation, data=data, method="areal", average_duplicates=True)
+        original = roadbrdf.mix(formulation, data=f1, method="areal")
+    assert repeated.best.comparison["rmse"] == original.best.comparison["rmse"]
+    out = tmp_path / "r.html"
+    report = subprocess.run([sys.executable, "-m", "roadbrdf.report", str(data), "--model", "lambert",
+                             "--formulation", str(formulation), "--average-duplicates", "--quiet", "-o", str(out)],
+                            capture_output=True, text=True)
+    assert report.returncode == 0, report.stderr
+    assert 'data-key="mix.best"' in out.read_text(encoding="utf-8")
