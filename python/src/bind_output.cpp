@@ -12,6 +12,7 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/mixing/mix_request.h"
+#include "roadbrdf/photometry/rtable_request.h"
 
 namespace py = pybind11;
 
@@ -39,7 +40,8 @@ std::string kind_of(const RequestField<Request>& field) {
                                       "dict of numbers",
                                       "dict of intervals",
                                       "list of intervals",
-                                      "file or value"};
+                                      "file or value",
+                                      "optional interval"};
   return kinds[field.member.index()];
 }
 
@@ -81,6 +83,7 @@ void bind_requests(py::module_& m) {
         if (command == "fit") return rows<FitRequest>();
         if (command == "mix") return rows<mixing::MixRequest>();
         if (command == "albedo") return rows<albedo::AlbedoRequest>();
+        if (command == "rtable") return rows<photometry::RTableRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

@@ -109,6 +109,13 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
     }
   } else if constexpr (std::is_same_v<Value, std::vector<std::pair<double, double>>>) {
     into = intervals_argument(py::reinterpret_borrow<py::object>(value), field);
+  } else if constexpr (std::is_same_v<Value, std::optional<std::pair<double, double>>>) {
+    // One (lower, upper) pair or "LOWER:UPPER"; None: not given.
+    into.reset();
+    if (value.is_none()) return;
+    const auto pairs = intervals_argument(py::reinterpret_borrow<py::object>(value), field);
+    if (pairs.size() != 1) throw FieldError(field, "expected one 'LOWER:UPPER' or (lower, upper) pair");
+    into = pairs.front();
   } else {
     // A dict {name: value}; None is an empty one. Model options are names (any value as its text),
     // numbers are numbers, bounds (lower, upper) pairs or "LOWER:UPPER".

@@ -141,6 +141,13 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
                 });
               },
               help);
+        } else if constexpr (std::is_same_v<Value, std::optional<std::pair<double, double>>>) {
+          option = command->add_option_function<std::string>(
+              flag,
+              [&value, name](const std::string& text) {
+                converting<Request>([&] { value = parse_interval(text, name); });
+              },
+              help);
         } else if constexpr (std::is_same_v<Value, Source>) {
           option = command->add_option_function<std::string>(
               flag,
