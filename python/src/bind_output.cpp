@@ -13,6 +13,7 @@
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/mixing/mix_request.h"
 #include "roadbrdf/photometry/rtable_request.h"
+#include "roadbrdf/surface/render_request.h"
 
 namespace py = pybind11;
 
@@ -41,7 +42,10 @@ std::string kind_of(const RequestField<Request>& field) {
                                       "dict of intervals",
                                       "list of intervals",
                                       "file or value",
-                                      "optional interval"};
+                                      "optional interval",
+                                      "integer",
+                                      "optional integer",
+                                      "integer"};
   return kinds[field.member.index()];
 }
 
@@ -84,6 +88,7 @@ void bind_requests(py::module_& m) {
         if (command == "mix") return rows<mixing::MixRequest>();
         if (command == "albedo") return rows<albedo::AlbedoRequest>();
         if (command == "rtable") return rows<photometry::RTableRequest>();
+        if (command == "render") return rows<surface::RenderRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),
