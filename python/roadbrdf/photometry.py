@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import os
-from typing import Tuple, Union
+from typing import Any, Union
 
 import numpy as np
 
 from . import _roadbrdf
 from .core import InputError, as_float, as_text
-from .fitting import read_fit
 from .model import Model, SpectralModel, model_argument
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -35,20 +34,32 @@ class RTable(dict):
         _roadbrdf.write_rtable(np.ascontiguousarray(self["r"]), self["name"], self["alpha_deg"], str(path), format)
 
 
-def rtable(model: Model | SpectralModel | PathLike, params: dict | None = None, alpha: float = 1.0,
-           illuminant: str = "", wavelength: float | None = None,
-           band: Tuple[float, float] | None = None, q0_region: str = "standard", class_system: str = "R") -> RTable:
-    """Standard r-table (29 tan(gamma) x 20 beta) of a model or a spectral model at observation angle
-    ``alpha`` [deg] (CIE: 1), as ``roadbrdf rtable`` computes it (one library request, the same rules).
+def rtable(model: Model | SpectralModel | PathLike | None = None, params: dict | None = None, **kwargs: Any) -> RTable:
+    """Standard r-table (29 tan(gamma) x 20 beta) of a model, a spectral model or an r-table file at
+    observation angle ``alpha`` [deg] (CIE: 1), as ``roadbrdf rtable`` computes it (one library request, the
+    same rules).
 
-    ``model`` is a :class:`Model` (with ``params``), a :class:`SpectralModel` (e.g. :func:`read_fit`),
-    or a fit file path. A spectral model is reduced to one BRDF per geometry photometrically
-    (V(lambda) x ``illuminant`` "A" (default), "D65" or a lamp CSV file), or at one ``wavelength``
-    [nm], or averaged over ``band`` = (lo, hi) [nm]. A single-band fit is used at its band. ``Q0`` is
-    averaged over ``q0_region`` ("standard" CIE cells or the whole "table"); ``class`` is in
-    ``class_system`` (R, N or C). ``notes`` (the first also as ``note``, else None) and ``warnings`` hold
-    the command line's one-line messages; the warnings are also raised as :class:`UserWarning`.
+    ``model`` is a :class:`Model` (with ``params``, a dict NAME: VALUE), a :class:`SpectralModel` (e.g.
+    :func:`read_fit`), or a fit file, a MIX.json or a model name (resolved as the command line resolves it;
+    ``params`` then become its ``parameters``); or None with ``import_file`` (an r-table file). The other
+    arguments are keywords, one per field of the request (listed below, the command line's options); ``None``
+    leaves a field at its default. A spectral model is reduced to one BRDF per geometry photometrically
+    (V(lambda) x ``illuminant`` "A" (default), "D65" or a lamp CSV file), or at one ``wavelength`` [nm], or
+    averaged over ``band`` = (lo, hi) [nm]. A single-band fit is used at its band. ``Q0`` is averaged over
+    ``q0_region`` ("standard" CIE cells or the whole "table"); ``class`` is in ``class_system`` (R, N or C).
+    ``notes`` (the first also as ``note``, else None) and ``warnings`` hold the command line's one-line
+    messages; the warnings are also raised as :class:`UserWarning`. With ``output`` the table is written
+    there (``format``), with ``compare`` compared with another r-table file (``comparison``).
     """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    if model is None:
+        if params:
+            raise InputError("params: need a model")
+        return RTable(_roadbrdf.rtable(**kwargs))
+    if isinstance(model, str) or hasattr(model, "__fspath__"):
+        if params:
+            kwargs["parameters"] = [f"{name}={as_float(value, name)!r}" for name, value in _params(params).items()]
+        return RTable(_roadbrdf.rtable(os.fspath(model), **kwargs))
     model = model_argument(model, "model")
     if isinstance(model, SpectralModel):
         if params:
@@ -56,16 +67,20 @@ def rtable(model: Model | SpectralModel | PathLike, params: dict | None = None, 
         spectral = model._spectral
     else:
         spectral = _roadbrdf.constant_spectral_model(model._model, model.parameter_values(params))
-    return RTable(_roadbrdf.rtable_report(spectral, as_float(alpha, "alpha"), illuminant,
-                                          None if wavelength is None else as_float(wavelength, "wavelength"),
-                                          None if band is None else _band(band), q0_region, class_system))
+    return RTable(_roadbrdf.rtable_spectral(spectral, **kwargs))
 
 
-def _band(band) -> Tuple[float, float]:
-    """(lo, hi) [nm] from a pair of numbers; anything else is an InputError naming ``band``."""
-    if isinstance(band, (str, bytes)) or not hasattr(band, "__len__") or len(band) != 2:
-        raise InputError(f"band: expected a (lower, upper) pair of wavelengths [nm], got {band!r:.60}")
-    return as_float(band[0], "band"), as_float(band[1], "band")
+# The keywords, from the request's field table (the same rows as `roadbrdf rtable --help`).
+_doc = _roadbrdf.rtable.__doc__ or ""
+if "Arguments" in _doc:
+    rtable.__doc__ += "\n    " + _doc[_doc.index("Arguments"):_doc.rindex("Returns")].strip().replace("\n", "\n    ") + "\n"
+
+
+def _params(params) -> dict:
+    """``params`` as a dict; anything else is an InputError naming it."""
+    if not isinstance(params, dict):
+        raise InputError(f"params: expected a dict NAME: VALUE, got {type(params).__name__}")
+    return params
 
 
 def read_rtable(path: PathLike, format: str | None = None, alpha: float = 1.0, scale: float = 1e4) -> RTable:

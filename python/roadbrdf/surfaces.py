@@ -236,33 +236,18 @@ def _as_surface(value):
     raise InputError("surface: expected a roadbrdf.Surface or a SURFACE file path")
 
 
-def _render_options(samples, target_error, max_samples, error_floor, acceptance_deg, sampling, seed, threads,
-                    max_bounces):
-    return (None if samples is None else as_int(samples, "samples"),
-            None if target_error is None else as_float(target_error, "target_error"),
-            as_int(max_samples, "max_samples"), as_float(error_floor, "error_floor"),
-            as_float(acceptance_deg, "acceptance_deg"), as_text(sampling, "sampling"), as_int(seed, "seed"),
-            as_int(threads, "threads"), as_int(max_bounces, "max_bounces"))
-
-
-def _wavelength_list(wavelengths):
-    return _roadbrdf.values(wavelengths, "wavelengths", True)
-
-
 def render(surface: Union[Surface, PathLike], theta_i: ArrayLike, phi_i: ArrayLike, theta_r: ArrayLike,
-           phi_r: ArrayLike, wavelengths: Wavelengths = None, samples: Optional[int] = None,
-           target_error: Optional[float] = None, max_samples: int = 1 << 20, acceptance_deg: float = 1.0,
-           sampling: str = "brdf", seed: int = 1, threads: int = 0, max_bounces: int = 0,
-           error_floor: float = 1e-5) -> Dataset:
+           phi_r: ArrayLike, **settings: Any) -> Dataset:
     """The virtual gonioreflectometer: path-trace a :class:`Surface` (or a SURFACE file path) at the
     given geometries, as ``roadbrdf render SURFACE --grid`` does (docs/surface.md "Estimator").
 
-    Angles [deg] broadcast together (flattened to the dataset's geometries). ``wavelengths`` [nm],
-    increasing (default: those of the materials' fits, or 550). Paths per geometry: ``samples`` (default
-    4096) or adaptive ``target_error`` (relative standard error, with ``max_samples`` and ``error_floor``
-    [sr^-1] for values near 0); not both. ``acceptance_deg``: detector cone half-angle [deg] (0 = ideal
-    direction); ``sampling``: ``"brdf"`` or ``"cosine"``; ``max_bounces``: 0 = unlimited. Results depend
-    on ``seed`` only, not on ``threads``.
+    Angles [deg] broadcast together (flattened to the dataset's geometries). The settings are keywords, one
+    per field of the render request (listed below, the command line's options; ``None`` leaves a field at
+    its default): ``wavelengths`` [nm], increasing (default: those of the materials' fits, or 550). Paths
+    per geometry: ``samples`` (default 4096) or adaptive ``target_error`` (relative standard error, with
+    ``max_samples`` and ``error_floor`` [sr^-1] for values near 0); not both. ``acceptance_deg``: detector
+    cone half-angle [deg] (0 = ideal direction); ``sampling``: ``"brdf"`` or ``"cosine"``; ``max_bounces``:
+    0 = unlimited. Results depend on ``seed`` only, not on ``threads``.
 
     Returns a :class:`Dataset` of the cone-averaged BRDF [sr^-1] with ``sigma`` = the Monte Carlo standard
     error; ``metadata`` describes the virtual instrument, plus ``dataset.paths`` (paths per geometry) and
@@ -272,9 +257,7 @@ def render(surface: Union[Surface, PathLike], theta_i: ArrayLike, phi_i: ArrayLi
     arrays = np.broadcast_arrays(*(as_float_array(a, name) for a, name in
                                    ((theta_i, "theta_i"), (phi_i, "phi_i"), (theta_r, "theta_r"), (phi_r, "phi_r"))))
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
-    r = _roadbrdf.render_surface(s._field, *flat, _wavelength_list(wavelengths),
-                                 *_render_options(samples, target_error, max_samples, error_floor, acceptance_deg,
-                                                  sampling, seed, threads, max_bounces))
+    r = _roadbrdf.render_surface(s._field, *flat, **_settings(settings))
     metadata = dict(r["metadata"])
     metadata.setdefault("units", "sr^-1")  # as the dataset readers set it
     d = Dataset(np.stack(flat, axis=-1), r["wavelengths"], r["brdf"], r["sigma"], metadata, "zenith")
@@ -284,14 +267,11 @@ def render(surface: Union[Surface, PathLike], theta_i: ArrayLike, phi_i: ArrayLi
 
 
 def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Sequence[float], str],
-                  wavelengths: Wavelengths = None, white_sky_nodes: int = 8, samples: Optional[int] = None,
-                  target_error: Optional[float] = None, max_samples: int = 1 << 20, acceptance_deg: float = 1.0,
-                  sampling: str = "brdf", seed: int = 1, threads: int = 0, max_bounces: int = 0,
-                  error_floor: float = 1e-5, output: Optional[PathLike] = None) -> dict:
+                  **settings: Any) -> dict:
     """Albedo of a virtual sample, as ``roadbrdf render SURFACE --albedo`` computes it: black-sky
     (directional-hemispherical reflectance) at the sun zenith angles [deg, 0 <= theta < 90] and white-sky by a
-    ``white_sky_nodes``-point Gauss-Legendre rule in cos(theta) (0 = none). Same sampling options as
-    :func:`render` (``acceptance_deg`` is not used: the detector covers the hemisphere).
+    ``white_sky_nodes``-point Gauss-Legendre rule in cos(theta) (0 = none). Same settings as :func:`render`
+    (``acceptance_deg`` is not used: the detector covers the hemisphere).
 
     Returns a dict: ``wavelengths`` [nm], ``sun_zenith`` [deg], ``black_sky`` and ``black_sky_error``
     [angle, wavelength], ``white_sky`` and ``white_sky_error`` [wavelength] (None when white_sky_nodes = 0),
@@ -302,11 +282,7 @@ def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Se
     s = _as_surface(surface)
     name = os.fspath(surface) if _is_path(surface) else s.name
     zeniths = _roadbrdf.values(sun_zenith, "sun_zenith")
-    r = _roadbrdf.render_surface_albedo(s._field, zeniths, _wavelength_list(wavelengths),
-                                        as_int(white_sky_nodes, "white_sky_nodes"),
-                                        *_render_options(samples, target_error, max_samples, error_floor,
-                                                         acceptance_deg, sampling, seed, threads, max_bounces),
-                                        "" if output is None else as_text(output, "output"), name)
+    r = _roadbrdf.render_surface_albedo(s._field, name, sun_zenith=zeniths, **_settings(settings))
     m = len(r["wavelengths"])
     out = {"wavelengths": np.asarray(r["wavelengths"], dtype=float),
            "sun_zenith": np.asarray(r["sun_zenith"], dtype=float),
@@ -317,6 +293,23 @@ def render_albedo(surface: Union[Surface, PathLike], sun_zenith: Union[float, Se
            "white_sky_nodes": int(r["white_sky_nodes"]), "paths": int(r["paths"]),
            "converged": np.asarray(r["converged"], dtype=bool)}
     return out
+
+
+def _settings(settings: dict) -> dict:
+    """The render keywords given (None: the field's default)."""
+    return {key: value for key, value in settings.items() if value is not None}
+
+
+def _settings_doc(*own: str) -> str:
+    """The render request's rows (the same as `roadbrdf render --help`) but for the command's files."""
+    rows = [row for row in _roadbrdf.request_fields("render")
+            if row["name"] not in ("surface", "grid", "sun_zenith", "format", "output") or row["name"] in own]
+    return "\n    Settings (keywords):\n" + "".join(
+        f"        {row['name']}{' [' + row['unit'] + ']' if row['unit'] else ''}: {row['help']}\n" for row in rows)
+
+
+render.__doc__ += _settings_doc()
+render_albedo.__doc__ += _settings_doc("output")
 
 
 # Spectroradiometer files and run manifests (instruments.py).

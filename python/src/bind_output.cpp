@@ -11,7 +11,13 @@
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/io/model_export.h"
+#include "roadbrdf/lighting/lighting_request.h"
+#include "roadbrdf/lighting/luminaire_request.h"
 #include "roadbrdf/mixing/mix_request.h"
+#include "roadbrdf/photometry/marking_request.h"
+#include "roadbrdf/photometry/rtable_request.h"
+#include "roadbrdf/surface/render_request.h"
 
 namespace py = pybind11;
 
@@ -39,7 +45,11 @@ std::string kind_of(const RequestField<Request>& field) {
                                       "dict of numbers",
                                       "dict of intervals",
                                       "list of intervals",
-                                      "file or value"};
+                                      "file or value",
+                                      "optional interval",
+                                      "integer",
+                                      "optional integer",
+                                      "integer"};
   return kinds[field.member.index()];
 }
 
@@ -81,6 +91,12 @@ void bind_requests(py::module_& m) {
         if (command == "fit") return rows<FitRequest>();
         if (command == "mix") return rows<mixing::MixRequest>();
         if (command == "albedo") return rows<albedo::AlbedoRequest>();
+        if (command == "rtable") return rows<photometry::RTableRequest>();
+        if (command == "render") return rows<surface::RenderRequest>();
+        if (command == "luminaire") return rows<lighting::LuminaireRequest>();
+        if (command == "lighting") return rows<lighting::LightingRequest>();
+        if (command == "marking") return rows<photometry::MarkingRequest>();
+        if (command == "export") return rows<ExportRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "binding.h"
+#include "request_kwargs.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/mixing/end_member_cache.h"
 #include "roadbrdf/mixing/mix_request.h"
@@ -104,6 +105,11 @@ py::dict report_to_dict(const RTableReport& report) {
   d["notes"] = report.notes;
   d["warnings"] = report.warnings;
   d["note"] = report.notes.empty() ? py::object(py::none()) : py::object(py::str(report.notes.front()));
+  // Where the table came from, where it was written and its comparison, as in `roadbrdf rtable --json`.
+  const nlohmann::json j = report.to_json();
+  for (const char* key : {"source", "output", "comparison"}) {
+    if (j.contains(key)) d[key] = json_to_python(j.at(key));
+  }
   for (const std::string& warning : report.warnings) {
     py::module_::import("roadbrdf.core").attr("warn_at_caller")(warning);
   }
@@ -113,15 +119,23 @@ py::dict report_to_dict(const RTableReport& report) {
 }  // namespace
 
 void bind_photometry(py::module_& m) {
+  // The request of `roadbrdf rtable` (its field table, photometry/rtable_task.cpp): a model name, a
+  // FIT.json or MIX.json as `model`, or an r-table file as `import_file`.
   m.def(
-      "rtable_report",
-      [](const SpectralModel& model, double alpha, const std::string& illuminant, std::optional<double> wavelength,
-         std::optional<std::pair<double, double>> band, const std::string& q0_region, const std::string& class_system) {
-        return report_to_dict(
-            rtable_report(model, request_from(alpha, illuminant, wavelength, band, q0_region, class_system)));
+      "rtable",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<RTableRequest>(args, kwargs);
+        return report_to_dict(rtable(request));
       },
-      py::arg("model"), py::arg("alpha") = 1.0, py::arg("illuminant") = "", py::arg("wavelength") = py::none(),
-      py::arg("band") = py::none(), py::arg("q0_region") = "standard", py::arg("class_system") = "R");
+      request_docstring<RTableRequest>(
+          "Road-photometry r-table and its figures, as `roadbrdf rtable --json` computes them.",
+          "Returns a dict (roadbrdf.RTable): the table, its figures, notes and warnings; warnings are also issued.")
+          .c_str());
+  // The same request for a model the caller holds (a Model as a constant spectral model, or a
+  // SpectralModel): the keywords of the other fields.
+  m.def("rtable_spectral", [](const SpectralModel& model, const py::kwargs& kwargs) {
+    return report_to_dict(rtable(model, request_from_arguments<RTableRequest>(py::args(), kwargs)));
+  });
   // The same report for method `index` of a mix run, from its end-members' values at the table's
   // geometries shared through `cache` (mixing/end_member_cache.h; the design studies' fast path).
   m.def(

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "binding.h"
+#include "request_kwargs.h"
+#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/fitting/fit_file.h"
@@ -84,27 +86,18 @@ py::dict statistics_dict(const surface::TextureStatistics& s) {
   return d;
 }
 
-// Render options: validated by the library (surface/render_request.h), as for `roadbrdf render`.
-surface::RenderSettings render_settings(std::optional<long> samples, std::optional<double> target_error,
-                                        long max_samples, double error_floor, double acceptance_deg,
-                                        const std::string& sampling, std::uint64_t seed, int threads, int max_bounces,
-                                        int white_sky_nodes = 8) {
-  surface::RenderRequest r;
-  r.samples = samples;
-  r.target_error = target_error;
-  r.max_samples = max_samples;
-  r.error_floor = error_floor;
-  r.acceptance_deg = acceptance_deg;
-  r.sampling = sampling;
-  r.seed = seed;
-  r.threads = threads;
-  r.max_bounces = max_bounces;
-  r.white_sky_nodes = white_sky_nodes;
-  return surface::render_settings(r);
-}
-
-std::vector<double> wavelengths_or_default(const Field& f, const std::vector<double>& wavelengths) {
-  return wavelengths.empty() ? surface::default_wavelengths(f) : wavelengths;
+// The render request of a Python call (its field table, surface/render_request.h): the keywords of
+// the settings; the surface and the geometries are the call's own, so the fields naming the command's
+// files are refused but for those in `allowed`.
+surface::RenderRequest render_request(const py::kwargs& kwargs, std::initializer_list<const char*> allowed = {}) {
+  for (const char* field : {"surface", "grid", "sun_zenith", "format", "output"}) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || std::string(a) == field;
+    if (!ok && kwargs.contains(field)) {
+      throw FieldError(field, "does not apply here: the surface and the directions are the call's own arguments");
+    }
+  }
+  return request_from_arguments<surface::RenderRequest>(py::args(), kwargs);
 }
 
 }  // namespace
@@ -216,83 +209,84 @@ void bind_surface(py::module_& m) {
         });
 
   // `roadbrdf render SURFACE --grid`: angles [deg] as flat arrays of one length.
-  m.def("render_surface",
-        [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i, const DoubleArray& theta_r,
-           const DoubleArray& phi_r, const std::vector<double>& wavelengths, std::optional<long> samples,
-           std::optional<double> target_error, long max_samples, double error_floor, double acceptance_deg,
-           const std::string& sampling, std::uint64_t seed, int threads, int max_bounces) {
-          const py::ssize_t n = theta_i.size();
-          if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n) {
-            throw InputError("internal: render angle arrays of different sizes");
-          }
-          const surface::RenderSettings s = render_settings(samples, target_error, max_samples, error_floor,
-                                                            acceptance_deg, sampling, seed, threads, max_bounces);
-          std::vector<Geometry> geometries;
-          for (py::ssize_t k = 0; k < n; ++k) {
-            try {
-              geometries.push_back(
-                  geometry_from_degrees(theta_i.data()[k], phi_i.data()[k], theta_r.data()[k], phi_r.data()[k]));
-            } catch (const InputError& e) {
-              throw InputError("geometry " + std::to_string(k + 1) + ": " + e.what());
-            }
-          }
-          SpectralDataset d;
-          std::vector<surface::Estimate> estimates;
-          {
-            SigintGuard interruptible;
-            py::gil_scoped_release release;
-            d = surface::render_dataset(f, geometries, wavelengths_or_default(f, wavelengths), s, &estimates);
-          }
-          const auto rows = static_cast<py::ssize_t>(d.geometry_count());
-          const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
-          py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
-          std::copy(d.brdf.begin(), d.brdf.end(), brdf.mutable_data());
-          std::copy(d.sigma.begin(), d.sigma.end(), sigma.mutable_data());
-          std::vector<long> paths;
-          std::vector<bool> converged;
-          for (const auto& e : estimates) {
-            paths.push_back(e.paths);
-            converged.push_back(e.converged);
-          }
-          py::dict out;
-          out["wavelengths"] = d.wavelengths;
-          out["brdf"] = brdf;
-          out["sigma"] = sigma;
-          out["metadata"] = d.metadata;
-          out["paths"] = paths;
-          out["converged"] = converged;
-          return out;
-        });
+  m.def("render_surface", [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i,
+                             const DoubleArray& theta_r, const DoubleArray& phi_r, const py::kwargs& kwargs) {
+    const surface::RenderRequest request = render_request(kwargs);
+    const surface::RenderSettings s = surface::render_settings(request);
+    const py::ssize_t n = theta_i.size();
+    if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n) {
+      throw InputError("internal: render angle arrays of different sizes");
+    }
+    std::vector<Geometry> geometries;
+    for (py::ssize_t k = 0; k < n; ++k) {
+      try {
+        geometries.push_back(
+            geometry_from_degrees(theta_i.data()[k], phi_i.data()[k], theta_r.data()[k], phi_r.data()[k]));
+      } catch (const InputError& e) {
+        throw InputError("geometry " + std::to_string(k + 1) + ": " + e.what());
+      }
+    }
+    SpectralDataset d;
+    std::vector<surface::Estimate> estimates;
+    {
+      SigintGuard interruptible;
+      py::gil_scoped_release release;
+      d = surface::render_dataset(f, geometries, surface::render_wavelengths(request, f), s, &estimates);
+    }
+    const auto rows = static_cast<py::ssize_t>(d.geometry_count());
+    const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
+    py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
+    std::copy(d.brdf.begin(), d.brdf.end(), brdf.mutable_data());
+    std::copy(d.sigma.begin(), d.sigma.end(), sigma.mutable_data());
+    std::vector<long> paths;
+    std::vector<bool> converged;
+    for (const auto& e : estimates) {
+      paths.push_back(e.paths);
+      converged.push_back(e.converged);
+    }
+    py::dict out;
+    out["wavelengths"] = d.wavelengths;
+    out["brdf"] = brdf;
+    out["sigma"] = sigma;
+    out["metadata"] = d.metadata;
+    out["paths"] = paths;
+    out["converged"] = converged;
+    return out;
+  });
 
   // `roadbrdf render SURFACE --albedo`.
-  m.def("render_surface_albedo",
-        [](const Field& f, const std::vector<double>& sun_zenith, const std::vector<double>& wavelengths,
-           int white_sky_nodes, std::optional<long> samples, std::optional<double> target_error, long max_samples,
-           double error_floor, double acceptance_deg, const std::string& sampling, std::uint64_t seed, int threads,
-           int max_bounces, const std::string& output, const std::string& surface_name) {
-          const surface::RenderSettings s =
-              render_settings(samples, target_error, max_samples, error_floor, acceptance_deg, sampling, seed, threads,
-                              max_bounces, white_sky_nodes);
-          surface::VirtualAlbedo r;
-          {
-            SigintGuard interruptible;
-            py::gil_scoped_release release;
-            r = surface::render_albedo(f, sun_zenith, wavelengths_or_default(f, wavelengths), s, white_sky_nodes);
-          }
-          // The albedo table the command writes (`output`; "" = none).
-          if (!output.empty()) surface::write_virtual_albedo(output, r, surface_name);
-          py::dict out;
-          out["wavelengths"] = r.wavelengths;
-          out["sun_zenith"] = r.sun_zenith_deg;
-          out["black_sky"] = r.black_sky;
-          out["black_sky_error"] = r.black_sky_error;
-          out["white_sky"] = r.white_sky;
-          out["white_sky_error"] = r.white_sky_error;
-          out["white_sky_nodes"] = r.white_sky_nodes;
-          out["paths"] = r.paths;
-          out["converged"] = r.converged;
-          return out;
-        });
+  m.def("render_surface_albedo", [](const Field& f, const std::string& surface_name, const py::kwargs& kwargs) {
+    const surface::RenderRequest request = render_request(kwargs, {"sun_zenith", "output"});
+    if (!request.output.empty()) {
+      // As the command: the table is never written over the surface or a material's fit file.
+      std::vector<FileArgument> inputs = {{"`surface`", surface_name}};
+      const std::vector<FileArgument> outputs = {{"`output`", request.output}};
+      check_distinct_files(inputs, outputs);
+      for (const auto& m : f.materials) inputs.push_back({"fit of material '" + m.name + "'", m.fit_path});
+      check_distinct_files(inputs, outputs);
+    }
+    const surface::RenderSettings s = surface::render_settings(request);
+    surface::VirtualAlbedo r;
+    {
+      SigintGuard interruptible;
+      py::gil_scoped_release release;
+      r = surface::render_albedo(f, request.sun_zenith, surface::render_wavelengths(request, f), s,
+                                 request.white_sky_nodes);
+    }
+    // The albedo table the command writes (`output`; "" = none).
+    if (!request.output.empty()) surface::write_virtual_albedo(request.output, r, surface_name);
+    py::dict out;
+    out["wavelengths"] = r.wavelengths;
+    out["sun_zenith"] = r.sun_zenith_deg;
+    out["black_sky"] = r.black_sky;
+    out["black_sky_error"] = r.black_sky_error;
+    out["white_sky"] = r.white_sky;
+    out["white_sky_error"] = r.white_sky_error;
+    out["white_sky_nodes"] = r.white_sky_nodes;
+    out["paths"] = r.paths;
+    out["converged"] = r.converged;
+    return out;
+  });
 }
 
 }  // namespace roadbrdf::python

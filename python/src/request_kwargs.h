@@ -16,6 +16,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <optional>
@@ -61,6 +62,23 @@ inline std::string text(const pybind11::handle& value, const std::string& field)
   throw FieldError(field, "expected a string or a path, got " + type_name(value));
 }
 
+// A Python int within the range of `Integer` (bool is not an integer here).
+template <class Integer>
+Integer integer(const pybind11::handle& value, const std::string& field) {
+  namespace py = pybind11;
+  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value)) {
+    throw FieldError(field, "expected an integer, got " + type_name(value));
+  }
+  const py::int_ big = py::reinterpret_borrow<py::int_>(value);
+  if (big < py::int_(std::numeric_limits<Integer>::min())) {
+    throw FieldError(field, "expected an integer of at least " + std::to_string(std::numeric_limits<Integer>::min()));
+  }
+  if (big > py::int_(std::numeric_limits<Integer>::max())) {
+    throw FieldError(field, "expected an integer of at most " + std::to_string(std::numeric_limits<Integer>::max()));
+  }
+  return big.cast<Integer>();
+}
+
 template <class Value>
 void assign(Value& into, const pybind11::handle& value, const std::string& field) {
   namespace py = pybind11;
@@ -69,16 +87,15 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
     into = value.cast<bool>();
   } else if constexpr (std::is_same_v<Value, double>) {
     into = number(value, field);
-  } else if constexpr (std::is_same_v<Value, int>) {
-    if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value)) {
-      throw FieldError(field, "expected an integer, got " + type_name(value));
+  } else if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, long> ||
+                       std::is_same_v<Value, std::uint64_t>) {
+    into = integer<Value>(value, field);
+  } else if constexpr (std::is_same_v<Value, std::optional<long>>) {
+    if (value.is_none()) {
+      into.reset();
+    } else {
+      into = integer<long>(value, field);
     }
-    const py::int_ big = py::reinterpret_borrow<py::int_>(value);
-    const auto limit = py::int_(std::numeric_limits<int>::max());
-    if (big > limit || big < py::int_(std::numeric_limits<int>::min())) {
-      throw FieldError(field, "expected an integer of at most " + std::to_string(std::numeric_limits<int>::max()));
-    }
-    into = big.cast<int>();
   } else if constexpr (std::is_same_v<Value, std::string>) {
     into = value.is_none() ? std::string() : text(value, field);  // None: not given (no file, no name)
   } else if constexpr (std::is_same_v<Value, std::optional<double>>) {
@@ -109,6 +126,13 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
     }
   } else if constexpr (std::is_same_v<Value, std::vector<std::pair<double, double>>>) {
     into = intervals_argument(py::reinterpret_borrow<py::object>(value), field);
+  } else if constexpr (std::is_same_v<Value, std::optional<std::pair<double, double>>>) {
+    // One (lower, upper) pair or "LOWER:UPPER"; None: not given.
+    into.reset();
+    if (value.is_none()) return;
+    const auto pairs = intervals_argument(py::reinterpret_borrow<py::object>(value), field);
+    if (pairs.size() != 1) throw FieldError(field, "expected one 'LOWER:UPPER' or (lower, upper) pair");
+    into = pairs.front();
   } else {
     // A dict {name: value}; None is an empty one. Model options are names (any value as its text),
     // numbers are numbers, bounds (lower, upper) pairs or "LOWER:UPPER".

@@ -72,7 +72,7 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
        f.path("grid.csv"), "--grid", f.path("grid.csv")},
       {"simulate " + f.path("lambert.fit.json") + " --grid " + f.path("grid.csv") + " -o " + f.path("lambert.fit.json"),
        "-o", f.path("lambert.fit.json"), "MODEL", f.path("lambert.fit.json")},
-      {"rtable --import " + f.path("r.csv") + " -o " + f.path("r.csv"), "-o", f.path("r.csv"), "--import",
+      {"rtable --import " + f.path("r.csv") + " -o " + f.path("r.csv"), "--output", f.path("r.csv"), "--import",
        f.path("r.csv")},
       {"albedo " + f.path("lambert.fit.json") + " -o " + f.path("lambert.fit.json"), "-o", f.path("lambert.fit.json"),
        "MODEL", f.path("lambert.fit.json")},
@@ -85,8 +85,8 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
       {"mix-calibrate " + f.path("F.json") + " " + data + " -o " + f.path("lambert.fit.json"), "-o",
        f.path("lambert.fit.json"), "fit of component 'Grey'", f.path("lambert.fit.json")},
       {"surface " + f.path("F.json") + " -o " + f.path("F.json"), "-o", f.path("F.json"), "INPUT", f.path("F.json")},
-      {"render " + f.path("flat.json") + " --albedo 30 -o " + f.path("flat.json"), "-o", f.path("flat.json"), "SURFACE",
-       f.path("flat.json")},
+      {"render " + f.path("flat.json") + " --albedo 30 -o " + f.path("flat.json"), "--output", f.path("flat.json"),
+       "SURFACE", f.path("flat.json")},
   };
   for (const Case& c : cases) {
     const auto r = run_cli(c.arguments);

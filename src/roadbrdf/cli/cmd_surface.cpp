@@ -18,6 +18,7 @@
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/request_options.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
@@ -154,53 +155,35 @@ void run_surface(const SurfaceArgs& a) {
 }
 
 struct RenderArgs {
-  std::string surface;
-  std::string grid;
-  std::string albedo;       // sun zenith angles [deg] for the black-sky albedo (instead of --grid)
-  int white_sky_nodes = 8;  // Gauss-Legendre nodes in cos(theta) for the white-sky albedo (0: none)
-  std::string wavelengths;
-  std::optional<long> samples;
-  std::optional<double> target_error;
-  long max_samples = 1L << 20;
-  double error_floor = 1e-5;
-  std::string sampling = "brdf";
-  double acceptance = 1.0;
-  std::uint64_t seed = 1;
-  int threads = 0;
-  int max_bounces = 0;
-  std::string format = "wide";
-  std::string output;
+  surface::RenderRequest request;
   bool quiet = false;
 };
 
-surface::RenderSettings render_settings(const RenderArgs& a);
 void run_render_albedo(const RenderArgs& a, const surface::HeightField& field);
 
 void run_render(const RenderArgs& a) {
-  if (a.output.empty()) throw InputError("give the output file with -o DATA.csv");
-  const surface::RenderSettings settings = render_settings(a);  // validated before any file is read
-  (void)settings;
-  const DatasetFormat format = parse_name<DatasetFormat>(a.format, "format");
-  if (a.grid.empty() == a.albedo.empty()) throw InputError("give either --grid GRID.csv or --albedo ZENITHS");
-  std::vector<FileArgument> inputs = {{"SURFACE", a.surface}, {"--grid", a.grid}};
-  check_distinct_files(inputs, {{"-o", a.output}});
-  const surface::HeightField field = surface::read_surface(a.surface);
+  const surface::RenderRequest& r = a.request;
+  if (r.output.empty()) throw InputError("give the output file with -o DATA.csv");
+  surface::RenderSettings s = surface::render_settings(r);  // validated before any file is read
+  const DatasetFormat format = parse_name<DatasetFormat>(r.format, "format");
+  if (r.grid.empty() == r.sun_zenith.empty()) throw InputError("give either --grid GRID.csv or --albedo ZENITHS");
+  std::vector<FileArgument> inputs, outputs;
+  file_arguments(r, surface::RenderRequest::fields(), inputs, outputs);
+  check_distinct_files(inputs, outputs);
+  const surface::HeightField field = surface::read_surface(r.surface);
   for (const auto& m : field.materials) inputs.push_back({"fit of material '" + m.name + "'", m.fit_path});
-  check_distinct_files(inputs, {{"-o", a.output}});
-  if (!a.albedo.empty()) return run_render_albedo(a, field);
-  const GeometryTable grid = read_geometry_file(a.grid);
-  const std::vector<double> wavelengths = a.wavelengths.empty()
-                                              ? surface::default_wavelengths(field)
-                                              : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
-  surface::RenderSettings s = render_settings(a);
+  check_distinct_files(inputs, outputs);
+  if (!r.sun_zenith.empty()) return run_render_albedo(a, field);
+  const GeometryTable grid = read_geometry_file(r.grid);
+  const std::vector<double> wavelengths = surface::render_wavelengths(r, field);
   ProgressBar bar("render: blocks of paths", stderr, ProgressBar::stderr_style(a.quiet));
   s.progress = bar.callback();
   std::vector<surface::Estimate> estimates;
   SpectralDataset data = surface::render_dataset(field, grid.geometries, wavelengths, s, &estimates);
   bar.finish();
-  std::FILE* report = report_stream(a.output);
+  std::FILE* report = report_stream(r.output);
   data.convention = grid.convention;
-  write_dataset(data, a.output, format);
+  write_dataset(data, r.output, format);
   long total_paths = 0;
   std::vector<double> worst;
   for (const auto& e : estimates) {
@@ -212,14 +195,14 @@ void run_render(const RenderArgs& a) {
     return worst[static_cast<std::size_t>(std::lround(q * static_cast<double>(worst.size() - 1)))];
   };
   fmt::print(report, "rendered {}: {} geometries x {} wavelengths, {} sampling, acceptance {} deg, {} paths in total\n",
-             a.surface, data.geometry_count(), data.wavelength_count(), a.sampling, a.acceptance, total_paths);
+             r.surface, data.geometry_count(), data.wavelength_count(), r.sampling, r.acceptance_deg, total_paths);
   fmt::print(report,
              "per-geometry worst relative standard error over wavelengths: median {:.3g}, 90th percentile {:.3g}, "
              "max {:.3g}\n",
              quantile(0.5), quantile(0.9), worst.back());
-  if (a.target_error) {
-    fmt::print(report, "adaptive: target {} (or {} sr^-1 for values near 0), paths per geometry {}\n", *a.target_error,
-               a.error_floor, data.metadata["paths_per_geometry"]);
+  if (r.target_error) {
+    fmt::print(report, "adaptive: target {} (or {} sr^-1 for values near 0), paths per geometry {}\n", *r.target_error,
+               r.error_floor, data.metadata["paths_per_geometry"]);
     std::size_t missed = 0;
     for (std::size_t g = 0; g < estimates.size(); ++g) {
       if (estimates[g].converged) continue;
@@ -229,55 +212,39 @@ void run_render(const RenderArgs& a) {
                  "roadbrdf: warning: geometry {} ({:g},{:g},{:g},{:g} deg) reached --max-samples {} with relative "
                  "standard error {:.3g} > target {}\n",
                  g + 1, rad_to_deg(gg.theta_i), rad_to_deg(gg.phi_i), rad_to_deg(gg.theta_r), rad_to_deg(gg.phi_r),
-                 a.max_samples, estimates[g].worst_relative_error(), *a.target_error);
+                 r.max_samples, estimates[g].worst_relative_error(), *r.target_error);
     }
     if (missed > 0)
       fmt::print(stderr, "roadbrdf: warning: {} of {} geometries did not reach the target\n", missed, estimates.size());
   }
-  fmt::print(report, "wrote {}\n", a.output);
-}
-
-surface::RenderSettings render_settings(const RenderArgs& a) {
-  surface::RenderRequest r;
-  r.samples = a.samples;
-  r.target_error = a.target_error;
-  r.max_samples = a.max_samples;
-  r.error_floor = a.error_floor;
-  r.acceptance_deg = a.acceptance;
-  r.sampling = a.sampling;
-  r.seed = a.seed;
-  r.threads = a.threads;
-  r.max_bounces = a.max_bounces;
-  r.white_sky_nodes = a.white_sky_nodes;
-  return surface::render_settings(r);
+  fmt::print(report, "wrote {}\n", r.output);
 }
 
 // Black-sky (and white-sky) albedo of the virtual sample, written like `roadbrdf albedo`'s CSV
 // (columns wavelength_nm, white_sky, white_sky_error, black_sky_<Z>deg, black_sky_error_<Z>deg, ...),
 // with Monte Carlo standard errors instead of quadrature error estimates.
 void run_render_albedo(const RenderArgs& a, const surface::HeightField& field) {
-  std::FILE* report = report_stream(a.output);
-  const std::vector<double> zeniths = parse_range_list(a.albedo, "--albedo");
-  const std::vector<double> wavelengths = a.wavelengths.empty()
-                                              ? surface::default_wavelengths(field)
-                                              : parse_range_list(a.wavelengths, "--wavelengths", wavelength_rules());
-  surface::RenderSettings settings = render_settings(a);
+  const surface::RenderRequest& r = a.request;
+  std::FILE* report = report_stream(r.output);
+  const std::vector<double> wavelengths = surface::render_wavelengths(r, field);
+  surface::RenderSettings settings = surface::render_settings(r);
   ProgressBar bar("render: albedo estimates", stderr, ProgressBar::stderr_style(a.quiet));
   settings.progress = bar.callback();
-  const surface::VirtualAlbedo r = surface::render_albedo(field, zeniths, wavelengths, settings, a.white_sky_nodes);
+  const surface::VirtualAlbedo v =
+      surface::render_albedo(field, r.sun_zenith, wavelengths, settings, r.white_sky_nodes);
   bar.finish();
-  surface::write_virtual_albedo(a.output, r, a.surface);
+  surface::write_virtual_albedo(r.output, v, r.surface);
   std::size_t missed = 0;
-  for (bool c : r.converged) missed += c ? 0 : 1;
+  for (bool c : v.converged) missed += c ? 0 : 1;
   fmt::print(report, "rendered the albedo of {}: {} sun zenith angles{}, {} wavelengths, {} paths in total\n",
-             a.surface, zeniths.size(),
-             r.white_sky_nodes > 0 ? fmt::format(" + white-sky ({} nodes)", r.white_sky_nodes) : "", wavelengths.size(),
-             r.paths);
+             r.surface, r.sun_zenith.size(),
+             v.white_sky_nodes > 0 ? fmt::format(" + white-sky ({} nodes)", v.white_sky_nodes) : "", wavelengths.size(),
+             v.paths);
   if (missed > 0) {
     fmt::print(stderr, "roadbrdf: warning: {} albedo estimates reached --max-samples before the target error\n",
                missed);
   }
-  fmt::print(report, "wrote {}\n", a.output);
+  fmt::print(report, "wrote {}\n", r.output);
 }
 
 }  // namespace
@@ -319,36 +286,11 @@ void register_surface_command(CLI::App& app) {
       "render",
       "Virtual gonioreflectometer: path-trace a SURFACE at the geometries of a grid; writes a dataset with the Monte "
       "Carlo standard error as sigma");
-  r->add_option("surface", rargs.surface, "SURFACE.json written by `roadbrdf surface`")->required();
-  r->add_option("--grid", rargs.grid, "Geometry table (CSV, theta_i,phi_i,theta_r,phi_r or gamma,alpha,beta,delta)");
-  r->add_option("--albedo", rargs.albedo,
-                "Instead of --grid: black-sky albedo at these sun zenith angles [deg] (D, D1,D2,... or A:B:STEP) and "
-                "the white-sky albedo; writes an albedo CSV like `roadbrdf albedo`");
-  r->add_option("--white-sky-nodes", rargs.white_sky_nodes,
-                "With --albedo: Gauss-Legendre nodes in cos(theta) for the white-sky albedo (default 8; 0 = none)");
-  r->add_option("--wavelengths", rargs.wavelengths,
-                "Wavelengths START:STOP:STEP [nm] (default: those of the materials' fits, or 550)");
-  r->add_option("--samples", rargs.samples,
-                "Paths per geometry, 2 to 2^30 (default 4096 when --target-error is not given)");
-  r->add_option("--target-error", rargs.target_error,
-                "Adaptive sampling: add paths until every wavelength's standard error is <= this fraction of |BRDF| "
-                "(e.g. 0.01), at least 1024 paths");
-  r->add_option("--max-samples", rargs.max_samples,
-                "Adaptive sampling: at most this many paths per geometry (default 1048576); geometries stopped here "
-                "are reported");
-  r->add_option("--error-floor", rargs.error_floor,
-                "Adaptive sampling: absolute standard error [sr^-1] accepted for BRDF values near 0 (default 1e-5)");
-  r->add_option("--sampling", rargs.sampling,
-                "Continuation directions: " + described_names_text<surface::Sampling>() + " (default brdf)");
-  r->add_option("--acceptance", rargs.acceptance, "Detector acceptance half-angle [deg] (1 or 5 typical; default 1)");
-  r->add_option("--seed", rargs.seed, "Random seed (default 1); each geometry has its own streams");
-  r->add_option("--threads", rargs.threads, "Threads (default: all cores)");
-  r->add_option("--max-bounces", rargs.max_bounces, "Limit the number of surface interactions (0 = unlimited)");
-  r->add_option("--format", rargs.format, "Output CSV layout: " + names_text<DatasetFormat>() + " (default wide)");
-  r->add_option("-o,--output", rargs.output, "Output dataset (CSV), or with --albedo the albedo table (CSV)")
-      ->required();
+  add_request_options(r, rargs.request);
+  r->get_option("SURFACE")->required();
+  r->get_option("--output")->required();
   add_quiet_flag(r, rargs.quiet);
-  r->callback([] { run_render(rargs); });
+  r->callback([] { run_request<surface::RenderRequest>([] { run_render(rargs); }); });
 }
 
 }  // namespace roadbrdf::cli

@@ -87,6 +87,9 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
         } else if constexpr (std::is_same_v<Value, std::optional<double>>) {
           option = command->add_option_function<double>(
               flag, [&value](const double& v) { value = v; }, help);
+        } else if constexpr (std::is_same_v<Value, std::optional<long>>) {
+          option = command->add_option_function<long>(
+              flag, [&value](const long& v) { value = v; }, help);
         } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
           // Lists of numbers in the one grammar of core/range.h; the request validates the values.
           option = command->add_option_function<std::string>(
@@ -141,6 +144,13 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
                 });
               },
               help);
+        } else if constexpr (std::is_same_v<Value, std::optional<std::pair<double, double>>>) {
+          option = command->add_option_function<std::string>(
+              flag,
+              [&value, name](const std::string& text) {
+                converting<Request>([&] { value = parse_interval(text, name); });
+              },
+              help);
         } else if constexpr (std::is_same_v<Value, Source>) {
           option = command->add_option_function<std::string>(
               flag,
@@ -157,7 +167,7 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
           }
         } else {
           option = command->add_option(flag, value, help);
-          if constexpr (std::is_same_v<Value, double> || std::is_same_v<Value, int>) option->capture_default_str();
+          if constexpr (std::is_arithmetic_v<Value>) option->capture_default_str();
           if constexpr (std::is_same_v<Value, std::string>) {
             if (!value.empty()) option->capture_default_str();
           }

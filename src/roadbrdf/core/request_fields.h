@@ -17,6 +17,7 @@
 //   };
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <span>
@@ -51,7 +52,9 @@ struct Source {
 //   std::map<std::string, double> (NAME=NUMBER items; a dict of numbers),
 //   std::map<std::string, std::pair<double, double>> (NAME=LOWER:UPPER items; a dict of pairs),
 //   std::vector<std::pair<double, double>> (LOWER:UPPER items; pairs or "LOWER:UPPER" texts),
-//   Source (a file; in Python also its content as a dict).
+//   Source (a file; in Python also its content as a dict),
+//   std::optional<std::pair<double, double>> (one LOWER:UPPER interval; absent = not given),
+//   long, std::optional<long> (absent = not given), std::uint64_t (counts beyond int: paths, seeds).
 // A bool whose default is true is a switch that turns it off (`use_sigma`, --no-sigma-weights).
 template <class Request>
 using FieldMember =
@@ -59,7 +62,9 @@ using FieldMember =
                  std::optional<double> Request::*, std::vector<std::string> Request::*, std::vector<double> Request::*,
                  std::map<std::string, std::string> Request::*, std::map<std::string, double> Request::*,
                  std::map<std::string, std::pair<double, double>> Request::*,
-                 std::vector<std::pair<double, double>> Request::*, Source Request::*>;
+                 std::vector<std::pair<double, double>> Request::*, Source Request::*,
+                 std::optional<std::pair<double, double>> Request::*, long Request::*, std::optional<long> Request::*,
+                 std::uint64_t Request::*>;
 
 // Whether a field names a file the task reads or writes (for check_distinct_files).
 enum class FileRole { none, input, output };

@@ -219,6 +219,8 @@ nlohmann::json RTableReport::to_json() const {
   j["coverage"] = coverage.to_json();
   j["notes"] = notes;
   j["warnings"] = warnings;
+  if (!source.is_null()) j["source"] = source;
+  if (!output.is_null()) j["output"] = output;
   if (comparison) {
     j["comparison"] = {{"other", compared_with},
                        {"max_relative_difference", comparison->max_relative},

@@ -1,12 +1,12 @@
 // An r-table as the front ends ask for it (`roadbrdf rtable`, roadbrdf.rtable in Python): the
-// request with its one validation, and the report with the table, its summary figures, the class,
-// their uncertainties from a fit's covariance (rtable_uncertainty.h), the coverage of the fit behind
-// it, and the notes and warnings that go with them. The command line and the Python module only
-// translate their arguments into an RTableRequest and print or return the report; neither decides a
-// rule of its own.
+// request with its one validation and its field table (core/request_fields.h: the command's options
+// and Python's keywords are made from it), the task (rtable_task.cpp) and the report with the table,
+// its summary figures, the class, their uncertainties from a fit's covariance (rtable_uncertainty.h),
+// the coverage of the fit behind it, and the notes and warnings that go with them. The command line
+// and the Python module only print or return the report; neither decides a rule of its own.
 //
 // Errors are FieldError with the field names below ("wavelength", "band", "alpha", ...), which are
-// also the Python keywords; the command line maps them to its flags (cli/common.h).
+// also the Python keywords; the command line spells them as the table's flags.
 #pragma once
 
 #include <functional>
@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "roadbrdf/core/request_fields.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_coverage.h"
@@ -25,6 +26,15 @@
 namespace roadbrdf::photometry {
 
 struct RTableRequest {
+  // Where the table comes from: a model (the one resolver of modelfile/model_source.h: a model name
+  // with `parameters` and `options`, or a FIT.json or MIX.json with `fit` choosing an entry), or an
+  // r-table file (`import_file`, read as `import_format` when its extension does not tell, its values
+  // `scale` times r). Exactly one of `model` and `import_file`.
+  std::string model;
+  std::vector<std::string> parameters, options;
+  std::string fit;
+  std::string import_file, import_format;
+  double scale = kRScale;
   // How a spectral model is reduced to one BRDF per geometry (SpectralWeighting): photometrically
   // with V(lambda) x illuminant ("" = CIE A, "A", "D65" or a lamp CSV), or at one wavelength, or as
   // the unweighted mean over a band [lo, hi]. At most one of the three may be given. A
@@ -35,6 +45,11 @@ struct RTableRequest {
   double alpha = 1.0;                             // observation angle above the road plane, (0, 90) [deg]
   std::string q0_region = "standard";             // a name of kQ0RegionNames (rtable.h)
   std::string class_system = "R";                 // R | N | C: the class reported as "class"
+  std::string compare;                            // a reference r-table file to compare with ("" = none)
+  std::string output;                             // where the table is written, atomically ("" = nowhere)
+  std::string format;  // a name of RTableFormat for `output` ("" = from its extension, else csv)
+
+  static std::span<const RequestField<RTableRequest>> fields();
 
   // Throws FieldError.
   void validate() const;
@@ -42,6 +57,8 @@ struct RTableRequest {
   void validate_for_import() const;
   Q0Region region() const;
   ClassSystem system() const;
+  // The format of `output`: `format`, else the output's extension, else csv. Throws FieldError.
+  RTableFormat output_format() const;
 };
 
 struct RTableReport {
@@ -62,6 +79,9 @@ struct RTableReport {
   std::optional<RTableUncertainty> uncertainty;
   std::vector<ClassProbability> class_probabilities;
   std::string compared_with;  // the reference's name, when compared
+  // Where the table came from ({"model": name, "fit_file": path} or {"import": path, "format", "scale"};
+  // null when not set) and where it was written ({"file", "format"}; null when not written).
+  nlohmann::json source, output;
 
   // Compare with a reference table (`b` of compare()): fills `comparison`.
   void compare_with(const RTable& reference, const std::string& name);
@@ -89,5 +109,13 @@ using WeightedBrdf = std::function<std::vector<double>(const SpectralModel& mode
 RTableReport rtable_report(const SpectralModel& model, const RTableRequest& request, const WeightedBrdf& brdf);
 // The report of an r-table read from a file (read_rtable). Throws FieldError / InputError.
 RTableReport rtable_report(RTableFile imported, const RTableRequest& request);
+
+// The task of `roadbrdf rtable` and roadbrdf.rtable: the report of the request's model or imported
+// file, compared with `compare` and written to `output` when they are given, after
+// check_distinct_files over the request's files. Throws FieldError / InputError / FileError.
+RTableReport rtable(const RTableRequest& request);
+// The same for a model the caller holds already (Python's Model and SpectralModel objects): the
+// request's source fields (`model`, `parameters`, `options`, `fit`, `import_file`, ...) stay empty.
+RTableReport rtable(const SpectralModel& model, const RTableRequest& request);
 
 }  // namespace roadbrdf::photometry

@@ -1,57 +1,10 @@
-"""roadbrdf render and roadbrdf.render: render settings are validated once, in the library, and give
-the same errors (the CLI naming its flag, Python the argument) and the same numbers."""
-import numpy as np
+"""roadbrdf surface and roadbrdf.surface / flat_surface / gaussian_slope_surface: surface settings and
+materials are validated once, in the library, and give the same errors (the CLI naming its flag, Python the
+argument)."""
 import pytest
 
 import roadbrdf
 from conftest import assert_same_error
-
-ERRORS = [
-    (["--samples", "1"], dict(samples=1), "--samples", "samples"),
-    (["--samples", "99999999999"], dict(samples=99999999999), "--samples", "samples"),
-    (["--samples", "64", "--target-error", "0.01"], dict(samples=64, target_error=0.01), "--samples", "samples"),
-    (["--target-error", "2"], dict(target_error=2.0), "--target-error", "target_error"),
-    (["--max-samples", "1"], dict(max_samples=1), "--max-samples", "max_samples"),
-    (["--target-error", "0.01", "--max-samples", "2000000000"], dict(target_error=0.01, max_samples=2000000000),
-     "--max-samples", "max_samples"),
-    (["--error-floor", "-1"], dict(error_floor=-1.0), "--error-floor", "error_floor"),
-    (["--acceptance", "50"], dict(acceptance_deg=50.0), "--acceptance", "acceptance_deg"),
-    (["--sampling", "cosin"], dict(sampling="cosin"), "--sampling", "sampling"),
-    (["--threads", "-1"], dict(threads=-1), "--threads", "threads"),
-    (["--max-bounces", "5000"], dict(max_bounces=5000), "--max-bounces", "max_bounces"),
-    (["--wavelengths", "500:600:30"], dict(wavelengths="500:600:30"), "--wavelengths", "wavelengths"),
-]
-
-
-@pytest.fixture
-def flat(tmp_path):
-    path = tmp_path / "flat.surface.json"
-    roadbrdf.flat_surface("lambert", {"albedo": 0.4}, cells=8).write(path)
-    grid = tmp_path / "grid.csv"
-    grid.write_text("theta_i,phi_i,theta_r,phi_r\n30,0,30,180\n")
-    return path, grid
-
-
-@pytest.mark.parametrize("flags,kwargs,cli_field,py_field", ERRORS, ids=[e[3] for e in ERRORS])
-def test_render_errors_are_the_same(cli, flat, tmp_path, flags, kwargs, cli_field, py_field):
-    surface, grid = flat
-    r = cli("render", surface, "--grid", grid, *flags, "-o", tmp_path / "x.csv", check=False)
-    with pytest.raises(roadbrdf.InputError) as e:
-        roadbrdf.render(surface, 30, 0, 30, 180, **kwargs)
-    assert_same_error(r, e.value, cli_field, py_field)
-    assert not (tmp_path / "x.csv").exists()
-
-
-def test_render_with_settings_is_identical(cli, flat, tmp_path):
-    surface, grid = flat
-    out = tmp_path / "cli.csv"
-    cli("render", surface, "--grid", grid, "--samples", "512", "--sampling", "cosine", "--acceptance", "5",
-        "--seed", "9", "--max-bounces", "2", "--wavelengths", "500,600", "-o", out)
-    d = roadbrdf.read_dataset(out)
-    py = roadbrdf.render(surface, 30, 0, 30, 180, samples=512, sampling="cosine", acceptance_deg=5, seed=9,
-                         max_bounces=2, wavelengths="500,600")
-    np.testing.assert_array_equal(py.brdf, d.brdf)
-    np.testing.assert_array_equal(py.sigma, d.sigma)
 
 
 SURFACE_ERRORS = [

@@ -1,5 +1,7 @@
-"""roadbrdf lighting and roadbrdf.lighting: the same request, the same numbers and the same errors
-(each front end spelling the field its own way), and the walkthrough of docs/lighting.md."""
+"""The lighting request's field table (LightingRequest::fields, lighting/lighting_request.cpp) seen from both
+front ends, row by row (`roadbrdf lighting --help` shows each row's flag, `roadbrdf.lighting`'s docstring its
+keyword and help, and a bad value is refused with the same text by both, each spelling the field its own
+way); the figures against EN 13201-5's definitions, and the walkthrough of docs/lighting.md."""
 
 import json
 import os
@@ -9,6 +11,7 @@ import shutil
 import pytest
 
 import roadbrdf
+from request_table import check_every_row_is_shown, check_refused_alike, fields
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data" / "lighting"
 SHARED = pathlib.Path(__file__).resolve().parents[3] / "shared" / "real-data"
@@ -64,6 +67,34 @@ def test_rtable_surface_has_no_reflected_flux(cli):
     assert "no_brdf_upward" in [n.kind for n in py.notes]
     value = _cli_json(cli, installation, "--surface", "R3:0.07")
     assert value["L_av"] == py["L_av"]
+
+
+FIELDS = fields("lighting")
+INSTALLATION = str(DATA / "installation.json")
+# A bad value per field: (command-line value, Python keyword value).
+BAD = {"installation": None, "surface": ("R9:0.07", "R9:0.07"), "target_class": ("M9", "M9"),
+       "operating_hours": ("-1", -1), "map": (INSTALLATION, INSTALLATION)}
+
+
+def test_every_row_is_an_option_and_a_keyword(cli):
+    check_every_row_is_shown(cli, "lighting", roadbrdf.lighting)
+
+
+@pytest.mark.parametrize("row", FIELDS, ids=[row["name"] for row in FIELDS])
+def test_a_bad_value_is_refused_alike(cli, tmp_path, row):
+    name = row["name"]
+    assert name in BAD, f"the table's field {name} needs a bad value in this test"
+    if BAD[name] is None:  # the installation file: an absent one
+        absent = str(tmp_path / "absent.json")
+        result = cli("lighting", absent, check=False)
+        with pytest.raises(roadbrdf.InputError) as error:
+            roadbrdf.lighting(absent)
+    else:
+        cli_value, py_value = BAD[name]
+        result = cli("lighting", INSTALLATION, row["long_flag"], cli_value, check=False)
+        with pytest.raises(roadbrdf.InputError) as error:
+            roadbrdf.lighting(INSTALLATION, **{name: py_value})
+    check_refused_alike("lighting", row, result, error.value)
 
 
 def test_errors_name_the_field_each_way(cli, tmp_path):
