@@ -113,8 +113,8 @@ def _lighting_outputs(run, lighting):
     shared through the process's cache (docs/studies.md "Lighting predictions")."""
     import warnings
     from .. import _roadbrdf
-    r = _roadbrdf.mixture_lighting(run, 0, _installation(lighting), lighting["class"] or "",
-                                   lighting["operating_hours"], cache=_end_members())
+    r = _roadbrdf.mixture_lighting(run, 0, _installation(lighting), _end_members(),
+                                   target_class=lighting["class"] or "", operating_hours=lighting["operating_hours"])
     for w in r["warnings"]:
         warnings.warn(w["message"], UserWarning, stacklevel=2)
     least = r["least_flux"] or {}
@@ -150,18 +150,18 @@ def _fast(task, candidate):
     formulation, values = (candidate, {}) if isinstance(candidate, str) else (candidate[0], {"fits": candidate[1]})
     p = task["predictions"]
     cache = _end_members()
-    zeniths = _roadbrdf.values(p["sun_zenith_deg"], "sun_zenith")
     diffuse = "" if p["diffuse_fraction"] is None else str(p["diffuse_fraction"])
     rows = []
     for method in p["methods"]:
         run = _roadbrdf.mix(formulation, method=method, cache=cache, **values)
         for note in run.notes:
             warnings.warn(note, UserWarning, stacklevel=2)
-        a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, zeniths, None, False, diffuse,
-                                                 p["atmosphere"] or "", p["spectrum"] or "", [], "", 1e-5))
+        a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, sun_zenith=p["sun_zenith_deg"],
+                                                 diffuse_fraction=diffuse, atmosphere=p["atmosphere"],
+                                                 spectrum=p["spectrum"]))
         row = {"method": method}
         row.update(_albedo_outputs(a, p["sun_zenith_deg"]))
-        row.update(_rtable_outputs(_roadbrdf.mixture_rtable_report(run, 0, cache, 1.0, p["illuminant"] or "")))
+        row.update(_rtable_outputs(_roadbrdf.mixture_rtable_report(run, 0, cache, illuminant=p["illuminant"] or "")))
         if p.get("lighting") is not None:
             row.update(_lighting_outputs(run, p["lighting"]))
         rows.append(row)
