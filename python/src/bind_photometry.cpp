@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "binding.h"
 #include "request_kwargs.h"
@@ -77,17 +79,15 @@ RTable rtable_from_array(const Array& r, const std::string& name, double alpha_d
   return t;
 }
 
-RTableRequest request_from(double alpha, const std::string& illuminant, std::optional<double> wavelength,
-                           std::optional<std::pair<double, double>> band, const std::string& q0_region,
-                           const std::string& class_system) {
-  RTableRequest request;
-  request.alpha = alpha;
-  request.illuminant = illuminant;
-  request.wavelength = wavelength;
-  request.band = band;
-  request.q0_region = q0_region;
-  request.class_system = class_system;
-  return request;
+// The request of a call whose model is given as an object (a SpectralModel, or a mix run's method
+// that writes no file): the keywords of the other fields; the source fields are refused by name.
+RTableRequest request_without_source(const py::kwargs& kwargs, const std::string& model, bool writes_files) {
+  std::vector<std::string> refused = {"model", "parameters", "options", "fit", "import_file", "import_format", "scale"};
+  if (!writes_files) refused.insert(refused.end(), {"compare", "output", "format"});
+  for (const std::string& field : refused) {
+    if (kwargs.contains(field)) throw FieldError(field, "is not taken here: the model is " + model);
+  }
+  return request_from_arguments<RTableRequest>(py::args(), kwargs);
 }
 
 // The library's report (photometry/rtable_request.h) as the Python dict: the table's figures, the
@@ -134,17 +134,15 @@ void bind_photometry(py::module_& m) {
   // The same request for a model the caller holds (a Model as a constant spectral model, or a
   // SpectralModel): the keywords of the other fields.
   m.def("rtable_spectral", [](const SpectralModel& model, const py::kwargs& kwargs) {
-    return report_to_dict(rtable(model, request_from_arguments<RTableRequest>(py::args(), kwargs)));
+    return report_to_dict(rtable(model, request_without_source(kwargs, "the SpectralModel argument", true)));
   });
   // The same report for method `index` of a mix run, from its end-members' values at the table's
   // geometries shared through `cache` (mixing/end_member_cache.h; the design studies' fast path). The
   // request's fields are keywords only, named as RTableRequest's (rtable_request.h).
   m.def(
       "mixture_rtable_report",
-      [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache, double alpha,
-         const std::string& illuminant, std::optional<double> wavelength, std::optional<std::pair<double, double>> band,
-         const std::string& q0_region, const std::string& class_system) {
-        const RTableRequest request = request_from(alpha, illuminant, wavelength, band, q0_region, class_system);
+      [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache, const py::kwargs& kwargs) {
+        const RTableRequest request = request_without_source(kwargs, "the mix run's method", false);
         RTableReport report;
         {
           SigintGuard interruptible;
@@ -153,9 +151,7 @@ void bind_photometry(py::module_& m) {
         }
         return report_to_dict(report);
       },
-      py::arg("run"), py::arg("index"), py::arg("cache"), py::kw_only(), py::arg("alpha") = 1.0,
-      py::arg("illuminant") = "", py::arg("wavelength") = py::none(), py::arg("band") = py::none(),
-      py::arg("q0_region") = "standard", py::arg("class_system") = "R");
+      py::arg("run"), py::arg("index"), py::arg("cache"));
   m.def(
       "read_rtable",
       [](const std::string& path, std::optional<std::string> format, double alpha, double scale) {
