@@ -203,3 +203,20 @@ def test_sigma_from_duplicates_in_both_front_ends_equals_the_pooled_formula(lab,
                   tmp_path / "x.json", check=False)
     assert refused.returncode == 2 and "--sigma-from-duplicates" in refused.stderr, refused.stderr
     assert "no repeated geometry" in refused.stderr, refused.stderr
+
+
+def test_tables_in_different_quantities_combine_as_docs_data_md_says(lab, cli, tmp_path):
+    # docs/data.md "Lab tables and the run manifest": convert the BRF table first, then combine it with
+    # a BRDF run using per-file items.
+    sand = tmp_path / "sand_30.csv"
+    cli("convert", lab / "sand_brf.csv", "--quantity", "brf", *CLI_MAPPING, "-o", sand)
+    both = tmp_path / "sand.csv"
+    cli("convert", sand, lab / "run_theta45.csv", "--column", "run_theta45.csv:theta_r=View_Zenith", "--column",
+        "run_theta45.csv:phi_r=View_Azimuth", "--set", "run_theta45.csv:theta_i=45", "--set",
+        "run_theta45.csv:phi_i=0", "-o", both)
+    combined = roadbrdf.read_dataset(both)
+    first = _read(lab / "sand_brf.csv", quantity="brf")
+    second = roadbrdf.read_dataset(lab / "run_theta45.csv", columns={"theta_r": "View_Zenith", "phi_r": "View_Azimuth"},
+                                   set={"theta_i": 45, "phi_i": 0})
+    np.testing.assert_array_equal(combined.brdf, np.vstack([first.brdf, second.brdf]))
+    np.testing.assert_allclose(combined.theta_i, [30] * len(first.theta_i) + [45] * len(second.theta_i), rtol=1e-15)
