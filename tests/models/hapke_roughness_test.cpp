@@ -11,6 +11,7 @@
 //   - the integrated parameter gradient of the black-sky albedo (albedo/gradient_integrals.h, which
 //     uses the model's gradient path) against central differences of the albedo itself, for the rough
 //     model and a 4-term Legendre phase function.
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -273,6 +274,45 @@ TEST(HapkeRoughness, AlbedoGradientIntegralEqualsCentralDifferences) {
                               (2.0 * h);
     // Scaled by the parameter's uncertainty, as the uncertainty propagation uses it (to 1e-4 of the albedo).
     EXPECT_NEAR(scale[k] * g.gradient[k], scale[k] * difference, 1e-5) << d.parameters[k].name;
+  }
+}
+
+// The batch paths (a fit's prepared geometries: values, and values with the gradient) compute the
+// terms of theta_bar once and those of each zenith once per distinct zenith (Hapke::evaluate_rough):
+// on a grid of repeated zeniths at several incidence azimuths (whose sines may differ in the last bit),
+// grazing rows included, the values are operator()'s bit for bit and the gradient is the automatic
+// derivative of operator() geometry by geometry, bit for bit.
+TEST(HapkeRoughness, BatchSharingZenithTermsEqualsOneGeometryAtATime) {
+  using Jet = ceres::Jet<double, 8>;
+  for (const char* phase : {"hg", "legendre"}) {
+    const OptionSet options = {{"roughness", "hapke1984"}, {"phase", phase}};
+    const Hapke model(resolve_options(Hapke::kName, Hapke::options(), options));
+    const auto adapter = make_model("hapke", options);
+    std::vector<Geometry> geometries;
+    for (double phi_i : {0.0, 37.0, 200.0}) {
+      for (double ti : {0.0, 20.0, 55.0, 80.0, 90.0}) {
+        for (double tr : {10.0, 55.0, 89.0}) {
+          for (double dphi : {0.0, 90.0, 180.0})
+            geometries.push_back(geometry_from_degrees(ti, phi_i, tr, phi_i + dphi));
+        }
+      }
+    }
+    std::vector<double> p = adapter->description().default_parameters();
+    p.back() = 0.35;  // theta_bar [rad]
+    const std::size_t P = p.size(), n = geometries.size();
+    const auto prepared = adapter->prepare(geometries.data(), n);
+    std::vector<double> values(n), with_gradient(n), jacobian(n * P);
+    adapter->evaluate_prepared(*prepared, p.data(), values.data());
+    adapter->evaluate_prepared_with_gradient(*prepared, p.data(), with_gradient.data(), jacobian.data());
+    std::vector<Jet> pj(P);
+    for (std::size_t k = 0; k < P; ++k) pj[k] = Jet(p[k], static_cast<int>(k));
+    for (std::size_t g = 0; g < n; ++g) {
+      const Hapke::Prepared q = model.prepare(geometries[g]);
+      EXPECT_EQ(values[g], model(p.data(), q)) << phase << " " << g;
+      const Jet f = model(pj.data(), q);
+      EXPECT_EQ(with_gradient[g], f.a) << phase << " " << g;
+      for (std::size_t k = 0; k < P; ++k) EXPECT_EQ(jacobian[g * P + k], f.v[static_cast<int>(k)]) << g << " " << k;
+    }
   }
 }
 

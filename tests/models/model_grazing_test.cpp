@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "models/grazing_check.h"
 #include "models/model_variants.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/core/math.h"
@@ -21,13 +22,8 @@ namespace roadbrdf {
 namespace {
 
 using test::all_variants;
-using test::random_parameters;
 using test::test_name;
 using test::Variant;
-
-constexpr double kNear = 1e-5;     // deg below the horizon
-constexpr double kNearer = 1e-7;   // deg below the horizon
-constexpr double kNearest = 1e-9;  // deg below the horizon (cos = 1.7e-11, above kGrazingCosine)
 
 class GrazingModels : public testing::TestWithParam<Variant> {
  protected:
@@ -35,78 +31,11 @@ class GrazingModels : public testing::TestWithParam<Variant> {
   std::unique_ptr<Model> model_;
 };
 
-// A geometry (theta_i, theta_r, dphi) [deg] with phi_i = 10 deg.
-Geometry at(double theta_i, double theta_r, double dphi) {
-  return geometry_from_degrees(theta_i, 10.0, theta_r, 10.0 + dphi);
-}
-
-// The (theta_i, theta_r) pairs with at least one exactly grazing direction, and which of them
-// approach the horizon: 1 = theta_i, 2 = theta_r (the other held fixed).
-struct GrazingCase {
-  double theta_i, theta_r;
-  int approaching;
-};
-
-std::vector<GrazingCase> grazing_cases() {
-  std::vector<GrazingCase> cases;
-  for (double other : {0.0, 30.0, 60.0, 89.0, 89.999, 90.0}) {
-    cases.push_back({90.0, other, 1});
-    cases.push_back({other, 90.0, 2});
-  }
-  return cases;
-}
+const auto at = test::grazing_test_geometry;
 
 TEST_P(GrazingModels, ValueAtNinetyDegreesIsTheLimitOrADeclaredZero) {
   const ModelDescription& d = model_->description();
-  Rng rng(9090);
-  int declared_zeros = 0;
-  for (int s = 0; s < 12; ++s) {
-    std::vector<double> p = s == 0 ? d.default_parameters() : random_parameters(d, rng, 0.02);
-    if (s == 1) {
-      for (std::size_t k = 0; k < p.size(); ++k) p[k] = d.parameters[k].lower;
-    }
-    if (s == 2) {
-      for (std::size_t k = 0; k < p.size(); ++k) p[k] = d.parameters[k].upper;
-    }
-    // The model's magnitude away from grazing, the scale of "negligible".
-    double reference = 1e-12;
-    for (double angle : {0.0, 30.0, 60.0}) {
-      for (double dphi : {0.0, 90.0, 180.0})
-        reference = std::fmax(reference, std::fabs(model_->evaluate(p.data(), at(angle, angle, dphi))));
-    }
-    for (const GrazingCase& c : grazing_cases()) {
-      for (double dphi : {0.0, 45.0, 90.0, 135.0, 180.0}) {
-        const double f = model_->evaluate(p.data(), at(c.theta_i, c.theta_r, dphi));
-        auto approach = [&](double below) {
-          return c.approaching == 1 ? model_->evaluate(p.data(), at(90.0 - below, c.theta_r, dphi))
-                                    : model_->evaluate(p.data(), at(c.theta_i, 90.0 - below, dphi));
-        };
-        const double near = approach(kNear), nearer = approach(kNearer), nearest = approach(kNearest);
-        const std::string where = d.name + " at theta_i=" + std::to_string(c.theta_i) +
-                                  " theta_r=" + std::to_string(c.theta_r) + " dphi=" + std::to_string(dphi) +
-                                  " parameter set " + std::to_string(s) + " approaching " +
-                                  (c.approaching == 1 ? "theta_i" : "theta_r");
-        ASSERT_TRUE(std::isfinite(f)) << where;
-        if (f == 0.0 && !d.grazing_zero.empty()) {  // the documented 0
-          ++declared_zeros;
-          continue;
-        }
-        // A finite limit: the steps between the three values shrink (by ~100 for a function linear in
-        // the angle), or are negligible against the model's values (1e-5: rounding of the closed forms'
-        // cancellations 1e-9 deg from the horizon, e.g. Oren-Nayar's tan(beta) (sin(alpha) - (2 beta/pi)^3)).
-        const double step = std::fabs(near - nearer), last = std::fabs(nearer - nearest);
-        const double negligible = 1e-5 * std::fmax(reference, std::fabs(nearest));
-        const bool converges = last <= 0.1 * step + negligible;
-        EXPECT_TRUE(converges) << where << ": the values diverge (" << near << ", " << nearer << ", " << nearest
-                               << ") but the value " << f << " is not a declared 0 (grazing_zero: '" << d.grazing_zero
-                               << "')";
-        if (converges) {
-          EXPECT_NEAR(f, nearest, 2.0 * last + 1e-6 * std::fmax(reference, std::fabs(nearest)))
-              << where << ": not the limit";
-        }
-      }
-    }
-  }
+  const int declared_zeros = test::expect_grazing_limits_or_declared_zeros(*model_);
   // A declared zero must be used somewhere (the claim is not decoration).
   if (!d.grazing_zero.empty()) {
     EXPECT_GT(declared_zeros, 0) << d.name << ": " << d.grazing_zero;

@@ -1,6 +1,7 @@
 """Laboratory tables without a script, and the front ends agreeing: column mapping, fixed angles, the
 quantity stored, runs combined, one duplicate policy (CLI, Python, plot, report), check of an in-memory
 dataset, warnings at the caller's line. The tables in tests/data/io/lab are synthetic."""
+import json
 import math
 import subprocess
 import sys
@@ -198,3 +199,48 @@ def test_the_report_mixes_a_formulation_on_averaged_duplicates(root, tmp_path):
                             capture_output=True, text=True)
     assert report.returncode == 0, report.stderr
     assert 'data-key="mix.best"' in out.read_text(encoding="utf-8")
+
+
+def test_sigma_from_duplicates_in_both_front_ends_equals_the_pooled_formula(lab, cli, tmp_path):
+    path = lab / "repeat_concatenated.csv"
+    raw = np.loadtxt(path, delimiter=",", skiprows=2)
+    scans = raw[:, 4:].reshape(2, -1, 3)  # the second scan repeats the first's geometries
+    mean = scans.mean(axis=0)
+    # Pooled relative repeatability (ISO 5725-2 on relative deviations), then the sigma of each mean.
+    s_rel = np.sqrt((((scans - mean) / mean) ** 2).sum(axis=(0, 1)) / mean.shape[0])
+    sigma = s_rel * np.abs(mean) / np.sqrt(2)
+    weights = 1 / sigma**2
+    albedo = np.pi * (weights * mean).sum(axis=0) / (weights * mean**0).sum(axis=0)  # weighted Lambert fit
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the averaged duplicates
+        result = roadbrdf.fit(path, "lambert", sigma_from_duplicates=True, output=tmp_path / "py.json")
+    np.testing.assert_allclose(result.best.parameters[0], albedo, rtol=1e-9)
+    assert any("repeatability of duplicate rows" in n for n in result.notes)
+    cli("fit", path, "-m", "lambert", "--sigma-from-duplicates", "-o", tmp_path / "cli.json")
+    py, cl = (json.loads((tmp_path / f"{n}.json").read_text())["fits"][0] for n in ("py", "cli"))
+    assert py["parameters"] == cl["parameters"] and py["stderr"] == cl["stderr"]
+    with pytest.raises(roadbrdf.InputError, match="sigma_from_duplicates.*needs the dataset's file"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            roadbrdf.fit(roadbrdf.read_dataset(path, average_duplicates=True), "lambert", sigma_from_duplicates=True)
+    refused = cli("fit", lab / "sand_brdf.csv", *CLI_MAPPING, "-m", "lambert", "--sigma-from-duplicates", "-o",
+                  tmp_path / "x.json", check=False)
+    assert refused.returncode == 2 and "--sigma-from-duplicates" in refused.stderr, refused.stderr
+    assert "no repeated geometry" in refused.stderr, refused.stderr
+
+
+def test_tables_in_different_quantities_combine_as_docs_data_md_says(lab, cli, tmp_path):
+    # docs/data.md "Lab tables and the run manifest": convert the BRF table first, then combine it with
+    # a BRDF run using per-file items.
+    sand = tmp_path / "sand_30.csv"
+    cli("convert", lab / "sand_brf.csv", "--quantity", "brf", *CLI_MAPPING, "-o", sand)
+    both = tmp_path / "sand.csv"
+    cli("convert", sand, lab / "run_theta45.csv", "--column", "run_theta45.csv:theta_r=View_Zenith", "--column",
+        "run_theta45.csv:phi_r=View_Azimuth", "--set", "run_theta45.csv:theta_i=45", "--set",
+        "run_theta45.csv:phi_i=0", "-o", both)
+    combined = roadbrdf.read_dataset(both)
+    first = _read(lab / "sand_brf.csv", quantity="brf")
+    second = roadbrdf.read_dataset(lab / "run_theta45.csv", columns={"theta_r": "View_Zenith", "phi_r": "View_Azimuth"},
+                                   set={"theta_i": 45, "phi_i": 0})
+    np.testing.assert_array_equal(combined.brdf, np.vstack([first.brdf, second.brdf]))
+    np.testing.assert_allclose(combined.theta_i, [30] * len(first.theta_i) + [45] * len(second.theta_i), rtol=1e-15)

@@ -57,6 +57,9 @@ FitOptions settings_of(const FitRequest& r) {
   robust_loss_from_string(r.robust, o.robust, o.robust_scale, "robust");
   check_fit_counts(r.multistart, r.threads, r.max_iterations);
   o.use_sigma = r.use_sigma;
+  if (r.sigma_from_duplicates && !r.use_sigma) {
+    throw FieldError("sigma_from_duplicates", "with `use_sigma` off the sigma from the duplicates would not be used");
+  }
   o.solid_angle_weights = r.solid_angle_weights;
   o.multistart = r.multistart;
   if (r.seed < 0) throw FieldError("seed", fmt::format("{} is negative (a seed is 0 or more)", r.seed));
@@ -423,6 +426,15 @@ FitSummary run_fit(const FitRequest& request, const SpectralDataset& dataset, co
   const SpectralDataset* data = &dataset;
   SpectralDataset subset;
   std::vector<std::string> notes;
+  if (request.sigma_from_duplicates) {
+    const auto source = dataset.metadata.find("sigma_from_duplicates");
+    if (source == dataset.metadata.end()) {
+      throw FieldError("sigma_from_duplicates",
+                       "needs the dataset's file (`data`): the repeatability comes from its duplicate rows, which "
+                       "a dataset in memory holds averaged already");
+    }
+    notes.push_back("sigma from the repeatability of duplicate rows: " + source->second);
+  }
   if (!request.wavelengths.empty() || !request.bands.empty() || !grazing_geometries(dataset).empty()) {
     subset = fitted_spectra(request, dataset, &notes);
     data = &subset;

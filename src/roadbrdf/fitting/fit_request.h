@@ -25,6 +25,7 @@
 #include "roadbrdf/core/request_fields.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/dataset_read_fields.h"
 #include "roadbrdf/models/model.h"
 
@@ -55,6 +56,13 @@ struct FitRequest : DatasetReadFields {
   std::string loss = "plain";   // a name of kFitLossNames (fitting/fit.h)
   std::string robust = "none";  // "none" or NAME:SCALE, NAME of kRobustLossNames (fitting/fit.h)
   bool use_sigma = true;
+  // The measurement sigma from the dataset's duplicate rows (their repeatability) instead of a sigma
+  // column: the duplicates are averaged, and each value's sigma is s_rel(lambda) |y| / sqrt(n), s_rel
+  // the pooled relative standard deviation of one measurement at that wavelength
+  // (Repeatability::pooled_relative_sd, io/dataset_io.h) and n the rows averaged into the value
+  // (apply_duplicate_sigma). Needs the dataset's file (`data`); refused when the data carry sigma or
+  // have no duplicates.
+  bool sigma_from_duplicates = false;
   bool solid_angle_weights = false;
   int multistart = 1;
   int seed = 1;  // 0 or more
@@ -134,8 +142,15 @@ void flag_worse_than_nested(std::vector<FitResult>& fits, std::size_t first);
 // Validate, select the wavelengths, and fit every model. Throws FieldError / InputError.
 FitSummary run_fit(const FitRequest& request, const SpectralDataset& data, const FitProgress& progress = {});
 
-// The request's dataset file read with its reading fields (FieldError `data` when none is named).
+// The request's dataset file read with its reading fields (FieldError `data` when none is named);
+// with `sigma_from_duplicates`, its duplicates averaged and its sigma from their repeatability.
 SpectralDataset read_fit_data(const FitRequest& request);
+// Sets the sigma of `data` (read from `file` with duplicates averaged) from the repeatability of its
+// duplicate rows: sigma = s_rel(lambda) |y| / sqrt(n) (FitRequest::sigma_from_duplicates), recorded in
+// metadata `sigma_from_duplicates`. FieldError `sigma_from_duplicates` when the data carry sigma, have no
+// duplicated geometry, a wavelength without a duplicated measured cell, or a value 0 (whose relative
+// sigma would be 0).
+void apply_duplicate_sigma(SpectralDataset& data, const Repeatability& repeatability, const std::string& file);
 // Writes the request's `output` (the fit file) and `residuals` (measured, fitted and residual value
 // per geometry and wavelength) of `summary`, fitted to `data`; a field left empty is not written.
 // The front ends check the files first (check_request_files, before fitting).

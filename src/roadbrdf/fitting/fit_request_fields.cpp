@@ -1,11 +1,16 @@
 // The field table of FitRequest (core/request_fields.h): `roadbrdf fit`'s options and the keyword
 // arguments of Python's roadbrdf.fit, and the request's files read and written the same way by both.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/math.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -47,6 +52,11 @@ RequestFields<FitRequest> FitRequest::fields() {
          &R::solid_angle_weights},
         {"use_sigma", "--no-sigma-weights", "",
          "Weights 1/sigma^2 from the dataset's uncertainties (on by default; the switch ignores them)", &R::use_sigma},
+        {"sigma_from_duplicates", "--sigma-from-duplicates", "",
+         "Sigma of each value from the repeatability of the dataset's duplicate rows (averaged): the pooled "
+         "relative standard deviation of one measurement per wavelength times |value| / sqrt(rows averaged); "
+         "for data without a sigma column (docs/fitting.md)",
+         &R::sigma_from_duplicates},
         {"multistart", "--multistart", "",
          "Starting points per fit (1 to 10000): the start, then a Latin hypercube over the nonlinear parameters",
          &R::multistart},
@@ -89,7 +99,62 @@ RequestFields<FitRequest> FitRequest::fields() {
 
 SpectralDataset read_fit_data(const FitRequest& request) {
   if (request.data.empty()) throw FieldError("data", "give the measured dataset");
-  return read_dataset(request.data, request.options_for(request.data));
+  DatasetReadOptions options = request.options_for(request.data);
+  if (!request.sigma_from_duplicates) return read_dataset(request.data, options);
+  options.average_duplicates = true;  // the duplicates are what the sigma is estimated from
+  DatasetReadStats stats;
+  SpectralDataset data = read_dataset(request.data, options, stats);
+  apply_duplicate_sigma(data, stats.repeatability, request.data);
+  return data;
+}
+
+void apply_duplicate_sigma(SpectralDataset& data, const Repeatability& repeatability, const std::string& file) {
+  const std::string field = "sigma_from_duplicates";
+  if (data.has_sigma()) {
+    throw FieldError(field, fmt::format("{} has a sigma column: its uncertainties are used as they are (leave "
+                                        "`sigma_from_duplicates` off, or `use_sigma` off to ignore them)",
+                                        file));
+  }
+  const std::size_t m = data.wavelengths.size();
+  if (repeatability.geometries == 0 || repeatability.cell_counts.size() != data.brdf.size()) {
+    throw FieldError(field, fmt::format("{} has no repeated geometry (no two rows with the same four angles), so "
+                                        "there is no repeatability to estimate the sigma from",
+                                        file));
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    if (repeatability.degrees_of_freedom.at(j) == 0) {
+      throw FieldError(field, fmt::format("{}: no duplicated geometry has two measured nonzero values at {} nm, so "
+                                          "the repeatability there is unknown",
+                                          file, data.wavelengths[j]));
+    }
+  }
+  data.sigma.assign(data.brdf.size(), 0.0);
+  for (std::size_t n = 0; n < data.geometry_count(); ++n) {
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::size_t idx = n * m + j;
+      const double y = data.brdf[idx];
+      if (std::isnan(y)) {
+        data.sigma[idx] = y;  // missing stays missing
+        continue;
+      }
+      if (y == 0.0) {
+        const Geometry& g = data.geometries[n];
+        throw FieldError(field, fmt::format("{}: the value at {} nm of geometry {} (theta_i {:.6g}, phi_i {:.6g}, "
+                                            "theta_r {:.6g}, phi_r {:.6g} deg) is 0, whose relative sigma would be 0 "
+                                            "(an infinite weight)",
+                                            file, data.wavelengths[j], n + 1, rad_to_deg(g.theta_i),
+                                            rad_to_deg(g.phi_i), rad_to_deg(g.theta_r), rad_to_deg(g.phi_r)));
+      }
+      const double rows = std::max<double>(1.0, repeatability.cell_counts[idx]);
+      data.sigma[idx] = repeatability.pooled_relative_sd[j] * std::fabs(y) / std::sqrt(rows);
+    }
+  }
+  const auto [lo, hi] =
+      std::minmax_element(repeatability.pooled_relative_sd.begin(), repeatability.pooled_relative_sd.end());
+  data.metadata["sigma_from_duplicates"] = fmt::format(
+      "pooled relative standard deviation of {} duplicated geometries, {:.4g} to {:.4g} over the "
+      "wavelengths",
+      repeatability.geometries, *lo, *hi);
 }
 
 void write_fit_outputs(const FitRequest& request, const FitSummary& summary, const SpectralDataset& data) {

@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <span>
@@ -123,6 +124,17 @@ struct Repeatability {
   std::size_t geometries = 0;                  // geometries with more than one row
   std::vector<double> median_relative_spread;  // per wavelength (NaN where no duplicated cell is measured)
   std::vector<double> max_relative_spread;     // per wavelength
+  // The repeatability standard deviation of one measurement relative to its value, per wavelength:
+  // the pooled estimate of ISO 5725-2:1994 (s_r^2 = sum_g (n_g - 1) s_g^2 / sum_g (n_g - 1)) applied to
+  // the relative deviations (y_gk - mean_g) / mean_g of the duplicated cells, i.e.
+  //   s_rel^2 = sum_g sum_k ((y_gk - mean_g) / mean_g)^2 / sum_g (n_g - 1),
+  // with its degrees of freedom sum_g (n_g - 1) (0 and NaN where no duplicated cell is measured; a cell
+  // whose mean is 0 has no relative deviation and is left out). Single files only (not combined runs).
+  std::vector<double> pooled_relative_sd;
+  std::vector<std::size_t> degrees_of_freedom;
+  // Measured rows averaged into each cell (geometry-major like SpectralDataset::brdf); empty when no
+  // geometry is duplicated.
+  std::vector<std::uint32_t> cell_counts;
 };
 
 // Counts found while reading (also in the warnings).

@@ -372,8 +372,12 @@ class WideRows {
   std::unordered_map<GeometryKey, std::size_t, GeometryKeyHash> seen_;
   std::vector<long> row_lines_;
   std::vector<int> multiplicity_;  // only when averaging
-  // Only when averaging: per duplicated geometry, the smallest and largest value of each cell.
-  std::map<std::size_t, std::vector<std::pair<double, double>>> ranges_;
+  // Only when averaging: per duplicated geometry and cell, the smallest and largest value, and the
+  // running mean and sum of squared deviations from it (Welford 1962, Technometrics 4:419).
+  struct CellSpread {
+    double lo, hi, mean, squares;
+  };
+  std::map<std::size_t, std::vector<CellSpread>> ranges_;
   std::vector<double> row_, srow_;
   AngleCells angles_;
   bool reserved_ = false;
@@ -425,15 +429,26 @@ void WideRows::add_duplicate(std::size_t n) {
   ++r_.stats.averaged_duplicate_rows;
   auto [range, first] = ranges_.try_emplace(n);
   if (first) {  // the geometry's first row, still on its own
-    for (std::size_t j = 0; j < m_; ++j) range->second.emplace_back(brdf[n * m_ + j], brdf[n * m_ + j]);
+    for (std::size_t j = 0; j < m_; ++j) {
+      const double v = brdf[n * m_ + j];
+      range->second.push_back({v, v, v, 0.0});
+    }
   }
   for (std::size_t j = 0; j < m_; ++j) {
     if (std::isnan(row_[j])) continue;
-    auto& [lo, hi] = range->second[j];
+    auto& [lo, hi, mean, squares] = range->second[j];
     lo = std::isnan(lo) ? row_[j] : std::min(lo, row_[j]);
     hi = std::isnan(hi) ? row_[j] : std::max(hi, row_[j]);
     double& v = brdf[n * m_ + j];
     v = multiplicity_[n * m_ + j]++ == 0 ? row_[j] : v + row_[j];
+    if (multiplicity_[n * m_ + j] == 1) {
+      mean = row_[j];
+      squares = 0.0;
+    } else {
+      const double delta = row_[j] - mean;
+      mean += delta / multiplicity_[n * m_ + j];
+      squares += delta * (row_[j] - mean);
+    }
     if (with_sigma_) {
       double& s = d_.sigma[n * m_ + j];
       s = multiplicity_[n * m_ + j] == 1 ? srow_[j] * srow_[j] : s + srow_[j] * srow_[j];
@@ -458,10 +473,25 @@ void WideRows::finish() {
   for (const auto& [n, range] : ranges_) {
     for (std::size_t j = 0; j < m_; ++j) {
       if (multiplicity_[n * m_ + j] < 2) continue;
-      spreads[j].push_back(relative_spread(range[j].first, range[j].second, d_.brdf[n * m_ + j]));
+      spreads[j].push_back(relative_spread(range[j].lo, range[j].hi, d_.brdf[n * m_ + j]));
     }
   }
   r_.stats.repeatability = repeatability_of(spreads, ranges_.size());
+  if (ranges_.empty()) return;
+  // Squared deviations relative to the cell's mean, pooled per wavelength.
+  std::vector<double> squares(m_, 0.0);
+  std::vector<std::size_t> dof(m_, 0);
+  for (const auto& [n, range] : ranges_) {
+    for (std::size_t j = 0; j < m_; ++j) {
+      const int count = multiplicity_[n * m_ + j];
+      const double mean = d_.brdf[n * m_ + j];
+      if (count < 2 || mean == 0.0) continue;
+      squares[j] += range[j].squares / (mean * mean);
+      dof[j] += static_cast<std::size_t>(count - 1);
+    }
+  }
+  set_pooled_relative_sd(r_.stats.repeatability, squares, dof);
+  r_.stats.repeatability.cell_counts.assign(multiplicity_.begin(), multiplicity_.end());
 }
 
 SpectralDataset read_wide(Reading& r, std::string_view header, const std::vector<HeaderCell>& names,

@@ -220,6 +220,16 @@ Repeatability repeatability_of(std::vector<std::vector<double>>& spreads, std::s
   return out;
 }
 
+void set_pooled_relative_sd(Repeatability& out, const std::vector<double>& squares,
+                            const std::vector<std::size_t>& degrees_of_freedom) {
+  out.degrees_of_freedom = degrees_of_freedom;
+  out.pooled_relative_sd.resize(squares.size());
+  for (std::size_t j = 0; j < squares.size(); ++j) {
+    out.pooled_relative_sd[j] =
+        degrees_of_freedom[j] == 0 ? kNaN : std::sqrt(squares[j] / static_cast<double>(degrees_of_freedom[j]));
+  }
+}
+
 void finish_warnings(Reading& r, const SpectralDataset& d) {
   auto warn = r.options.warn ? r.options.warn : default_warn;
   const std::size_t total = d.brdf.size();
@@ -554,6 +564,23 @@ void fill_table(Reading& r, const RecordTable& t, bool with_sigma, SpectralDatas
     if (any) ++duplicated;
   }
   r.stats.repeatability = repeatability_of(spreads, duplicated);
+  if (duplicated == 0) return;
+  // The squared relative deviations of the duplicated cells from their means (a second pass: the
+  // means are known now).
+  std::vector<double> squares(m, 0.0);
+  std::vector<std::size_t> dof(m, 0);
+  for (std::size_t k = 0; k < t.records.size(); ++k) {
+    const auto& rec = t.records[k];
+    const std::size_t idx = rec.geometry * m + t.wl_index[k];
+    if (count[idx] < 2 || std::isnan(rec.brdf) || d.brdf[idx] == 0.0) continue;
+    const double deviation = (rec.brdf - d.brdf[idx]) / d.brdf[idx];
+    squares[t.wl_index[k]] += deviation * deviation;
+  }
+  for (std::size_t idx = 0; idx < n * m; ++idx) {
+    if (count[idx] >= 2 && d.brdf[idx] != 0.0) dof[idx % m] += count[idx] - 1;
+  }
+  set_pooled_relative_sd(r.stats.repeatability, squares, dof);
+  r.stats.repeatability.cell_counts = std::move(count);
 }
 
 }  // namespace

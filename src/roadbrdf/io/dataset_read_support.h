@@ -95,6 +95,10 @@ void finish_warnings(Reading& r, const SpectralDataset& d);
 double relative_spread(double lo, double hi, double mean);
 // Repeatability from the relative spreads of the duplicated cells, per wavelength.
 Repeatability repeatability_of(std::vector<std::vector<double>>& spreads, std::size_t geometries);
+// The pooled relative standard deviation (Repeatability::pooled_relative_sd) from, per wavelength, the
+// sum of squared relative deviations and its degrees of freedom.
+void set_pooled_relative_sd(Repeatability& out, const std::vector<double>& squares,
+                            const std::vector<std::size_t>& degrees_of_freedom);
 
 // A non-angle column of a long file's header.
 struct LongColumn {

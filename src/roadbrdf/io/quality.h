@@ -25,8 +25,10 @@
 //   exceeds `outlier_min_ratio`. Sharp physical peaks: a bright geometry within `specular_cone_deg`
 //   (the specular window, an angle from the mirror direction) is listed as a specular peak instead,
 //   and such geometries do not enter the other predictions. The text lists the first
-//   `listed_outliers`, the JSON all. Remaining limitation: strong grazing-angle curvature on a coarse
-//   grid can still be flagged.
+//   `listed_outliers`, the JSON all. The residual is the smaller of two local fits' (quality_outliers.cpp):
+//   the quadratic, and one linear in the offsets and in ln cos theta_i, ln cos theta_r (Minnaert's
+//   law), which follows a BRDF steepening towards grazing where a quadratic fitted over neighbours on
+//   one side falls short (a dense theta_i series 0-89 deg is not flagged at its grazing end).
 // - Reference panel: with a panel reflectance rho(lambda), every value against rho/pi.
 // - Plausibility of the scale (quality_plausibility.cpp): the Lambertian-equivalent albedo pi x median
 //   BRDF per wavelength against [0.005, 1] (natural materials); values that look like BRDF x cos theta_i
@@ -136,6 +138,9 @@ QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions
 // The same with the statistics of reading the file (the repeatability of averaged duplicates).
 QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions& options,
                             const DatasetReadStats& stats);
+
+// The outlier check (quality_outliers.cpp): fills outliers and specular_peaks.
+void check_outliers(const SpectralDataset& dataset, const QualityOptions& options, QualityReport& report);
 
 // The plausibility checks (quality_plausibility.cpp), their JSON ("plausibility", "repeatability")
 // and their lines of the text report.

@@ -91,7 +91,7 @@ void Hapke::evaluate_fixed(const FixedSets& f, const Geometry& geometry, double*
 //   df/da_n += w s A_n [P_n(mu0) (H(mu) - 1) + P_n(mu) (H(mu0) - 1) + A_n (H(mu0) - 1)(H(mu) - 1)].
 void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p, double* values,
                             double* jacobian) const {
-  if (roughness_) return evaluate_with_jets(g, n, p, values, jacobian);
+  if (roughness_) return evaluate_with_jets(s, g, n, p, values, jacobian);
   using Jet1 = ceres::Jet<double, 1>;
   const double w = p[kW], b0 = p[kB0], h = p[kH];
   const std::size_t distinct = s.cosines.size();
@@ -182,31 +182,30 @@ namespace {
 // Values and Jacobian by ceres::Jet<double, N>, N >= the parameter count (each operation costs in
 // proportion to N, so the smallest size that holds the parameters is used).
 template <int N>
-void evaluate_by_jets(const Hapke& model, const Hapke::Prepared* g, std::size_t n, const double* p, double* values,
-                      double* jacobian) {
+void evaluate_by_jets(const Hapke& model, const Hapke::SharedTerms& s, const Hapke::Prepared* g, std::size_t n,
+                      const double* p, double* values, double* jacobian) {
   using Jet = ceres::Jet<double, N>;
   const std::size_t count = static_cast<std::size_t>(model.parameter_count());
   Jet q[N];
   for (std::size_t k = 0; k < count; ++k) q[k] = Jet(p[k], static_cast<int>(k));
-  for (std::size_t k = 0; k < n; ++k) {
-    const Jet f = model(q, g[k]);
+  model.evaluate_rough(s, g, n, q, [&](std::size_t k, const Jet& f) {
     values[k] = f.a;
     for (std::size_t j = 0; j < count; ++j) jacobian[k * count + j] = f.v[static_cast<int>(j)];
-  }
+  });
 }
 
 }  // namespace
 
-void Hapke::evaluate_with_jets(const Prepared* g, std::size_t n, const double* p, double* values,
+void Hapke::evaluate_with_jets(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p, double* values,
                                double* jacobian) const {
   if (jacobian == nullptr) {
-    for (std::size_t k = 0; k < n; ++k) values[k] = (*this)(p, g[k]);
+    evaluate_rough(s, g, n, p, [values](std::size_t k, double f) { values[k] = f; });
   } else if (parameter_count_ <= 5) {
-    evaluate_by_jets<5>(*this, g, n, p, values, jacobian);
+    evaluate_by_jets<5>(*this, s, g, n, p, values, jacobian);
   } else if (parameter_count_ <= 8) {
-    evaluate_by_jets<8>(*this, g, n, p, values, jacobian);
+    evaluate_by_jets<8>(*this, s, g, n, p, values, jacobian);
   } else {
-    evaluate_by_jets<kMaxParameters>(*this, g, n, p, values, jacobian);
+    evaluate_by_jets<kMaxParameters>(*this, s, g, n, p, values, jacobian);
   }
 }
 

@@ -440,8 +440,13 @@ struct Hapke {
   template <typename T>
   T rough_value(const T* p, const Prepared& g) const {
     if (g.scale == 0.0) return T(0.0);
+    return rough_value(p, g, hapke::rough_cosines(p[parameter_count_ - 1], g.rough));
+  }
+
+  // The same from the effective cosines and S/mu0 of the geometry.
+  template <typename T>
+  T rough_value(const T* p, const Prepared& g, const hapke::RoughCosines<T>& c) const {
     const T& w = p[kW];
-    const hapke::RoughCosines<T> c = hapke::rough_cosines(p[parameter_count_ - 1], g.rough);
     const T b = opposition(p[kB0], p[kH], g.tan_half_g);
     const T phase = phase_function(p, g.cos_g);
     const T multiple = multiple_scattering(p, c.mu0e, c.mue, h_function_at(c.mu0e, w), h_function_at(c.mue, w));
@@ -529,8 +534,48 @@ struct Hapke {
  private:
   // evaluate_shared for roughness = hapke1984: the effective cosines depend on theta_bar, so H is not
   // shared between geometries; values and gradient by ceres::Jet (the automatic derivative).
-  void evaluate_with_jets(const Prepared* g, std::size_t n, const double* p, double* values, double* jacobian) const;
+  void evaluate_with_jets(const SharedTerms& s, const Prepared* g, std::size_t n, const double* p, double* values,
+                          double* jacobian) const;
 
+ public:
+  // Values at the geometries for one parameter set q (double, or Jets for the gradient), each passed to
+  // store(k, value): operator() itself, except that at theta_bar > 0 the terms of theta_bar alone
+  // (hapke::rough_slope) are computed once and those of each zenith (hapke::rough_zenith) once per
+  // distinct zenith of the batch (s.cosines; a geometry whose sine differs in the last bit from the
+  // first one's at that cosine gets its own, so the values are operator()'s bit for bit).
+  template <typename T, typename Store>
+  void evaluate_rough(const SharedTerms& s, const Prepared* g, std::size_t n, const T* q, Store&& store) const {
+    if (!roughness_ || scalar_value(q[parameter_count_ - 1]) == 0.0) {
+      for (std::size_t k = 0; k < n; ++k) store(k, (*this)(q, g[k]));
+      return;
+    }
+    const hapke::RoughSlope<T> slope = hapke::rough_slope(q[parameter_count_ - 1]);
+    struct Cached {
+      double sin = -1.0;  // the sine the terms were computed for; -1: none yet
+      hapke::RoughZenith<T> terms;
+    };
+    std::vector<Cached> cache(s.cosines.size());
+    auto zenith = [&](std::uint32_t c, double cos_x, double sin_x, double cot_x) {
+      Cached& e = cache[c];
+      if (e.sin == sin_x) return e.terms;
+      const hapke::RoughZenith<T> terms = hapke::rough_zenith(slope, cos_x, sin_x, cot_x);
+      if (e.sin < 0.0) e = {sin_x, terms};
+      return terms;
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+      const Prepared& q_k = g[k];
+      if (q_k.scale == 0.0) {
+        store(k, T(0.0));
+        continue;
+      }
+      const hapke::RoughnessGeometry& r = q_k.rough;
+      const hapke::RoughZenith<T> zi = zenith(s.index_i[k], r.cos_i, r.sin_i, r.cot_i);
+      const hapke::RoughZenith<T> ze = zenith(s.index_r[k], r.cos_e, r.sin_e, r.cot_e);
+      store(k, rough_value(q, q_k, hapke::rough_cosines(slope, zi, ze, r)));
+    }
+  }
+
+ private:
   Phase phase_;
   HFunction h_function_;
   int legendre_terms_;

@@ -26,7 +26,8 @@ double hapke_h1(double x, double w) {
 }
 
 double imsa_isotropic_brdf(double w, double mu0, double mu) {
-  if (mu0 + mu <= 0.0) return 0.0;
+  // Both directions grazing: 1/(mu0 + mu) diverges; 0 there, as the "hapke" model declares.
+  if (mu0 <= kGrazingCosine && mu <= kGrazingCosine) return 0.0;
   return w / (4.0 * kPi) * hapke_h1(mu0, w) * hapke_h1(mu, w) / (mu0 + mu);
 }
 

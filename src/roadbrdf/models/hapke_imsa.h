@@ -33,7 +33,9 @@ inline constexpr int kQuadraturePhi = 24;  // midpoints in dphi on [0, pi]
 // H1(x, w) (Hapke 1981).
 double hapke_h1(double x, double w);
 
-// IMSA BRDF [sr^-1] with isotropic single scattering (p = 1): (w / 4pi) H1(mu0) H1(mu) / (mu0 + mu).
+// IMSA BRDF [sr^-1] with isotropic single scattering (p = 1): (w / 4pi) H1(mu0) H1(mu) / (mu0 + mu);
+// 0 where both directions are grazing (cosines at most kGrazingCosine, core/geometry.h), where it
+// diverges like 1/(mu0 + mu). With one grazing direction it is its finite limit.
 double imsa_isotropic_brdf(double w, double mu0, double mu);
 
 // The fixed quadrature: geometries (phi_i = 0) and weights with A_ws = sum weight_n f(geometry_n).

@@ -103,35 +103,64 @@ struct RoughCosines {
   T shadow_over_mu0;  // S/mu0 (finite at mu0 = 0)
 };
 
-// The effective cosines and S/mu0 at theta_bar > 0 (radians; theta_bar = 0 is the smooth model,
-// which the caller evaluates directly).
+// The terms that depend on theta_bar alone (one parameter set): tan, cot and chi.
 template <typename T>
-RoughCosines<T> rough_cosines(const T& theta_bar, const RoughnessGeometry& g) {
+struct RoughSlope {
+  T tan_t, cot_t, chi;
+};
+template <typename T>
+RoughSlope<T> rough_slope(const T& theta_bar) {
   using std::sqrt;
   using std::tan;
-  const T tan_t = tan(theta_bar);
-  const T cot_t = 1.0 / tan_t;
-  const T chi = 1.0 / sqrt(1.0 + kPi * tan_t * tan_t);
-  const T e1_i = roughness_e1(cot_t, g.cot_i), e1_e = roughness_e1(cot_t, g.cot_e);
-  const T e2_i = roughness_e2(cot_t, g.cot_i), e2_e = roughness_e2(cot_t, g.cot_e);
-  const T eta_i = chi * (g.cos_i + g.sin_i * tan_t * e2_i / (2.0 - e1_i));
-  const T eta_e = chi * (g.cos_e + g.sin_e * tan_t * e2_e / (2.0 - e1_e));
+  RoughSlope<T> r{tan(theta_bar), T(0.0), T(0.0)};
+  r.cot_t = 1.0 / r.tan_t;
+  r.chi = 1.0 / sqrt(1.0 + kPi * r.tan_t * r.tan_t);
+  return r;
+}
+
+// The terms of one zenith angle x at one theta_bar: E1(x), E2(x) and eta(x). A grid has few distinct
+// zeniths, so a batch computes them once per zenith and parameter set (Hapke::evaluate_rough).
+template <typename T>
+struct RoughZenith {
+  T e1, e2, eta;
+};
+template <typename T>
+RoughZenith<T> rough_zenith(const RoughSlope<T>& s, double cos_x, double sin_x, double cot_x) {
+  RoughZenith<T> z{roughness_e1(s.cot_t, cot_x), roughness_e2(s.cot_t, cot_x), T(0.0)};
+  z.eta = s.chi * (cos_x + sin_x * s.tan_t * z.e2 / (2.0 - z.e1));
+  return z;
+}
+
+// The effective cosines and S/mu0 from those terms (i: incidence, e: emergence).
+template <typename T>
+RoughCosines<T> rough_cosines(const RoughSlope<T>& s, const RoughZenith<T>& i, const RoughZenith<T>& e,
+                              const RoughnessGeometry& g) {
+  const T& tan_t = s.tan_t;
+  const T& chi = s.chi;
   const double psi_fraction = g.psi * kInvPi;
   RoughCosines<T> r;
   T last;  // 1 - f(psi) + f(psi) chi cos(x)/eta(x), x the steeper direction
   if (g.incidence_steeper) {
-    const T denominator = 2.0 - e1_e - psi_fraction * e1_i;
-    r.mu0e = chi * (g.cos_i + g.sin_i * tan_t * (g.cos_psi * e2_e + g.sin2_half_psi * e2_i) / denominator);
-    r.mue = chi * (g.cos_e + g.sin_e * tan_t * (e2_e - g.sin2_half_psi * e2_i) / denominator);
-    last = 1.0 - g.f_psi + g.f_psi * chi * g.cos_i / eta_i;
+    const T denominator = 2.0 - e.e1 - psi_fraction * i.e1;
+    r.mu0e = chi * (g.cos_i + g.sin_i * tan_t * (g.cos_psi * e.e2 + g.sin2_half_psi * i.e2) / denominator);
+    r.mue = chi * (g.cos_e + g.sin_e * tan_t * (e.e2 - g.sin2_half_psi * i.e2) / denominator);
+    last = 1.0 - g.f_psi + g.f_psi * chi * g.cos_i / i.eta;
   } else {
-    const T denominator = 2.0 - e1_i - psi_fraction * e1_e;
-    r.mu0e = chi * (g.cos_i + g.sin_i * tan_t * (e2_i - g.sin2_half_psi * e2_e) / denominator);
-    r.mue = chi * (g.cos_e + g.sin_e * tan_t * (g.cos_psi * e2_i + g.sin2_half_psi * e2_e) / denominator);
-    last = 1.0 - g.f_psi + g.f_psi * chi * g.cos_e / eta_e;
+    const T denominator = 2.0 - i.e1 - psi_fraction * e.e1;
+    r.mu0e = chi * (g.cos_i + g.sin_i * tan_t * (i.e2 - g.sin2_half_psi * e.e2) / denominator);
+    r.mue = chi * (g.cos_e + g.sin_e * tan_t * (g.cos_psi * i.e2 + g.sin2_half_psi * e.e2) / denominator);
+    last = 1.0 - g.f_psi + g.f_psi * chi * g.cos_e / e.eta;
   }
-  r.shadow_over_mu0 = (r.mue / eta_e) * chi / (eta_i * last);
+  r.shadow_over_mu0 = (r.mue / e.eta) * chi / (i.eta * last);
   return r;
+}
+
+// The effective cosines and S/mu0 at theta_bar > 0 (radians; theta_bar = 0 is the smooth model,
+// which the caller evaluates directly).
+template <typename T>
+RoughCosines<T> rough_cosines(const T& theta_bar, const RoughnessGeometry& g) {
+  const RoughSlope<T> s = rough_slope(theta_bar);
+  return rough_cosines(s, rough_zenith(s, g.cos_i, g.sin_i, g.cot_i), rough_zenith(s, g.cos_e, g.sin_e, g.cot_e), g);
 }
 
 }  // namespace roadbrdf::hapke

@@ -55,6 +55,25 @@ ModelDescription MixtureModel::make_description(MixtureKind kind,
     d.has_delta = d.has_delta || c.has_delta;
     combine_isotropy(d, c, names[k]);
   }
+  // Grazing directions: the mixing adds no divergence (the shadowed kind's S = exp(-s (tan theta_i +
+  // tan theta_r)) tends to 0, the hapke kind's multiple-scattering correction has a finite limit,
+  // MultipleScatteringWeights), so the mixture's limit is that of its end-members' values, unless one of
+  // them diverges, where the mixture (positive weights) diverges too: the value there is 0, declared as
+  // the end-members declare it (grazing_zero_at).
+  // Nested models: each end-member's model alone, at its weight 1 and the others 0 (the hapke kind's
+  // w_mix is then w_k and its correction vanishes; the shadowed kind still shades a matrix end-member by
+  // S, so there also shadowing = 0 unless no end-member is coarse, which the description cannot know).
+  for (std::size_t k = 0; k < K; ++k) {
+    const ModelDescription& c = components[k]->description();
+    if (!c.grazing_zero.empty()) {
+      d.grazing_zero += (d.grazing_zero.empty() ? "0 where an end-member's value is its declared 0, " : "; ") +
+                        names[k] + ": " + c.grazing_zero;
+    }
+    std::string values = "weight." + names[k] + " = 1";
+    if (K > 1) values += ", the other weights 0";
+    if (kind == MixtureKind::kShadowed) values += ", shadowing = 0 (or " + names[k] + " coarse)";
+    d.reduces_to.emplace_back(c.name, values);
+  }
   d.reciprocal = reciprocal;
   d.non_negative = non_negative;
   d.energy_conserving = false;  // weights are free (fitted mixtures need not sum to one)
@@ -78,6 +97,34 @@ MixtureModel::MixtureModel(MixtureKind kind, std::vector<std::shared_ptr<const M
     max_component_parameters_ = std::max(max_component_parameters_, components_[k]->parameter_count());
   }
 }
+
+namespace {
+
+// The multiple-scattering bracket of the hapke kind without its cancellation. With H1(x) = 1 + x h(x),
+// h(x) = 2 (1 - gamma) / (1 + 2 x gamma) (hapke_imsa.h), and w_mix = sum_k c_k w_k,
+//   [w_mix H(mu0) H(mu) - sum_k c_k w_k H_k(mu0) H_k(mu)] / (mu0 + mu) = T(w_mix) - sum_k c_k T(w_k),
+//   T(w) = w [a h(mu0) + b h(mu) + mu0 mu / (mu0 + mu) h(mu0) h(mu)],  a = mu0 / (mu0 + mu), b = 1 - a,
+// since the constant terms w_mix - sum_k c_k w_k cancel exactly. Evaluated as written, the bracket is a
+// difference of O(w) numbers divided by mu0 + mu, which near both horizons (mu0 + mu ~ 1e-16 at 90 deg)
+// turns rounding into values of the order of the BRDF; T is bounded (a, b in [0, 1]) and continuous. At
+// mu0 = mu = 0 its limit, 2 w (1 - gamma), does not depend on the direction of approach (h(0) = 2 (1 -
+// gamma) whatever a and b): the mixture's correction has a finite limit at every grazing geometry.
+struct MultipleScatteringWeights {
+  explicit MultipleScatteringWeights(const Geometry& g) : mu0(g.cos_theta_i()), mu(g.cos_theta_r()) {
+    const double sum = mu0 + mu;
+    a = sum > 0.0 ? mu0 / sum : 0.5;
+    cross = sum > 0.0 ? mu0 * mu / sum : 0.0;
+  }
+  double term(double w) const {
+    const double gamma = std::sqrt(std::max(0.0, 1.0 - w));
+    const double h0 = 2.0 * (1.0 - gamma) / (1.0 + 2.0 * mu0 * gamma);
+    const double h = 2.0 * (1.0 - gamma) / (1.0 + 2.0 * mu * gamma);
+    return w * (a * h0 + (1.0 - a) * h + cross * h0 * h);
+  }
+  double mu0, mu, a, cross;
+};
+
+}  // namespace
 
 double MixtureModel::shadowing_factor(double s, const Geometry& g) {
   if (s <= 0.0) return 1.0;
@@ -103,19 +150,17 @@ double MixtureModel::combine(const double* p, const Geometry& g, const double* f
       double total = 0.0;
       for (std::size_t k = 0; k < K; ++k) total += p[k];
       if (!(total > 0.0)) throw InputError("hapke mixture: the cross-section weights sum to zero");
-      const double mu0 = g.cos_theta_i(), mu = g.cos_theta_r();
+      const MultipleScatteringWeights weights(g);
       double linear = 0.0, w_mix = 0.0, ms_components = 0.0;
       for (std::size_t k = 0; k < K; ++k) {
         const double c = p[k] / total;
         const double w = p[K + k];
         linear += c * f[k];
         w_mix += c * w;
-        ms_components += c * w * hapke_h1(mu0, w) * hapke_h1(mu, w);
+        ms_components += c * weights.term(w);
         if (d_df) d_df[k] = c;
       }
-      const double ms_mix = w_mix * hapke_h1(mu0, w_mix) * hapke_h1(mu, w_mix);
-      const double denominator = 4.0 * kPi * (mu0 + mu);
-      return denominator > 0.0 ? linear + (ms_mix - ms_components) / denominator : linear;
+      return linear + (weights.term(w_mix) - ms_components) / (4.0 * kPi);
     }
     case MixtureKind::kShadowed: {
       double a_matrix = 0.0, a_coarse = 0.0;
@@ -137,6 +182,14 @@ double MixtureModel::combine(const double* p, const Geometry& g, const double* f
   return 0.0;
 }
 
+bool MixtureModel::grazing_zero_at(const Geometry& g, const double* f) const {
+  if (!g.grazing_i() && !g.grazing_r()) return false;
+  for (std::size_t k = 0; k < components_.size(); ++k) {
+    if (f[k] == 0.0 && !components_[k]->description().grazing_zero.empty()) return true;
+  }
+  return false;
+}
+
 double MixtureModel::evaluate(const double* params, const Geometry& g) const {
   const std::size_t K = components_.size();
   double f[64];
@@ -147,6 +200,7 @@ double MixtureModel::evaluate(const double* params, const Geometry& g) const {
     values = big.data();
   }
   for (std::size_t k = 0; k < K; ++k) values[k] = components_[k]->evaluate(params + offsets_[k], g);
+  if (grazing_zero_at(g, values)) return 0.0;
   return combine(params, g, values, nullptr);
 }
 
@@ -159,6 +213,10 @@ double MixtureModel::evaluate_with_gradient(const double* params, const Geometry
     f[k] = components_[k]->evaluate_with_gradient(params + offsets_[k], g, component_gradient.data());
     for (std::size_t q = 0; q < components_[k]->parameter_count(); ++q)
       gradient[offsets_[k] + q] = component_gradient[q];
+  }
+  if (grazing_zero_at(g, f.data())) {
+    std::fill(gradient, gradient + n, 0.0);
+    return 0.0;
   }
   const double value = combine(params, g, f.data(), e.data());
   for (std::size_t k = 0; k < K; ++k) {
@@ -207,7 +265,9 @@ void MixtureModel::evaluate_batch(const Geometry* geometries, std::size_t n_geom
   for (std::size_t n = 0; n < n_geometries; ++n) {
     for (std::size_t s = 0; s < n_sets; ++s) {
       for (std::size_t k = 0; k < K; ++k) f[k] = component_values[k][n * n_sets + s];
-      out[n * n_sets + s] = combine(params + s * n_params, geometries[n], f.data(), nullptr);
+      out[n * n_sets + s] = grazing_zero_at(geometries[n], f.data())
+                                ? 0.0
+                                : combine(params + s * n_params, geometries[n], f.data(), nullptr);
     }
   }
 }

@@ -92,6 +92,13 @@ class MixtureModel final : public Model {
   // Geometry-dependent factor S of the shadowed kind (1 for the other kinds).
   static double shadowing_factor(double s, const Geometry& g);
 
+  // At a grazing geometry (theta_i or theta_r = 90 deg), whether an end-member value f[k] is exactly 0
+  // while that end-member declares a grazing zero (ModelDescription::grazing_zero): the end-member
+  // diverges there (or tends to 0) and the mixture's value is 0, as its description declares (the
+  // conservative reading: where the declaring end-member's 0 is a true limit of 0, the other
+  // end-members' part is dropped too; a fit leaves grazing geometries out, fit_request.h).
+  bool grazing_zero_at(const Geometry& g, const double* f) const;
+
  private:
   static ModelDescription make_description(MixtureKind kind,
                                            const std::vector<std::shared_ptr<const Model>>& components,
