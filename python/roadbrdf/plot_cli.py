@@ -294,7 +294,11 @@ def main(argv=None):
                 inputs.append(("FIT.json" if role == "fit_file" else role.upper(), path))
     from . import _roadbrdf
     _roadbrdf.check_distinct_files(inputs, [("-o", a.output)])
-    _draw(a)
+    # A figure that takes long (an albedo with its uncertainty computed first, say) is not drawn in silence:
+    # a line every 10 s in a log, a bar from 2 s on a terminal.
+    from .heartbeat import Heartbeat
+    with Heartbeat(f"roadbrdf plot {a.kind}"):
+        _draw(a)
     print(a.output)
     return 0
 
