@@ -144,7 +144,7 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     ``installation``: a road-lighting installation file for the lighting section (report_lighting.py),
     ``lighting_class`` its M class; ``average_duplicates``: the duplicate policy of every command (else
     repeated geometries are an error)."""
-    from . import Model, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
+    from . import Model, SpectralModel, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
     from . import albedo as albedo_of, rtable as rtable_of
     models = list(dict.fromkeys(models or DEFAULT_MODELS))
     for m in models:
@@ -209,8 +209,15 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
                              else "ASTM G173 global solar weights, no sky (blue-sky not formed)")
         # From the fit file, as `roadbrdf albedo FIT.json` reads it: the file records the measured directions
         # (the coverage the albedo and r-table report), which a FitResult's in-memory model does not carry.
-        best_model = read_fit(r.fit_all_path, r.best.model)
-        r.fit_models = {r.best.model: best_model}  # each model of the fit file is read once (fit_model)
+        # Every model the figures draw, from one parse of the file (parsing it takes longer than reading a model
+        # out of it); a name the file does not hold is left to fit_model, which reads one model at a time.
+        names = list(dict.fromkeys([r.best.model, *r.models]))
+        try:
+            r.fit_models = {name: SpectralModel(m) for name, m in
+                            zip(names, _roadbrdf.read_fit_file_models(r.fit_all_path, names))}
+        except ValueError:
+            r.fit_models = {r.best.model: read_fit(r.fit_all_path, r.best.model)}
+        best_model = r.fit_models[r.best.model]
         # A section whose quantity the data cannot give (an r-table is weighted by V(lambda), so data outside the
         # visible range have none) is absent with its reason; the other sections are shown.
         r.albedo = r.rtable = None

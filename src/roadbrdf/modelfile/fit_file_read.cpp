@@ -217,12 +217,40 @@ SpectralModel parse_fit_file(const std::string& json_text, const std::string& na
   return parse_fit_file_entry(json_text, name, selection).model;
 }
 
-FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name, const std::string& selection) {
-  const Json document = parse_json_text(json_text, name);
-  const JsonNode root(document, name);
+namespace {
+
+// The fit of a parsed fit file (`root`, checked to be one) that `selection` chooses.
+FitFileEntry entry_of(const JsonNode& root, const std::string& selection);
+
+// A parsed fit file's root, with its format checked.
+JsonNode fit_file_root(const Json& document, const std::string& name) {
+  JsonNode root(document, name);
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
     throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
   }
+  return root;
+}
+
+}  // namespace
+
+FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name, const std::string& selection) {
+  const Json document = parse_json_text(json_text, name);
+  return entry_of(fit_file_root(document, name), selection);
+}
+
+std::vector<SpectralModel> read_fit_file_models(const std::string& path, const std::vector<std::string>& selections) {
+  const std::string name = input_display_name(path);
+  const Json document = parse_json_text(read_text_file(path, fit_file_limits()), name);
+  const JsonNode root = fit_file_root(document, name);
+  std::vector<SpectralModel> models;
+  models.reserve(selections.size());
+  for (const std::string& selection : selections) models.push_back(entry_of(root, selection).model);
+  return models;
+}
+
+namespace {
+
+FitFileEntry entry_of(const JsonNode& root, const std::string& selection) {
   const FitSelector selector = parse_fit_selector(selection);
   const std::string wanted = selector.model.empty() ? root.at("best").string() : selector.model;
   const JsonNode fits = root.at("fits");
@@ -256,5 +284,7 @@ FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::strin
   }
   fits.fail("no fit of model '" + wanted + "' in this file");  // select_fits returned none: not reached
 }
+
+}  // namespace
 
 }  // namespace roadbrdf
