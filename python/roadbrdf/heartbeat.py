@@ -72,6 +72,7 @@ class Heartbeat:
         self.interval, self.delay, self.redraw, self.clock = interval, delay, redraw, clock
         self.start = clock()
         self.shown = False  # a line was written (a heartbeat, or the bar drawn)
+        self.closed = False  # the with block ended: the bar, if any, was ended by a newline
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._thread = None
@@ -88,6 +89,7 @@ class Heartbeat:
         if self._thread is not None:
             self._thread.join()
         with self._lock:
+            self.closed = True
             if not self.shown:
                 return
             if kind is None:
@@ -105,7 +107,7 @@ class Heartbeat:
     def say(self, text: str) -> None:
         """``text`` on its own line; on a terminal the bar, when drawn, is erased first and redrawn below."""
         with self._lock:
-            if self.terminal and self.shown:
+            if self.terminal and self.shown and not self.closed:
                 self._write("\r\x1b[K" + text + "\n")
                 self._draw_bar()
             else:

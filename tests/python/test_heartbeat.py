@@ -55,3 +55,6 @@ def test_a_terminal_gets_a_bar_redrawn_in_place_and_lines_above_it():
     assert "\r\x1b[Kroadbrdf report: fitting ...\n" in text
     assert text.endswith("\rroadbrdf report [########################] 4/4 100%  " + text.rsplit("100%  ", 1)[1])
     assert text.endswith(" s\x1b[K\n")
+    # A line after the end (the report's last one) is a plain line: no bar drawn again below it.
+    beat.say("roadbrdf report: wrote r.html")
+    assert out.getvalue() == text + "roadbrdf report: wrote r.html\n"
