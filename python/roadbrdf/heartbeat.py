@@ -20,7 +20,20 @@ import sys
 import threading
 import time
 
-__all__ = ["Heartbeat", "heartbeat_line", "bar_line", "seconds_text"]
+__all__ = ["Heartbeat", "heartbeat_line", "bar_line", "seconds_text", "say"]
+
+_active = []  # the Heartbeat of the with block running, if any
+
+
+def say(text: str, stream=None) -> None:
+    """``text`` as a line on ``stream`` (standard error), through the running :class:`Heartbeat` when there is
+    one, so that a warning printed while a bar is drawn does not land on the bar's line."""
+    if _active and (stream is None or stream is _active[-1].stream):
+        _active[-1].say(text)
+        return
+    stream = sys.stderr if stream is None else stream
+    stream.write(text + "\n")
+    stream.flush()
 
 
 def seconds_text(s: float) -> str:
@@ -79,12 +92,15 @@ class Heartbeat:
 
     def __enter__(self) -> Heartbeat:
         self.start = self.clock()
+        _active.append(self)
         if self.enabled:
             self._thread = threading.Thread(target=self._run, name="roadbrdf-heartbeat", daemon=True)
             self._thread.start()
         return self
 
     def __exit__(self, kind, value, traceback) -> None:
+        if self in _active:
+            _active.remove(self)
         self._stop.set()
         if self._thread is not None:
             self._thread.join()

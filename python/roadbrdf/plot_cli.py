@@ -304,7 +304,8 @@ def main(argv=None):
 
 
 def _warning(message, category, filename, lineno, file=None, line=None):
-    print(f"roadbrdf: warning: {message}", file=sys.stderr)
+    from .heartbeat import say
+    say(f"roadbrdf: warning: {message}")  # above the progress bar when one is drawn
 
 
 def run(argv=None):

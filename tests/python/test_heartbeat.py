@@ -6,7 +6,7 @@ import io
 import re
 import threading
 
-from roadbrdf.heartbeat import Heartbeat, bar_line, heartbeat_line, seconds_text
+from roadbrdf.heartbeat import Heartbeat, bar_line, heartbeat_line, say, seconds_text
 
 
 def test_lines_are_the_librarys():
@@ -58,3 +58,14 @@ def test_a_terminal_gets_a_bar_redrawn_in_place_and_lines_above_it():
     # A line after the end (the report's last one) is a plain line: no bar drawn again below it.
     beat.say("roadbrdf report: wrote r.html")
     assert out.getvalue() == text + "roadbrdf report: wrote r.html\n"
+
+
+def test_a_warning_said_while_a_bar_is_drawn_goes_above_it():
+    out = io.StringIO()
+    with Heartbeat("roadbrdf plot albedo", stream=out, terminal=True, delay=0.0, redraw=0.01):
+        threading.Event().wait(0.1)
+        say("roadbrdf: warning: mostly extrapolation", stream=out)
+    assert "\r\x1b[Kroadbrdf: warning: mostly extrapolation\n\rroadbrdf plot albedo [" in out.getvalue()
+    plain = io.StringIO()
+    say("no bar", stream=plain)
+    assert plain.getvalue() == "no bar\n"
