@@ -69,14 +69,16 @@ def _assignments(items, what, number):
     return out
 
 
-def _model_argument(text, a):
-    """A model name (with -p/--option) or a fit file (with --fit) as the object the figures take."""
+def _model_argument(text, a, read=True):
+    """A model name (with -p/--option) or a fit file (with --fit) as the object the figures take. ``read``
+    False: a fit file is only checked against -p/--option and returned as its path (the figure reads it, and
+    checks --fit, once: an 8 MB fit file takes a few tenths of a second to parse)."""
     params = _assignments(getattr(a, "parameter", None), "-p", True)
     options = _assignments(getattr(a, "option", None), "--option", False)
     if is_model_file(text):
         if params or options:
             raise ValueError(f"-p/--option cannot be combined with a fit file ('{text}')")
-        return read_fit(text, a.fit), {}
+        return (read_fit(text, a.fit) if read else text), {}
     if a.fit:
         raise ValueError(f"--fit selects a fit of a fit file; '{text}' is a model name")
     return Model(text, options), params
@@ -232,8 +234,7 @@ def _draw(a):
                 raise ValueError(f"-p/--option/--fit cannot be combined with a dataset ('{a.model}')")
             model, params, data = None, {}, a.model
         elif is_model_file(a.model):
-            _model_argument(a.model, a)  # the checks of -p/--option/--fit
-            model, params = a.model, {}
+            model, params = _model_argument(a.model, a, read=False)
         else:
             model, params = _model_argument(a.model, a)
         plot.hemisphere(model, params, a.theta_i, a.wavelength, a.log, data=data, lobe=not a.no_lobe, fit=a.fit,
@@ -254,9 +255,8 @@ def _draw(a):
     elif a.kind == "rtable":
         table = a.table
         if is_model_file(table) or not os.path.exists(table):
-            table, params = _model_argument(table, a)
-            if is_model_file(a.table):
-                table = a.table  # its name names the figure
+            # A fit file is passed by its name, which names the figure.
+            table, params = _model_argument(table, a, read=False)
         else:
             if a.parameter or a.option or a.fit:
                 raise ValueError(f"-p/--option/--fit cannot be combined with an r-table file ('{table}')")
@@ -294,13 +294,18 @@ def main(argv=None):
                 inputs.append(("FIT.json" if role == "fit_file" else role.upper(), path))
     from . import _roadbrdf
     _roadbrdf.check_distinct_files(inputs, [("-o", a.output)])
-    _draw(a)
+    # A figure that takes long (an albedo with its uncertainty computed first, say) is not drawn in silence:
+    # a line every 10 s in a log, a bar from 2 s on a terminal.
+    from .heartbeat import Heartbeat
+    with Heartbeat(f"roadbrdf plot {a.kind}"):
+        _draw(a)
     print(a.output)
     return 0
 
 
 def _warning(message, category, filename, lineno, file=None, line=None):
-    print(f"roadbrdf: warning: {message}", file=sys.stderr)
+    from .heartbeat import say
+    say(f"roadbrdf: warning: {message}")  # above the progress bar when one is drawn
 
 
 def run(argv=None):

@@ -100,22 +100,29 @@ def _figure_incidence(groups, theta_i):
 
 
 class _Steps:
-    """Progress lines on standard error (unless quiet) and the time of each step."""
+    """Progress on standard error (unless quiet): a line as each step starts, the steps done as the library's
+    progress lines (roadbrdf.heartbeat: a bar on a terminal, a line every 10 s in a log), and the time of each
+    step. ``total``: the steps planned; :meth:`close` ends the progress."""
 
-    def __init__(self, quiet: bool):
+    def __init__(self, quiet: bool, total: int = 1):
+        from .heartbeat import Heartbeat
         self.quiet, self.start, self.times = quiet, time.monotonic(), {}
+        self.beat = Heartbeat("roadbrdf report", total, enabled=not quiet).__enter__()
 
     @contextlib.contextmanager
     def step(self, name: str, text: str):
-        if not self.quiet:
-            print(f"roadbrdf report: {text} ...", file=sys.stderr, flush=True)
+        self.say(f"{text} ...")
         t0 = time.monotonic()
         yield
         self.times[name] = time.monotonic() - t0
+        self.beat.advance()
 
     def say(self, text: str):
         if not self.quiet:
-            print(f"roadbrdf report: {text}", file=sys.stderr, flush=True)
+            self.beat.say(f"roadbrdf report: {text}")
+
+    def close(self, failed: bool = False):
+        self.beat.__exit__(RuntimeError if failed else None, None, None)
 
 
 @contextlib.contextmanager
@@ -130,14 +137,14 @@ def _collect(r, key):
 # ---- gathering the results -----------------------------------------------------------------------
 def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, theta_i=None, sun_zenith="0:60:30",
            atmosphere="spectrl2", illuminant="A", multistart=8, fix=None, free_weights=False, folds=5, threads=None,
-           quiet=True, workdir=None, installation=None, lighting_class=None, average_duplicates=False):
+           quiet=True, workdir=None, installation=None, lighting_class=None, average_duplicates=False, _steps=None):
     """Every result of the report (a namespace), computed with the public API; ``workdir`` holds the fit
     files the figures and tables read (a temporary folder when None, removed afterwards). ``threads``: of
     the fit over all wavelengths (None: every core; the fit does not depend on it, bit for bit);
     ``installation``: a road-lighting installation file for the lighting section (report_lighting.py),
     ``lighting_class`` its M class; ``average_duplicates``: the duplicate policy of every command (else
     repeated geometries are an error)."""
-    from . import Model, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
+    from . import Model, SpectralModel, check, fit, mix, models as model_catalogue, params, read_dataset, read_fit
     from . import albedo as albedo_of, rtable as rtable_of
     models = list(dict.fromkeys(models or DEFAULT_MODELS))
     for m in models:
@@ -153,15 +160,22 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
     threads = default_threads() if threads is None else int(threads)
     from . import report_lighting
     report_lighting.check_arguments(installation, lighting_class)
-    steps = _Steps(quiet)
+    # The steps: read, fit-all, fit-groups, albedo, r-table and figures; mix and its r-table with a formulation;
+    # lighting with an installation.
+    steps = _steps or _Steps(quiet, 6 + 2 * (formulation is not None) + (installation is not None))
     r = SimpleNamespace(path=os.fspath(data), models=models, wavelength_asked=float(wavelength),
                         multistart=int(multistart), warnings={}, figures={}, figure_errors={}, folds=int(folds),
                         illuminant=illuminant, steps=steps, mix=None, formulation=None, lighting=None,
                         average_duplicates=bool(average_duplicates))
-    with steps.step("read", f"reading and checking {r.path}"), _collect(r, "read"):
-        r.file = _file_info(r.path)
-        r.dataset = read_dataset(r.path, average_duplicates=r.average_duplicates)
-        r.check = check(r.path, average_duplicates=r.average_duplicates)
+    try:
+        with steps.step("read", f"reading and checking {r.path}"), _collect(r, "read"):
+            r.file = _file_info(r.path)
+            r.dataset = read_dataset(r.path, average_duplicates=r.average_duplicates)
+            r.check = check(r.path, average_duplicates=r.average_duplicates)
+    except BaseException:
+        if _steps is None:
+            steps.close(failed=True)
+        raise
     d = r.dataset
     r.sample = d.metadata.get("sample") or os.path.splitext(r.file["name"])[0]
     r.fixed = {} if free_weights else _composite_weights(models)
@@ -195,8 +209,15 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
                              else "ASTM G173 global solar weights, no sky (blue-sky not formed)")
         # From the fit file, as `roadbrdf albedo FIT.json` reads it: the file records the measured directions
         # (the coverage the albedo and r-table report), which a FitResult's in-memory model does not carry.
-        best_model = read_fit(r.fit_all_path, r.best.model)
-        r.fit_models = {r.best.model: best_model}  # each model of the fit file is read once (fit_model)
+        # Every model the figures draw, from one parse of the file (parsing it takes longer than reading a model
+        # out of it); a name the file does not hold is left to fit_model, which reads one model at a time.
+        names = list(dict.fromkeys([r.best.model, *r.models]))
+        try:
+            r.fit_models = {name: SpectralModel(m) for name, m in
+                            zip(names, _roadbrdf.read_fit_file_models(r.fit_all_path, names))}
+        except ValueError:
+            r.fit_models = {r.best.model: read_fit(r.fit_all_path, r.best.model)}
+        best_model = r.fit_models[r.best.model]
         # A section whose quantity the data cannot give (an r-table is weighted by V(lambda), so data outside the
         # visible range have none) is absent with its reason; the other sections are shown.
         r.albedo = r.rtable = None
@@ -235,6 +256,8 @@ def gather(data, models=DEFAULT_MODELS, formulation=None, wavelength=600.0, thet
             drawing.stop()
         if own:
             own.cleanup()
+        if _steps is None:
+            steps.close(failed=sys.exc_info()[0] is not None)
     return r
 
 
@@ -356,11 +379,17 @@ def write_report(data, output, models=DEFAULT_MODELS, formulation=None, waveleng
     if formulation is not None and os.path.isfile(formulation):  # its component fits are inputs too
         inputs += _roadbrdf.formulation_input_files(os.fspath(formulation))
     _check_output(output, inputs)
-    r = gather(data, models, formulation, wavelength, theta_i, sun_zenith, atmosphere, illuminant, multistart,
-               fix, free_weights, folds, threads, quiet, installation=installation, lighting_class=lighting_class,
-               average_duplicates=average_duplicates)
-    text = render_report(r, command)
-    write_text_atomic(output, text)
+    steps = _Steps(quiet, 6 + 2 * (formulation is not None) + (installation is not None))
+    try:
+        r = gather(data, models, formulation, wavelength, theta_i, sun_zenith, atmosphere, illuminant, multistart,
+                   fix, free_weights, folds, threads, quiet, installation=installation, lighting_class=lighting_class,
+                   average_duplicates=average_duplicates, _steps=steps)
+        text = render_report(r, command)
+        write_text_atomic(output, text)
+    except BaseException:
+        steps.close(failed=True)
+        raise
+    steps.close()
     r.html = text
     total = time.monotonic() - r.steps.start
     r.steps.say(f"wrote {output} ({len(text.encode()) / 1024:.0f} KiB, {total:.1f} s)")

@@ -189,6 +189,7 @@ PYBIND11_MODULE(_roadbrdf, m) {
       .def("evaluate_flat", &evaluate_spectral_flat);
   m.def("read_fit_file", &read_fit_file, py::arg("path"), py::arg("model") = "");
   m.def("parse_fit_file", &parse_fit_file, py::arg("json_text"), py::arg("name"), py::arg("model") = "");
+  m.def("read_fit_file_models", &read_fit_file_models, py::arg("path"), py::arg("models"));
   // The one resolver of a model argument (modelfile/model_source.h): (SpectralModel, kind, entry),
   // kind "fit", "mix" or "model", entry the fit or mixing method chosen or the model's name.
   m.def(

@@ -113,6 +113,35 @@ TEST(GradientIntegral, EqualsCentralDifferencesOfTheValueIntegralsForEveryModel)
   }
 }
 
+TEST(GradientIntegral, AtGrazingSunTheValuesCrossCheckServesTheGradient) {
+  // At 80 deg black_sky() cross-checks its rule with the mirror-polar rule. Where the value passed
+  // (lobes_checked), the gradient without its own check (grazing_check false, as the albedo report
+  // integrates it) must still equal central differences of fully checked value integrals.
+  albedo::QuadratureSettings reference;
+  reference.tolerance = 1e-8;
+  albedo::QuadratureSettings settings;
+  settings.tolerance = 1e-6;
+  settings.grazing_check = false;
+  const double theta_s = 80.0 * kDegree;
+  std::size_t checked = 0;
+  for (const std::string& name : model_names()) {
+    SCOPED_TRACE(name);
+    const std::shared_ptr<const Model> model = make_model(name);
+    const ModelDescription& d = model->description();
+    const Case c = case_of(d);
+    const double phi_s = d.isotropic ? 0.0 : 0.4;
+    if (!albedo::black_sky(*model, c.params.data(), 2, theta_s, phi_s).lobes_checked) continue;
+    ++checked;
+    const albedo::GradientIntegral g =
+        albedo::black_sky_gradient(*model, c.params.data(), 2, c.scale, theta_s, phi_s, false, settings);
+    const std::vector<double> reference_g = central_differences(d, c.params, 2, [&](const std::vector<double>& p) {
+      return albedo::black_sky(*model, p.data(), 2, theta_s, phi_s, reference).value;
+    });
+    expect_agreement("black-sky 80", g.gradient, reference_g, c.scale, d.parameters.size());
+  }
+  EXPECT_GT(checked, 0u);
+}
+
 TEST(GradientIntegral, ComponentsWithoutScaleAreNotIntegrated) {
   // Lambert: A = albedo for every sky, so dA/dalbedo = 1; a set with scale 0 reports 0.
   const std::shared_ptr<const Model> model = make_model("lambert");

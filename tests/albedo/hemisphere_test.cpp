@@ -329,5 +329,19 @@ TEST(Albedo, KelemenBlackSkyIsOneAtGrazingSunWithWhiteMatte) {
   }
 }
 
+TEST(Albedo, GrazingCrossCheckSaysWhetherTheFirstRuleWasConfirmed) {
+  // Below 70 deg no cross-check is made; at 80 deg a Lambertian surface (value 0.5, nothing to miss)
+  // passes it; a check turned off is not reported as passed.
+  auto m = make_model("lambert");
+  const std::vector<double> p = params_of(*m, {{"albedo", 0.5}});
+  EXPECT_FALSE(black_sky(*m, p.data(), 1, 30.0 * kDegree).lobes_checked);
+  const SpectralIntegral grazing = black_sky(*m, p.data(), 1, 80.0 * kDegree);
+  EXPECT_TRUE(grazing.lobes_checked);
+  EXPECT_NEAR(grazing.value[0], 0.5, 1e-5);
+  QuadratureSettings unchecked;
+  unchecked.grazing_check = false;
+  EXPECT_FALSE(black_sky(*m, p.data(), 1, 80.0 * kDegree, 0.0, unchecked).lobes_checked);
+}
+
 }  // namespace
 }  // namespace roadbrdf::albedo

@@ -1,6 +1,7 @@
 // Fit files: written by write_fit_file / `roadbrdf fit`, read back by read_fit_file (models/spectral_model.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -8,9 +9,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/fitting/fit.h"
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "support/paths.h"
@@ -69,6 +72,20 @@ TEST(FitFile, WrittenFileReadsBackTheSameParameters) {
         EXPECT_EQ(sm.parameter_table()[w * p + k], fits[i].wavelengths[w].parameters[k]);
     }
   }
+  // Several fits from one parse of the file: the parameters written, in the order asked ("" the best).
+  const std::vector<SpectralModel> models = read_fit_file_models(path.string(), {"lambert", "oren-nayar", ""});
+  ASSERT_EQ(models.size(), 3u);
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    const FitResult& f = fits[std::min<std::size_t>(i, 1)];
+    EXPECT_EQ(models[i].model().name(), f.model);
+    const std::size_t p = f.parameter_names.size();
+    ASSERT_EQ(models[i].parameter_table().size(), data.wavelengths.size() * p);
+    for (std::size_t w = 0; w < data.wavelengths.size(); ++w) {
+      for (std::size_t k = 0; k < p; ++k)
+        EXPECT_EQ(models[i].parameter_table()[w * p + k], f.wavelengths[w].parameters[k]);
+    }
+  }
+  EXPECT_THROW(read_fit_file_models(path.string(), {"lambert", "hapke"}), FileError);
   // Oren-Nayar data: the best (lowest BIC) is oren-nayar, and "best" names it.
   EXPECT_EQ(read_fit_file(path.string()).model().name(), "oren-nayar");
   std::ifstream in(path);

@@ -19,6 +19,14 @@
 // The integrator's geometries do not depend on the parameters, and each is prepared once for all
 // sets (black_sky_integrator.h evaluate_sets); the value integrals take the same path.
 //
+// At grazing sun zeniths black_sky() cross-checks the (mu, dphi) rule with the mirror-polar rule, in
+// case a narrow lobe falls between the first nodes (hemisphere.cpp). A lobe's parameter derivatives
+// are concentrated where the lobe is: where the value integral's check found the (mu, dphi) rule
+// resolving every set (SpectralIntegral::lobes_checked), the gradient's nodes start from the same
+// first nodes and see the lobe's derivatives there, so the caller may turn the gradient's check off
+// (QuadratureSettings::grazing_check): the mirror-polar rule, graded towards the mirror direction,
+// is the costlier of the two there.
+//
 // Why not central differences of whole integrals: a difference quotient with
 // step h = 0.01 u(p) needs the two integrals to ~1e-11 for the quotient to be accurate, 2 P such
 // integrals per value; the integrated gradient needs one pass at the albedo's own tolerance.

@@ -69,7 +69,7 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
   first.max_geometries = std::max<std::size_t>(1, settings.max_geometries / 4);
   BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, isotropic);
   SpectralIntegral a = integrator.run(first);
-  if (a.converged && theta_s < kGrazingCheck) return a;
+  if (a.converged && (theta_s < kGrazingCheck || !settings.grazing_check)) return a;
   if (a.converged) {
     // Towards grazing incidence a specular lobe of width alpha is only ~2 alpha cos(theta_s) wide in
     // azimuth: the (mu, dphi) rule's first nodes can all miss it, and then every error estimate is
@@ -82,9 +82,11 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
     const bool non_negative = model.description().non_negative;
     SpectralIntegral out = a;
     out.geometries = a.geometries + b.geometries;
+    out.lobes_checked = b.converged;
     for (std::size_t s = 0; s < n_sets; ++s) {
       const double gap = std::fabs(a.value[s] - b.value[s]);
       if (gap <= a.error[s] + b.error[s] + settings.tolerance) continue;
+      out.lobes_checked = false;
       const bool take_b = b.converged && (non_negative ? b.value[s] > a.value[s] : b.error[s] < a.error[s]);
       if (take_b) {
         out.value[s] = b.value[s];
@@ -159,13 +161,15 @@ SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params
       worst = std::max(worst, result.error[s]);
     }
     std::size_t geometries = 0;
-    bool converged = true;
+    bool converged = true, lobes_checked = true;
     for (const auto& x : samples) {
       geometries += x.geometries;
       converged = converged && x.converged;
+      lobes_checked = lobes_checked && x.lobes_checked;
     }
     result.geometries = geometries;
     result.converged = converged;
+    result.lobes_checked = lobes_checked;
     if (worst <= settings.tolerance) break;
     if (n >= 256 || geometries >= settings.max_geometries) {
       result.converged = false;

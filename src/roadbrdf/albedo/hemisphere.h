@@ -52,6 +52,11 @@ namespace roadbrdf::albedo {
 struct QuadratureSettings {
   double tolerance = 1e-5;               // absolute, on every parameter set (wavelength)
   std::size_t max_geometries = 400'000;  // safety stop per black-sky integral (each geometry covers all sets)
+  // black_sky() from a sun zenith of 70 deg: cross-check the (mu, dphi) rule with the mirror-polar rule
+  // (a narrow lobe may fall between its first nodes). False only where the caller knows the (mu, dphi)
+  // rule resolves the integrand: the gradient of a black-sky integral whose value passed the check
+  // (gradient_integrals.h).
+  bool grazing_check = true;
 };
 
 // One integral for n parameter sets (e.g. one per wavelength).
@@ -60,6 +65,10 @@ struct SpectralIntegral {
   std::vector<double> error;   // error estimate per parameter set (absolute)
   bool converged = true;       // false if max_geometries stopped the refinement first
   std::size_t geometries = 0;  // distinct BRDF geometries evaluated (each for all parameter sets)
+  // black_sky() at grazing incidence (QuadratureSettings::grazing_check): the mirror-polar rule ran and
+  // agreed with the converged (mu, dphi) rule at every set, so no lobe was missed. False otherwise
+  // (no check made, a disagreement, the fallback, or another source of the integral).
+  bool lobes_checked = false;
   double max_error() const;
 };
 

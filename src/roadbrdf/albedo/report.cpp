@@ -118,7 +118,8 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
                                  sets.wavelengths.front(), sets.wavelengths.back(), 100.0 * (1.0 - broadband.outside)));
   }
   const nlohmann::json luminous = detail::luminous_albedos(sets, a, albedos, notes);
-  const nlohmann::json uncertainty = detail::albedo_uncertainty(sm, sets, a, azimuth, sky, broadband, progress, notes);
+  const nlohmann::json uncertainty =
+      detail::albedo_uncertainty(sm, sets, a, azimuth, albedos, sky, broadband, progress, notes);
   progress.finish();
 
   // Non-physical values, and how much of the result the model extrapolates beyond the fit's data

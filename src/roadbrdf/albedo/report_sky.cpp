@@ -79,6 +79,7 @@ Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& set
     SpectralIntegral r = integrals.black_sky(model, sets.params.data(), sets.n_sets, zenith * kDegree, azimuth.phi_s,
                                              azimuth.mean, settings);
     h.converged = h.converged && r.converged;
+    h.black_lobes_checked.push_back(r.lobes_checked);
     h.black.push_back(std::move(r.value));
     h.black_error.push_back(std::move(r.error));
     progress.add();

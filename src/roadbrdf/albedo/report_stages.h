@@ -37,6 +37,7 @@ SpectralIntegral black_sky_at(const Model& model, const std::vector<double>& par
 // Black-sky per sun zenith and white-sky, each for every parameter set.
 struct Hemispherical {
   std::vector<std::vector<double>> black, black_error;  // [zenith][set]
+  std::vector<bool> black_lobes_checked;                // [zenith]: SpectralIntegral::lobes_checked
   SpectralIntegral white;
   bool converged = true;
 };
@@ -76,9 +77,11 @@ nlohmann::json luminous_albedos(const ParameterSets& sets, const AlbedoRequest& 
                                 std::vector<std::string>& notes);
 
 // Standard uncertainties from the fit's parameter covariance (albedo/uncertainty.h), JSON "uncertainty";
-// null (with a note) where they are not defined.
+// null (with a note) where they are not defined. `albedos` says at which zeniths the values passed the
+// grazing cross-check (their gradients then skip it, gradient_integrals.h).
 nlohmann::json albedo_uncertainty(const SpectralModel& model, const ParameterSets& sets, const AlbedoRequest& request,
-                                  const SunAzimuth& azimuth, const Sky& sky, const Broadband& broadband,
-                                  ProgressCounter& progress, std::vector<std::string>& notes);
+                                  const SunAzimuth& azimuth, const Hemispherical& albedos, const Sky& sky,
+                                  const Broadband& broadband, ProgressCounter& progress,
+                                  std::vector<std::string>& notes);
 
 }  // namespace roadbrdf::albedo::detail

@@ -48,8 +48,9 @@ std::vector<double> blue_sky_gradient(const std::vector<double>& g_black, const 
 }  // namespace
 
 nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& sets, const AlbedoRequest& a,
-                                  const SunAzimuth& azimuth, const Sky& sky, const Broadband& broadband,
-                                  ProgressCounter& progress, std::vector<std::string>& notes) {
+                                  const SunAzimuth& azimuth, const Hemispherical& albedos, const Sky& sky,
+                                  const Broadband& broadband, ProgressCounter& progress,
+                                  std::vector<std::string>& notes) {
   const std::vector<double>& covariance = sm.parameter_covariance();
   if (covariance.empty()) return nullptr;
   if (!a.uncertainty) {
@@ -89,9 +90,13 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
   nlohmann::json bb_black = nlohmann::json::array(), bb_blue = nlohmann::json::array();
   for (std::size_t z = 0; z < zeniths.size(); ++z) {
     const double theta_s = zeniths[z] * kDegree;
+    // The value's grazing cross-check found no lobe between the (mu, dphi) rule's nodes: its
+    // derivatives have none either (gradient_integrals.h), so theirs is not repeated.
+    QuadratureSettings settings = plan.settings;
+    settings.grazing_check = !albedos.black_lobes_checked[z];
     const std::vector<double> g_black =
         plan.with_nans(black_sky_gradient(model, sets.params.data(), n_sets, plan.scale, theta_s, azimuth.phi_s,
-                                          azimuth.mean, plan.settings)
+                                          azimuth.mean, settings)
                            .gradient);
     u_black.push_back(propagated(g_black));
     if (with_broadband) bb_black.push_back(broadband_of({&g_black}, {&broadband.black_means[z].first}));

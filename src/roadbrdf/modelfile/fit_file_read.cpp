@@ -219,12 +219,19 @@ SpectralModel parse_fit_file(const std::string& json_text, const std::string& na
   return parse_fit_file_entry(json_text, name, selection).model;
 }
 
-FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name, const std::string& selection) {
-  const Json document = parse_json_text(json_text, name);
-  const JsonNode root(document, name);
+namespace {
+
+// A parsed fit file's root, with its format checked.
+JsonNode fit_file_root(const Json& document, const std::string& name) {
+  JsonNode root(document, name);
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
     throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
   }
+  return root;
+}
+
+// The fit of a parsed fit file (`root`, checked to be one) that `selection` chooses.
+FitFileEntry entry_of(const JsonNode& root, const std::string& selection) {
   const JsonNode fits = root.at("fits");
   const JsonNode fit = fits[select_fit(root, selection)];
   const std::string wanted = fit.at("model").string();
@@ -252,6 +259,23 @@ FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::strin
   if (const auto shared = fit.find("shared")) spectral.set_shared_parameters(shared->strings());
   const std::string group = group_label(fit_group(fit));
   return {std::move(spectral), group.empty() ? wanted : wanted + "," + group};
+}
+
+}  // namespace
+
+FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name, const std::string& selection) {
+  const Json document = parse_json_text(json_text, name);
+  return entry_of(fit_file_root(document, name), selection);
+}
+
+std::vector<SpectralModel> read_fit_file_models(const std::string& path, const std::vector<std::string>& selections) {
+  const std::string name = input_display_name(path);
+  const Json document = parse_json_text(read_text_file(path, fit_file_limits()), name);
+  const JsonNode root = fit_file_root(document, name);
+  std::vector<SpectralModel> models;
+  models.reserve(selections.size());
+  for (const std::string& selection : selections) models.push_back(entry_of(root, selection).model);
+  return models;
 }
 
 std::size_t select_fit(const JsonNode& root, const std::string& selection) {

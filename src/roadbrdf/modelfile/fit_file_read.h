@@ -43,6 +43,10 @@ struct FitFileEntry {
 // InputError (FieldError "fit" for a selection matching no fit or several).
 SpectralModel read_fit_file(const std::string& path, const std::string& selection = "");
 FitFileEntry read_fit_file_entry(const std::string& path, const std::string& selection = "");
+// Several fits of one fit file, one per selection (as read_fit_file selects), from one parse of the
+// file: a fit file of several models at a few thousand wavelengths takes longer to parse than to read
+// a model out of, so a caller that wants several models of it asks for them at once.
+std::vector<SpectralModel> read_fit_file_models(const std::string& path, const std::vector<std::string>& selections);
 // What a fit file (or a mix file, read as a model the same way) may be: at most 256 MiB (a fit of a
 // few models at a few thousand wavelengths with covariances takes a few MB).
 InputLimits fit_file_limits();
