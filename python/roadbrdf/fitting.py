@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Sequence, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import InputError
+from .core import InputError, as_float, as_text
 from .io import Dataset
 from .model import SpectralModel
 
@@ -193,19 +193,14 @@ class FitResult:
         return list(self._summary.warnings(where))
 
     def model_fit(self, model: str, **group: float) -> ModelFit:
-        """The fit of ``model``; in a grouped result also name its group, e.g. ``model_fit("lambert", theta_i=40)``."""
-        names = [f.model for f in self.fits]
-        if model not in names:
-            raise InputError(f"no fit of model '{model}' in this result{_roadbrdf.did_you_mean(model, names)}")
-        matching = [f for f in self.fits if f.model == model and
-                    all(k in f.group and abs(f.group[k] - float(v)) <= 1e-6 for k, v in group.items())]
-        if len(matching) == 1:
-            return matching[0]
-        labels = " ".join(",".join(f"{k}={v:g}" for k, v in f.group.items()) for f in self.fits if f.model == model)
-        if not matching:
-            raise InputError(f"fit: no fit of {model} for group {group}; its groups: {labels}")
-        raise InputError(f"fit: {len(matching)} fits of {model}, one per group ({labels}): name one, "
-                         f"e.g. model_fit({model!r}, {', '.join(f'{k}={v:g}' for k, v in matching[0].group.items())})")
+        """The fit of ``model``; in a grouped result also name its group, e.g. ``model_fit("lambert", theta_i=40)``
+        (or as ``--fit`` names it, ``model_fit("lambert,theta_i=40")``). The fit is chosen by the rule, and
+        refused with the messages, of the fit file's readers."""
+        model = as_text(model, "model")
+        if not model.strip():
+            raise InputError("model: expected a model name")
+        items = [model] + [f"{as_text(k, 'group')}={as_float(v, k)!r}" for k, v in group.items()]
+        return self.fits[self._summary.select(",".join(items))]
 
     def spectral_model(self, model: str | None = None) -> SpectralModel:
         """The best fit (or that of ``model``) as a :class:`SpectralModel`."""

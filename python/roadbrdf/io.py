@@ -146,10 +146,11 @@ def read_dataset(path: Union[PathLike, Sequence[PathLike]], average_duplicates: 
     lists them). ``path`` may be a list of files: runs of one sample combined into one dataset (the
     same wavelengths; a geometry in several runs follows ``average_duplicates``).
     """
-    return Dataset._from_dict(_roadbrdf.read_dataset(_paths(path), as_bool(average_duplicates, "average_duplicates"),
-                                                     as_bool(allow_missing, "allow_missing"), str(delimiter),
-                                                     str(decimal), as_text(quantity, "quantity"),
-                                                     _items(columns, "columns"), _items(set, "set")))
+    return Dataset._from_dict(_roadbrdf.read_dataset(
+        _paths(path), as_bool(allow_missing, "allow_missing"),
+        average_duplicates=as_bool(average_duplicates, "average_duplicates"), delimiter=str(delimiter),
+        decimal=str(decimal), quantity=as_text(quantity, "quantity"), columns=_items(columns, "columns"),
+        set=_items(set, "set")))
 
 
 def write_dataset(dataset: Dataset, path: PathLike, format: str = "wide") -> None:
@@ -193,6 +194,7 @@ def check(path: Union[PathLike, Dataset], average_duplicates: bool = False, deli
             np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths), np.ascontiguousarray(d.brdf),
             None if d.sigma is None else np.ascontiguousarray(d.sigma), {str(k): str(v) for k, v in d.metadata.items()},
             d.convention)
-    return _roadbrdf.check_dataset(as_text(path, "path"), as_bool(average_duplicates, "average_duplicates"),
-                                   str(delimiter), str(decimal), as_text(quantity, "quantity"),
-                                   _items(columns, "columns"), _items(set, "set"))
+    return _roadbrdf.check_dataset(as_text(path, "path"),
+                                   average_duplicates=as_bool(average_duplicates, "average_duplicates"),
+                                   delimiter=str(delimiter), decimal=str(decimal), quantity=as_text(quantity, "quantity"),
+                                   columns=_items(columns, "columns"), set=_items(set, "set"))

@@ -176,7 +176,7 @@ def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 
         as_text(formulation_path, "formulation_path"), as_float(size_mm, "size_mm"), as_float(cell_mm, "cell_mm"),
         as_int(seed, "seed"), None if matrix_level is None else as_float(matrix_level, "matrix_level"),
         None if target_mpd is None else as_float(target_mpd, "target_mpd"),
-        None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"))
+        None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"), None)
     for note in report["notes"]:
         warn_at_caller(note)
     s = Surface(handle, dict(report))

@@ -4,7 +4,6 @@
 #include <pybind11/stl.h>
 
 #include <memory>
-#include <optional>
 
 #include "binding.h"
 #include "request_kwargs.h"
@@ -76,30 +75,26 @@ void bind_albedo(py::module_& m) {
           return report(SpectralModel(std::const_pointer_cast<const Model>(model), parameters), request);
         });
   // The same report for method `index` of a mix run, its end-members' integrals shared through
-  // `cache` (mixing/end_member_cache.h; the design studies' fast path).
-  m.def("mixture_albedo",
-        [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache,
-           const std::vector<double>& sun_zenith, std::optional<double> sun_azimuth, bool azimuth_mean,
-           const std::string& diffuse_fraction, const std::string& atmosphere, const std::string& spectrum,
-           const std::vector<double>& wavelengths, const std::string& illuminant, double tolerance) {
-          albedo::AlbedoRequest request;
-          request.sun_zenith_deg = sun_zenith;
-          request.sun_azimuth_deg = sun_azimuth;
-          request.azimuth_mean = azimuth_mean;
-          request.diffuse_fraction = diffuse_fraction;
-          request.atmosphere = atmosphere;
-          request.spectrum = spectrum;
-          request.wavelengths = wavelengths;
-          request.illuminant = illuminant;
-          request.tolerance = tolerance;
-          nlohmann::json result;
-          {
-            SigintGuard interruptible;
-            py::gil_scoped_release release;
-            result = mixing::mixture_albedo(run.content.results.at(index), request, cache);
-          }
-          return json_to_python(result);
-        });
+  // `cache` (mixing/end_member_cache.h; the design studies' fast path). The request's other fields are
+  // keywords, as roadbrdf.albedo takes them (the model is the mixture itself).
+  m.def(
+      "mixture_albedo",
+      [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache, const py::kwargs& kwargs) {
+        const albedo::AlbedoRequest request = request_without_source(kwargs);
+        nlohmann::json result;
+        {
+          SigintGuard interruptible;
+          py::gil_scoped_release release;
+          result = mixing::mixture_albedo(run.content.results.at(index), request, cache);
+        }
+        return json_to_python(result);
+      },
+      py::arg("run"), py::arg("index"), py::arg("cache"),
+      request_docstring<albedo::AlbedoRequest>(
+          "The albedo report of method `index` of a mix run, from its end-members' integrals kept in `cache`; "
+          "the model fields (model, parameters, options, fit) are the mixture itself.",
+          "Returns the report as a dict (the document of `roadbrdf albedo --json`).")
+          .c_str());
 }
 
 }  // namespace roadbrdf::python

@@ -17,6 +17,7 @@
 #include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/fitting/params_table.h"
+#include "roadbrdf/modelfile/fit_file_read.h"
 
 namespace py = pybind11;
 
@@ -162,6 +163,15 @@ void bind_fitting(py::module_& m) {
       .def(
           "file_content", [](const FitSummary& s) { return json_to_python(fit_file_json(s.fits, s.notes)); },
           "The fit file's content as Python objects (dicts, lists, numbers).")
+      .def(
+          "select",
+          [](const FitSummary& s, const std::string& selection) {
+            // The readers' rule (modelfile/fit_file_read.h select_fit) on the file this result writes.
+            const nlohmann::json content = fit_file_json(s.fits, s.notes);
+            return select_fit(JsonNode(content, "the fit result"), selection);
+          },
+          py::arg("selection"),
+          "The index of the fit a selection (\"model,theta_i=40\") chooses, as `--fit` chooses in a fit file.")
       .def("table", &FitSummary::table, "The ranking table `roadbrdf fit` prints.")
       .def("warnings", &FitSummary::warnings, py::arg("where"))
       .def(

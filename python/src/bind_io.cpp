@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "binding.h"
+#include "request_kwargs.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
@@ -195,16 +196,8 @@ void bind_io(py::module_& m) {
   // or several runs of one sample (combined as `convert A.csv B.csv` does).
   m.def(
       "read_dataset",
-      [](const std::vector<std::string>& paths, bool average_duplicates, bool allow_missing,
-         const std::string& delimiter, const std::string& decimal, const std::string& quantity,
-         const std::vector<std::string>& columns, const std::vector<std::string>& set) {
-        DatasetReadFields fields;
-        fields.average_duplicates = average_duplicates;
-        fields.delimiter = delimiter;
-        fields.decimal = decimal;
-        fields.quantity = quantity;
-        fields.columns = columns;
-        fields.set = set;
+      [](const std::vector<std::string>& paths, bool allow_missing, const py::kwargs& kwargs) {
+        const auto fields = request_from_arguments<DatasetReadFields>(py::args(), kwargs);
         std::vector<DatasetRun> runs;
         for (const std::string& path : paths) {
           DatasetReadOptions options = fields.options_for(path, paths);
@@ -212,11 +205,12 @@ void bind_io(py::module_& m) {
           options.warn = python_warning();
           runs.push_back({path, read_dataset(path, options)});
         }
-        return dataset_to_dict(combine_runs(runs, average_duplicates, python_warning()));
+        return dataset_to_dict(combine_runs(runs, fields.average_duplicates, python_warning()));
       },
-      py::arg("paths"), py::arg("average_duplicates") = false, py::arg("allow_missing") = true,
-      py::arg("delimiter") = "auto", py::arg("decimal") = "auto", py::arg("quantity") = "brdf",
-      py::arg("columns") = std::vector<std::string>{}, py::arg("set") = std::vector<std::string>{});
+      py::arg("paths"), py::arg("allow_missing") = true,
+      request_docstring<DatasetReadFields>("A dataset read from one file or several runs of one sample.",
+                                           "Returns the dataset as a dict.")
+          .c_str());
   // A dataset made in Python under the readers' duplicate policy: repeated geometries are an error, or
   // averaged as duplicate rows of a file are.
   m.def("dataset_duplicate_policy",
@@ -229,15 +223,8 @@ void bind_io(py::module_& m) {
   // `check --json` as a dict, plus its text under "text".
   m.def(
       "check_dataset",
-      [](const std::string& path, bool average_duplicates, const std::string& delimiter, const std::string& decimal,
-         const std::string& quantity, const std::vector<std::string>& columns, const std::vector<std::string>& set) {
-        DatasetReadFields fields;
-        fields.average_duplicates = average_duplicates;
-        fields.delimiter = delimiter;
-        fields.decimal = decimal;
-        fields.quantity = quantity;
-        fields.columns = columns;
-        fields.set = set;
+      [](const std::string& path, const py::kwargs& kwargs) {
+        const auto fields = request_from_arguments<DatasetReadFields>(py::args(), kwargs);
         DatasetReadOptions options = fields.options_for(path, {path});
         options.allow_missing = true;  // counted in the report, as `check` does
         options.warn = python_warning();
@@ -249,9 +236,10 @@ void bind_io(py::module_& m) {
         j["text"] = quality_report_text(d, r);
         return json_to_python(j);
       },
-      py::arg("path"), py::arg("average_duplicates") = false, py::arg("delimiter") = "auto",
-      py::arg("decimal") = "auto", py::arg("quantity") = "brdf", py::arg("columns") = std::vector<std::string>{},
-      py::arg("set") = std::vector<std::string>{});
+      py::arg("path"),
+      request_docstring<DatasetReadFields>("The quality report of `roadbrdf check` of a dataset file.",
+                                           "Returns the report of `check --json` as a dict, its text under \"text\".")
+          .c_str());
   // The same report of a dataset in memory (no reading statistics: the repeatability of averaged
   // duplicates is that of a file's reading).
   m.def("check_dataset_object",

@@ -16,10 +16,12 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
 
 #include "binding.h"
 #include "request_kwargs.h"
 #include "roadbrdf/albedo/report.h"
+#include "roadbrdf/core/error.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_file.h"
 #include "roadbrdf/lighting/road_surface.h"
@@ -36,6 +38,7 @@ namespace {
 
 // An installation file read with its luminaire, for many surfaces.
 struct PreparedInstallation {
+  std::string file;  // the installation file, as a LightingRequest names it
   lighting::Installation installation;
   lighting::Luminaire luminaire;
   Diagnostics diagnostics;  // of reading the luminaire file
@@ -103,6 +106,7 @@ void bind_lighting_calc(py::module_& m) {
       "read_lighting_installation",
       [](const std::string& path) {
         auto prepared = std::make_shared<PreparedInstallation>();
+        prepared->file = path;
         prepared->installation = lighting::read_installation(path);
         prepared->luminaire = lighting::read_luminaire(prepared->installation.luminaires.file, prepared->diagnostics);
         return prepared;
@@ -111,10 +115,19 @@ void bind_lighting_calc(py::module_& m) {
   m.def(
       "mixture_lighting",
       [](const mixing::MixRun& run, std::size_t index, const PreparedInstallation& prepared,
-         const std::string& target_class, double operating_hours, std::shared_ptr<mixing::EndMemberCache> cache) {
+         std::shared_ptr<mixing::EndMemberCache> cache, const py::kwargs& kwargs) {
+        // The request's keywords other than its files (the installation is read, the surface is the mixture).
+        for (const char* given : {"surface", "map"}) {
+          if (kwargs.contains(given)) throw FieldError(given, "is not taken here: the surface is the mixture");
+        }
+        auto fields = py::reinterpret_steal<py::kwargs>(PyDict_Copy(kwargs.ptr()));
+        if (!fields) throw py::error_already_set();
+        fields["installation"] = prepared.file;
+        const auto request = request_from_arguments<lighting::LightingRequest>(py::args(), fields);
+        request.validate();
         lighting::LightingOptions options;
-        options.target_class = target_class;
-        options.operating_hours = operating_hours;
+        options.target_class = request.target_class;
+        options.operating_hours = request.operating_hours;
         lighting::LightingResult result;
         {
           SigintGuard interruptible;
@@ -129,8 +142,13 @@ void bind_lighting_calc(py::module_& m) {
         }
         return json_to_python(result.to_json());
       },
-      py::arg("run"), py::arg("index"), py::arg("installation"), py::arg("target_class") = "",
-      py::arg("operating_hours") = 4000.0, py::arg("cache") = py::none());
+      py::arg("run"), py::arg("index"), py::arg("installation"), py::arg("cache") = py::none(),
+      request_docstring<lighting::LightingRequest>(
+          "The lighting calculation of a prepared installation (read_lighting_installation) over method `index` "
+          "of a mix run, its surface from the end-members kept in `cache` (or from the mixture itself); of the "
+          "request's fields, target_class and operating_hours are keywords here.",
+          "Returns the document of `roadbrdf lighting --json` as a dict.")
+          .c_str());
 }
 
 }  // namespace roadbrdf::python

@@ -120,7 +120,7 @@ void bind_mixing(py::module_& m) {
         return out;
       },
       py::arg("formulations"), py::arg("data"), py::arg("reference") = "", py::arg("output") = "");
-  m.def("read_spectral_model_file", &mixing::read_spectral_model_file, py::arg("path"), py::arg("selection") = "");
+  m.def("read_spectral_model_file", &read_spectral_model_file, py::arg("path"), py::arg("selection") = "");
   // The mixing methods in the library's order, with what the studies need to know of each.
   m.def("mixing_methods", [] {
     py::list methods;

@@ -137,7 +137,8 @@ void bind_photometry(py::module_& m) {
     return report_to_dict(rtable(model, request_from_arguments<RTableRequest>(py::args(), kwargs)));
   });
   // The same report for method `index` of a mix run, from its end-members' values at the table's
-  // geometries shared through `cache` (mixing/end_member_cache.h; the design studies' fast path).
+  // geometries shared through `cache` (mixing/end_member_cache.h; the design studies' fast path). The
+  // request's fields are keywords only, named as RTableRequest's (rtable_request.h).
   m.def(
       "mixture_rtable_report",
       [](const mixing::MixRun& run, std::size_t index, mixing::EndMemberCache& cache, double alpha,
@@ -152,9 +153,9 @@ void bind_photometry(py::module_& m) {
         }
         return report_to_dict(report);
       },
-      py::arg("run"), py::arg("index"), py::arg("cache"), py::arg("alpha") = 1.0, py::arg("illuminant") = "",
-      py::arg("wavelength") = py::none(), py::arg("band") = py::none(), py::arg("q0_region") = "standard",
-      py::arg("class_system") = "R");
+      py::arg("run"), py::arg("index"), py::arg("cache"), py::kw_only(), py::arg("alpha") = 1.0,
+      py::arg("illuminant") = "", py::arg("wavelength") = py::none(), py::arg("band") = py::none(),
+      py::arg("q0_region") = "standard", py::arg("class_system") = "R");
   m.def(
       "read_rtable",
       [](const std::string& path, std::optional<std::string> format, double alpha, double scale) {

@@ -21,7 +21,6 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/fitting/fit_file.h"
-#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
@@ -137,41 +136,44 @@ void bind_surface(py::module_& m) {
 
   m.def("read_surface", [](const std::string& path) { return keep(surface::read_surface(path)); });
 
-  // `roadbrdf surface FORMULATION`: the sample and the generator's report.
-  m.def("surface_from_formulation", [](const std::string& path, double size_mm, double cell_mm, std::uint64_t seed,
-                                       std::optional<double> matrix_level, std::optional<double> target_mpd,
-                                       std::optional<double> mastic_fraction) {
-    surface::SurfaceRequest request;
-    request.size_mm = size_mm;
-    request.cell_mm = cell_mm;
-    request.seed = seed;
-    request.matrix_level = matrix_level;
-    request.target_mpd = target_mpd;
-    request.mastic_fraction = mastic_fraction;
-    const surface::GeneratorSettings s = request.generator_settings();
-    // As the command line: fit files are needed only to render, they may not exist yet.
-    const roadbrdf::Formulation formulation = roadbrdf::read_formulation(path, false);
-    const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
-    surface::GeneratedSample sample;
-    {
-      SigintGuard interruptible;
-      py::gil_scoped_release release;
-      sample = surface::generate_sample(recipe, s);
-    }
-    py::dict report;
-    std::vector<std::string> classes;
-    for (const auto& c : recipe.classes) classes.push_back(c.material.name);
-    report["classes"] = classes;
-    report["target_volume_fraction"] = sample.target_volume_fraction;
-    report["achieved_volume_fraction"] = sample.achieved_volume_fraction;
-    report["grain_count"] = sample.grain_count;
-    report["targets_reached"] = sample.targets_reached;
-    report["deposition"] = sample.deposition;
-    report["slab_thickness_mm"] = sample.slab_thickness_mm;
-    report["matrix_level_mm"] = sample.matrix_level_mm;
-    report["notes"] = sample.notes;
-    return py::make_tuple(keep(std::move(sample.field)), report);
-  });
+  // `roadbrdf surface FORMULATION`: the sample and the generator's report. The formulation is a file
+  // or its content (a dict), its fits read from files or given as values by reference (`fits`, a dict).
+  m.def("surface_from_formulation",
+        [](const py::object& formulation, double size_mm, double cell_mm, std::uint64_t seed,
+           std::optional<double> matrix_level, std::optional<double> target_mpd, std::optional<double> mastic_fraction,
+           const py::object& fits) {
+          surface::SurfaceRequest request;
+          request_detail::assign(request.formulation, formulation, "formulation");
+          request_detail::assign(request.fits, fits, "fits");
+          request.size_mm = size_mm;
+          request.cell_mm = cell_mm;
+          request.seed = seed;
+          request.matrix_level = matrix_level;
+          request.target_mpd = target_mpd;
+          request.mastic_fraction = mastic_fraction;
+          const surface::GeneratorSettings s = request.generator_settings();
+          // As the command line: fit files are needed only to render, they may not exist yet.
+          const surface::SampleRecipe recipe = surface::sample_recipe(request);
+          surface::GeneratedSample sample;
+          {
+            SigintGuard interruptible;
+            py::gil_scoped_release release;
+            sample = surface::generate_sample(recipe, s);
+          }
+          py::dict report;
+          std::vector<std::string> classes;
+          for (const auto& c : recipe.classes) classes.push_back(c.material.name);
+          report["classes"] = classes;
+          report["target_volume_fraction"] = sample.target_volume_fraction;
+          report["achieved_volume_fraction"] = sample.achieved_volume_fraction;
+          report["grain_count"] = sample.grain_count;
+          report["targets_reached"] = sample.targets_reached;
+          report["deposition"] = sample.deposition;
+          report["slab_thickness_mm"] = sample.slab_thickness_mm;
+          report["matrix_level_mm"] = sample.matrix_level_mm;
+          report["notes"] = sample.notes;
+          return py::make_tuple(keep(std::move(sample.field)), report);
+        });
 
   m.def("flat_surface", [](const std::string& fit, const std::string& fit_model, const std::string& model,
                            const std::map<std::string, double>& parameters,

@@ -149,7 +149,7 @@ inline int selection_one_input(const std::uint8_t* data, std::size_t size) {
 
 inline int mix_file_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("mix.json", bytes(data, size));
-  return refusing([&] { mixing::read_mix_file(file.path()); });
+  return refusing([&] { read_mix_file(file.path()); });
 }
 
 // Beyond refusing bad input, an accepted calibration file must give positive, finite factors

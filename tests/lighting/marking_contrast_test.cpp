@@ -18,7 +18,6 @@
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/lighting/marking_contrast.h"
-#include "roadbrdf/mixing/mix_file.h"
 #include "support/paths.h"
 #include "support/scratch.h"
 
@@ -52,7 +51,7 @@ photometry::MarkingRequest lambertian(double rho_marking, double rho_road) {
 TEST(MarkingContrast, LambertianOnLambertianUnderTheHeadlampIsTheRatioOfAlbedos) {
   const double rho_m = 0.6, rho_r = 0.08;
   photometry::MarkingRequest request = lambertian(rho_m, rho_r);
-  const photometry::MarkingResult result = marking(request);
+  const photometry::MarkingResult result = lighting::marking(request);
   ASSERT_TRUE(result.contrast && result.contrast->headlamp);
   const photometry::HeadlampContrast& h = *result.contrast->headlamp;
   EXPECT_NEAR(h.contrast, rho_m / rho_r - 1.0, 1e-12);
@@ -68,7 +67,7 @@ TEST(MarkingContrast, SyntheticHeadlampLightByHand) {
   const double rho_m = 0.5, rho_r = 0.1;
   photometry::MarkingRequest request = lambertian(rho_m, rho_r);
   request.headlamp = data("headlamp.ies");
-  const photometry::MarkingResult result = marking(request);
+  const photometry::MarkingResult result = lighting::marking(request);
   ASSERT_TRUE(result.contrast && result.contrast->headlamp && result.contrast->headlamp->light);
   const photometry::HeadlampLight& l = *result.contrast->headlamp->light;
   // headlamp.ies, plane C270 (the one pointing down): 12000 cd at gamma 1 deg, 9000 cd at 2 deg;
@@ -84,7 +83,7 @@ TEST(MarkingContrast, SyntheticHeadlampLightByHand) {
 
   // A file whose C90 plane points down: 2000 cd at gamma 1 deg, 600 cd at 2 deg in that plane.
   request.headlamp_down_plane = 90.0;
-  const photometry::MarkingResult turned = marking(request);
+  const photometry::MarkingResult turned = lighting::marking(request);
   EXPECT_NEAR(turned.contrast->headlamp->light->intensity_cd, 2000.0 + (1.24 - 1.0) * (600.0 - 2000.0), 1e-9);
   EXPECT_EQ(turned.contrast->headlamp->light->c_deg, 90.0);
 }
@@ -93,7 +92,7 @@ TEST(MarkingContrast, LambertianOnLambertianUnderAnInstallationIsTheRatioEverywh
   const double rho_m = 0.45, rho_r = 0.12;
   photometry::MarkingRequest request = lambertian(rho_m, rho_r);
   request.installation = data("installation.json");
-  const photometry::MarkingResult result = marking(request);
+  const photometry::MarkingResult result = lighting::marking(request);
   ASSERT_TRUE(result.contrast && result.contrast->installation);
   const photometry::InstallationContrast& b = *result.contrast->installation;
   const double expected = rho_m / rho_r - 1.0;
@@ -122,7 +121,7 @@ TEST(MarkingContrast, TheInstallationsSurfaceIsThePavementWhenNoneIsGiven) {
   request.source = "lambert";
   request.parameters = {"albedo=0.4"};
   request.installation = data("installation.json");  // its surface: lambert, albedo 0.2
-  const photometry::MarkingResult result = marking(request);
+  const photometry::MarkingResult result = lighting::marking(request);
   ASSERT_TRUE(result.contrast && result.contrast->headlamp && result.contrast->installation);
   EXPECT_NEAR(result.contrast->headlamp->contrast, 0.4 / 0.2 - 1.0, 1e-12);
   EXPECT_NEAR(result.contrast->installation->contrast_of_averages, 1.0, 1e-9);
@@ -136,12 +135,12 @@ TEST(MarkingContrast, MeasuredMarkingUnderTheHeadlampButNotUnderAnInstallation) 
   request.source = file;
   request.pavement = "lambert";
   request.pavement_parameters = {"albedo=0.1"};
-  const photometry::MarkingResult result = marking(request);
+  const photometry::MarkingResult result = lighting::marking(request);
   ASSERT_TRUE(result.contrast && result.contrast->headlamp);
   // R_L = f_r sin(epsilon) for both; the pavement's f_r = 0.1 / pi.
   EXPECT_NEAR(result.contrast->headlamp->contrast, 0.5 / (0.1 / kPi) - 1.0, 1e-9);
   request.installation = data("installation.json");
-  const std::string e = field_of([&] { marking(request); });
+  const std::string e = field_of([&] { lighting::marking(request); });
   EXPECT_EQ(e.rfind("installation:", 0), 0u) << e;
 }
 
@@ -183,7 +182,7 @@ TEST(MarkingContrast, RealHeadlampFileOfTuBerlin) {
 
   photometry::MarkingRequest request = lambertian(0.6, 0.1);
   request.headlamp = file;
-  const photometry::MarkingResult result = marking(request);
+  const photometry::MarkingResult result = lighting::marking(request);
   ASSERT_TRUE(result.contrast && result.contrast->headlamp && result.contrast->headlamp->light);
   const photometry::HeadlampLight& l = *result.contrast->headlamp->light;
   EXPECT_NEAR(l.intensity_cd, intensity, 1e-9 * std::max(1.0, intensity));
@@ -195,41 +194,40 @@ TEST(MarkingContrast, BadRequestsNameTheirField) {
   photometry::MarkingRequest missing = lambertian(0.6, 0.1);
   missing.pavement = "no-such-pavement.fit.json";
   missing.pavement_parameters.clear();
-  const std::string e1 = field_of([&] { marking(missing); });
+  const std::string e1 = field_of([&] { lighting::marking(missing); });
   EXPECT_EQ(e1.rfind("pavement:", 0), 0u) << e1;
   EXPECT_NE(e1.find("no-such-pavement.fit.json"), std::string::npos) << e1;
 
   photometry::MarkingRequest lamp_alone;
   lamp_alone.source = "lambert";
   lamp_alone.headlamp = data("headlamp.ies");
-  EXPECT_EQ(field_of([&] { marking(lamp_alone); }).rfind("headlamp:", 0), 0u);
+  EXPECT_EQ(field_of([&] { lighting::marking(lamp_alone); }).rfind("headlamp:", 0), 0u);
 
   photometry::MarkingRequest table_and_lamp = lambertian(0.6, 0.1);
   table_and_lamp.pavement = "R3";
   table_and_lamp.pavement_parameters.clear();
   table_and_lamp.headlamp = data("headlamp.ies");
-  EXPECT_EQ(field_of([&] { marking(table_and_lamp); }).rfind("headlamp:", 0), 0u);
+  EXPECT_EQ(field_of([&] { lighting::marking(table_and_lamp); }).rfind("headlamp:", 0), 0u);
 
   photometry::MarkingRequest bad_parameter = lambertian(0.6, 0.1);
   bad_parameter.pavement_parameters = {"albdo=0.1"};
-  EXPECT_EQ(field_of([&] { marking(bad_parameter); }).rfind("pavement_parameters:", 0), 0u);
+  EXPECT_EQ(field_of([&] { lighting::marking(bad_parameter); }).rfind("pavement_parameters:", 0), 0u);
 
   photometry::MarkingRequest plane_alone = lambertian(0.6, 0.1);
   plane_alone.headlamp_down_plane = 90.0;
-  EXPECT_EQ(field_of([&] { marking(plane_alone); }).rfind("headlamp_down_plane:", 0), 0u);
+  EXPECT_EQ(field_of([&] { lighting::marking(plane_alone); }).rfind("headlamp_down_plane:", 0), 0u);
   plane_alone.headlamp = data("headlamp.ies");
   plane_alone.headlamp_down_plane = 360.0;
-  EXPECT_EQ(field_of([&] { marking(plane_alone); }).rfind("headlamp_down_plane:", 0), 0u);
+  EXPECT_EQ(field_of([&] { lighting::marking(plane_alone); }).rfind("headlamp_down_plane:", 0), 0u);
 
   photometry::MarkingRequest stray;
   stray.source = "lambert";
   stray.pavement_fit = "lambert";
-  EXPECT_EQ(field_of([&] { marking(stray); }).rfind("pavement_fit:", 0), 0u);
+  EXPECT_EQ(field_of([&] { lighting::marking(stray); }).rfind("pavement_fit:", 0), 0u);
 
   // The photometry module alone cannot compute a contrast: it says so rather than dropping the field.
   photometry::MarkingRequest contrast = lambertian(0.6, 0.1);
-  EXPECT_EQ(field_of([&] { photometry::marking(contrast, mixing::read_spectral_model_file); }).rfind("pavement:", 0),
-            0u);
+  EXPECT_EQ(field_of([&] { photometry::marking(contrast); }).rfind("pavement:", 0), 0u);
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ TEST_F(CliMix, PredictionWithoutData) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("areal"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("skipped"), std::string::npos) << r.output;  // fitted/shadowed need --data
-  const SpectralModel m = mixing::read_mix_file(out, "areal");
+  const SpectralModel m = read_mix_file(out, "areal");
   // Lambertian end-members: the areal mixture is Lambertian with the mixed albedo.
   const std::vector<double> p = m.parameters_at(550.0);
   const Geometry g = geometry_from_degrees(20, 0, 50, 120);
@@ -125,9 +125,9 @@ TEST_F(CliMix, ComparisonWithData) {
     EXPECT_LT(m.at("comparison").at("relative_rmse").get<double>(), 1e-8);
   }
   EXPECT_TRUE(found);
-  const SpectralModel fitted = mixing::read_mix_file(out, "fitted");
+  const SpectralModel fitted = read_mix_file(out, "fitted");
   EXPECT_EQ(fitted.model().name(), "mixture-linear");
-  const SpectralModel best = mixing::read_mix_file(out);  // the file's "best"
+  const SpectralModel best = read_mix_file(out);  // the file's "best"
   const std::vector<double> p = best.parameters_at(600.0);
   const double expected = (0.1 * kBitumen[2] + 0.3 * kMastic[2] + 0.6 * kGravel[2]) / kPi;
   EXPECT_NEAR(best.model().evaluate(p.data(), geometry_from_degrees(35, 0, 25, 60)), expected, 1e-6 * expected);

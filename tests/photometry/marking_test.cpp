@@ -23,8 +23,6 @@ constexpr double kDeg = kPi / 180.0;
 
 SpectralModel lambert(double rho) { return SpectralModel(make_model("lambert"), {rho}); }
 
-SpectralModel no_fit_files(const std::string&, const std::string&) { throw InputError("no fit file in this test"); }
-
 // Lambertian marking: f_r = rho/pi, so R_L = 1000 (rho/pi) cos(88.76 deg), Q_d = 1000 rho/pi, beta = rho.
 TEST(Marking, LambertianClosedForms) {
   for (const double rho : {0.2, 0.5, 0.9}) {
@@ -126,7 +124,7 @@ TEST(Marking, RequestForAModelGivesValuesAndClasses) {
   MarkingRequest r;
   r.source = "lambert";
   r.parameters = {"albedo=0.6"};
-  const MarkingResult result = marking(r, no_fit_files);
+  const MarkingResult result = marking(r);
   ASSERT_TRUE(result.qd && result.rl && result.beta);
   EXPECT_NEAR(*result.qd, 600.0 / kPi, 0.01);  // 191 mcd: Q4
   EXPECT_EQ(result.qd_class, "Q4");
@@ -182,7 +180,7 @@ std::string write_data(const std::string& name, bool with_grazing) {
 TEST(Marking, MeasuredDataAtTheGeometry) {
   MarkingRequest r;
   r.source = write_data("marking_data_covered.csv", true);
-  const MarkingResult result = marking(r, no_fit_files);
+  const MarkingResult result = marking(r);
   ASSERT_TRUE(result.rl);
   EXPECT_NEAR(*result.rl, 1000.0 * 0.4 / kPi * std::sin(1.24 * kDeg), 1e-9);
   EXPECT_NEAR(*result.rl_nearest_distance, 0.0, 1e-6);
@@ -196,7 +194,7 @@ TEST(Marking, MeasuredDataFarFromTheGeometryIsAnErrorNamingAFit) {
   MarkingRequest r;
   r.source = write_data("marking_data_far.csv", false);
   try {
-    marking(r, no_fit_files);
+    marking(r);
     FAIL() << "expected an error";
   } catch (const FieldError& e) {
     EXPECT_EQ(e.field(), "source");

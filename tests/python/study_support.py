@@ -86,3 +86,17 @@ def buggy_run_task(task, fits):
             return 1 / 0
         return evaluate._run(task, fits)
     return guarded(run, task, fits)
+
+
+def candidate_file(task, fits, folder, name="candidate.json"):
+    """A task's candidate formulation written as the file ``name`` in ``folder``, its fit files (``fits``: SHA-256
+    -> text) beside it as ``<digest>.json``: the path through files that the tests compare the study's values
+    with."""
+    from roadbrdf.studies import evaluate
+    folder.mkdir(parents=True, exist_ok=True)
+    for digest, text in fits.items():
+        if not (folder / (digest + ".json")).exists():  # once: a rewritten file is read again by the cache
+            (folder / (digest + ".json")).write_text(text)
+    path = folder / name
+    path.write_text(json.dumps(evaluate._materialise(task["formulation"])))
+    return str(path)

@@ -176,3 +176,26 @@ def test_params_group_by_makes_one_table_per_value_from_both_front_ends(cli, gro
     with pytest.raises(roadbrdf.InputError, match=r"did you mean 'theta_i'\?\); the columns of .* are model, "
                                                   r"theta_i, wavelength"):
         roadbrdf.params(grouped, group_by="thta_i")
+
+
+@pytest.mark.parametrize("selection, group", [
+    ("oren-nayar", {}),                       # several groups: name one
+    ("oren-nayar,theta_i=50", {"theta_i": 50}),  # no such group
+    ("oren-nayr,theta_i=40", {"theta_i": 40}),   # a misspelt model
+    ("oren-nayar,theta_r=40", {"theta_r": 40}),  # not a column the file is grouped by
+])
+def test_one_rule_chooses_the_fit_of_a_file_and_of_a_result(cli, root, grouped, selection, group):
+    """Which fit of a grouped result: FitResult.model_fit and the command's `--fit` (read from the FIT.json
+    the same fit wrote) apply the readers' one rule, with the same message (the file's name apart)."""
+    result = roadbrdf.fit(root / DATA, ["oren-nayar", "lambert"], group_by="theta_i", where="theta_r<=70",
+                          wavelengths="510:710:100")
+    r = cli("albedo", grouped, "--fit", selection, "--sun-zenith", "30", check=False)
+    assert r.returncode == 2
+    with pytest.raises(roadbrdf.InputError) as caught:
+        result.model_fit(selection.split(",")[0], **group)
+    message = str(caught.value)
+    for name in (str(grouped), "the fit result"):
+        message = message.replace(name, "FILE")
+    printed = r.stderr.strip().replace(str(grouped), "FILE").replace("--fit", "fit")
+    assert message in printed, (message, printed)
+    assert result.model_fit("oren-nayar,theta_i=40") is result.model_fit("oren-nayar", theta_i=40)

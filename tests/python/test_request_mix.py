@@ -187,3 +187,34 @@ def test_misspelt_method_suggests(case):
     formulation, data, _ = case
     with pytest.raises(roadbrdf.InputError, match=r"did you mean 'fitted'\?"):
         roadbrdf.mix(formulation, data=data, method="fited")
+
+
+def test_mixture_reports_take_the_requests_keywords(case):
+    """The fast path's reports of a mixture (mixture_albedo, mixture_rtable_report) take their request's
+    fields as keywords, as roadbrdf.albedo and roadbrdf.rtable do: the same albedo as the MIX.json read back
+    (within the quadrature tolerance), a misspelt keyword refused with the nearest name, and no positional
+    request field."""
+    formulation, _, tmp = case
+    _roadbrdf = roadbrdf._roadbrdf
+    cache = _roadbrdf.EndMemberCache()
+    run = _roadbrdf.mix(formulation, method="areal", cache=cache)
+    run.write(str(tmp / "areal.mix.json"))
+    fast = _roadbrdf.mixture_albedo(run, 0, cache, sun_zenith=[20, 50], tolerance=1e-7, uncertainty=False)
+    direct = _roadbrdf.albedo(model=str(tmp / "areal.mix.json"), sun_zenith=[20, 50], tolerance=1e-7,
+                              uncertainty=False).content()
+    assert fast["sun_zenith_deg"] == [20, 50]
+    # Lambertian end-members: every black-sky value is the white-sky one (a Lambertian's albedo).
+    for row in fast["black_sky"]:
+        assert row == pytest.approx(fast["white_sky"], abs=1e-6)
+    assert fast["white_sky"] == pytest.approx(direct["white_sky"], abs=1e-6)
+    with pytest.raises(TypeError, match="did you mean 'sun_zenith'"):
+        _roadbrdf.mixture_albedo(run, 0, cache, sun_zenit=[20])
+    with pytest.raises(roadbrdf.InputError, match="model"):
+        _roadbrdf.mixture_albedo(run, 0, cache, model="lambert")
+    with pytest.raises(roadbrdf.InputError, match="tolerance"):
+        _roadbrdf.mixture_albedo(run, 0, cache, tolerance=-1.0)
+    with pytest.raises(TypeError):
+        _roadbrdf.mixture_albedo(run, 0, cache, [20])
+    with pytest.raises(TypeError):
+        _roadbrdf.mixture_rtable_report(run, 0, cache, 1.0)
+    assert _roadbrdf.mixture_rtable_report(run, 0, cache, illuminant="D65")["weighting"] is not None

@@ -157,3 +157,37 @@ def test_pareto_front():
     # (0.2, 0.06) is beaten by (0.2, 0.08), (0.15, 0.07) by (0.2, 0.08); the others trade albedo for Q0.
     assert pareto(x, y) == [0, 1, 2]
     assert pareto(x, y, maximise_y=False) == [2]  # the lightest rock is also the least specular here
+
+
+def test_physical_path_passes_the_candidate_as_values(tmp_path, monkeypatch):
+    """The physical path generates and renders a candidate given as values (its formulation as a dict, its fit
+    files' texts by reference): the same sample and the same render, bit for bit, as from the files, and no
+    temporary file is written for it."""
+    import tempfile
+
+    from roadbrdf import _roadbrdf
+    from roadbrdf.surfaces import Surface
+    from study_support import physical_study
+    physical_study(tmp_path)
+    base = json.loads((tmp_path / "base.json").read_text())
+    fits = {}
+    for entry in [base["mastic"], *base["components"]]:
+        name = "value-" + entry["fit"].split("/")[-1]  # a name no file has: only the value can answer it
+        fits[name] = (tmp_path / entry["fit"]).read_text()
+        entry["fit"] = name
+
+    def no_temporary_files(*args, **kwargs):
+        raise AssertionError("a temporary file was made")
+
+    monkeypatch.setattr(tempfile, "mkdtemp", no_temporary_files)
+    monkeypatch.setattr(tempfile, "mkstemp", no_temporary_files)
+    from_value = Surface(*_roadbrdf.surface_from_formulation(base, 12.0, 0.4, 3, None, None, 0.3, fits))
+    from_files = roadbrdf.surface(tmp_path / "base.json", size_mm=12, cell_mm=0.4, seed=3, mastic_fraction=0.3)
+    assert from_value.mpd_mm == from_files.mpd_mm
+    a = roadbrdf.render(from_value, 30.0, 0.0, 30.0, 180.0, wavelengths=[550], samples=64, seed=5, threads=1)
+    b = roadbrdf.render(from_files, 30.0, 0.0, 30.0, 180.0, wavelengths=[550], samples=64, seed=5, threads=1)
+    assert a.brdf.tolist() == b.brdf.tolist()
+    del fits["value-grey.fit.json"]
+    lacking = Surface(*_roadbrdf.surface_from_formulation(base, 12.0, 0.4, 3, None, None, 0.3, fits))
+    with pytest.raises(roadbrdf.InputError, match="value-grey.fit.json"):
+        roadbrdf.render(lacking, 30.0, 0.0, 30.0, 180.0, wavelengths=[550], samples=64, seed=5, threads=1)

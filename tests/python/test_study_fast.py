@@ -7,6 +7,7 @@ import roadbrdf
 from roadbrdf.studies import evaluate
 from roadbrdf.studies.run import make_tasks
 from roadbrdf.studies.spec import read_study
+from study_support import candidate_file
 from test_study import two_rock_study
 
 
@@ -44,14 +45,11 @@ def test_in_process_fast_path_matches_the_mix_file_path(tmp_path):
     s = read_study(str(study_path))
     s.predictions["methods"] = ["areal", "hapke"]
     tasks = make_tasks(s, roadbrdf._roadbrdf.__version__)
-    folder = evaluate._fit_folder(s.fits)
     evaluate._END_MEMBERS = None
     for number, (*_, task) in enumerate(tasks):
         work = tmp_path / f"task{number}"
         work.mkdir()
-        path = str(work / "candidate.json")
-        with open(path, "w") as f:
-            json.dump(evaluate._materialise(task["formulation"], folder), f)
+        path = candidate_file(task, s.fits, tmp_path / "candidates", f"task{number}.json")
         for before, now in zip(through_mix_file(task, path, work), evaluate._fast(task, path)):
             linear = before["method"] == "areal"
             for key, value in before.items():

@@ -17,7 +17,7 @@ import roadbrdf
 from roadbrdf import plot_study
 from roadbrdf.studies.run import make_tasks
 from roadbrdf.studies.spec import read_study
-from study_support import two_rock_study
+from study_support import candidate_file, two_rock_study
 from test_study import expected_albedo
 
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data" / "lighting"
@@ -273,8 +273,7 @@ def test_a_rough_candidate_equals_the_lighting_of_its_mix_file(tmp_path):
     for _, _, _, _, task in make_tasks(s, "v")[:2]:
         result = evaluate._run(task, s.fits)
         assert result["error"] is None, result["error"]
-        formulation = tmp_path / "candidate.json"
-        formulation.write_text(json.dumps(evaluate._materialise(task["formulation"], evaluate._fit_folder(s.fits))))
+        formulation = candidate_file(task, s.fits, tmp_path / "candidate")
         for row in result["rows"]:
             mixture = tmp_path / f"{row['method']}.mix.json"
             roadbrdf.mix(formulation, method=row["method"], output=mixture)

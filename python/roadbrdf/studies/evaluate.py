@@ -1,56 +1,36 @@
 """One study task: a candidate formulation predicted by the fast or the physical path.
 
 :func:`run_task` is a pure function of the task (a dict that ``run.make_tasks`` builds) and of the fit files'
-contents (``fits``: SHA-256 -> text): the fast path mixes the candidate's formulation and the fits as values (no
-file is written); the physical path, whose surface generator reads files, writes them to a private folder (once
-per process) and the candidate's formulation to a temporary one. It returns the candidate's result rows. It uses one thread, so a process pool or a Dask
-worker runs one task per core, and the same task gives the same numbers, bit for bit, everywhere.
+contents (``fits``: SHA-256 -> text): both paths pass the candidate's formulation and the fits to the library as
+values (the fast path to the mixing, the physical path to the surface generator and renderer), so no file is
+written. It returns the candidate's result rows. It uses one thread, so a process pool or a Dask worker runs one
+task per core, and the same task gives the same numbers, bit for bit, everywhere.
 """
 
 from __future__ import annotations
 
-import atexit
 import hashlib
 import json
 import math
 import os
-import shutil
-import tempfile
 
 import numpy as np
 
-_FIT_FOLDER = None
 _REGION = None
 _WEIGHTS = {}
 _END_MEMBERS = None
 _INSTALLATIONS = {}
 
 
-def _fit_folder(fits):
-    """This process's private folder holding the fit files by hash (written once each)."""
-    global _FIT_FOLDER
-    if _FIT_FOLDER is None:
-        _FIT_FOLDER = tempfile.mkdtemp(prefix="roadbrdf-study-fits-")
-        atexit.register(shutil.rmtree, _FIT_FOLDER, True)
-    for digest, text in fits.items():
-        path = os.path.join(_FIT_FOLDER, digest + ".json")
-        if not os.path.exists(path):
-            tmp = path + f".{os.getpid()}.tmp"
-            with open(tmp, "w", encoding="utf-8") as f:
-                f.write(text)
-            os.replace(tmp, path)
-    return _FIT_FOLDER
-
-
-def _materialise(formulation, folder):
-    """The formulation with its "sha256:..." fit references pointing to the fit files in ``folder`` (or, with
-    ``folder`` "", named as the fits given as values: ``<digest>.json``)."""
+def _materialise(formulation):
+    """The formulation with its "sha256:..." fit references named as the fits given as values (``<digest>.json``,
+    the keys of :func:`_fit_values`)."""
     f = json.loads(json.dumps(formulation))
 
     def fix(entry):
         ref = entry.get("fit")
         if isinstance(ref, str) and ref.startswith("sha256:"):
-            entry["fit"] = os.path.join(folder, ref[7:] + ".json")
+            entry["fit"] = ref[7:] + ".json"
 
     for c in f["components"]:
         fix(c)
@@ -113,8 +93,8 @@ def _lighting_outputs(run, lighting):
     shared through the process's cache (docs/studies.md "Lighting predictions")."""
     import warnings
     from .. import _roadbrdf
-    r = _roadbrdf.mixture_lighting(run, 0, _installation(lighting), lighting["class"] or "",
-                                   lighting["operating_hours"], cache=_end_members())
+    r = _roadbrdf.mixture_lighting(run, 0, _installation(lighting), _end_members(),
+                                   target_class=lighting["class"] or "", operating_hours=lighting["operating_hours"])
     for w in r["warnings"]:
         warnings.warn(w["message"], UserWarning, stacklevel=2)
     least = r["least_flux"] or {}
@@ -150,18 +130,18 @@ def _fast(task, candidate):
     formulation, values = (candidate, {}) if isinstance(candidate, str) else (candidate[0], {"fits": candidate[1]})
     p = task["predictions"]
     cache = _end_members()
-    zeniths = _roadbrdf.values(p["sun_zenith_deg"], "sun_zenith")
     diffuse = "" if p["diffuse_fraction"] is None else str(p["diffuse_fraction"])
     rows = []
     for method in p["methods"]:
         run = _roadbrdf.mix(formulation, method=method, cache=cache, **values)
         for note in run.notes:
             warnings.warn(note, UserWarning, stacklevel=2)
-        a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, zeniths, None, False, diffuse,
-                                                 p["atmosphere"] or "", p["spectrum"] or "", [], "", 1e-5))
+        a = _warn_notes(_roadbrdf.mixture_albedo(run, 0, cache, sun_zenith=p["sun_zenith_deg"],
+                                                 diffuse_fraction=diffuse, atmosphere=p["atmosphere"],
+                                                 spectrum=p["spectrum"]))
         row = {"method": method}
         row.update(_albedo_outputs(a, p["sun_zenith_deg"]))
-        row.update(_rtable_outputs(_roadbrdf.mixture_rtable_report(run, 0, cache, 1.0, p["illuminant"] or "")))
+        row.update(_rtable_outputs(_roadbrdf.mixture_rtable_report(run, 0, cache, illuminant=p["illuminant"] or "")))
         if p.get("lighting") is not None:
             row.update(_lighting_outputs(run, p["lighting"]))
         rows.append(row)
@@ -221,8 +201,17 @@ def _region():
     return _REGION
 
 
-def _physical(task, path):
+def _fit_values(fits):
+    """The fit files' texts by the references :func:`_materialise` writes."""
+    return {digest + ".json": text for digest, text in fits.items()}
+
+
+def _physical(task, formulation, fits):
+    """The candidate rendered on a virtual sample generated from its formulation (given as a value, its fits
+    too: ``fits`` by reference)."""
     import roadbrdf
+    from .. import _roadbrdf
+    from ..surfaces import Surface
     from .spec import InputError
     p = task["predictions"]
     q = p["physical"]
@@ -232,8 +221,10 @@ def _physical(task, path):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # generator notes (e.g. jamming): the row has the texture statistics
         try:
-            s = roadbrdf.surface(path, size_mm=q["size_mm"], cell_mm=q["cell_mm"], seed=seed,
-                                 mastic_fraction=task["mastic_fraction"])
+            handle, report = _roadbrdf.surface_from_formulation(formulation, float(q["size_mm"]),
+                                                                float(q["cell_mm"]), seed, None, None,
+                                                                task["mastic_fraction"], fits)
+            s = Surface(handle, dict(report))
         except ValueError as e:  # e.g. an exposed mastic fraction the sample cannot reach
             raise InputError(str(e)) from None
     row = {"method": "physical", "mpd_mm": s.mpd_mm,
@@ -321,22 +312,12 @@ def _run(task, fits):
     from .spec import InputError
     if task.get("error"):
         return {"rows": [], "error": task["error"]}
-    if task["predictions"]["path"] == "fast":
-        try:
-            rows = _fast(task, (_materialise(task["formulation"], ""), {d + ".json": t for d, t in fits.items()}))
-        except InputError as e:
-            return {"rows": [], "error": str(e).replace("<formulation>", "<candidate formulation>")}
-        return {"rows": rows, "error": None}
-    folder = _fit_folder(fits)
-    work = tempfile.mkdtemp(prefix="roadbrdf-study-task-")
+    formulation, values = _materialise(task["formulation"]), _fit_values(fits)
     try:
-        path = os.path.join(work, "candidate.json")
-        with open(path, "w", encoding="utf-8") as f:
-            json.dump(_materialise(task["formulation"], folder), f)
-        try:
-            rows = _physical(task, path)
-        except InputError as e:
-            return {"rows": [], "error": str(e).replace(path, "<candidate formulation>")}
-        return {"rows": rows, "error": None}
-    finally:
-        shutil.rmtree(work, ignore_errors=True)
+        if task["predictions"]["path"] == "fast":
+            rows = _fast(task, (formulation, values))
+        else:
+            rows = _physical(task, formulation, values)
+    except InputError as e:
+        return {"rows": [], "error": str(e).replace("<formulation>", "<candidate formulation>")}
+    return {"rows": rows, "error": None}

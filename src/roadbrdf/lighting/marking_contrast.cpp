@@ -252,7 +252,7 @@ photometry::MarkingContrast marking_contrast(const photometry::MarkingRequest& r
 }
 
 photometry::MarkingResult marking(const photometry::MarkingRequest& request) {
-  return photometry::marking(request, read_spectral_model_file, marking_contrast);
+  return photometry::marking(request, marking_contrast);
 }
 
 }  // namespace roadbrdf::lighting

@@ -57,10 +57,4 @@ nlohmann::ordered_json mix_file_json(const MixFileContent& content);
 // Write atomically. Throws InputError / FileError.
 void write_mix_file(const std::string& path, const MixFileContent& content);
 
-// The readers of this format and of fit files (the modelfile layer, below every consumer of a model),
-// by their names in this namespace.
-using ::roadbrdf::is_mix_file;
-using ::roadbrdf::read_mix_file;
-using ::roadbrdf::read_spectral_model_file;
-
 }  // namespace roadbrdf::mixing

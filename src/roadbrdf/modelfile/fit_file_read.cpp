@@ -117,10 +117,10 @@ std::string group_label(const std::vector<std::pair<std::string, double>>& group
   return s;
 }
 
-// The fits of `fits` of model `wanted` whose group matches the selector's columns; exactly one, or an
-// error naming the choices.
-std::vector<JsonNode> select_fits(const JsonNode& root, const JsonNode& fits, const std::string& wanted,
-                                  const FitSelector& selector) {
+// The position in `fits` of the fit of model `wanted` whose group matches the selector's columns:
+// exactly one, or an error naming the choices.
+std::size_t select_fits(const JsonNode& root, const JsonNode& fits, const std::string& wanted,
+                        const FitSelector& selector) {
   std::vector<std::string> models, columns;
   if (const auto g = root.find("group_by")) columns = g->strings();
   for (const auto& [column, value] : selector.group) {
@@ -131,9 +131,11 @@ std::vector<JsonNode> select_fits(const JsonNode& root, const JsonNode& fits, co
                                   did_you_mean(column, columns));
     }
   }
-  std::vector<JsonNode> matching;
+  std::vector<std::size_t> matching;
   std::vector<std::string> labels;
-  for (const JsonNode& fit : fits.elements()) {
+  const std::vector<JsonNode> elements = fits.elements();
+  for (std::size_t index = 0; index < elements.size(); ++index) {
+    const JsonNode& fit = elements[index];
     const std::string model = fit.at("model").string();
     if (std::find(models.begin(), models.end(), model) == models.end()) models.push_back(model);
     if (model != wanted) continue;
@@ -145,7 +147,7 @@ std::vector<JsonNode> select_fits(const JsonNode& root, const JsonNode& fits, co
       ok = ok && it != group.end() && std::abs(it->second - wanted_column.second) <= 1e-6;
     }
     labels.push_back(group_label(group));
-    if (ok) matching.push_back(fit);
+    if (ok) matching.push_back(index);
   }
   if (labels.empty()) fits.fail("no fit of model '" + wanted + "' in this file" + did_you_mean(wanted, models));
   if (matching.empty()) {
@@ -156,9 +158,9 @@ std::vector<JsonNode> select_fits(const JsonNode& root, const JsonNode& fits, co
     throw FieldError("fit", fmt::format("{} holds {} fits of {}, one per group ({}): choose one with a selector "
                                         "such as '{},{}'",
                                         root.file(), matching.size(), wanted, fmt::join(labels, " "), wanted,
-                                        group_label(fit_group(matching.front()))));
+                                        group_label(fit_group(elements[matching.front()]))));
   }
-  return matching;
+  return matching.front();
 }
 }  // namespace
 
@@ -223,38 +225,39 @@ FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::strin
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
     throw FileError(root.file(), 0, 0, "not a roadbrdf fit file (format key)");
   }
+  const JsonNode fits = root.at("fits");
+  const JsonNode fit = fits[select_fit(root, selection)];
+  const std::string wanted = fit.at("model").string();
+  const JsonNode model_node = fit.at("model");
+  OptionSet options;
+  if (const auto o = fit.find("options")) options = o->string_map();
+  std::shared_ptr<const Model> model;
+  try {
+    model = make_model(wanted, options);
+  } catch (const FileError&) {
+    throw;
+  } catch (const InputError& e) {
+    model_node.fail(e.what());
+  }
+  const JsonNode wavelength_node = fit.at("wavelengths");
+  const auto wavelengths = wavelength_node.numbers();
+  if (wavelengths.empty()) wavelength_node.fail("no wavelengths");
+  for (std::size_t w = 1; w < wavelengths.size(); ++w) {
+    if (!(wavelengths[w] > wavelengths[w - 1])) wavelength_node[w].fail("wavelengths must be strictly increasing");
+  }
+  const auto table = read_parameter_table(fit.at("parameters"), model->description(), wavelengths.size(), wavelengths);
+  SpectralModel spectral(model, wavelengths, table);
+  if (const auto c = fit.find("coverage")) spectral.set_coverage(read_coverage(*c));
+  spectral.set_parameter_covariance(read_parameter_covariance(fit, model->description(), wavelengths.size()));
+  if (const auto shared = fit.find("shared")) spectral.set_shared_parameters(shared->strings());
+  const std::string group = group_label(fit_group(fit));
+  return {std::move(spectral), group.empty() ? wanted : wanted + "," + group};
+}
+
+std::size_t select_fit(const JsonNode& root, const std::string& selection) {
   const FitSelector selector = parse_fit_selector(selection);
   const std::string wanted = selector.model.empty() ? root.at("best").string() : selector.model;
-  const JsonNode fits = root.at("fits");
-  const std::vector<JsonNode> chosen = select_fits(root, fits, wanted, selector);
-  for (const JsonNode& fit : chosen) {
-    const JsonNode model_node = fit.at("model");
-    OptionSet options;
-    if (const auto o = fit.find("options")) options = o->string_map();
-    std::shared_ptr<const Model> model;
-    try {
-      model = make_model(wanted, options);
-    } catch (const FileError&) {
-      throw;
-    } catch (const InputError& e) {
-      model_node.fail(e.what());
-    }
-    const JsonNode wavelength_node = fit.at("wavelengths");
-    const auto wavelengths = wavelength_node.numbers();
-    if (wavelengths.empty()) wavelength_node.fail("no wavelengths");
-    for (std::size_t w = 1; w < wavelengths.size(); ++w) {
-      if (!(wavelengths[w] > wavelengths[w - 1])) wavelength_node[w].fail("wavelengths must be strictly increasing");
-    }
-    const auto table =
-        read_parameter_table(fit.at("parameters"), model->description(), wavelengths.size(), wavelengths);
-    SpectralModel spectral(model, wavelengths, table);
-    if (const auto c = fit.find("coverage")) spectral.set_coverage(read_coverage(*c));
-    spectral.set_parameter_covariance(read_parameter_covariance(fit, model->description(), wavelengths.size()));
-    if (const auto shared = fit.find("shared")) spectral.set_shared_parameters(shared->strings());
-    const std::string group = group_label(fit_group(fit));
-    return {std::move(spectral), group.empty() ? wanted : wanted + "," + group};
-  }
-  fits.fail("no fit of model '" + wanted + "' in this file");  // select_fits returned none: not reached
+  return select_fits(root, root.at("fits"), wanted, selector);
 }
 
 }  // namespace roadbrdf

@@ -25,6 +25,12 @@ struct FitSelector {
 // Throws FieldError("fit", ...).
 FitSelector parse_fit_selector(const std::string& text);
 
+// The position in a fit file's "fits" of the fit `selection` chooses (parse_fit_selector; default:
+// the file's "best"): the fit of that model whose group matches the selection's columns, exactly one.
+// The one rule of "which fit of a FIT.json" for every reader and front end. Throws FieldError("fit",
+// ...) naming the choices, FileError for a model the file does not hold.
+std::size_t select_fit(const JsonNode& root, const std::string& selection);
+
 // A fit of a fit file and which one it is: `entry` is the fit's model name, followed by its group
 // ("oren-nayar,theta_i=40") in a grouped file.
 struct FitFileEntry {

@@ -111,11 +111,4 @@ SpectralModel spectral_model_of(const std::string& source, const std::vector<std
   return resolve_model(source, parameters, options, fit).model;
 }
 
-SpectralModel spectral_model_of(const std::string& source, const std::vector<std::string>& parameters,
-                                const std::vector<std::string>& options, const std::string& fit,
-                                const SpectralModelFileReader& read_model_file) {
-  if (source_kind(source) == "fit") return read_model_file(source, fit);
-  return spectral_model_from_assignments(source, parameters, options);
-}
-
 }  // namespace roadbrdf

@@ -3,7 +3,6 @@
 // and the kind of a source that may also be a measured dataset file.
 #pragma once
 
-#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -50,12 +49,5 @@ SpectralModel spectral_model_from_assignments(const std::string& name, const std
 // The spectral model of a "fit" or "model" source (resolve_model's model).
 SpectralModel spectral_model_of(const std::string& source, const std::vector<std::string>& parameters,
                                 const std::vector<std::string>& options, const std::string& fit);
-
-// Reads a fit file or a MIX.json into a spectral model (read_spectral_model_file is one): kept for
-// the requests that take the reader as an argument.
-using SpectralModelFileReader = std::function<SpectralModel(const std::string& path, const std::string& selection)>;
-SpectralModel spectral_model_of(const std::string& source, const std::vector<std::string>& parameters,
-                                const std::vector<std::string>& options, const std::string& fit,
-                                const SpectralModelFileReader& read_model_file);
 
 }  // namespace roadbrdf

@@ -2,8 +2,8 @@
 // Python), made by the request contract (core/request_fields.h): the request with its field table and
 // its one validation, and the result with its value, notes and warnings, summary and JSON.
 //
-// The source is a fit file or a MIX.json (read by the reader the caller passes: mixing sits above
-// photometry), a model name with its parameters, or a measured dataset file (CSV, OpenMATERIAL 3D).
+// The source is a fit file or a MIX.json (read by the modelfile layer), a model name with its
+// parameters, or a measured dataset file (CSV, OpenMATERIAL 3D).
 // A model gives R_L, Q_d and beta (marking.h); measured data give R_L and beta where they reach the
 // geometry (within `tolerance`), and an error naming the fit to make where they do not.
 //
@@ -21,7 +21,7 @@
 
 #include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/request_fields.h"
-#include "roadbrdf/io/model_source.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/photometry/marking.h"
 #include "roadbrdf/photometry/marking_contrast.h"
 
@@ -81,7 +81,6 @@ using MarkingContrastFunction =
 // The figures of the request's source, and with a pavement or an installation its contrast computed by
 // `contrast` (a request that asks for one without it is a FieldError). Throws FieldError / FileError /
 // InputError.
-MarkingResult marking(const MarkingRequest& request, const SpectralModelFileReader& read_model_file,
-                      const MarkingContrastFunction& contrast = {});
+MarkingResult marking(const MarkingRequest& request, const MarkingContrastFunction& contrast = {});
 
 }  // namespace roadbrdf::photometry

@@ -154,8 +154,7 @@ void from_data(const MarkingRequest& request, MarkingResult& result) {
 
 }  // namespace
 
-MarkingResult marking(const MarkingRequest& request, const SpectralModelFileReader& read_model_file,
-                      const MarkingContrastFunction& contrast) {
+MarkingResult marking(const MarkingRequest& request, const MarkingContrastFunction& contrast) {
   request.validate();
   if (request.wants_contrast() && !contrast) {
     throw FieldError(request.pavement.empty() ? "installation" : "pavement",
@@ -170,7 +169,7 @@ MarkingResult marking(const MarkingRequest& request, const SpectralModelFileRead
     from_data(request, result);
   } else {
     model = result.source_kind == "fit"
-                ? read_model_file(request.source, request.fit)
+                ? read_spectral_model_file(request.source, request.fit)
                 : spectral_model_from_assignments(request.source, request.parameters, request.options);
     from_model(request, *model, result);
   }

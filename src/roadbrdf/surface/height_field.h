@@ -43,6 +43,7 @@ struct MaterialSpec {
   std::string fit;                             // fit file as written in the SURFACE file ("" when `model` is used)
   std::string fit_path;                        // resolved path (relative to the current directory or absolute)
   std::string fit_model;                       // selected fit inside the file ("" = best)
+  std::string fit_text;                        // the fit file's content when given as a value (fit_path names it)
   std::string model;                           // model name when no fit file
   std::map<std::string, double> parameters;    // model parameters (defaults for the rest)
   std::map<std::string, std::string> options;  // model options

@@ -35,6 +35,16 @@ MaterialSpec material_spec(const std::string& fit_path, const std::string& fit_m
   return m;
 }
 
+namespace {
+
+// The fit of a material: its content given as a value, or its file.
+SpectralModel material_fit(const MaterialSpec& spec) {
+  return spec.fit_text.empty() ? read_fit_file(spec.fit_path, spec.fit_model)
+                               : parse_fit_file(spec.fit_text, spec.fit_path, spec.fit_model);
+}
+
+}  // namespace
+
 std::vector<RenderMaterial> load_materials(const HeightField& field, const std::vector<double>& wavelengths) {
   if (wavelengths.empty()) throw InputError("render: no wavelengths");
   std::vector<RenderMaterial> out;
@@ -47,7 +57,7 @@ std::vector<RenderMaterial> load_materials(const HeightField& field, const std::
       m.model = model;
       for (std::size_t w = 0; w < wavelengths.size(); ++w) m.parameters.insert(m.parameters.end(), p.begin(), p.end());
     } else {
-      const SpectralModel sm = read_fit_file(spec.fit_path, spec.fit_model);
+      const SpectralModel sm = material_fit(spec);
       m.model = sm.model_ptr();
       for (double wl : wavelengths) {
         std::vector<double> p;
@@ -74,7 +84,7 @@ std::vector<double> default_wavelengths(const HeightField& field) {
   std::vector<double> first;
   for (const MaterialSpec& spec : field.materials) {
     if (!spec.model.empty()) continue;
-    const SpectralModel sm = read_fit_file(spec.fit_path, spec.fit_model);
+    const SpectralModel sm = material_fit(spec);
     if (!sm.is_spectral()) continue;
     lo = std::max(lo, sm.wavelengths().front());
     hi = std::min(hi, sm.wavelengths().back());

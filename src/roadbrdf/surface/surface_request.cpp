@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/formulation/formulation.h"
 
 namespace roadbrdf::surface {
 
@@ -65,6 +66,21 @@ GeneratorSettings SurfaceRequest::generator_settings() const {
 int SurfaceRequest::cell_count() const {
   validate();
   return cells.value_or(kind == Kind::flat ? 16 : 128);
+}
+
+SampleRecipe sample_recipe(const SurfaceRequest& request) {
+  const Source& given = request.formulation;
+  if (given.empty()) throw FieldError("formulation", "give the formulation file");
+  const Formulation formulation =
+      given.in_memory() ? parse_formulation(given.text, given.path, false) : read_formulation(given.path, false);
+  SampleRecipe recipe = recipe_from_formulation(formulation);
+  const auto attach = [&request](MaterialSpec& material) {
+    const auto value = request.fits.find(material.fit_path);
+    if (value != request.fits.end()) material.fit_text = value->second;
+  };
+  attach(recipe.matrix);
+  for (GrainClass& c : recipe.classes) attach(c.material);
+  return recipe;
 }
 
 }  // namespace roadbrdf::surface

@@ -7,8 +7,11 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <string>
 
+#include "roadbrdf/core/request_fields.h"
 #include "roadbrdf/surface/generate.h"
 
 namespace roadbrdf::surface {
@@ -18,7 +21,12 @@ struct SurfaceRequest {
   Kind kind = Kind::formulation;
   double cell_mm = 0.1;  // grid spacing [mm], in [0.005, 10]
   std::uint64_t seed = 1;
-  // A sample of a formulation:
+  // A sample of a formulation: its file, or its content (Python: a dict; a design study's candidate).
+  Source formulation;
+  // Fit files given as values (Python's `fits`, as MixRequest::fits): the JSON text of each by the
+  // reference the formulation's "fit" gives; a reference found here is not read from disk, at
+  // rendering either (MaterialSpec::fit_text).
+  std::map<std::string, std::string> fits;
   std::optional<double> size_mm;          // side of the periodic sample [mm] (default 60), a whole number of cells
   std::optional<double> matrix_level;     // mastic level / slab thickness in [0, 1] (default 0.7), or
   std::optional<double> target_mpd;       // the level giving this MPD [mm] (> 0), or
@@ -34,5 +42,10 @@ struct SurfaceRequest {
   // Cells per side of a validation surface (validated).
   int cell_count() const;
 };
+
+// The recipe of the request's formulation (recipe_from_formulation), its materials' fits given as
+// values attached. The fit files are not checked here: they are needed only to render. Throws
+// FieldError("formulation") without one, FileError / InputError for a bad formulation.
+SampleRecipe sample_recipe(const SurfaceRequest& request);
 
 }  // namespace roadbrdf::surface
