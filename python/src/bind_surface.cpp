@@ -193,7 +193,8 @@ void bind_surface(py::module_& m) {
       request_docstring<surface::SurfaceRequest>(
           "A virtual road sample of a formulation, or a flat or Gaussian-slope surface of one material "
           "(`roadbrdf surface`). fits: fit files as values, {reference: fit JSON text}.",
-          "Returns (surface handle, generator report or None)."));
+          "Returns (surface handle, generator report or None).")
+          .c_str());
 
   // `roadbrdf render SURFACE --grid`: angles [deg] as flat arrays of one length.
   m.def("render_surface", [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i,

@@ -148,16 +148,18 @@ def test_parameters_with_a_fit_file_are_refused_by_the_library(cli, root, tmp_pa
 
 def test_a_length_with_its_unit_is_the_same_sample(cli, tmp_path):
     """`--size 1.2cm` on the command line is `size_mm=12` in Python (1 cm = 10 mm): the same periodic sample of
-    12 mm / 0.4 mm = 30 cells a side, identical heights from the same seed."""
+    12 mm / 0.4 mm = 30 cells a side, identical heights from the same seed (both written to a SURFACE file, which
+    rounds the heights the same way)."""
     physical_study(tmp_path)
     out = tmp_path / "cli.surface.json"
     cli("surface", tmp_path / "base.json", "--size", "1.2cm", "--cell", "0.4", "--seed", "3", "--quiet", "-o", out)
     from_cli = roadbrdf.read_surface(out)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # generator notes (UserWarning) may come for this tiny sample
-        from_python = roadbrdf.surface(tmp_path / "base.json", size_mm=12, cell_mm=0.4, seed=3)
+        roadbrdf.surface(tmp_path / "base.json", size_mm=12, cell_mm=0.4, seed=3, output=tmp_path / "py.json")
+    from_python = roadbrdf.read_surface(tmp_path / "py.json")
     assert from_cli.shape == (30, 30) == from_python.shape
-    np.testing.assert_allclose(from_cli.heights, from_python.heights, rtol=0, atol=1e-9)
+    assert np.array_equal(from_cli.heights, from_python.heights)
     assert np.array_equal(from_cli.material_map, from_python.material_map)
     bad = cli("surface", tmp_path / "base.json", "--size", "12 parsecs", "-o", out, check=False)
     assert bad.returncode == 2 and bad.stderr.startswith("roadbrdf: error: --size: "), bad.stderr

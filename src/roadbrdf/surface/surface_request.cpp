@@ -79,7 +79,8 @@ void SurfaceRequest::validate() const {
     return;
   }
   if (size_mm) {
-    throw FieldError("size_mm", "is for samples of a formulation; a flat or Gaussian-slope surface is cells x cell_mm");
+    throw FieldError("size_mm",
+                     "is for samples of a formulation; a flat or Gaussian-slope surface is `cells` x `cell_mm`");
   }
   if (matrix_level || target_mpd || mastic_fraction) {
     throw FieldError(matrix_level ? "matrix_level"
