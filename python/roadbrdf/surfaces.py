@@ -8,7 +8,7 @@ from typing import Any, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import ArrayLike, InputError, as_float, as_float_array, as_int, as_mapping, as_text, warn_at_caller
+from .core import ArrayLike, InputError, as_float, as_float_array, as_mapping, as_text, warn_at_caller
 from .io import Dataset
 from .model import Model
 
