@@ -8,7 +8,7 @@ from typing import Any, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _roadbrdf
-from .core import ArrayLike, InputError, as_float, as_float_array, as_int, as_mapping, as_text, warn_at_caller
+from .core import ArrayLike, InputError, as_float, as_float_array, as_mapping, as_text, warn_at_caller
 from .io import Dataset
 from .model import Model
 
@@ -161,7 +161,8 @@ class Surface:
 
 def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 0.1, seed: int = 1,
             matrix_level: Optional[float] = None, target_mpd: Optional[float] = None,
-            output: Optional[PathLike] = None, mastic_fraction: Optional[float] = None) -> Surface:
+            output: Optional[PathLike] = None, mastic_fraction: Optional[float] = None,
+            preview: Optional[PathLike] = None) -> Surface:
     """A virtual sample of a formulation, as ``roadbrdf surface FORMULATION`` builds it: coarse aggregate
     classes as packed ellipsoidal grains in a mastic (docs/surface.md "Virtual sample").
 
@@ -170,19 +171,15 @@ def surface(formulation_path: PathLike, size_mm: float = 60.0, cell_mm: float = 
     exposed, projected area fraction of the mastic, in (0, 1), met within max(0.001, 1/cells); an unreachable
     value raises ValueError naming the reachable range) to choose it (the three exclude each other).
     Fit files are resolved relative to the formulation's folder (they are needed only to render).
-    ``output``: also write the SURFACE file. Generator notes (e.g. jamming) are issued as UserWarning.
+    ``output``: also write the SURFACE file (and ``preview``, a PNG of the height map), as the command does;
+    ``formulation_path`` may also be the formulation itself (a dict). Generator notes (e.g. jamming) are issued as UserWarning.
     """
-    handle, report = _roadbrdf.surface_from_formulation(
-        as_text(formulation_path, "formulation_path"), as_float(size_mm, "size_mm"), as_float(cell_mm, "cell_mm"),
-        as_int(seed, "seed"), None if matrix_level is None else as_float(matrix_level, "matrix_level"),
-        None if target_mpd is None else as_float(target_mpd, "target_mpd"),
-        None if mastic_fraction is None else as_float(mastic_fraction, "mastic_fraction"), None)
+    handle, report = _roadbrdf.surface(formulation_path, size_mm=size_mm, cell_mm=cell_mm, seed=seed,
+                                       matrix_level=matrix_level, target_mpd=target_mpd,
+                                       mastic_fraction=mastic_fraction, output=output, preview=preview)
     for note in report["notes"]:
         warn_at_caller(note)
-    s = Surface(handle, dict(report))
-    if output is not None:
-        s.write(output)
-    return s
+    return Surface(handle, dict(report))
 
 
 def read_surface(path: PathLike) -> Surface:
@@ -191,20 +188,17 @@ def read_surface(path: PathLike) -> Surface:
     return Surface(_roadbrdf.read_surface(as_text(path, "path")))
 
 
-def _material_arguments(model_or_fit, params, fit_model):
-    """(fit, fit_model, model, parameters, options) for the binding: a fit file path, a :class:`Model`
-    or a model name."""
-    parameters = {str(k): as_float(v, f"params.{k}") for k, v in as_mapping(params, "params").items()}
-    fit_model = "" if fit_model is None else as_text(fit_model, "fit_model")
+def _material_fields(model_or_fit, params, fit_model):
+    """The request fields of a validation surface's material: ``input`` (a model name or a fit file path),
+    ``parameters``, ``options`` and ``fit``, from a :class:`Model`, a model name or a fit file."""
+    fields = dict(parameters={str(k): as_float(v, f"params.{k}") for k, v in as_mapping(params, "params").items()},
+                  fit=None if fit_model is None else as_text(fit_model, "fit_model"))
     if isinstance(model_or_fit, Model):
         options = {str(k): str(v) for k, v in model_or_fit.description.get("option_values", {}).items()}
-        return "", "", model_or_fit.name, parameters, options
+        return dict(fields, input=model_or_fit.name, options=options)
     if not _is_path(model_or_fit):
         raise InputError("model_or_fit: expected a roadbrdf.Model, a model name or a fit file path")
-    text = os.fsdecode(model_or_fit)
-    if text.endswith(".json"):
-        return text, fit_model, "", parameters, {}
-    return "", fit_model, text, parameters, {}
+    return dict(fields, input=os.fsdecode(model_or_fit))
 
 
 def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None = None, cells: int = 16,
@@ -214,8 +208,9 @@ def flat_surface(model_or_fit: Union[Model, str, PathLike], params: dict | None 
     ``model_or_fit``: a :class:`Model` (with ``params``), a model name, or a fit file (``*.json``, its
     best fit or ``fit_model``). Its rendered BRDF is the material's BRDF averaged over the detector cone.
     """
-    return Surface(_roadbrdf.flat_surface(*_material_arguments(model_or_fit, params, fit_model),
-                                          as_int(cells, "cells"), as_float(cell_mm, "cell_mm")))
+    handle, _ = _roadbrdf.surface(flat=True, cells=cells, cell_mm=cell_mm,
+                                  **_material_fields(model_or_fit, params, fit_model))
+    return Surface(handle)
 
 
 def gaussian_slope_surface(model_or_fit: Union[Model, str, PathLike], sigma_rad: float, params: dict | None = None,
@@ -223,9 +218,11 @@ def gaussian_slope_surface(model_or_fit: Union[Model, str, PathLike], sigma_rad:
                            fit_model: Optional[str] = None) -> Surface:
     """An isotropic random rough surface of one material with facet slope angle standard deviation
     ``sigma_rad`` [rad] (the Oren-Nayar roughness; ``roadbrdf surface MATERIAL --gaussian-slopes``)."""
-    return Surface(_roadbrdf.gaussian_slope_surface(*_material_arguments(model_or_fit, params, fit_model),
-                                                    as_float(sigma_rad, "sigma_rad"), as_int(cells, "cells"),
-                                                    as_float(cell_mm, "cell_mm"), as_int(seed, "seed")))
+    if sigma_rad is None:
+        raise InputError("sigma_rad: expected a number, got NoneType")
+    handle, _ = _roadbrdf.surface(sigma_rad=sigma_rad, cells=cells, cell_mm=cell_mm, seed=seed,
+                                  **_material_fields(model_or_fit, params, fit_model))
+    return Surface(handle)
 
 
 def _as_surface(value):
@@ -308,6 +305,14 @@ def _settings_doc(*own: str) -> str:
         f"        {row['name']}{' [' + row['unit'] + ']' if row['unit'] else ''}: {row['help']}\n" for row in rows)
 
 
+def _surface_doc() -> str:
+    """The surface request's rows (the same as `roadbrdf surface --help`)."""
+    return "\n    Fields (keywords; the material functions set input, flat, sigma_rad, parameters, options, fit):\n" + "".join(
+        f"        {row['name']}{' [' + row['unit'] + ']' if row['unit'] else ''}: {row['help']}\n"
+        for row in _roadbrdf.request_fields("surface"))
+
+
+surface.__doc__ += _surface_doc()
 render.__doc__ += _settings_doc()
 render_albedo.__doc__ += _settings_doc("output")
 

@@ -18,6 +18,7 @@
 #include "roadbrdf/photometry/marking_request.h"
 #include "roadbrdf/photometry/rtable_request.h"
 #include "roadbrdf/surface/render_request.h"
+#include "roadbrdf/surface/surface_request.h"
 
 namespace py = pybind11;
 
@@ -49,7 +50,9 @@ std::string kind_of(const RequestField<Request>& field) {
                                       "optional interval",
                                       "integer",
                                       "optional integer",
-                                      "integer"};
+                                      "integer",
+                                      "optional integer",
+                                      "optional length"};
   return kinds[field.member.index()];
 }
 
@@ -93,6 +96,7 @@ void bind_requests(py::module_& m) {
         if (command == "albedo") return rows<albedo::AlbedoRequest>();
         if (command == "rtable") return rows<photometry::RTableRequest>();
         if (command == "render") return rows<surface::RenderRequest>();
+        if (command == "surface") return rows<surface::SurfaceRequest>();
         if (command == "luminaire") return rows<lighting::LuminaireRequest>();
         if (command == "lighting") return rows<lighting::LightingRequest>();
         if (command == "marking") return rows<photometry::MarkingRequest>();

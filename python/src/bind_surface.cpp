@@ -20,7 +20,6 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
-#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/models/registry.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/surface/generate.h"
@@ -136,79 +135,66 @@ void bind_surface(py::module_& m) {
 
   m.def("read_surface", [](const std::string& path) { return keep(surface::read_surface(path)); });
 
-  // `roadbrdf surface FORMULATION`: the sample and the generator's report. The formulation is a file
-  // or its content (a dict), its fits read from files or given as values by reference (`fits`, a dict).
-  m.def("surface_from_formulation",
-        [](const py::object& formulation, double size_mm, double cell_mm, std::uint64_t seed,
-           std::optional<double> matrix_level, std::optional<double> target_mpd, std::optional<double> mastic_fraction,
-           const py::object& fits) {
-          surface::SurfaceRequest request;
-          request_detail::assign(request.formulation, formulation, "formulation");
-          request_detail::assign(request.fits, fits, "fits");
-          request.size_mm = size_mm;
-          request.cell_mm = cell_mm;
-          request.seed = seed;
-          request.matrix_level = matrix_level;
-          request.target_mpd = target_mpd;
-          request.mastic_fraction = mastic_fraction;
-          const surface::GeneratorSettings s = request.generator_settings();
+  // `roadbrdf surface INPUT`: the surface of a request (its table, surface/surface_request.h) and, for
+  // a sample of a formulation, the generator's report (None otherwise). The formulation is a file or
+  // its content (a dict), its fits read from files or given as values by reference (`fits`, a dict:
+  // the one keyword outside the table, as the command reads files). With `output`, the SURFACE file
+  // (and `preview`) are written as the command writes them.
+  m.def(
+      "surface",
+      [](const py::args& args, py::kwargs kwargs) {
+        py::object fits = py::none();
+        if (kwargs.contains("fits")) fits = kwargs.attr("pop")("fits");
+        surface::SurfaceRequest request = request_from_arguments<surface::SurfaceRequest>(args, kwargs);
+        request_detail::assign(request.fits, fits, "fits");
+        request.validate();
+        if (!request.preview.empty() && request.output.empty()) {
+          throw FieldError("preview", "is written next to the SURFACE file: give `output` too");
+        }
+        check_request_files(request);
+        Field field;
+        py::object report = py::none();
+        if (request.kind() != surface::SurfaceRequest::Kind::formulation) {
+          SigintGuard interruptible;
+          py::gil_scoped_release release;
+          field = surface::validation_surface(request);
+        } else {
+          const surface::GeneratorSettings settings = request.generator_settings();
           // As the command line: fit files are needed only to render, they may not exist yet.
           const surface::SampleRecipe recipe = surface::sample_recipe(request);
           surface::GeneratedSample sample;
           {
             SigintGuard interruptible;
             py::gil_scoped_release release;
-            sample = surface::generate_sample(recipe, s);
+            sample = surface::generate_sample(recipe, settings);
           }
-          py::dict report;
+          py::dict r;
           std::vector<std::string> classes;
           for (const auto& c : recipe.classes) classes.push_back(c.material.name);
-          report["classes"] = classes;
-          report["target_volume_fraction"] = sample.target_volume_fraction;
-          report["achieved_volume_fraction"] = sample.achieved_volume_fraction;
-          report["grain_count"] = sample.grain_count;
-          report["targets_reached"] = sample.targets_reached;
-          report["deposition"] = sample.deposition;
-          report["slab_thickness_mm"] = sample.slab_thickness_mm;
-          report["matrix_level_mm"] = sample.matrix_level_mm;
-          report["notes"] = sample.notes;
-          return py::make_tuple(keep(std::move(sample.field)), report);
-        });
-
-  m.def("flat_surface", [](const std::string& fit, const std::string& fit_model, const std::string& model,
-                           const std::map<std::string, double>& parameters,
-                           const std::map<std::string, std::string>& options, int cells, double cell_mm) {
-    surface::SurfaceRequest request;
-    request.kind = surface::SurfaceRequest::Kind::flat;
-    request.cells = cells;
-    request.cell_mm = cell_mm;
-    const int n = request.cell_count();
-    Field f = surface::make_flat(surface::material_spec(fit, fit_model, model, parameters, options), n, cell_mm);
-    surface::validate(f);
-    return keep(std::move(f));
-  });
-
-  m.def("gaussian_slope_surface",
-        [](const std::string& fit, const std::string& fit_model, const std::string& model,
-           const std::map<std::string, double>& parameters, const std::map<std::string, std::string>& options,
-           double sigma_rad, int cells, double cell_mm, std::uint64_t seed) {
-          surface::SurfaceRequest request;
-          request.kind = surface::SurfaceRequest::Kind::gaussian_slopes;
-          request.cells = cells;
-          request.cell_mm = cell_mm;
-          request.seed = seed;
-          request.sigma_rad = sigma_rad;
-          request.validate();
-          const surface::MaterialSpec spec = surface::material_spec(fit, fit_model, model, parameters, options);
-          Field f;
-          {
-            SigintGuard interruptible;
-            py::gil_scoped_release release;
-            f = surface::make_gaussian_slope_surface(spec, sigma_rad, cells, cell_mm, seed);
-          }
-          surface::validate(f);
-          return keep(std::move(f));
-        });
+          r["classes"] = classes;
+          r["target_volume_fraction"] = sample.target_volume_fraction;
+          r["achieved_volume_fraction"] = sample.achieved_volume_fraction;
+          r["grain_count"] = sample.grain_count;
+          r["targets_reached"] = sample.targets_reached;
+          r["deposition"] = sample.deposition;
+          r["slab_thickness_mm"] = sample.slab_thickness_mm;
+          r["matrix_level_mm"] = sample.matrix_level_mm;
+          r["notes"] = sample.notes;
+          report = r;
+          field = std::move(sample.field);
+        }
+        if (!request.output.empty()) {
+          const surface::TextureStatistics stats = surface::texture_statistics(field);
+          surface::write_surface(field, request.output, &stats);
+          if (!request.preview.empty()) surface::write_preview_png(field, request.preview);
+        }
+        return py::make_tuple(keep(std::move(field)), report);
+      },
+      request_docstring<surface::SurfaceRequest>(
+          "A virtual road sample of a formulation, or a flat or Gaussian-slope surface of one material "
+          "(`roadbrdf surface`). fits: fit files as values, {reference: fit JSON text}.",
+          "Returns (surface handle, generator report or None).")
+          .c_str());
 
   // `roadbrdf render SURFACE --grid`: angles [deg] as flat arrays of one length.
   m.def("render_surface", [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i,

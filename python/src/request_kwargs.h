@@ -96,6 +96,19 @@ void assign(Value& into, const pybind11::handle& value, const std::string& field
     } else {
       into = integer<long>(value, field);
     }
+  } else if constexpr (std::is_same_v<Value, std::optional<int>>) {
+    if (value.is_none()) {
+      into.reset();
+    } else {
+      into = integer<int>(value, field);
+    }
+  } else if constexpr (std::is_same_v<Value, LengthMm>) {
+    // Millimetres as a number (the command line's text with a unit is its own spelling).
+    if (value.is_none()) {
+      into.reset();
+    } else {
+      into = number(value, field);
+    }
   } else if constexpr (std::is_same_v<Value, std::string>) {
     into = value.is_none() ? std::string() : text(value, field);  // None: not given (no file, no name)
   } else if constexpr (std::is_same_v<Value, std::optional<double>>) {

@@ -223,7 +223,7 @@ TEST(CliAdversarial, UntrustedNumbersAreRangeAndIntegralityChecked) {
        "unused.txt",
        "",
        "surface lambert -p albedo=0.3 --flat --size nanmm -o {out}",
-       {"--size: is for samples of a formulation"},
+       {"--size: expected a length such as 60mm, got 'nanmm'"},
        false},
   });
 }

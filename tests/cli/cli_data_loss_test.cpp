@@ -84,7 +84,8 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
        "--residuals", data, "--data", data},
       {"mix-calibrate " + f.path("F.json") + " " + data + " -o " + f.path("lambert.fit.json"), "-o",
        f.path("lambert.fit.json"), "fit of component 'Grey'", f.path("lambert.fit.json")},
-      {"surface " + f.path("F.json") + " -o " + f.path("F.json"), "-o", f.path("F.json"), "INPUT", f.path("F.json")},
+      {"surface " + f.path("F.json") + " -o " + f.path("F.json"), "--output", f.path("F.json"), "INPUT",
+       f.path("F.json")},
       {"render " + f.path("flat.json") + " --albedo 30 -o " + f.path("flat.json"), "--output", f.path("flat.json"),
        "SURFACE", f.path("flat.json")},
   };

@@ -181,13 +181,13 @@ def test_physical_path_passes_the_candidate_as_values(tmp_path, monkeypatch):
 
     monkeypatch.setattr(tempfile, "mkdtemp", no_temporary_files)
     monkeypatch.setattr(tempfile, "mkstemp", no_temporary_files)
-    from_value = Surface(*_roadbrdf.surface_from_formulation(base, 12.0, 0.4, 3, None, None, 0.3, fits))
+    from_value = Surface(*_roadbrdf.surface(base, size_mm=12.0, cell_mm=0.4, seed=3, mastic_fraction=0.3, fits=fits))
     from_files = roadbrdf.surface(tmp_path / "base.json", size_mm=12, cell_mm=0.4, seed=3, mastic_fraction=0.3)
     assert from_value.mpd_mm == from_files.mpd_mm
     a = roadbrdf.render(from_value, 30.0, 0.0, 30.0, 180.0, wavelengths=[550], samples=64, seed=5, threads=1)
     b = roadbrdf.render(from_files, 30.0, 0.0, 30.0, 180.0, wavelengths=[550], samples=64, seed=5, threads=1)
     assert a.brdf.tolist() == b.brdf.tolist()
     del fits["value-grey.fit.json"]
-    lacking = Surface(*_roadbrdf.surface_from_formulation(base, 12.0, 0.4, 3, None, None, 0.3, fits))
+    lacking = Surface(*_roadbrdf.surface(base, size_mm=12.0, cell_mm=0.4, seed=3, mastic_fraction=0.3, fits=fits))
     with pytest.raises(roadbrdf.InputError, match="value-grey.fit.json"):
         roadbrdf.render(lacking, 30.0, 0.0, 30.0, 180.0, wavelengths=[550], samples=64, seed=5, threads=1)

@@ -173,7 +173,7 @@ TEST(CliSurface, MaterialErrorsNameTheFlag) {
   write_text(fit, "{}");
   Result r = run("surface " + fit + " --flat -p albedo=0.5 -o " + surface);
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("-p: apply to a model, not to a fit file"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--parameter: apply to a model, not to a fit file"), std::string::npos) << r.output;
   r = run("surface lambert --flat --fit lambert -o " + surface);
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--fit: selects a fit of a fit file; 'lambert' is a model name"), std::string::npos)

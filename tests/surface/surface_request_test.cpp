@@ -25,7 +25,8 @@ std::string field_of(const SurfaceRequest& request) {
 
 SurfaceRequest with(Kind kind, const std::function<void(SurfaceRequest&)>& change) {
   SurfaceRequest r;
-  r.kind = kind;
+  // The kind follows from `flat` and `sigma_rad` (SurfaceRequest::kind).
+  r.flat = kind == Kind::flat;
   if (kind == Kind::gaussian_slopes) r.sigma_rad = 0.3;
   change(r);
   return r;
@@ -63,8 +64,12 @@ TEST(SurfaceRequest, ValidationSurfaceFields) {
   EXPECT_EQ(field_of(with(Kind::flat, [](SurfaceRequest& r) { r.cells = 2; })), "");
   EXPECT_EQ(field_of(with(Kind::gaussian_slopes, [](SurfaceRequest& r) { r.cells = 16; })), "cells");
   EXPECT_EQ(field_of(with(Kind::gaussian_slopes, [](SurfaceRequest& r) { r.sigma_rad = 1.3; })), "sigma_rad");
-  EXPECT_EQ(field_of(with(Kind::gaussian_slopes, [](SurfaceRequest& r) { r.sigma_rad.reset(); })), "sigma_rad");
-  EXPECT_EQ(field_of(with(Kind::flat, [](SurfaceRequest& r) { r.sigma_rad = 0.3; })), "sigma_rad");
+  EXPECT_EQ(field_of(with(Kind::gaussian_slopes, [](SurfaceRequest& r) { r.sigma_rad = 0.0; })), "sigma_rad");
+  // Without `flat` or `sigma_rad` the request is a sample of a formulation; both at once are refused.
+  EXPECT_EQ(with(Kind::gaussian_slopes, [](SurfaceRequest& r) { r.sigma_rad.reset(); }).kind(), Kind::formulation);
+  EXPECT_EQ(field_of(with(Kind::flat, [](SurfaceRequest& r) { r.sigma_rad = 0.3; })), "flat");
+  EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.parameters["albedo"] = 0.3; })), "parameters");
+  EXPECT_EQ(field_of(with(Kind::formulation, [](SurfaceRequest& r) { r.fit = "lambert"; })), "fit");
 }
 
 TEST(SurfaceRequest, GeneratorRefusesWhatTheRequestRefuses) {

@@ -221,9 +221,9 @@ def _physical(task, formulation, fits):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # generator notes (e.g. jamming): the row has the texture statistics
         try:
-            handle, report = _roadbrdf.surface_from_formulation(formulation, float(q["size_mm"]),
-                                                                float(q["cell_mm"]), seed, None, None,
-                                                                task["mastic_fraction"], fits)
+            handle, report = _roadbrdf.surface(formulation, size_mm=float(q["size_mm"]),
+                                               cell_mm=float(q["cell_mm"]), seed=seed,
+                                               mastic_fraction=task["mastic_fraction"], fits=fits)
             s = Surface(handle, dict(report))
         except ValueError as e:  # e.g. an exposed mastic fraction the sample cannot reach
             raise InputError(str(e)) from None

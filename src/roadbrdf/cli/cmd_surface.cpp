@@ -23,11 +23,9 @@
 #include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
-#include "roadbrdf/core/length.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/progress.h"
 #include "roadbrdf/core/range.h"
-#include "roadbrdf/fitting/fit_file.h"
 #include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
@@ -46,30 +44,9 @@ namespace roadbrdf::cli {
 namespace {
 
 struct SurfaceArgs {
-  std::string input;
-  std::string size;  // empty: 60mm
-  double cell = 0.1;
-  std::uint64_t seed = 1;
-  std::optional<double> matrix_level;
-  std::optional<double> target_mpd;
-  std::optional<double> mastic_fraction;
-  std::string preview;
-  bool flat = false;
-  std::optional<double> gaussian_slopes;
-  int cells = 0;
-  std::vector<std::string> parameter_items, option_items;
-  std::string fit;
-  std::string output;
+  surface::SurfaceRequest request;
   bool quiet = false;
 };
-
-// The material argument: a fit file or a model name with -p/--option (checked by the library).
-surface::MaterialSpec material_from_argument(const SurfaceArgs& a) {
-  const std::map<std::string, double> parameters = parse_numeric_assignments(a.parameter_items, "-p");
-  const OptionSet options = parse_option_assignments(a.option_items, "--option");
-  if (is_fit_file_argument(a.input)) return surface::material_spec(a.input, a.fit, "", parameters, options);
-  return surface::material_spec("", a.fit, a.input, parameters, options);
-}
 
 void print_statistics(std::FILE* report, const surface::HeightField& f, const surface::TextureStatistics& s) {
   fmt::print(report, "surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny,
@@ -86,46 +63,23 @@ void print_statistics(std::FILE* report, const surface::HeightField& f, const su
 }
 
 void run_surface(const SurfaceArgs& a) {
-  if (a.output.empty()) throw InputError("give the output file with -o SURFACE.json");
-  if (a.flat && a.gaussian_slopes) throw InputError("--flat and --gaussian-slopes exclude each other");
-  std::vector<FileArgument> inputs = {{"INPUT", a.input}};
-  const std::vector<FileArgument> outputs = {{"-o", a.output}, {"--preview", a.preview}};
+  const surface::SurfaceRequest& r = a.request;
+  r.validate();
+  std::vector<FileArgument> inputs, outputs;
+  file_arguments(r, surface::SurfaceRequest::fields(), inputs, outputs);
   check_distinct_files(inputs, outputs);
-  std::FILE* report = report_stream(a.output);
-  // The flags translated into the library's request (surface/surface_request.h owns the rules).
-  surface::SurfaceRequest request;
-  using Kind = surface::SurfaceRequest::Kind;
-  request.kind = a.flat ? Kind::flat : a.gaussian_slopes ? Kind::gaussian_slopes : Kind::formulation;
-  request.cell_mm = a.cell;
-  request.seed = a.seed;
-  // A size given for a validation surface is refused by validate(), whatever its text.
-  if (!a.size.empty()) request.size_mm = request.kind == Kind::formulation ? parse_length_mm(a.size, "size_mm") : 0.0;
-  request.matrix_level = a.matrix_level;
-  request.target_mpd = a.target_mpd;
-  request.mastic_fraction = a.mastic_fraction;
-  if (a.cells > 0) request.cells = a.cells;
-  request.sigma_rad = a.gaussian_slopes;
-  request.validate();
+  std::FILE* report = report_stream(r.output);
   surface::HeightField field;
-  if (a.flat || a.gaussian_slopes) {
-    const surface::MaterialSpec m = material_from_argument(a);
-    const int n = request.cell_count();
-    if (a.flat) {
-      field = surface::make_flat(m, n, a.cell);
-    } else {
-      field = surface::make_gaussian_slope_surface(m, *a.gaussian_slopes, n, a.cell, a.seed);
-    }
+  if (r.kind() != surface::SurfaceRequest::Kind::formulation) {
+    field = surface::validation_surface(r);
   } else {
-    if (!a.parameter_items.empty() || !a.option_items.empty() || !a.fit.empty()) {
-      throw InputError("-p/--option/--fit are for --flat and --gaussian-slopes surfaces");
-    }
     // Fit files are needed only to render: they may not exist yet (warned below).
-    const roadbrdf::Formulation formulation = roadbrdf::read_formulation(a.input, false);
-    const std::vector<FileArgument> fits = roadbrdf::formulation_input_files(formulation);
+    const std::vector<FileArgument> fits =
+        roadbrdf::formulation_input_files(roadbrdf::read_formulation(r.input.path, false));
     inputs.insert(inputs.end(), fits.begin(), fits.end());
     check_distinct_files(inputs, outputs);
-    const surface::SampleRecipe recipe = surface::recipe_from_formulation(formulation);
-    surface::GeneratorSettings s = request.generator_settings();
+    const surface::SampleRecipe recipe = surface::sample_recipe(r);
+    surface::GeneratorSettings s = r.generator_settings();
     ProgressBar bar("surface: packing grains", stderr, ProgressBar::stderr_style(a.quiet));
     s.progress = bar.callback();
     const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
@@ -139,19 +93,19 @@ void run_surface(const SurfaceArgs& a) {
       }
     }
     fmt::print(report, "{}\n", field.description);
-    if (a.mastic_fraction) {
+    if (r.mastic_fraction) {
       fmt::print(report, "exposed mastic fraction {:.4f} (requested {}, tolerance {:.4g}) at mastic level {:.4f} mm\n",
-                 sample.mastic_fraction, *a.mastic_fraction, sample.mastic_fraction_tolerance, sample.matrix_level_mm);
+                 sample.mastic_fraction, *r.mastic_fraction, sample.mastic_fraction_tolerance, sample.matrix_level_mm);
     }
   }
   const surface::TextureStatistics stats = surface::texture_statistics(field);
-  surface::write_surface(field, a.output, &stats);
+  surface::write_surface(field, r.output, &stats);
   print_statistics(report, field, stats);
-  if (!a.preview.empty()) {
-    surface::write_preview_png(field, a.preview);
-    fmt::print(report, "wrote {}\n", a.preview);
+  if (!r.preview.empty()) {
+    surface::write_preview_png(field, r.preview);
+    fmt::print(report, "wrote {}\n", r.preview);
   }
-  fmt::print(report, "wrote {}\n", a.output);
+  fmt::print(report, "wrote {}\n", r.output);
 }
 
 struct RenderArgs {
@@ -255,31 +209,11 @@ void register_surface_command(CLI::App& app) {
       "surface",
       "Build a virtual road sample (periodic height field + material map) from a formulation, or a validation "
       "surface (--flat, --gaussian-slopes) of one material");
-  c->add_option("input", args.input,
-                "Formulation file (JSON), or with --flat/--gaussian-slopes the material: MODEL (with -p) or FIT.json")
-      ->required();
-  c->add_option("--size", args.size, "Side of the periodic sample, e.g. 60mm (default 60mm)");
-  c->add_option("--cell", args.cell, "Grid spacing [mm], 0.005 to 10 (default 0.1)");
-  c->add_option("--seed", args.seed, "Random seed (default 1)");
-  c->add_option("--matrix-level", args.matrix_level,
-                "Mastic level as a fraction of the slab thickness (largest grain size), 0 to 1, default 0.7");
-  c->add_option("--target-mpd", args.target_mpd, "Choose the mastic level so that the MPD is this [mm]");
-  c->add_option("--mastic-fraction", args.mastic_fraction,
-                "Choose the mastic level so that the exposed (projected) area fraction of the mastic is this, in "
-                "(0, 1), within max(0.001, 1/cells); an unreachable value is an error naming the reachable range");
-  c->add_option("--preview", args.preview, "Write a PNG of the height map coloured by material");
-  c->add_flag("--flat", args.flat, "Flat sample z = 0 of one material (validation)");
-  c->add_option("--gaussian-slopes,--vgrooves", args.gaussian_slopes,
-                "Isotropic random rough surface of one material with facet slope angle sigma [rad] (validation; "
-                "compare with oren-nayar sigma)");
-  c->add_option("--cells", args.cells,
-                "Cells per side of a validation surface, 2 (32 rough) to 4096 (default 16 flat, 128 rough)");
-  add_model_flags(c, args.parameter_items, args.option_items);
-  add_fit_flag(c, args.fit);
-  c->add_option("-o,--output", args.output, "Output SURFACE.json (format: src/roadbrdf/surface/height_field.h)")
-      ->required();
+  add_request_options(c, args.request);
+  c->get_option("--output")->required();
+  refuse_fit_model_flag(c);
   add_quiet_flag(c, args.quiet);
-  c->callback([] { run_surface(args); });
+  c->callback([] { run_request<surface::SurfaceRequest>([] { run_surface(args); }); });
 
   static RenderArgs rargs;
   auto* r = app.add_subcommand(

@@ -103,10 +103,8 @@ std::vector<std::string> split_commas(const std::vector<std::string>& items) {
 std::string flag_for_field(const std::string& field) {
   if (field.empty() || field.front() == '-') return field;
   // Request fields whose flag is not the field name with dashes.
-  static const std::map<std::string, std::string> renamed = {{"models", "--model"},  {"options", "--option"},
-                                                             {"parameters", "-p"},   {"size_mm", "--size"},
-                                                             {"cell_mm", "--cell"},  {"sigma_rad", "--gaussian-slopes"},
-                                                             {"columns", "--column"}};
+  static const std::map<std::string, std::string> renamed = {
+      {"models", "--model"}, {"options", "--option"}, {"parameters", "-p"}, {"columns", "--column"}};
   const auto dot = field.find('.');
   const std::string head = field.substr(0, dot);
   std::string flag;

@@ -20,6 +20,7 @@
 #include "roadbrdf/core/diagnostics.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/json_input.h"
+#include "roadbrdf/core/length.h"
 #include "roadbrdf/core/number.h"
 #include "roadbrdf/core/range.h"
 #include "roadbrdf/core/request_fields.h"
@@ -90,6 +91,17 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
         } else if constexpr (std::is_same_v<Value, std::optional<long>>) {
           option = command->add_option_function<long>(
               flag, [&value](const long& v) { value = v; }, help);
+        } else if constexpr (std::is_same_v<Value, std::optional<int>>) {
+          option = command->add_option_function<int>(
+              flag, [&value](const int& v) { value = v; }, help);
+        } else if constexpr (std::is_same_v<Value, LengthMm>) {
+          // A length with its unit ("60mm", "6cm", or millimetres without one).
+          option = command->add_option_function<std::string>(
+              flag,
+              [&value, name](const std::string& text) {
+                converting<Request>([&] { value = parse_length_mm(text, name); });
+              },
+              help);
         } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
           // Lists of numbers in the one grammar of core/range.h; the request validates the values.
           option = command->add_option_function<std::string>(

@@ -42,6 +42,18 @@ struct Source {
   bool in_memory() const { return !text.empty(); }
 };
 
+// A length [mm] that the command line writes with its unit ("60mm", "6cm"; core/length.h
+// parse_length_mm) and Python gives as a number of millimetres; absent = not given (the request's
+// default). An optional number otherwise, so `if (size_mm)` and `size_mm.value_or(60.0)` read it.
+struct LengthMm : std::optional<double> {
+  LengthMm() = default;
+  LengthMm(double mm) : std::optional<double>(mm) {}  // NOLINT(google-explicit-constructor): a length is a number
+  LengthMm& operator=(double mm) {
+    std::optional<double>::operator=(mm);
+    return *this;
+  }
+};
+
 // What a field holds: a pointer to one member of the request, of one of these types.
 //   double, int, bool (a switch: present or not), std::string (a name, a path or a value in the
 //   grammar the field's help states), std::optional<double> (absent = not given),
@@ -54,7 +66,9 @@ struct Source {
 //   std::vector<std::pair<double, double>> (LOWER:UPPER items; pairs or "LOWER:UPPER" texts),
 //   Source (a file; in Python also its content as a dict),
 //   std::optional<std::pair<double, double>> (one LOWER:UPPER interval; absent = not given),
-//   long, std::optional<long> (absent = not given), std::uint64_t (counts beyond int: paths, seeds).
+//   long, std::optional<long> (absent = not given), std::uint64_t (counts beyond int: paths, seeds),
+//   std::optional<int> (a count whose default depends on other fields; absent = not given),
+//   LengthMm (a length with its unit on the command line, millimetres in Python).
 // A bool whose default is true is a switch that turns it off (`use_sigma`, --no-sigma-weights).
 template <class Request>
 using FieldMember =
@@ -64,7 +78,7 @@ using FieldMember =
                  std::map<std::string, std::pair<double, double>> Request::*,
                  std::vector<std::pair<double, double>> Request::*, Source Request::*,
                  std::optional<std::pair<double, double>> Request::*, long Request::*, std::optional<long> Request::*,
-                 std::uint64_t Request::*>;
+                 std::uint64_t Request::*, std::optional<int> Request::*, LengthMm Request::*>;
 
 // Whether a field names a file the task reads or writes (for check_distinct_files).
 enum class FileRole { none, input, output };
