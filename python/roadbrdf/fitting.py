@@ -34,10 +34,9 @@ def read_fit(path: str, model: str | None = None) -> SpectralModel:
     return SpectralModel(_roadbrdf.read_spectral_model_file(str(path), model or ""))
 
 
-def params(fit_file: PathLike, wavelengths: str | Sequence[float] | None = None,
-           models: str | Sequence[str] = (), format: str | None = None,
-           group_by: str | Sequence[str] = ()) -> pd.DataFrame | str:
-    """The fitted parameters of a fit file, as ``roadbrdf params`` prints them.
+def params(*args: Any, **kwargs: Any) -> pd.DataFrame | str:
+    """The fitted parameters of a fit file, as ``roadbrdf params`` prints them (one library request, the
+    same rules).
 
     One row per fit (model, and group in a grouped file) and wavelength: ``model``, the group columns
     ``<column>_deg``, ``wavelength_nm``, each parameter and its ``<name>_stderr``, ``rmse_per_sr``,
@@ -45,24 +44,29 @@ def params(fit_file: PathLike, wavelengths: str | Sequence[float] | None = None,
     ``at_bounds``. A wavelength that was not fitted is answered by the nearest fitted one; the notes
     saying so are in ``df.attrs["notes"]``, the parameter units in ``df.attrs["units"]``.
 
-    With ``format`` ("table", "csv", "markdown", "latex") the table's text is returned instead, byte for
-    byte what the command prints. ``group_by`` (``"theta_i"``, ``"model,wavelength"`` or a list; the
-    columns ``model``, ``wavelength`` and the file's group columns) makes one table per value, headed
-    ``theta_i = 40 deg``, as ``params --group-by``; the DataFrame stays one table, its rows in that order.
+    The arguments are the request's fields (listed below, the command line's options; ``None`` leaves a
+    field at its default). With ``format`` ("table", "csv", "markdown", "latex") the table's text is
+    returned instead, byte for byte what the command prints. ``group_by`` (``"theta_i"``,
+    ``"model,wavelength"`` or a list; the columns ``model``, ``wavelength`` and the file's group columns)
+    makes one table per value, headed ``theta_i = 40 deg``, as ``params --group-by``; the DataFrame stays
+    one table, its rows in that order. With ``output`` the text is also written there, as the command
+    writes it.
     """
-    if isinstance(models, str):
-        models = [models]
-    if isinstance(group_by, str):
-        group_by = [c.strip() for c in group_by.split(",") if c.strip()]
-    t = _roadbrdf.params_table(os.fspath(fit_file), wavelengths, [str(m) for m in models],
-                               [str(c) for c in group_by], format or "")
-    if format:
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    t = _roadbrdf.params_table(*args, **kwargs)
+    if "format" in kwargs:
         return t["text"]
     import pandas as pd
     df = pd.DataFrame({c: t["data"][c] for c in t["columns"]}, columns=list(t["columns"]))
     df.attrs["notes"] = list(t["notes"])
     df.attrs["units"] = dict(t["units"])
     return df
+
+
+# The keywords, from the request's field table (the same rows as `roadbrdf params --help`).
+_doc = _roadbrdf.params_table.__doc__ or ""
+if "Arguments" in _doc:
+    params.__doc__ += "\n    " + _doc[_doc.index("Arguments"):_doc.rindex("Returns")].strip().replace("\n", "\n    ") + "\n"
 
 
 class ModelFit:

@@ -126,7 +126,7 @@ def _table(fit_file, models):
     where missing) and the parameters' units, without building a DataFrame: the figure needs only the columns
     (and importing pandas would cost a command as much time and memory as drawing a panel)."""
     from . import _roadbrdf
-    t = _roadbrdf.params_table(os.fspath(fit_file), None, [str(m) for m in models or ()], [], "")
+    t = _roadbrdf.params_table(os.fspath(fit_file), models=[str(m) for m in models or ()])
     table = {}
     for c in t["columns"]:
         values = t["data"][c]

@@ -212,23 +212,21 @@ void bind_fitting(py::module_& m) {
           "file.",
           "Returns the fit summary (roadbrdf.FitResult wraps it); `output` and `residuals` are written.")
           .c_str());
+  // The request of `roadbrdf params` (its field table, fitting/params_table.cpp): the table as columns,
+  // its text in the request's format, and the file `output` written as the command writes it.
   m.def(
       "params_table",
-      [](const std::string& fit_file, const py::object& wavelength_selection, const std::vector<std::string>& models,
-         const std::vector<std::string>& group_by, const std::string& format) {
-        ParamsRequest request;
-        request.fit_file = fit_file;
-        request.wavelengths = values_argument(wavelength_selection, "wavelengths");
-        request.models = models;
-        request.group_by = group_by;
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<ParamsRequest>(args, kwargs);
         const ParamsTable t = read_params_table(request);
+        if (!request.output.empty()) write_params_output(request, t);
         py::dict out;
         out["notes"] = t.notes;
         out["units"] = py::dict();
         for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
           out["units"][py::str(t.parameter_names[k])] = t.parameter_units[k];
         }
-        if (!format.empty()) out["text"] = t.render(parse_name<ParamsFormat>(format, "format"));
+        out["text"] = t.render(request.table_format());
         // Columns of csv_columns(), in its order.
         py::list columns;
         for (const auto& c : t.csv_columns()) columns.append(c);
@@ -246,7 +244,10 @@ void bind_fitting(py::module_& m) {
         out["data"] = data;
         return out;
       },
-      py::arg("fit_file"), py::arg("wavelengths"), py::arg("models"), py::arg("group_by"), py::arg("format"));
+      request_docstring<ParamsRequest>(
+          "The fitted parameters of a fit file, as `roadbrdf params` prints them.",
+          "Returns a dict: columns, data (the CSV cells by column), text (in `format`), notes, units.")
+          .c_str());
 }
 
 }  // namespace roadbrdf::python

@@ -11,6 +11,7 @@
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/fitting/params_table.h"
 #include "roadbrdf/io/model_export.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_request.h"
@@ -101,6 +102,7 @@ void bind_requests(py::module_& m) {
         if (command == "lighting") return rows<lighting::LightingRequest>();
         if (command == "marking") return rows<photometry::MarkingRequest>();
         if (command == "export") return rows<ExportRequest>();
+        if (command == "params") return rows<ParamsRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

@@ -168,8 +168,32 @@ std::size_t display_width(const std::string& s) {
 
 }  // namespace
 
+std::span<const RequestField<ParamsRequest>> ParamsRequest::fields() {
+  using R = ParamsRequest;
+  static const std::string format_help = "Table format: " + described_names_text<ParamsFormat>() + " (default table)";
+  static const RequestField<R> rows[] = {
+      {"fit_file", "FIT", "", "Fit file (JSON) written by `roadbrdf fit`", &R::fit_file, FileRole::input, true},
+      {"wavelengths", "--wavelengths,--wavelength", "nm",
+       "Wavelengths to show: START:STOP:STEP or a list; one not fitted is answered by the nearest fitted band, "
+       "with a note (default: every fitted wavelength)",
+       &R::wavelengths},
+      {"models", "-m,--model", "", "Show only this model's fits (repeatable)", &R::models},
+      {"group_by", "--group-by", "",
+       "One table per value of these columns (comma-separated: model, wavelength, or a group column of the fit "
+       "file such as theta_i), each headed e.g. 'theta_i = 40 deg'; CSV stays one table in that order",
+       &R::group_by, FileRole::none, false, true},
+      {"format", "--format", "", format_help, &R::format},
+      {"output", "-o,--output", "", "Write the table to this file (atomically; default: standard output)", &R::output,
+       FileRole::output},
+  };
+  return rows;
+}
+
+ParamsFormat ParamsRequest::table_format() const { return parse_name<ParamsFormat>(format, "format"); }
+
 void ParamsRequest::validate() const {
   if (fit_file.empty()) throw FieldError("fit_file", "give the fit file");
+  table_format();
   for (std::size_t i = 0; i < group_by.size(); ++i) {
     if (std::find(group_by.begin(), group_by.begin() + static_cast<std::ptrdiff_t>(i), group_by[i]) !=
         group_by.begin() + static_cast<std::ptrdiff_t>(i)) {
@@ -345,6 +369,7 @@ std::string ParamsTable::render(ParamsFormat format) const {
 
 ParamsTable read_params_table(const ParamsRequest& request) {
   request.validate();
+  check_request_files(request);
   const Json document = parse_json_file(request.fit_file);
   const JsonNode root(document, input_display_name(request.fit_file));
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-fit") {
@@ -445,6 +470,12 @@ ParamsTable read_params_table(const ParamsRequest& request) {
            std::find(order.begin(), order.end(), section_heading(t, b));
   });
   return t;
+}
+
+void write_params_output(const ParamsRequest& request, const ParamsTable& table) {
+  AtomicFile out(request.output.empty() ? std::string("-") : request.output);
+  out.stream() << table.render(request.table_format());
+  out.commit();
 }
 
 }  // namespace roadbrdf

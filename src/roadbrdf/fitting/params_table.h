@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "roadbrdf/core/enum_names.h"
+#include "roadbrdf/core/request_fields.h"
 
 namespace roadbrdf {
 
@@ -34,8 +35,15 @@ struct ParamsRequest {
   // file, e.g. "theta_i"), headed "theta_i = 40 deg"; the columns leave the tables' bodies. CSV (and the
   // DataFrame) stay one table, its rows in section order. Checked against the file by read_params_table.
   std::vector<std::string> group_by;
-  // Throws FieldError ("fit_file", "wavelengths", "models", "group_by").
+  std::string format = "table";  // a name of kParamsFormatNames
+  std::string output;            // the table's text file; "" or "-": standard output
+
+  // The format named by `format`; throws FieldError("format").
+  ParamsFormat table_format() const;
+  // Throws FieldError ("fit_file", "wavelengths", "models", "group_by", "format").
   void validate() const;
+  // One row per field (core/request_fields.h): `roadbrdf params` and roadbrdf.params are made of it.
+  static std::span<const RequestField<ParamsRequest>> fields();
 };
 
 struct ParamsRow {
@@ -79,7 +87,11 @@ struct ParamsTable {
   std::vector<Cell> csv_cells(const ParamsRow& row) const;
 };
 
-// Reads the fit file and builds the table. Throws FileError (with the JSON key path) / FieldError.
+// Reads the fit file and builds the table. Throws FileError (with the JSON key path) / FieldError, and
+// InputError when `output` is the fit file.
 ParamsTable read_params_table(const ParamsRequest& request);
+
+// The table in the request's format, written atomically to `output` (standard output when "" or "-").
+void write_params_output(const ParamsRequest& request, const ParamsTable& table);
 
 }  // namespace roadbrdf
