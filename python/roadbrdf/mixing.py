@@ -147,17 +147,28 @@ mix.__doc__ = (mix.__doc__ or "") + "\n    " + "\n    ".join(
     (_roadbrdf.mix.__doc__ or "").split("\n\n", 2)[-1].splitlines())
 
 
-def mix_calibrate(mixtures: Sequence[tuple[PathLike, PathLike]], reference: str | None = None,
-                  output: PathLike | None = None) -> dict:
-    """Fit effective cross-section factors of the hapke method's end-members, as ``roadbrdf mix-calibrate``.
+def mix_calibrate(mixtures: Sequence[tuple[PathLike, PathLike]], **kwargs: Any) -> dict:
+    """Fit effective cross-section factors of the hapke method's end-members, as ``roadbrdf mix-calibrate``
+    (one library request, the same rules).
 
-    ``mixtures``: pairs ``(formulation, data)`` of measured mixtures; ``reference``: the end-member whose
-    factor is 1 (default: the first); ``output``: also write the calibration file (for ``mix(...,
-    cross_sections=...)``). Returns ``reference``, ``factors`` and ``standard_errors`` ({end-member: value}),
-    ``mixtures``, ``rms_uncalibrated``, ``rms_calibrated`` (per mixture, reflectance factor), ``notes`` and
-    ``table`` (the report). See docs/mixing.md "Calibrated intimate mixing".
+    ``mixtures``: pairs ``(formulation, data)`` of measured mixtures (the command's ``MIXTURES`` pairs). The
+    other arguments are keywords, one per field of the request (listed below, the command line's options;
+    ``None`` leaves a field at its default): ``reference``, the end-member whose factor is 1 (default: the
+    first); ``output``, also write the calibration file (for ``mix(..., cross_sections=...)``); the
+    dataset-reading fields of the measured files. Returns ``reference``, ``factors`` and ``standard_errors``
+    ({end-member: value}), ``mixtures``, ``rms_uncalibrated``, ``rms_calibrated`` (per mixture, reflectance
+    factor), ``notes`` and ``table`` (the report). See docs/mixing.md "Calibrated intimate mixing".
     """
-    pairs = [(os.fspath(f), os.fspath(d)) for f, d in mixtures]
-    return _roadbrdf.mix_calibrate([f for f, _ in pairs], [d for _, d in pairs],
-                                   "" if reference is None else str(reference),
-                                   "" if output is None else os.fspath(output))
+    files = []
+    for pair in mixtures:
+        formulation, data = pair
+        files += [os.fspath(formulation), os.fspath(data)]
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    return _roadbrdf.mix_calibrate(files, **kwargs)
+
+
+# The keywords, from the request's field table (the same rows as `roadbrdf mix-calibrate --help`).
+_doc = _roadbrdf.mix_calibrate.__doc__ or ""
+if "Arguments" in _doc:
+    mix_calibrate.__doc__ += ("\n    " + _doc[_doc.index("Arguments"):_doc.rindex("Returns")].strip()
+                              .replace("\n", "\n    ") + "\n")

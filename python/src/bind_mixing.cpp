@@ -85,22 +85,18 @@ void bind_mixing(py::module_& m) {
           "formulation names them with (not read from disk).",
           "Returns the run (roadbrdf.MixResult wraps it); `output` and `residuals` are written.")
           .c_str());
-  // Calibrated intimate mixing (mixing/calibration.h): a CrossSectionRequest; returns the calibration
-  // file's content (written to `output` when given) and the report.
+  // Calibrated intimate mixing (mixing/calibration.h): the request of `roadbrdf mix-calibrate` (its field
+  // table, mixing/cross_section_file.cpp); returns the calibration (the file written to `output` when
+  // given) and the report.
   m.def(
       "mix_calibrate",
-      [](const std::vector<std::string>& formulations, const std::vector<std::string>& data,
-         const std::string& reference, const std::string& output) {
-        mixing::CrossSectionRequest request;
-        request.formulations = formulations;
-        request.data = data;
-        request.reference = reference;
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<mixing::CrossSectionRequest>(args, kwargs);
         mixing::CrossSectionRun run;
         {
           SigintGuard interruptible;
           py::gil_scoped_release release;
-          run = mixing::run_cross_section_calibration(request, {{"output", output}});
-          if (!output.empty()) mixing::write_cross_section_file(output, run.content);
+          run = mixing::run_cross_section_calibration(request);
         }
         const mixing::CrossSectionCalibration& c = run.content.calibration;
         py::dict factors, errors;
@@ -119,7 +115,11 @@ void bind_mixing(py::module_& m) {
         out["table"] = run.table();
         return out;
       },
-      py::arg("formulations"), py::arg("data"), py::arg("reference") = "", py::arg("output") = "");
+      request_docstring<mixing::CrossSectionRequest>(
+          "Fit effective cross-section factors of the hapke method's end-members, as `roadbrdf mix-calibrate`.",
+          "Returns a dict: reference, factors, standard_errors, mixtures, rms_uncalibrated, rms_calibrated, "
+          "notes, table.")
+          .c_str());
   m.def("read_spectral_model_file", &read_spectral_model_file, py::arg("path"), py::arg("selection") = "");
   // The mixing methods in the library's order, with what the studies need to know of each.
   m.def("mixing_methods", [] {

@@ -15,6 +15,7 @@
 #include "roadbrdf/io/model_export.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_request.h"
+#include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mix_request.h"
 #include "roadbrdf/photometry/marking_request.h"
 #include "roadbrdf/photometry/rtable_request.h"
@@ -103,6 +104,7 @@ void bind_requests(py::module_& m) {
         if (command == "marking") return rows<photometry::MarkingRequest>();
         if (command == "export") return rows<ExportRequest>();
         if (command == "params") return rows<ParamsRequest>();
+        if (command == "mix-calibrate") return rows<mixing::CrossSectionRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

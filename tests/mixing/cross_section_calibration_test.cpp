@@ -211,10 +211,9 @@ TEST(CrossSectionCalibration, BadInputNamesTheField) {
   EXPECT_EQ(field_of([&] { calibrate_cross_sections({{"BM", &s.inputs[0], &far}}); }), "mixtures");
   // Requests.
   CrossSectionRequest request;
-  EXPECT_EQ(field_of([&] { request.validate(); }), "formulations");
-  request.formulations = {"a.json", "b.json"};
-  request.data = {"a.csv"};
-  EXPECT_EQ(field_of([&] { request.validate(); }), "data");
+  EXPECT_EQ(field_of([&] { request.validate(); }), "mixtures");
+  request.mixtures = {"a.json", "a.csv", "b.json"};  // the last formulation has no data
+  EXPECT_EQ(field_of([&] { request.validate(); }), "mixtures");
   EXPECT_EQ(field_of([] { validate_cross_section_factors({{"a", -1.0}}, "cross_sections"); }), "cross_sections");
 }
 

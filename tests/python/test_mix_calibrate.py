@@ -59,7 +59,7 @@ def test_mix_calibrate_errors(tmp_path):
     pairs = _setup(tmp_path)
     with pytest.raises(roadbrdf.InputError, match="reference"):
         roadbrdf.mix_calibrate(pairs, reference="granite")
-    with pytest.raises(roadbrdf.InputError, match="formulations"):
+    with pytest.raises(roadbrdf.InputError, match="mixtures"):
         roadbrdf.mix_calibrate([])
     with pytest.raises(roadbrdf.InputError, match="cross_sections"):
         roadbrdf.mix(pairs[0][0], method="areal", cross_sections=tmp_path / "none.json")

@@ -44,6 +44,7 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/io/dataset.h"
 #include "roadbrdf/io/dataset_io.h"
+#include "roadbrdf/io/dataset_read_fields.h"
 #include "roadbrdf/mixing/mixing.h"
 
 namespace roadbrdf::mixing {
@@ -116,14 +117,21 @@ void write_cross_section_file(const std::string& path, const CrossSectionFile& c
 std::map<std::string, double> read_cross_section_factors(const std::string& path);
 
 // ---- Request (front ends: `roadbrdf mix-calibrate`, Python) ----------------------------------------
-struct CrossSectionRequest {
-  std::vector<std::string> formulations;  // one per mixture
-  std::vector<std::string> data;          // measured mixture (CSV), same order
-  DatasetReadOptions data_read;
+// The dataset-reading fields (DatasetReadFields: delimiter, decimal, average_duplicates, quantity,
+// columns, set) read every measured mixture.
+struct CrossSectionRequest : DatasetReadFields {
+  // The measured mixtures as pairs of files: each formulation followed by its measured BRDF (CSV).
+  std::vector<std::string> mixtures;
   std::string reference;  // "" = first end-member
+  std::string output;     // the calibration file; "" = none written
 
-  // Checks what needs no file. Throws FieldError ("formulations", "data").
+  std::size_t mixture_count() const { return mixtures.size() / 2; }
+  const std::string& formulation_file(std::size_t m) const { return mixtures.at(2 * m); }
+  const std::string& data_file(std::size_t m) const { return mixtures.at(2 * m + 1); }
+  // Checks what needs no file. Throws FieldError ("mixtures", the dataset-reading fields).
   void validate() const;
+  // One row per field (core/request_fields.h): `roadbrdf mix-calibrate` and roadbrdf.mix_calibrate.
+  static RequestFields<CrossSectionRequest> fields();
 };
 
 struct CrossSectionRun {
@@ -132,9 +140,9 @@ struct CrossSectionRun {
   std::string table() const;
 };
 
-// Validate, check the inputs against `outputs` (check_distinct_files), read every formulation and
-// dataset and calibrate. Throws FieldError / InputError / FileError.
-CrossSectionRun run_cross_section_calibration(const CrossSectionRequest& request,
-                                              const std::vector<FileArgument>& outputs);
+// Validate, check the inputs against `output` (check_distinct_files), read every formulation and
+// dataset and calibrate; the calibration file is written to `output` when given. Throws FieldError /
+// InputError / FileError.
+CrossSectionRun run_cross_section_calibration(const CrossSectionRequest& request);
 
 }  // namespace roadbrdf::mixing

@@ -109,57 +109,91 @@ std::map<std::string, double> read_cross_section_factors(const std::string& path
   return factors;
 }
 
-void CrossSectionRequest::validate() const {
-  if (formulations.empty())
-    throw FieldError("formulations", "give at least one measured mixture (formulation and data)");
-  if (data.size() != formulations.size()) {
-    throw FieldError("data",
-                     fmt::format("one measured mixture per formulation is needed ({} formulations, {} data files)",
-                                 formulations.size(), data.size()));
-  }
-  for (std::size_t m = 0; m < formulations.size(); ++m) {
-    if (formulations[m].empty()) throw FieldError("formulations", fmt::format("formulation {} is empty", m + 1));
-    if (data[m].empty()) throw FieldError("data", fmt::format("data file {} is empty", m + 1));
-  }
+namespace {
+
+// The measured mixtures' files, which the dataset-reading fields' FILE: prefixes may name.
+std::vector<std::string> data_files(const CrossSectionRequest& request) {
+  std::vector<std::string> files;
+  for (std::size_t m = 0; m < request.mixture_count(); ++m) files.push_back(request.data_file(m));
+  return files;
 }
 
-CrossSectionRun run_cross_section_calibration(const CrossSectionRequest& request,
-                                              const std::vector<FileArgument>& outputs) {
+}  // namespace
+
+RequestFields<CrossSectionRequest> CrossSectionRequest::fields() {
+  using R = CrossSectionRequest;
+  static const std::vector<RequestField<R>> table = [] {
+    std::vector<RequestField<R>> rows = {
+        {"mixtures", "MIXTURES", "",
+         "Pairs FORMULATION.json DATA.csv: each measured mixture's formulation and measured BRDF", &R::mixtures,
+         FileRole::input, true},
+    };
+    for (const RequestField<R>& row : dataset_read_fields<R>()) rows.push_back(row);
+    rows.push_back({"reference", "--reference", "",
+                    "End-member whose factor is fixed at 1 (default: the first end-member of the first mixture)",
+                    &R::reference});
+    rows.push_back({"output", "-o,--output", "",
+                    "Output calibration file (JSON, see src/roadbrdf/mixing/calibration.h)", &R::output,
+                    FileRole::output});
+    return rows;
+  }();
+  return table;
+}
+
+void CrossSectionRequest::validate() const {
+  if (mixtures.empty()) throw FieldError("mixtures", "give at least one measured mixture (formulation and data)");
+  if (mixtures.size() % 2 != 0) {
+    throw FieldError("mixtures",
+                     fmt::format("give pairs of a formulation and its measured data ({} files given: the last one "
+                                 "has no partner)",
+                                 mixtures.size()));
+  }
+  for (std::size_t k = 0; k < mixtures.size(); ++k) {
+    if (mixtures[k].empty()) throw FieldError("mixtures", fmt::format("file {} is empty", k + 1));
+  }
+  for (std::size_t m = 0; m < mixture_count(); ++m) options_for(data_file(m), data_files(*this));
+}
+
+CrossSectionRun run_cross_section_calibration(const CrossSectionRequest& request) {
   request.validate();
   std::vector<FileArgument> read;
-  for (std::size_t m = 0; m < request.formulations.size(); ++m) {
-    read.push_back({"formulation " + request.formulations[m], request.formulations[m]});
-    read.push_back({"data " + request.data[m], request.data[m]});
+  for (std::size_t m = 0; m < request.mixture_count(); ++m) {
+    read.push_back({"formulation " + request.formulation_file(m), request.formulation_file(m)});
+    read.push_back({"data " + request.data_file(m), request.data_file(m)});
   }
+  const std::vector<FileArgument> outputs = {{"`output`", request.output}};
   check_distinct_files(read, outputs);
   // The fit files the formulations name are inputs too.
   std::vector<Formulation> formulations;
-  formulations.reserve(request.formulations.size());
-  for (const std::string& path : request.formulations) {
-    formulations.push_back(read_formulation(path));
+  formulations.reserve(request.mixture_count());
+  for (std::size_t m = 0; m < request.mixture_count(); ++m) {
+    formulations.push_back(read_formulation(request.formulation_file(m)));
     const std::vector<FileArgument> fits = formulation_input_files(formulations.back());
     read.insert(read.end(), fits.begin(), fits.end());
   }
   check_distinct_files(read, outputs);
   std::vector<MixInputs> inputs;
   std::vector<SpectralDataset> data;
-  inputs.reserve(request.formulations.size());
-  data.reserve(request.formulations.size());
-  for (std::size_t m = 0; m < request.formulations.size(); ++m) {
+  inputs.reserve(request.mixture_count());
+  data.reserve(request.mixture_count());
+  for (std::size_t m = 0; m < request.mixture_count(); ++m) {
     inputs.push_back(load_mix_inputs(formulations[m]));
-    data.push_back(read_dataset(request.data[m], request.data_read));
+    data.push_back(read_dataset(request.data_file(m), request.options_for(request.data_file(m), data_files(request))));
   }
   std::vector<CalibrationMixture> mixtures;
   std::set<std::string> names;
   for (std::size_t m = 0; m < inputs.size(); ++m) {
     std::string name = inputs[m].formulation.name;
-    if (!names.insert(name).second) name = fmt::format("{} ({})", name, request.formulations[m]);
+    if (!names.insert(name).second) name = fmt::format("{} ({})", name, request.formulation_file(m));
     mixtures.push_back({name, &inputs[m], &data[m]});
   }
   CrossSectionRun run;
   run.content.calibration = calibrate_cross_sections(mixtures, request.reference);
-  run.content.formulations = request.formulations;
-  run.content.data = request.data;
+  for (std::size_t m = 0; m < request.mixture_count(); ++m) {
+    run.content.formulations.push_back(request.formulation_file(m));
+    run.content.data.push_back(request.data_file(m));
+  }
+  if (!request.output.empty()) write_cross_section_file(request.output, run.content);
   return run;
 }
 
