@@ -181,7 +181,14 @@ def test_the_report_mixes_a_formulation_on_averaged_duplicates(root, tmp_path):
     """The duplicate policy reaches the report's mixing step: repeated scans of F1 (exact copies of three rows)
     averaged are F1 itself, so the mixing comparison equals the one on the original file."""
     f1 = root / "data" / "examples" / "mixed" / "F1.csv"
-    formulation = root / "data" / "examples" / "formulations" / "F1.json"
+    # F1's formulation with Lambert fits of its components where it looks for them (../fits/NAME.fit.json).
+    (tmp_path / "fits").mkdir()
+    (tmp_path / "formulations").mkdir()
+    for name, path in [("bitumen", "single/bitumen.csv"), ("garonne", "single/garonne.csv"),
+                       ("mastic-garonne-bitumen", "mastics/mastic-garonne-bitumen.csv")]:
+        roadbrdf.fit(root / "data" / "examples" / path, ["lambert"], output=tmp_path / "fits" / f"{name}.fit.json")
+    formulation = tmp_path / "formulations" / "F1.json"
+    formulation.write_bytes((root / "data" / "examples" / "formulations" / "F1.json").read_bytes())
     lines = f1.read_text(encoding="utf-8").splitlines(keepends=True)
     rows = [line for line in lines if not line.startswith("#")]
     data = tmp_path / "F1-repeated.csv"
