@@ -11,7 +11,9 @@
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
+#include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/model_export.h"
+#include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_request.h"
 #include "roadbrdf/mixing/mix_request.h"
@@ -101,6 +103,8 @@ void bind_requests(py::module_& m) {
         if (command == "lighting") return rows<lighting::LightingRequest>();
         if (command == "marking") return rows<photometry::MarkingRequest>();
         if (command == "export") return rows<ExportRequest>();
+        if (command == "eval") return rows<EvalRequest>();
+        if (command == "simulate") return rows<SimulateRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),
