@@ -73,8 +73,8 @@ SpectralDataset simulate(const SimulateRequest& request) {
   for (const auto& [name, file] : spectra_files) spectrum_inputs.push_back({"`spectral`", file});
   check_request_files(request, spectrum_inputs);
   if (request.digits < 0 || request.digits > 17) throw FieldError("digits", "must be in [0, 17]");
-  const DatasetFormat format = parse_name<DatasetFormat>(request.format, "format");
-  (void)format;  // a bad name is refused before any work; the caller writes
+  // A bad format name is refused before any work; the caller writes the dataset in it.
+  static_cast<void>(parse_name<DatasetFormat>(request.format, "format"));
   const NoiseModel noise = parse_noise_model(request.noise);
   const SpectralModel model = request.resolve().model;
   const GeometryTable grid = read_geometry_file(request.grid);
