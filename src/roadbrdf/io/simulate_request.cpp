@@ -90,11 +90,12 @@ SpectralDataset simulate(const SimulateRequest& request) {
   } else {
     throw FieldError("wavelengths", "give START:STOP:STEP [nm] (the model is not spectral)");
   }
-  for (const auto& [name, file] : spectra_files) {
+  for (const auto& item : spectra_files) {
+    const std::string prefix = item.first + "=";
     const bool also_fixed = std::any_of(request.parameters.begin(), request.parameters.end(),
-                                        [&](const std::string& p) { return p.rfind(name + "=", 0) == 0; });
-    if (also_fixed) throw FieldError("spectral." + name, "is given both as a spectrum and in `parameters`");
-    in.spectral_parameters[name] = spectra::read_spectrum(file);
+                                        [&prefix](const std::string& p) { return p.rfind(prefix, 0) == 0; });
+    if (also_fixed) throw FieldError("spectral." + item.first, "is given both as a spectrum and in `parameters`");
+    in.spectral_parameters[item.first] = spectra::read_spectrum(item.second);
   }
   in.noise = noise;
   in.seed = request.seed;
