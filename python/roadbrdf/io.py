@@ -198,3 +198,38 @@ def check(path: Union[PathLike, Dataset], average_duplicates: bool = False, deli
                                    average_duplicates=as_bool(average_duplicates, "average_duplicates"),
                                    delimiter=str(delimiter), decimal=str(decimal), quantity=as_text(quantity, "quantity"),
                                    columns=_items(columns, "columns"), set=_items(set, "set"))
+
+
+def _with_request_arguments(function, request):
+    """Appends the keywords of the request's field table (the command line's options) to the docstring."""
+    doc = request.__doc__ or ""
+    if "Arguments" in doc:
+        function.__doc__ += "\n    " + doc[doc.index("Arguments"):doc.rindex("Returns")].strip().replace("\n", "\n    ")
+        function.__doc__ += "\n"
+    return function
+
+
+def evaluate(*args: Any, **kwargs: Any) -> Union[float, list]:
+    """A model's BRDF [sr^-1] as ``roadbrdf eval`` computes it (one library request, the same rules).
+
+    ``model`` (the one positional argument) is a model name (with ``parameters``, NAME=VALUE texts, and ``options``), a fit file or a
+    MIX.json (``fit`` chooses its entry, ``wavelength`` [nm] its band unless it has one). The geometry is
+    the four angles ``theta_i``, ``phi_i``, ``theta_r``, ``phi_r`` [deg] (a float is returned), or a
+    ``geometry`` CSV file (a list, one value per row; written with a ``brdf`` column to ``output`` when
+    given). ``None`` leaves a field at its default.
+    """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    return _roadbrdf.eval(*args, **kwargs)
+
+
+def simulate(*args: Any, **kwargs: Any) -> Dataset:
+    """A simulated measurement (virtual gonioreflectometer) as ``roadbrdf simulate`` makes it: the model
+    sampled on the ``grid`` file's geometries at ``wavelengths`` [nm] with the ``noise`` model, reproducible
+    by ``seed``; written to ``output`` (``format``) when given. ``None`` leaves a field at its default.
+    """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    return Dataset._from_dict(_roadbrdf.simulate(*args, **kwargs))
+
+
+_with_request_arguments(evaluate, _roadbrdf.eval)
+_with_request_arguments(simulate, _roadbrdf.simulate)

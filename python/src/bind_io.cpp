@@ -18,9 +18,11 @@
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/dataset_runs.h"
+#include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/quality.h"
+#include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/io/usgs.h"
 #include "roadbrdf/spectra/spectrum_file.h"
 
@@ -279,6 +281,32 @@ void bind_io(py::module_& m) {
         return dataset_to_dict(read_alta(path, options));
       },
       py::arg("path"), py::arg("wavelength"), py::arg("assumed_output") = "", py::arg("exclude_grazing") = false);
+  // The requests of `roadbrdf eval` and `roadbrdf simulate` (their field tables: io/eval_request.cpp,
+  // io/simulate_request.cpp), positional model first.
+  m.def(
+      "eval",
+      [](const py::args& args, const py::kwargs& kwargs) -> py::object {
+        const EvalResult result = evaluate(request_from_arguments<EvalRequest>(args, kwargs));
+        if (!result.table) return py::float_(result.brdf.front());
+        return py::cast(result.brdf);
+      },
+      request_docstring<EvalRequest>("A model's BRDF [sr^-1], as `roadbrdf eval` computes it.",
+                                     "Returns the BRDF at the four angles (a float), or one per row of the "
+                                     "`geometry` file (a list), which is also written to `output` when given.")
+          .c_str());
+  m.def(
+      "simulate",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<SimulateRequest>(args, kwargs);
+        const SpectralDataset d = simulate(request);
+        if (!request.output.empty())
+          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
+        return dataset_to_dict(d);
+      },
+      request_docstring<SimulateRequest>(
+          "A simulated measurement (virtual gonioreflectometer), as `roadbrdf simulate` makes it.",
+          "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
+          .c_str());
   bind_instruments(m);
 }
 

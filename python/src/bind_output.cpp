@@ -12,7 +12,9 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/fitting/params_table.h"
+#include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/model_export.h"
+#include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_request.h"
 #include "roadbrdf/mixing/calibration.h"
@@ -105,6 +107,8 @@ void bind_requests(py::module_& m) {
         if (command == "export") return rows<ExportRequest>();
         if (command == "params") return rows<ParamsRequest>();
         if (command == "mix-calibrate") return rows<mixing::CrossSectionRequest>();
+        if (command == "eval") return rows<EvalRequest>();
+        if (command == "simulate") return rows<SimulateRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

@@ -115,7 +115,7 @@ TEST(SingleBand, EvalAcceptsFitFiles) {
   EXPECT_NEAR(std::stod(at.output), 0.4 / kPi, 1e-9);
   const auto model = run_cli("eval lambert -p albedo=0.5 --wavelength 500 --theta-i 0 --phi-i 0 --theta-r 0 --phi-r 0");
   EXPECT_NE(model.status, 0);
-  EXPECT_NE(model.output.find("--wavelength needs a fit file"), std::string::npos) << model.output;
+  EXPECT_NE(model.output.find("--wavelength: needs a fit file"), std::string::npos) << model.output;
 }
 
 TEST(FewBand, PerWavelengthValuesAndNotesForWhatCannotBeFormed) {

@@ -43,6 +43,8 @@ def _files(folder):
 
 
 LIGHTING = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "lighting")
+GRID = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data", "examples", "grid",
+                    "cerema-like-grid.csv")
 
 
 def base_calls(folder):
@@ -97,6 +99,11 @@ def base_calls(folder):
         "export": (roadbrdf.export, dict(source="lambert", parameters=["albedo=0.3"], format="csv",
                                          wavelengths="550", theta_i="0:60:30", theta_r="0:60:30", phi="0:180:90",
                                          output=os.path.join(folder, "grid.csv"))),
+        "evaluate": (roadbrdf.evaluate, dict(model="lambert", parameters=["albedo=0.3"], theta_i=30, phi_i=0,
+                                             theta_r=30, phi_r=180)),
+        "simulate": (roadbrdf.simulate, dict(model="lambert", parameters=["albedo=0.3"],
+                                             grid=GRID,
+                                             wavelengths="500", output=os.path.join(folder, "sim.csv"))),
     }
 
 
@@ -204,7 +211,7 @@ def test_the_sweep_covers_every_public_function():
     covered = {"Model", "Dataset", "read_dataset", "write_dataset", "check", "read_fit", "params", "fit", "rtable",
                "albedo", "mix", "flat_surface", "gaussian_slope_surface", "read_surface", "render", "render_albedo",
                "road_to_zenith_azimuth", "read_rtable", "spectral_model_from_fit", "surface", "luminaire", "lighting",
-               "marking", "export"}
+               "marking", "export", "evaluate", "simulate"}
     # Types, functions without arguments, study (test_study_robustness.py), and the readers of third-party and
     # instrument files, mix_calibrate and Surface's methods (swept by test_bad_arguments_readers.py).
     elsewhere = {"InputError", "SpectralModel", "RTable", "FitResult", "ModelFit", "AlbedoResult", "Surface",

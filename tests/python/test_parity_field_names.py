@@ -37,3 +37,17 @@ def test_a_hint_names_the_flag_or_the_keyword(cli, tmp_path):
     assert "ask for averaging of duplicates (`average_duplicates`) to average them" in message
     # Apart from the field's spelling, the two messages are the same.
     assert r.stderr.strip() == "roadbrdf: error: " + message.replace("`average_duplicates`", "--average-duplicates")
+
+
+def test_columns_is_spelt_by_the_dataset_table_of_check(cli, tmp_path):
+    # `columns` is the row --column of the dataset-reading table that `check` is made from, not a rename.
+    path = tmp_path / "d.csv"
+    path.write_text("theta_i,phi_i,theta_r,phi_r,550\n30,0,30,180,0.1\n")
+    r = cli("check", path, "--column", "bogus=x", check=False)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.startswith("roadbrdf: error: --column: 'bogus' is no dataset field"), r.stderr
+    with pytest.raises(roadbrdf.InputError, match="^columns: 'bogus' is no dataset field"):
+        roadbrdf.read_dataset(path, columns={"bogus": "x"})
+    # A reference inside a file's message is spelt by the same table.
+    r = cli("check", path, "--column", "theta_r=View", check=False)
+    assert "--column theta_r=View" in r.stderr and "`columns`" not in r.stderr, r.stderr

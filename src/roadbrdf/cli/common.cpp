@@ -7,7 +7,9 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <system_error>
+#include <utility>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
@@ -53,29 +55,6 @@ OptionSet parse_option_assignments(const std::vector<std::string>& items, const 
   return result;
 }
 
-ModelWithParameters model_from_command_line(const std::string& name, const std::vector<std::string>& parameter_items,
-                                            const std::vector<std::string>& option_items) {
-  ModelWithParameters m;
-  m.model = make_model(name, parse_option_assignments(option_items, "--option"));
-  m.parameters = parameters_from_assignments(m.model->description(), parse_numeric_assignments(parameter_items, "-p"));
-  return m;
-}
-
-SpectralModel spectral_model_from_command_line(const std::string& argument,
-                                               const std::vector<std::string>& parameter_items,
-                                               const std::vector<std::string>& option_items,
-                                               const std::string& fit_model) {
-  return resolve_model(argument, parameter_items, option_items, fit_model).model;
-}
-
-void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,
-                     std::vector<std::string>& option_items) {
-  command->add_option("-p,--parameter", parameter_items, "Model parameter NAME=VALUE (repeatable); defaults otherwise")
-      ->allow_extra_args(false);
-  command->add_option("--option", option_items, "Model option NAME=VALUE (repeatable), e.g. distribution=ggx")
-      ->allow_extra_args(false);
-}
-
 double parse_number(const std::string& text, const std::string& what) {
   double v = 0.0;
   if (!parse_finite_double(text, v)) {
@@ -100,21 +79,35 @@ std::vector<std::string> split_commas(const std::vector<std::string>& items) {
   return out;
 }
 
-std::string flag_for_field(const std::string& field) {
+std::string plain_flag(const std::string& field) {
   if (field.empty() || field.front() == '-') return field;
-  // Request fields whose flag is not the field name with dashes.
-  static const std::map<std::string, std::string> renamed = {
-      {"models", "--model"}, {"options", "--option"}, {"parameters", "-p"}, {"columns", "--column"}};
   const auto dot = field.find('.');
-  const std::string head = field.substr(0, dot);
-  std::string flag;
-  if (const auto it = renamed.find(head); it != renamed.end()) {
-    flag = it->second;
-  } else {
-    flag = "--" + head;
-    std::replace(flag.begin(), flag.end(), '_', '-');
-  }
+  std::string flag = "--" + field.substr(0, dot);
+  std::replace(flag.begin(), flag.end(), '_', '-');
   return dot == std::string::npos ? flag : flag + " " + field.substr(dot + 1);
+}
+
+namespace {
+// The tables each command was made from, in the order they were added.
+std::map<const CLI::App*, std::vector<FieldSpelling>>& field_tables() {
+  static std::map<const CLI::App*, std::vector<FieldSpelling>> tables;
+  return tables;
+}
+}  // namespace
+
+void add_field_table(const CLI::App* command, FieldSpelling spelling) {
+  field_tables()[command].push_back(std::move(spelling));
+}
+
+std::string flag_for_field(const CLI::App& app, const std::string& field) {
+  for (const CLI::App* command : app.get_subcommands()) {
+    const auto tables = field_tables().find(command);
+    if (tables == field_tables().end()) continue;
+    for (const FieldSpelling& table : tables->second) {
+      if (std::optional<std::string> flag = table(field)) return *flag;
+    }
+  }
+  return plain_flag(field);
 }
 
 std::string replace_field_references(const std::string& message,
@@ -138,17 +131,12 @@ std::string replace_field_references(const std::string& message,
   return out + message.substr(std::min(at, message.size()));
 }
 
-std::string name_flags(const std::string& message) { return replace_field_references(message, flag_for_field); }
+std::string name_flags(const CLI::App& app, const std::string& message) {
+  return replace_field_references(message, [&app](const std::string& field) { return flag_for_field(app, field); });
+}
 
 void add_quiet_flag(CLI::App* command, bool& quiet) {
   command->add_flag("--quiet", quiet, "No progress bar (it is only drawn on a terminal anyway)");
-}
-
-void add_fit_flag(CLI::App* command, std::string& fit) {
-  command->add_option("--fit", fit,
-                      "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a "
-                      "MIX.json (default: the best-ranked)");
-  refuse_fit_model_flag(command);
 }
 
 void refuse_fit_model_flag(CLI::App* command) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,22 +20,6 @@ namespace roadbrdf::cli {
 // "name=value" strings to a map; `what` names the flag in errors (e.g. "-p").
 std::map<std::string, double> parse_numeric_assignments(const std::vector<std::string>& items, const std::string& what);
 OptionSet parse_option_assignments(const std::vector<std::string>& items, const std::string& what);
-
-// A model with one parameter set, as given on the command line: MODEL -p ... --option ...
-struct ModelWithParameters {
-  std::unique_ptr<Model> model;
-  std::vector<double> parameters;
-};
-ModelWithParameters model_from_command_line(const std::string& name, const std::vector<std::string>& parameter_items,
-                                            const std::vector<std::string>& option_items);
-
-// A model or a fit file, as accepted by every command that takes "MODEL -p ... | FIT.json": the
-// library's one resolver (modelfile/model_source.h resolve_model); `fit_model` selects a fit or a
-// mixing method inside the file (default: the file's best).
-SpectralModel spectral_model_from_command_line(const std::string& argument,
-                                               const std::vector<std::string>& parameter_items,
-                                               const std::vector<std::string>& option_items,
-                                               const std::string& fit_model = "");
 
 // Write a dataset to `path` (atomically), or to standard output when `path` is empty or "-";
 // `format` is a name of kDatasetFormatNames (io/dataset_io.h), read as the request field `format_field`.
@@ -53,28 +38,29 @@ std::vector<std::string> split_commas(const std::vector<std::string>& items);
 // Lists of numbers ("D", "D1,D2,...", "A:B:STEP" and mixes) are parsed by parse_range_list
 // (core/range.h), the one grammar of every command and of Python.
 
-// The flag of a library request field (FieldError::field): "multistart" -> "--multistart",
-// "fixed.roughness" -> "--fix roughness", "options.distribution" -> "--option distribution".
-// A field that is already a flag ("--sun-zenith") is kept.
-std::string flag_for_field(const std::string& field);
+// The spelling of request fields on the command line: each command made from request tables
+// (core/request_fields.h) records them (add_field_table; cli/request_options.h does it for
+// add_request_options and cli/dataset_flags.h for the dataset-reading rows). A field is spelt by
+// the first table of the running command that has its row: the row's long flag, with the part after
+// a dot kept ("fixed.roughness" -> "--fix roughness", "parameters" -> "--parameter"). A field of no
+// table is spelt by the plain rule, which only fits a field named exactly like its flag:
+// "sun_zenith" -> "--sun-zenith" (plain_flag). A field that is already a flag ("--grid") is kept.
+using FieldSpelling = std::function<std::optional<std::string>(const std::string& field)>;
+void add_field_table(const CLI::App* command, FieldSpelling spelling);
+std::string plain_flag(const std::string& field);
+// `field` spelt by the tables of `app`'s running command (the parsed subcommand), else plain_flag.
+std::string flag_for_field(const CLI::App& app, const std::string& field);
 // A library message with its field references (`field`, core/error.h) replaced by their flags:
 // "pass `delimiter` ';'" -> "pass --delimiter ';'". Backquoted text that is not a field name (it
 // holds a space or a character other than a-z, 0-9, '_', '.', '-') is kept as is.
-std::string name_flags(const std::string& message);
+std::string name_flags(const CLI::App& app, const std::string& message);
 // The same with another spelling of fields (cli/request_options.h: a request table's flags).
 std::string replace_field_references(const std::string& message,
                                      const std::function<std::string(const std::string&)>& flag);
 
-// Adds "--fit NAME": which fit of a fit file (its model name) or which method of a MIX.json, the
-// option name every command uses; the old spelling --fit-model is refused with a message naming --fit.
-void add_fit_flag(CLI::App* command, std::string& fit);
 // The old spelling --fit-model alone, refused (for a command whose --fit comes from its request table).
 void refuse_fit_model_flag(CLI::App* command);
 // --quiet: no progress bar (core/progress.h; it is only drawn when standard error is a terminal).
 void add_quiet_flag(CLI::App* command, bool& quiet);
-
-// Adds the usual "-p NAME=VALUE" and "--option NAME=VALUE" flags to a sub-command.
-void add_model_flags(CLI::App* command, std::vector<std::string>& parameter_items,
-                     std::vector<std::string>& option_items);
 
 }  // namespace roadbrdf::cli

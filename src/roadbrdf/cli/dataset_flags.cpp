@@ -8,6 +8,7 @@ void add_dataset_read_flags(CLI::App* command, DatasetReadFlags& flags, bool wit
   for (const RequestField<DatasetReadFields>& field : DatasetReadFields::fields()) {
     if (with_quantity || field.name != "quantity") detail::add_field(command, flags, field);
   }
+  add_field_table(command, table_flag<DatasetReadFields>);
 }
 
 DatasetReadOptions dataset_read_options(const DatasetReadFlags& flags, const std::string& file,

@@ -28,8 +28,8 @@ int main(int argc, char** argv) {
   // Warnings of readers called without a sink of their own (core/diagnostics.h): the library never prints.
   roadbrdf::set_front_end_warning_sink(
       // Library warnings name request fields (`like_this`); the command line names its flags.
-      [](const std::string& message) {
-        fmt::print(stderr, "roadbrdf: warning: {}\n", roadbrdf::cli::name_flags(message));
+      [&app](const std::string& message) {
+        fmt::print(stderr, "roadbrdf: warning: {}\n", roadbrdf::cli::name_flags(app, message));
       });
   roadbrdf::cli::register_models_command(app);
   roadbrdf::cli::register_eval_command(app);
@@ -64,12 +64,13 @@ int main(int argc, char** argv) {
       status = 2;
     }
   } catch (const roadbrdf::FieldError& e) {
-    // Library requests name their fields; the command line names its flags.
-    fmt::print(stderr, "roadbrdf: error: {}: {}\n", roadbrdf::cli::flag_for_field(e.field()),
-               roadbrdf::cli::name_flags(e.detail()));
+    // Library requests name their fields; the command line names its flags, as the tables the
+    // running command was made from spell them (cli/common.h flag_for_field).
+    fmt::print(stderr, "roadbrdf: error: {}: {}\n", roadbrdf::cli::flag_for_field(app, e.field()),
+               roadbrdf::cli::name_flags(app, e.detail()));
     status = 2;
   } catch (const roadbrdf::InputError& e) {
-    fmt::print(stderr, "roadbrdf: error: {}\n", roadbrdf::cli::name_flags(e.what()));
+    fmt::print(stderr, "roadbrdf: error: {}\n", roadbrdf::cli::name_flags(app, e.what()));
     status = 2;
   } catch (const std::system_error& e) {
     // fmt::print reports a failed write to standard output this way (e.g. a full disk).

@@ -193,14 +193,28 @@ void add_field(CLI::App* command, Request& request, const RequestField<Request>&
 
 }  // namespace detail
 
-// Adds every field of Request's table to `command`, bound to `request`'s members.
+// The flag of a request field by Request's table ("options.distribution" -> "--option distribution"),
+// or nothing when the table has no such row.
+template <class Request>
+std::optional<std::string> table_flag(const std::string& field_name) {
+  const RequestField<Request>* field = find_field(Request::fields(), field_name);
+  if (field == nullptr) return std::nullopt;
+  std::string flag(field->long_flag());
+  const auto dot = field_name.find('.');
+  if (field->name != field_name && dot != std::string::npos) flag += " " + field_name.substr(dot + 1);
+  return flag;
+}
+
+// Adds every field of Request's table to `command`, bound to `request`'s members, and records the
+// table as one that spells the command's fields (cli/common.h add_field_table).
 template <class Request>
 void add_request_options(CLI::App* command, Request& request) {
   for (const RequestField<Request>& field : Request::fields()) detail::add_field(command, request, field);
+  add_field_table(command, table_flag<Request>);
 }
 
-// The flag of a request field ("options.distribution" -> "--option distribution"); a field that is
-// not in the table is spelt by the general rule (cli/common.h flag_for_field).
+// The flag of a request field by Request's table; a field that is not in the table is spelt by the
+// plain rule (cli/common.h plain_flag).
 template <class Request>
 std::string flag_of(const std::string& field_name) {
   return detail::flag_of_field<Request>(field_name);
@@ -208,12 +222,7 @@ std::string flag_of(const std::string& field_name) {
 
 template <class Request>
 std::string detail::flag_of_field(const std::string& field_name) {
-  const RequestField<Request>* field = find_field(Request::fields(), field_name);
-  if (field == nullptr) return flag_for_field(field_name);
-  std::string flag(field->long_flag());
-  const auto dot = field_name.find('.');
-  if (field->name != field_name && dot != std::string::npos) flag += " " + field_name.substr(dot + 1);
-  return flag;
+  return table_flag<Request>(field_name).value_or(plain_flag(field_name));
 }
 
 // A library message with its `field` references spelt as the table's flags.

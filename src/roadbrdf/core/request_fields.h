@@ -118,6 +118,19 @@ struct RequestField {
 template <class Request>
 using RequestFields = std::span<const RequestField<Request>>;
 
+// The rows of a base's table (`Base::fields()`) in the table of a Request derived from Base: the same
+// rows, each member pointer converted to one of Request (a base's member is the derived's). Rows
+// shared by several requests are declared once this way (modelfile/model_source_fields.h).
+template <class Request, class Base>
+std::vector<RequestField<Request>> fields_of_base() {
+  std::vector<RequestField<Request>> rows;
+  for (const RequestField<Base>& f : Base::fields()) {
+    const FieldMember<Request> member = std::visit([](auto m) -> FieldMember<Request> { return m; }, f.member);
+    rows.push_back({f.name, f.flag, f.unit, f.help, member, f.file, f.required, f.comma_separated});
+  }
+  return rows;
+}
+
 // Items of a comma-separated list of names ("theta_i, phi_i"): split at commas, blanks removed,
 // empty parts skipped (RequestField::comma_separated).
 inline std::vector<std::string> split_name_list(const std::vector<std::string>& items) {

@@ -8,6 +8,7 @@
 #include "roadbrdf/modelfile/fit_file_read.h"
 #include "roadbrdf/modelfile/mix_file_read.h"
 #include "roadbrdf/modelfile/model_by_name.h"
+#include "roadbrdf/modelfile/model_source_fields.h"
 #include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
@@ -26,6 +27,22 @@ bool is_model_name(const std::string& name) {
 }
 
 }  // namespace
+
+RequestFields<ModelSourceFields> ModelSourceFields::fields() {
+  using R = ModelSourceFields;
+  static const RequestField<R> rows[] = {
+      {"model", "MODEL", "", "Model name (e.g. oren-nayar or lambert+torrance-sparrow, with -p), FIT.json or MIX.json",
+       &R::model, FileRole::input, true},
+      {"parameters", "-p,--parameter", "", "Model parameter NAME=VALUE (repeatable); defaults otherwise",
+       &R::parameters},
+      {"options", "--option", "", "Model option NAME=VALUE (repeatable), e.g. distribution=ggx", &R::options},
+      {"fit", "--fit", "",
+       "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a MIX.json "
+       "(default: the best-ranked)",
+       &R::fit},
+  };
+  return rows;
+}
 
 std::string source_kind(const std::string& source) {
   if (source.size() > 5 && source.compare(source.size() - 5, 5, ".json") == 0) return "fit";
