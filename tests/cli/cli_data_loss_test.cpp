@@ -82,7 +82,7 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
        "fit of component 'Grey'", f.path("lambert.fit.json")},
       {"mix " + f.path("F.json") + " --data " + data + " --residuals " + data + " -o " + f.path("mix.json"),
        "--residuals", data, "--data", data},
-      {"mix-calibrate " + f.path("F.json") + " " + data + " -o " + f.path("lambert.fit.json"), "-o",
+      {"mix-calibrate " + f.path("F.json") + " " + data + " -o " + f.path("lambert.fit.json"), "--output",
        f.path("lambert.fit.json"), "fit of component 'Grey'", f.path("lambert.fit.json")},
       {"surface " + f.path("F.json") + " -o " + f.path("F.json"), "--output", f.path("F.json"), "INPUT",
        f.path("F.json")},

@@ -328,7 +328,8 @@ TEST_F(CliMix, CalibrateCrossSectionsAndUseThem) {
   const std::string cal = (dir_ / "cal.json").string();
   Result r = run("mix-calibrate " + f + " -o " + cal);
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("pairs FORMULATION.json DATA.csv"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("give pairs of a formulation and its measured data (1 file given"), std::string::npos)
+      << r.output;
   r = run("mix-calibrate " + f + " " + data + " --reference granite -o " + cal);
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--reference: 'granite' is not an end-member"), std::string::npos) << r.output;

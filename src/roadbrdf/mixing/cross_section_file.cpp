@@ -144,9 +144,9 @@ void CrossSectionRequest::validate() const {
   if (mixtures.empty()) throw FieldError("mixtures", "give at least one measured mixture (formulation and data)");
   if (mixtures.size() % 2 != 0) {
     throw FieldError("mixtures",
-                     fmt::format("give pairs of a formulation and its measured data ({} files given: the last one "
+                     fmt::format("give pairs of a formulation and its measured data ({} {} given: the last one "
                                  "has no partner)",
-                                 mixtures.size()));
+                                 mixtures.size(), mixtures.size() == 1 ? "file" : "files"));
   }
   for (std::size_t k = 0; k < mixtures.size(); ++k) {
     if (mixtures[k].empty()) throw FieldError("mixtures", fmt::format("file {} is empty", k + 1));
