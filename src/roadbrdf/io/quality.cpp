@@ -16,18 +16,6 @@ namespace roadbrdf {
 
 namespace {
 
-double median_of(std::vector<double>& v) {
-  if (v.empty()) return std::nan("");
-  const std::size_t h = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
-  double m = v[h];
-  if (v.size() % 2 == 0) {
-    const double lo = *std::max_element(v.begin(), v.begin() + static_cast<long>(h));
-    m = 0.5 * (m + lo);
-  }
-  return m;
-}
-
 // |phi_r - phi_i| folded to [0, 180] deg; NaN when a direction is the normal.
 double abs_dphi_deg(const Geometry& g) {
   if (g.theta_i == 0.0 || g.theta_r == 0.0) return std::nan("");
@@ -216,6 +204,18 @@ std::string join(const std::vector<double>& v) {
 }
 
 }  // namespace
+
+double median_of(std::vector<double>& v) {
+  if (v.empty()) return std::nan("");
+  const std::size_t h = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
+  double m = v[h];
+  if (v.size() % 2 == 0) {
+    const double lo = *std::max_element(v.begin(), v.begin() + static_cast<long>(h));
+    m = 0.5 * (m + lo);
+  }
+  return m;
+}
 
 QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
   validate_dataset(d);

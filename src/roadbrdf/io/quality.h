@@ -139,6 +139,9 @@ QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions
 QualityReport check_dataset(const SpectralDataset& dataset, const QualityOptions& options,
                             const DatasetReadStats& stats);
 
+// The median of `values` (reordered in place; NaN when empty), shared by the checks (quality.cpp).
+double median_of(std::vector<double>& values);
+
 // The outlier check (quality_outliers.cpp): fills outliers and specular_peaks.
 void check_outliers(const SpectralDataset& dataset, const QualityOptions& options, QualityReport& report);
 

@@ -14,15 +14,6 @@ namespace roadbrdf {
 
 namespace {
 
-double median_of(std::vector<double>& v) {
-  if (v.empty()) return std::nan("");
-  const std::size_t h = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
-  double m = v[h];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + static_cast<long>(h)));
-  return m;
-}
-
 double angle_between(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(dot(a, b), -1.0, 1.0)); }
 
 // Isotropic angular coordinates of a geometry [deg]: incidence zenith, and the viewing direction
