@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "roadbrdf/core/request_fields.h"
+#include "roadbrdf/modelfile/model_source_fields.h"
 #include "roadbrdf/models/spectral_model.h"
 #include "roadbrdf/photometry/rtable.h"
 #include "roadbrdf/photometry/rtable_coverage.h"
@@ -25,14 +26,11 @@
 
 namespace roadbrdf::photometry {
 
-struct RTableRequest {
-  // Where the table comes from: a model (the one resolver of modelfile/model_source.h: a model name
-  // with `parameters` and `options`, or a FIT.json or MIX.json with `fit` choosing an entry), or an
-  // r-table file (`import_file`, read as `import_format` when its extension does not tell, its values
-  // `scale` times r). Exactly one of `model` and `import_file`.
-  std::string model;
-  std::vector<std::string> parameters, options;
-  std::string fit;
+struct RTableRequest : ModelSourceFields {
+  // Where the table comes from: a model (ModelSourceFields, the one resolver of
+  // modelfile/model_source.h: a model name with `parameters` and `options`, or a FIT.json or MIX.json
+  // with `fit` choosing an entry), or an r-table file (`import_file`, read as `import_format` when its
+  // extension does not tell, its values `scale` times r). Exactly one of `model` and `import_file`.
   std::string import_file, import_format;
   double scale = kRScale;
   // How a spectral model is reduced to one BRDF per geometry (SpectralWeighting): photometrically

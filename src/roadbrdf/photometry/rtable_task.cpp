@@ -39,37 +39,37 @@ std::span<const RequestField<RTableRequest>> RTableRequest::fields() {
       "Q0 averaging region: " + described_names_text<Q0Region>() + " (default standard)";
   static const std::string class_system_help =
       "Class reported as 'class': " + names_text<ClassSystem>() + " (default R)";
-  static const RequestField<R> rows[] = {
-      {"model", "MODEL", "", "Fit file (FIT.json), MIX.json or model name, e.g. oren-nayar+torrance-sparrow", &R::model,
-       FileRole::input},
-      {"parameters", "-p,--parameter", "", "Model parameter NAME=VALUE (repeatable); defaults otherwise",
-       &R::parameters},
-      {"options", "--option", "", "Model option NAME=VALUE (repeatable), e.g. distribution=ggx", &R::options},
-      {"fit", "--fit", "",
-       "Which fit of FIT.json (its model name, e.g. lambert+torrance-sparrow) or which method of a MIX.json "
-       "(default: the best-ranked)",
-       &R::fit},
-      {"import_file", "--import", "",
-       "Read an r-table file instead of computing one (.csv, .rtb, .dat Radiance; 0 = missing cell)", &R::import_file,
-       FileRole::input},
-      {"import_format", "--import-format", "", import_format_help, &R::import_format},
-      {"scale", "--scale", "", "Imported file values are r times this (default 1e4; e.g. 1 for plain r)", &R::scale},
-      {"alpha", "--alpha", "deg", "Observation angle above the road plane (default 1)", &R::alpha},
-      {"illuminant", "--illuminant", "",
-       "Photometric weighting V(lambda) x S(lambda) of a spectral model: A (default), D65, or a lamp spectrum CSV "
-       "(wavelength_nm, relative power)",
-       &R::illuminant, FileRole::input},
-      {"wavelength", "--wavelength", "nm", "Use the spectral model at one wavelength instead", &R::wavelength},
-      {"band", "--band", "nm", "Use the unweighted mean over a band A:B instead", &R::band},
-      {"format", "--format", "", format_help, &R::format},
-      {"output", "-o,--output", "", "Write the table here (atomically); default: standard output", &R::output,
-       FileRole::output},
-      {"compare", "--compare", "",
-       "Compare with another r-table file (reference): max/mean relative difference, Q0 and S1 differences",
-       &R::compare, FileRole::input},
-      {"q0_region", "--q0-region", "", q0_region_help, &R::q0_region},
-      {"class_system", "--class-system", "", class_system_help, &R::class_system},
-  };
+  static const std::vector<RequestField<R>> rows = [] {
+    std::vector<RequestField<R>> all = model_source_fields<R>();
+    // The model is one of two sources here: `import_file` is the other, so it is not required.
+    for (RequestField<R>& row : all) {
+      if (row.name == "model") row.required = false;
+    }
+    const RequestField<R> own[] = {
+        {"import_file", "--import", "",
+         "Read an r-table file instead of computing one (.csv, .rtb, .dat Radiance; 0 = missing cell)", &R::import_file,
+         FileRole::input},
+        {"import_format", "--import-format", "", import_format_help, &R::import_format},
+        {"scale", "--scale", "", "Imported file values are r times this (default 1e4; e.g. 1 for plain r)", &R::scale},
+        {"alpha", "--alpha", "deg", "Observation angle above the road plane (default 1)", &R::alpha},
+        {"illuminant", "--illuminant", "",
+         "Photometric weighting V(lambda) x S(lambda) of a spectral model: A (default), D65, or a lamp spectrum CSV "
+         "(wavelength_nm, relative power)",
+         &R::illuminant, FileRole::input},
+        {"wavelength", "--wavelength", "nm", "Use the spectral model at one wavelength instead", &R::wavelength},
+        {"band", "--band", "nm", "Use the unweighted mean over a band A:B instead", &R::band},
+        {"format", "--format", "", format_help, &R::format},
+        {"output", "-o,--output", "", "Write the table here (atomically); default: standard output", &R::output,
+         FileRole::output},
+        {"compare", "--compare", "",
+         "Compare with another r-table file (reference): max/mean relative difference, Q0 and S1 differences",
+         &R::compare, FileRole::input},
+        {"q0_region", "--q0-region", "", q0_region_help, &R::q0_region},
+        {"class_system", "--class-system", "", class_system_help, &R::class_system},
+    };
+    all.insert(all.end(), std::begin(own), std::end(own));
+    return all;
+  }();
   return rows;
 }
 
@@ -106,7 +106,7 @@ RTableReport rtable(const RTableRequest& request) {
     if (!request.import_format.empty()) throw FieldError("import_format", "applies to `import_file` only");
     if (request.scale != kRScale) throw FieldError("scale", "applies to `import_file` only");
     request.validate();
-    const ResolvedModel resolved = resolve_model(request.model, request.parameters, request.options, request.fit);
+    const ResolvedModel resolved = request.resolve();
     report = rtable_report(resolved.model, request);
     const std::string name = resolved.model.model().name();
     report.source = {{"model", name}};
