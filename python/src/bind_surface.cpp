@@ -28,6 +28,7 @@
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
 #include "roadbrdf/surface/surface_request.h"
+#include "roadbrdf/surface/surface_task.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace py = pybind11;
@@ -147,31 +148,18 @@ void bind_surface(py::module_& m) {
         if (kwargs.contains("fits")) fits = kwargs.attr("pop")("fits");
         surface::SurfaceRequest request = request_from_arguments<surface::SurfaceRequest>(args, kwargs);
         request_detail::assign(request.fits, fits, "fits");
-        request.validate();
-        if (!request.preview.empty() && request.output.empty()) {
-          throw FieldError("preview", "is written next to the SURFACE file: give `output` too");
-        }
-        check_request_files(request);
-        Field field;
-        py::object report = py::none();
-        if (request.kind() != surface::SurfaceRequest::Kind::formulation) {
+        surface::SurfaceResult result;
+        {
           SigintGuard interruptible;
           py::gil_scoped_release release;
-          field = surface::validation_surface(request);
-        } else {
-          const surface::GeneratorSettings settings = request.generator_settings();
-          // As the command line: fit files are needed only to render, they may not exist yet.
-          const surface::SampleRecipe recipe = surface::sample_recipe(request);
-          surface::GeneratedSample sample;
-          {
-            SigintGuard interruptible;
-            py::gil_scoped_release release;
-            sample = surface::generate_sample(recipe, settings);
-          }
+          result = surface::make_surface(request);
+        }
+        issue_warnings(result.diagnostics);
+        py::object report = py::none();
+        if (result.sample) {
+          const surface::GeneratedSample& sample = *result.sample;
           py::dict r;
-          std::vector<std::string> classes;
-          for (const auto& c : recipe.classes) classes.push_back(c.material.name);
-          r["classes"] = classes;
+          r["classes"] = result.classes;
           r["target_volume_fraction"] = sample.target_volume_fraction;
           r["achieved_volume_fraction"] = sample.achieved_volume_fraction;
           r["grain_count"] = sample.grain_count;
@@ -181,14 +169,8 @@ void bind_surface(py::module_& m) {
           r["matrix_level_mm"] = sample.matrix_level_mm;
           r["notes"] = sample.notes;
           report = r;
-          field = std::move(sample.field);
         }
-        if (!request.output.empty()) {
-          const surface::TextureStatistics stats = surface::texture_statistics(field);
-          surface::write_surface(field, request.output, &stats);
-          if (!request.preview.empty()) surface::write_preview_png(field, request.preview);
-        }
-        return py::make_tuple(keep(std::move(field)), report);
+        return py::make_tuple(keep(std::move(result.field)), report);
       },
       request_docstring<surface::SurfaceRequest>(
           "A virtual road sample of a formulation, or a flat or Gaussian-slope surface of one material "

@@ -239,16 +239,21 @@ std::string request_docstring(
   return doc + "\n" + returns + "\n";
 }
 
-// A task's result as a roadbrdf.Result; its warnings are issued as roadbrdf.RoadbrdfWarning at the
-// caller's line.
+// A task's warnings issued as roadbrdf.RoadbrdfWarning at the caller's line.
+inline void issue_warnings(const Diagnostics& diagnostics) {
+  namespace py = pybind11;
+  const py::object warning_type = py::module_::import("roadbrdf.result").attr("RoadbrdfWarning");
+  for (const Diagnostic& d : diagnostics.warnings) {
+    py::module_::import("roadbrdf.core").attr("warn_at_caller")(d.message, warning_type);
+  }
+}
+
+// A task's result as a roadbrdf.Result; its warnings are issued (issue_warnings).
 inline pybind11::object python_result(const nlohmann::json& value, const Diagnostics& diagnostics,
                                       const std::string& summary) {
   namespace py = pybind11;
   const py::module_ result_module = py::module_::import("roadbrdf.result");
-  const py::object warning_type = result_module.attr("RoadbrdfWarning");
-  for (const Diagnostic& d : diagnostics.warnings) {
-    py::module_::import("roadbrdf.core").attr("warn_at_caller")(d.message, warning_type);
-  }
+  issue_warnings(diagnostics);
   const nlohmann::json diagnostics_json = diagnostics.to_json();
   return result_module.attr("Result")(json_to_python(value), json_to_python(diagnostics_json["notes"]),
                                       json_to_python(diagnostics_json["warnings"]), summary);

@@ -209,6 +209,21 @@ def test_formulation_surface_equals_cli_and_renders_from_anywhere(cli, tmp_path,
     assert np.all(d.brdf > 0.1 / math.pi * 0.5)
 
 
+def test_a_missing_fit_file_is_the_same_warning_from_both_front_ends(cli, tmp_path):
+    # Fit files are needed only to render: a sample is built without them, and both front ends say so
+    # with the library's one message.
+    formulation = _formulation(tmp_path)
+    (tmp_path / "fits" / "gravel.fit.json").unlink()
+    result = cli("surface", formulation, "--size", "12mm", "--cell", "0.25", "-o", tmp_path / "T.surface.json")
+    lines = [line for line in result.stderr.splitlines() if "does not exist yet" in line]
+    assert len(lines) == 1 and "'Gravel 4/6'" in lines[0], result.stderr
+    message = lines[0].removeprefix("roadbrdf: warning: ")
+    with pytest.warns(roadbrdf.RoadbrdfWarning) as caught:
+        roadbrdf.surface(formulation, size_mm=12, cell_mm=0.25)
+    assert [str(w.message) for w in caught if "does not exist yet" in str(w.message)] == [message]
+    assert "gravel.fit.json" in message
+
+
 # ---- (e) texture statistics ---------------------------------------------------------------------
 
 def test_flat_surface_statistics():

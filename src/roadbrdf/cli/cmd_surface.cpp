@@ -11,32 +11,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <optional>
-#include <sstream>
 
 #include "roadbrdf/cli/commands.h"
 #include "roadbrdf/cli/common.h"
 #include "roadbrdf/cli/request_options.h"
-#include "roadbrdf/core/atomic_file.h"
-#include "roadbrdf/core/csv.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/core/progress.h"
-#include "roadbrdf/core/range.h"
-#include "roadbrdf/formulation/formulation.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
-#include "roadbrdf/io/resample.h"
-#include "roadbrdf/models/spectral_model.h"
-#include "roadbrdf/surface/generate.h"
-#include "roadbrdf/surface/height_field.h"
-#include "roadbrdf/surface/materials.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
 #include "roadbrdf/surface/surface_request.h"
+#include "roadbrdf/surface/surface_task.h"
 #include "roadbrdf/surface/virtual_albedo.h"
 
 namespace roadbrdf::cli {
@@ -48,64 +35,12 @@ struct SurfaceArgs {
   bool quiet = false;
 };
 
-void print_statistics(std::FILE* report, const surface::HeightField& f, const surface::TextureStatistics& s) {
-  fmt::print(report, "surface {}: {} x {} cells of {} mm (periodic {:.4g} x {:.4g} mm)\n", f.name, f.nx, f.ny,
-             f.cell_size_mm, f.size_x_mm(), f.size_y_mm());
-  fmt::print(report,
-             "MPD {:.3f} mm (ISO 13473-1 style, baseline = sample period), ETD {:.3f} mm, rms height {:.3f} mm, "
-             "area ratio {:.3f}\n",
-             s.mpd_mm, s.etd_mm, s.rms_height_mm, s.surface_area_ratio);
-  fmt::print(report, "{:<40} {:>12} {:>12}\n", "material", "area frac.", "true area");
-  for (std::size_t k = 0; k < f.materials.size(); ++k) {
-    fmt::print(report, "{:<40} {:>12.4f} {:>12.4f}\n", f.materials[k].name, s.exposed_area_fraction[k],
-               s.exposed_true_area_fraction[k]);
-  }
-}
-
 void run_surface(const SurfaceArgs& a) {
-  const surface::SurfaceRequest& r = a.request;
-  r.validate();
-  std::vector<FileArgument> inputs, outputs;
-  file_arguments(r, surface::SurfaceRequest::fields(), inputs, outputs);
-  check_distinct_files(inputs, outputs);
-  std::FILE* report = report_stream(r.output);
-  surface::HeightField field;
-  if (r.kind() != surface::SurfaceRequest::Kind::formulation) {
-    field = surface::validation_surface(r);
-  } else {
-    // Fit files are needed only to render: they may not exist yet (warned below).
-    const std::vector<FileArgument> fits =
-        roadbrdf::formulation_input_files(roadbrdf::read_formulation(r.input.path, false));
-    inputs.insert(inputs.end(), fits.begin(), fits.end());
-    check_distinct_files(inputs, outputs);
-    const surface::SampleRecipe recipe = surface::sample_recipe(r);
-    surface::GeneratorSettings s = r.generator_settings();
-    ProgressBar bar("surface: packing grains", stderr, ProgressBar::stderr_style(a.quiet));
-    s.progress = bar.callback();
-    const surface::GeneratedSample sample = surface::generate_sample(recipe, s);
-    bar.finish();
-    field = sample.field;
-    for (const auto& note : sample.notes) fmt::print(stderr, "roadbrdf: note: {}\n", note);
-    for (const auto& m : field.materials) {
-      if (!m.fit_path.empty() && !std::filesystem::exists(m.fit_path)) {
-        fmt::print(stderr, "roadbrdf: warning: fit file of '{}' does not exist yet: {} (needed by render)\n", m.name,
-                   m.fit_path);
-      }
-    }
-    fmt::print(report, "{}\n", field.description);
-    if (r.mastic_fraction) {
-      fmt::print(report, "exposed mastic fraction {:.4f} (requested {}, tolerance {:.4g}) at mastic level {:.4f} mm\n",
-                 sample.mastic_fraction, *r.mastic_fraction, sample.mastic_fraction_tolerance, sample.matrix_level_mm);
-    }
-  }
-  const surface::TextureStatistics stats = surface::texture_statistics(field);
-  surface::write_surface(field, r.output, &stats);
-  print_statistics(report, field, stats);
-  if (!r.preview.empty()) {
-    surface::write_preview_png(field, r.preview);
-    fmt::print(report, "wrote {}\n", r.preview);
-  }
-  fmt::print(report, "wrote {}\n", r.output);
+  ProgressBar bar("surface: packing grains", stderr, ProgressBar::stderr_style(a.quiet));
+  const surface::SurfaceResult result = surface::make_surface(a.request, bar.callback());
+  bar.finish();
+  print_diagnostics<surface::SurfaceRequest>(result.diagnostics);
+  fmt::print(report_stream(a.request.output), "{}", result.summary_text());
 }
 
 struct RenderArgs {
