@@ -17,7 +17,6 @@
 
 #include "binding.h"
 #include "request_kwargs.h"
-#include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/geometry.h"
 #include "roadbrdf/models/registry.h"
@@ -27,9 +26,9 @@
 #include "roadbrdf/surface/materials.h"
 #include "roadbrdf/surface/render.h"
 #include "roadbrdf/surface/render_request.h"
+#include "roadbrdf/surface/render_task.h"
 #include "roadbrdf/surface/surface_request.h"
 #include "roadbrdf/surface/surface_task.h"
-#include "roadbrdf/surface/virtual_albedo.h"
 
 namespace py = pybind11;
 
@@ -182,7 +181,7 @@ void bind_surface(py::module_& m) {
   m.def("render_surface", [](const Field& f, const DoubleArray& theta_i, const DoubleArray& phi_i,
                              const DoubleArray& theta_r, const DoubleArray& phi_r, const py::kwargs& kwargs) {
     const surface::RenderRequest request = render_request(kwargs);
-    const surface::RenderSettings s = surface::render_settings(request);
+    surface::render_settings(request);  // validated before the angles
     const py::ssize_t n = theta_i.size();
     if (phi_i.size() != n || theta_r.size() != n || phi_r.size() != n) {
       throw InputError("internal: render angle arrays of different sizes");
@@ -196,13 +195,15 @@ void bind_surface(py::module_& m) {
         throw InputError("geometry " + std::to_string(k + 1) + ": " + e.what());
       }
     }
-    SpectralDataset d;
-    std::vector<surface::Estimate> estimates;
+    surface::RenderResult result;
     {
       SigintGuard interruptible;
       py::gil_scoped_release release;
-      d = surface::render_dataset(f, geometries, surface::render_wavelengths(request, f), s, &estimates);
+      result = surface::render_grid(f, "", geometries, AngleConvention::kZenithAzimuth, request);
     }
+    issue_warnings(result.diagnostics);
+    const SpectralDataset& d = result.data;
+    const std::vector<surface::Estimate>& estimates = result.estimates;
     const auto rows = static_cast<py::ssize_t>(d.geometry_count());
     const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
     py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
@@ -227,24 +228,14 @@ void bind_surface(py::module_& m) {
   // `roadbrdf render SURFACE --albedo`.
   m.def("render_surface_albedo", [](const Field& f, const std::string& surface_name, const py::kwargs& kwargs) {
     const surface::RenderRequest request = render_request(kwargs, {"sun_zenith", "output"});
-    if (!request.output.empty()) {
-      // As the command: the table is never written over the surface or a material's fit file.
-      std::vector<FileArgument> inputs = {{"`surface`", surface_name}};
-      const std::vector<FileArgument> outputs = {{"`output`", request.output}};
-      check_distinct_files(inputs, outputs);
-      for (const auto& m : f.materials) inputs.push_back({"fit of material '" + m.name + "'", m.fit_path});
-      check_distinct_files(inputs, outputs);
-    }
-    const surface::RenderSettings s = surface::render_settings(request);
-    surface::VirtualAlbedo r;
+    surface::RenderAlbedoResult result;
     {
       SigintGuard interruptible;
       py::gil_scoped_release release;
-      r = surface::render_albedo(f, request.sun_zenith, surface::render_wavelengths(request, f), s,
-                                 request.white_sky_nodes);
+      result = surface::render_surface_albedo(f, surface_name, request);
     }
-    // The albedo table the command writes (`output`; "" = none).
-    if (!request.output.empty()) surface::write_virtual_albedo(request.output, r, surface_name);
+    issue_warnings(result.diagnostics);
+    const surface::VirtualAlbedo& r = result.albedo;
     py::dict out;
     out["wavelengths"] = r.wavelengths;
     out["sun_zenith"] = r.sun_zenith_deg;
