@@ -120,6 +120,23 @@ def test_render_equals_cli(cli, rough, tmp_path, python_options, cli_options):
     assert np.all(d.sigma > 0)  # a real Monte Carlo estimate, not a trivial one
 
 
+def test_a_missed_target_is_the_same_warning_from_both_front_ends(cli, rough, tmp_path):
+    # 8 paths per geometry cannot reach a 0.1 % relative standard error on a rough sample.
+    settings = dict(target_error=1e-3, max_samples=8, error_floor=0.0)
+    result = cli("render", rough, "--grid", _write_grid(tmp_path / "grid.csv"), "--wavelengths", "550",
+                 "--target-error", "1e-3", "--max-samples", "8", "--error-floor", "0", "-o", tmp_path / "cli.csv")
+    printed = [line.removeprefix("roadbrdf: warning: ") for line in result.stderr.splitlines()
+               if line.startswith("roadbrdf: warning: ")]
+    assert printed[-1] == f"{len(GEOMETRIES)} of {len(GEOMETRIES)} geometries did not reach the target"
+    assert "reached --max-samples 8" in printed[0]
+    with pytest.warns(roadbrdf.RoadbrdfWarning) as caught:
+        roadbrdf.render(str(rough), *_angles(), wavelengths=[550], **settings)
+    # Python spells the fields by their keywords, the command line by its flags: the same messages.
+    issued = [str(w.message) for w in caught]
+    assert [m.replace("`max_samples`", "--max-samples").replace("`target_error`", "--target-error")
+            for m in issued] == printed
+
+
 def test_render_depends_on_seed(rough):
     a = roadbrdf.render(rough, 30, 0, 45, 180, wavelengths=[550], samples=512, seed=1)
     b = roadbrdf.render(rough, 30, 0, 45, 180, wavelengths=[550], samples=512, seed=2)
