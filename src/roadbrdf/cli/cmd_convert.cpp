@@ -109,7 +109,7 @@ void register_convert_command(CLI::App& app) {
   add_dataset_read_flags(c, args.read, false);
   c->add_option("--convention", args.convention,
                 "Angle columns of the output: " + described_names_text<AngleConvention>() + " (default: as read)");
-  add_instrument_flags(c, args.instrument, true);
+  add_instrument_flags(c, args.instrument);
   c->add_option("-o,--output", args.output, "Output dataset CSV (default: standard output)");
   c->callback([] { run(args); });
 }

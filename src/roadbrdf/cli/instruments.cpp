@@ -5,14 +5,13 @@
 #include <map>
 
 #include "roadbrdf/cli/common.h"
+#include "roadbrdf/cli/request_options.h"
 #include "roadbrdf/core/error.h"
-#include "roadbrdf/io/calibration.h"
 #include "roadbrdf/io/dataset_io.h"
 #include "roadbrdf/io/geometry_file.h"
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/usgs.h"
-#include "roadbrdf/spectra/spectrum_file.h"
 
 namespace roadbrdf::cli {
 
@@ -48,31 +47,29 @@ Geometry parse_geometry(const std::string& text, AngleConvention& convention) {
 
 ManifestOptions manifest_options(const InstrumentArgs& args) {
   ManifestOptions o;
-  o.read.overlap = parse_name<OverlapRule>(args.overlap, "overlap");
+  run_request<InstrumentOptions>([&] { o = args.manifest_options(); });
   o.warn = warn;
   return o;
 }
 
 }  // namespace
 
-void add_instrument_flags(CLI::App* c, InstrumentArgs& args, bool convert) {
-  if (convert) {
-    c->add_option("--geometry", args.geometry,
-                  "Geometry of a single instrument file: theta_i=D,phi_i=D,theta_r=D,phi_r=D or "
-                  "gamma=D,alpha=D,beta=D,delta=D [deg]");
-    // One --quantity for both kinds of input: an instrument file's signal to store, or what a dataset
-    // CSV's values are (DatasetReadFields::quantity).
-    c->add_option("--quantity", args.quantity,
-                  "Instrument signal to store: " + described_names_text<InstrumentQuantity>() +
-                      " (default target); for a dataset CSV what its values are, converted to BRDF: " +
-                      described_names_text<DatasetQuantity>() + " (default brdf)");
-    c->add_option("--usgs-wavelengths", args.usgs_wavelengths,
-                  "--from usgs: the splib07a wavelength file of the spectrum's instrument, e.g. "
-                  "splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt (micrometres)");
-  }
-  c->add_option("--overlap", args.overlap,
-                "SVC .sig detector overlap: " + described_names_text<OverlapRule>() +
-                    " (default upper); nothing is averaged, dropped channels are reported");
+void add_instrument_flags(CLI::App* c, InstrumentArgs& args) {
+  c->add_option("--geometry", args.geometry,
+                "Geometry of a single instrument file: theta_i=D,phi_i=D,theta_r=D,phi_r=D or "
+                "gamma=D,alpha=D,beta=D,delta=D [deg]");
+  // One --quantity for both kinds of input: an instrument file's signal to store, or what a dataset
+  // CSV's values are (DatasetReadFields::quantity).
+  c->add_option("--quantity", args.quantity,
+                "Instrument signal to store: " + described_names_text<InstrumentQuantity>() +
+                    " (default target); for a dataset CSV what its values are, converted to BRDF: " +
+                    described_names_text<DatasetQuantity>() + " (default brdf)");
+  c->add_option("--usgs-wavelengths", args.usgs_wavelengths,
+                "--from usgs: the splib07a wavelength file of the spectrum's instrument, e.g. "
+                "splib07a_Wavelengths_ASD_0.35-2.5_microns_2151_ch.txt (micrometres)");
+  InstrumentOptions& shared = args;
+  for (const RequestField<InstrumentOptions>& field : InstrumentOptions::fields()) detail::add_field(c, shared, field);
+  add_field_table(c, table_flag<InstrumentOptions>);
 }
 
 bool is_instrument_input(ConvertSource from, const std::string& input) {
@@ -144,16 +141,6 @@ SpectralDataset convert_instrument_input(ConvertSource from, const std::string& 
   }
   for (const auto& note : s.notes) warn(note);
   return instrument_dataset(s, geometry, convention, quantity);
-}
-
-SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
-                                                     const std::string& panel_brf, std::optional<double> brf_start,
-                                                     std::optional<double> brf_step, const InstrumentArgs& args,
-                                                     const std::vector<FileArgument>& inputs,
-                                                     const std::vector<FileArgument>& outputs) {
-  const std::optional<spectra::Spectrum> brf = read_panel_brf(panel_brf, brf_start, brf_step);  // its checks come first
-  const Manifest run = read_checked_manifest(manifest, inputs, outputs);
-  return calibrate_manifest(run, read_panel_reflectance(panel), brf, manifest_options(args));
 }
 
 }  // namespace roadbrdf::cli

@@ -1,22 +1,22 @@
-// Instrument files on the command line (convert, calibrate): ASD .asd, Spectral Evolution .sed,
-// SVC .sig and run manifests (io/instrument.h, io/manifest.h).
+// Instrument files on the command line of convert: ASD .asd, Spectral Evolution .sed, SVC .sig and
+// run manifests (io/instrument.h, io/manifest.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <optional>
 #include <span>
 #include <string>
 
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/core/enum_names.h"
 #include "roadbrdf/io/dataset.h"
+#include "roadbrdf/io/instrument_options.h"
 
 namespace roadbrdf::cli {
 
-struct InstrumentArgs {
-  std::string geometry;  // "theta_i=..,phi_i=..,theta_r=..,phi_r=.." or "gamma=..,alpha=..,beta=..,delta=.."
-  std::string quantity;  // "" = target (instrument files) or brdf (dataset CSV)
-  std::string overlap = "upper";
+// The shared instrument-reading fields (io/instrument_options.h: overlap) and convert's own.
+struct InstrumentArgs : InstrumentOptions {
+  std::string geometry;          // "theta_i=..,phi_i=..,theta_r=..,phi_r=.." or "gamma=..,alpha=..,beta=..,delta=.."
+  std::string quantity;          // "" = target (instrument files) or brdf (dataset CSV)
   std::string usgs_wavelengths;  // --from usgs: the splib07a wavelength file of the spectrum
 };
 
@@ -40,8 +40,8 @@ inline constexpr EnumName<ConvertSource> kConvertSourceNames[] = {
 constexpr std::span<const EnumName<ConvertSource>> enum_names(ConvertSource) { return kConvertSourceNames; }
 static_assert(entries_are_distinct(kConvertSourceNames));
 
-// --geometry and --quantity (convert only) and --overlap.
-void add_instrument_flags(CLI::App* command, InstrumentArgs& args, bool convert);
+// --geometry, --quantity, --usgs-wavelengths and the rows of InstrumentOptions::fields() (--overlap).
+void add_instrument_flags(CLI::App* command, InstrumentArgs& args);
 
 // True when `from` is an instrument format, a manifest or USGS, or is auto and the input has an
 // instrument file extension (.asd, .sed, .sig).
@@ -53,12 +53,5 @@ bool is_instrument_input(ConvertSource from, const std::string& input);
 SpectralDataset convert_instrument_input(ConvertSource from, const std::string& input, const InstrumentArgs& args,
                                          const std::vector<FileArgument>& inputs,
                                          const std::vector<FileArgument>& outputs);
-
-// `calibrate --manifest`: the calibrated BRDF of the run.
-SpectralDataset calibrate_manifest_from_command_line(const std::string& manifest, const std::string& panel,
-                                                     const std::string& panel_brf, std::optional<double> brf_start,
-                                                     std::optional<double> brf_step, const InstrumentArgs& args,
-                                                     const std::vector<FileArgument>& inputs,
-                                                     const std::vector<FileArgument>& outputs);
 
 }  // namespace roadbrdf::cli
