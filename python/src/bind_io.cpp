@@ -15,6 +15,7 @@
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/calibrate_request.h"
+#include "roadbrdf/io/convert_request.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -314,6 +315,20 @@ void bind_io(py::module_& m) {
           "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
           .c_str());
   bind_instruments(m);
+  // The request of `roadbrdf convert` (its field table: io/convert_request.cpp), positional inputs first.
+  m.def(
+      "convert",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<ConvertRequest>(args, kwargs);
+        const SpectralDataset d = convert(request);
+        if (!request.output.empty()) write_dataset(d, request.output, parse_name<DatasetFormat>(request.to, "to"));
+        return dataset_to_dict(d);
+      },
+      request_docstring<ConvertRequest>(
+          "A dataset converted from dataset CSV, CUReT, ALTA, instrument, manifest or USGS files, as `roadbrdf "
+          "convert` makes it.",
+          "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
+          .c_str());
 }
 
 }  // namespace roadbrdf::python

@@ -61,7 +61,7 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
        data},
       {"fit " + data + " -m lambert -o " + f.path("alias.csv"), "--output", f.path("alias.csv"), "DATA", data},
       {"fit " + data + " -m lambert -o " + f.path("hard.csv"), "--output", f.path("hard.csv"), "DATA", data},
-      {"convert " + data + " -o " + data, "-o", data, "INPUT", data},
+      {"convert " + data + " -o " + data, "--output", data, "INPUT", data},
       {"resample " + data + " --wavelengths 500:700:100 -o " + data, "-o", data, "DATA", data},
       {"calibrate " + data + " --reference " + f.path("grid.csv") + " --panel-reflectance " + f.path("r.csv") + " -o " +
            f.path("grid.csv"),
@@ -115,7 +115,7 @@ TEST(CliDataLoss, FilesListedInAManifestAreInputs) {
   f.snapshot();
   const std::string calibrate =
       "calibrate --manifest " + f.path("run.csv") + " --panel-reflectance " + f.path("rho.txt");
-  // calibrate spells its fields from its request table: the output is named by its long flag.
+  // calibrate and convert spell their fields from their request tables: an output is named by its long flag.
   struct Case {
     std::string arguments, output_role, output, listed;
   };
@@ -123,8 +123,8 @@ TEST(CliDataLoss, FilesListedInAManifestAreInputs) {
       {calibrate + " -o " + f.path("run_white.asd"), "--output", f.path("run_white.asd"),
        "white reference file 'run_white.asd'"},
       {calibrate + " -o " + f.path("link.asd"), "--output", f.path("link.asd"), "sample file 'run_002.asd'"},
-      {"convert --from manifest " + f.path("run.csv") + " -o " + f.path("run_dark.asd"), "-o", f.path("run_dark.asd"),
-       "dark file 'run_dark.asd'"},
+      {"convert --from manifest " + f.path("run.csv") + " -o " + f.path("run_dark.asd"), "--output",
+       f.path("run_dark.asd"), "dark file 'run_dark.asd'"},
   };
   for (const Case& c : cases) {
     const auto r = run_cli(c.arguments);

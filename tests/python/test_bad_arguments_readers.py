@@ -78,6 +78,8 @@ def base_calls(folder, instruments):
         "calibrate": (roadbrdf.calibrate, dict(manifest=os.path.join(instruments, "run.csv"),
                                                panel_reflectance=os.path.join(instruments, "rho.txt"),
                                                overlap="upper", panel_brf_start=None, format="long")),
+        "convert": (roadbrdf.convert, dict(inputs=os.path.join(instruments, "run.csv"), source="manifest",
+                                           quantity="reflectance", overlap="upper", to="long", convention="road")),
         "mix_calibrate": (roadbrdf.mix_calibrate, dict(mixtures=_calibration_pairs(folder), reference="calcite")),
         "Surface.write": (flat.write, dict(path=os.path.join(folder, "flat.surface"))),
         "Surface.render": (flat.render, dict(theta_i=30, phi_i=0, theta_r=30, phi_r=180, **small)),
