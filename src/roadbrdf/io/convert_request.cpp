@@ -195,6 +195,7 @@ SpectralDataset convert(const ConvertRequest& request) {
   const ConvertSource from = parse_name<ConvertSource>(request.source, "source");
   // Bad output names are refused before any work; the caller writes the dataset in `to`.
   static_cast<void>(parse_name<DatasetFormat>(request.to, "to"));
+  if (!request.alta_output.empty()) static_cast<void>(parse_name<AltaOutput>(request.alta_output, "alta_output"));
   std::optional<AngleConvention> convention;
   if (!request.convention.empty()) convention = parse_name<AngleConvention>(request.convention, "convention");
   const bool runs = from == ConvertSource::kAuto || from == ConvertSource::kWide || from == ConvertSource::kLong;
