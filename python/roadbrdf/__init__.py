@@ -35,6 +35,8 @@ from .surfaces import (Surface, flat_surface, gaussian_slope_surface, read_surfa
                       surface)
 from .instruments import (InstrumentSpectrum, calibrate_manifest, instrument_dataset, read_instrument,
                           read_manifest, read_usgs, usgs_dataset)
+from .instruments import calibrate
+from .io import convert
 # Road lighting (docs/lighting.md): roadbrdf.lighting(...) = `roadbrdf lighting`, a roadbrdf.Result.
 from .lightings import lighting, luminaire
 # Design studies (studies/, docs/studies.md): roadbrdf.study(...) = `roadbrdf study`.
@@ -51,6 +53,7 @@ __all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "Sp
            "render", "render_albedo", "InstrumentSpectrum", "read_instrument", "instrument_dataset",
            "read_manifest", "calibrate_manifest", "read_usgs", "usgs_dataset", "study", "marking", "export",
            "luminaire", "lighting",
-           "evaluate", "simulate"]
+           "evaluate", "simulate",
+           "calibrate", "convert"]
 
 __version__ = _roadbrdf.__version__

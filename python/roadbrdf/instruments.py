@@ -1,7 +1,7 @@
 """Spectroradiometer files: ASD ``.asd`` (v6-v8), Spectral Evolution ``.sed`` and Spectra Vista
 ``.sig``, and manifests that turn a goniometric run of such files into one dataset.
 
-The same readers as ``roadbrdf convert`` and ``roadbrdf calibrate --manifest``; docs/data.md
+The same readers as ``roadbrdf convert`` and ``roadbrdf calibrate``; docs/data.md
 ("Instrument files") describes the formats, the manifest, and what is certain or inferred.
 Warnings (SVC detector overlaps, saturation flags) are :class:`UserWarning`; malformed files raise
 :class:`roadbrdf.InputError` naming the file and the byte offset or line.
@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 PathLike = Union[str, "os.PathLike[str]"]
 
 __all__ = ["InstrumentSpectrum", "read_instrument", "instrument_dataset", "read_manifest", "calibrate_manifest",
-           "read_usgs", "usgs_dataset"]
+           "read_usgs", "usgs_dataset", "calibrate"]
 
 _ZENITH = ("theta_i", "phi_i", "theta_r", "phi_r")
 _ROAD = ("gamma", "alpha", "beta", "delta")
@@ -115,15 +115,31 @@ def read_manifest(path: PathLike, quantity: str = "target", overlap: str = "uppe
     return Dataset._from_dict(_roadbrdf.manifest_dataset(str(path), quantity, overlap))
 
 
-def calibrate_manifest(manifest: PathLike, panel_reflectance: PathLike, panel_brf: Optional[PathLike] = None,
-                       panel_brf_start: Optional[float] = None, panel_brf_step: Optional[float] = None,
-                       overlap: str = "upper") -> Dataset:
-    """The calibrated BRDF [sr^-1] of a run (``roadbrdf calibrate --manifest RUN.csv
-    --panel-reflectance RHO.txt``): f = (S - dark)/(white - dark) x rho_panel/pi, with the
-    uncertainty of the panel propagated; no extrapolation of the panel file."""
+def calibrate(*args: Any, **kwargs: Any) -> Dataset:
+    """The calibrated BRDF [sr^-1] against a reference panel, as ``roadbrdf calibrate`` computes it (one
+    library request, the same rules): f = (S - dark)/(white - dark) x rho_panel/pi, with the uncertainty
+    of the panel propagated; no extrapolation of the panel file. The radiances are the ``sample`` dataset
+    (the one positional argument), ``reference`` and ``dark``, or a run ``manifest`` of instrument files;
+    written to ``output`` (``format``) when given. ``None`` leaves a field at its default.
+    """
     from . import Dataset
 
-    return Dataset._from_dict(_roadbrdf.calibrate_manifest(
-        str(manifest), str(panel_reflectance), "" if panel_brf is None else str(panel_brf),
-        None if panel_brf_start is None else float(panel_brf_start),
-        None if panel_brf_step is None else float(panel_brf_step), overlap))
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    return Dataset._from_dict(_roadbrdf.calibrate(*args, **kwargs))
+
+
+def calibrate_manifest(manifest: PathLike, panel_reflectance: Optional[PathLike] = None, **kwargs: Any) -> Dataset:
+    """The calibrated BRDF [sr^-1] of a run (``roadbrdf calibrate --manifest RUN.csv
+    --panel-reflectance RHO.txt``): :func:`calibrate` with ``manifest`` given, the other fields by
+    keyword (``panel_brf``, ``panel_brf_start``, ``panel_brf_step``, ``overlap``, ``output``, ...).
+    """
+    if panel_reflectance is not None:
+        kwargs["panel_reflectance"] = panel_reflectance
+    return calibrate(manifest=manifest, **kwargs)
+
+
+_doc = _roadbrdf.calibrate.__doc__ or ""
+if "Arguments" in _doc:
+    # The keywords, from the request's field table (the same rows as `roadbrdf calibrate --help`).
+    calibrate.__doc__ = (calibrate.__doc__ or "") + "\n    " + _doc[_doc.index("Arguments"):_doc.rindex(
+        "Returns")].strip().replace("\n", "\n    ") + "\n"

@@ -12,7 +12,7 @@ from .core import ArrayLike, as_float, as_float_array, as_int, as_text
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-__all__ = ["Dataset", "read_dataset", "write_dataset", "read_curet", "read_alta", "check"]
+__all__ = ["Dataset", "read_dataset", "write_dataset", "read_curet", "read_alta", "check", "convert"]
 
 
 class Dataset:
@@ -233,3 +233,16 @@ def simulate(*args: Any, **kwargs: Any) -> Dataset:
 
 _with_request_arguments(evaluate, _roadbrdf.eval)
 _with_request_arguments(simulate, _roadbrdf.simulate)
+
+
+def convert(*args: Any, **kwargs: Any) -> Dataset:
+    """A dataset converted as ``roadbrdf convert`` makes it (one library request, the same rules): from
+    ``inputs`` (the one positional argument: a file, or several dataset CSV files, runs of one sample, as a
+    list) in the format ``source`` (the command's ``--from``: dataset CSV, CUReT, ALTA, instrument files, run manifests, USGS splib07a);
+    written to ``output`` (``to``) when given. ``None`` leaves a field at its default.
+    """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    return Dataset._from_dict(_roadbrdf.convert(*args, **kwargs))
+
+
+_with_request_arguments(convert, _roadbrdf.convert)

@@ -14,6 +14,8 @@
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
+#include "roadbrdf/io/calibrate_request.h"
+#include "roadbrdf/io/convert_request.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_dialect.h"
 #include "roadbrdf/io/dataset_io.h"
@@ -150,17 +152,22 @@ void bind_instruments(py::module_& m) {
             read_manifest(path), parse_name<InstrumentQuantity>(quantity, "quantity"), manifest_options(overlap)));
       },
       py::arg("path"), py::arg("quantity") = "target", py::arg("overlap") = "upper");
+  // The request of `roadbrdf calibrate` (its field table: io/calibrate_request.cpp), from radiance
+  // datasets or a run manifest; roadbrdf.calibrate_manifest is the same request with `manifest` given.
   m.def(
-      "calibrate_manifest",
-      [](const std::string& path, const std::string& panel, const std::string& panel_brf,
-         std::optional<double> brf_start, std::optional<double> brf_step, const std::string& overlap) {
-        const std::optional<spectra::Spectrum> brf =
-            read_panel_brf(panel_brf, brf_start, brf_step);  // its checks first
-        return dataset_to_dict(
-            calibrate_manifest(read_manifest(path), read_panel_reflectance(panel), brf, manifest_options(overlap)));
+      "calibrate",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<CalibrateRequest>(args, kwargs);
+        const SpectralDataset d = calibrate(request);
+        if (!request.output.empty()) {
+          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
+        }
+        return dataset_to_dict(d);
       },
-      py::arg("path"), py::arg("panel_reflectance"), py::arg("panel_brf") = "", py::arg("panel_brf_start") = py::none(),
-      py::arg("panel_brf_step") = py::none(), py::arg("overlap") = "upper");
+      request_docstring<CalibrateRequest>(
+          "The calibrated BRDF [sr^-1] against a reference panel, as `roadbrdf calibrate` computes it.",
+          "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
+          .c_str());
 }
 
 }  // namespace
@@ -308,6 +315,20 @@ void bind_io(py::module_& m) {
           "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
           .c_str());
   bind_instruments(m);
+  // The request of `roadbrdf convert` (its field table: io/convert_request.cpp), positional inputs first.
+  m.def(
+      "convert",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<ConvertRequest>(args, kwargs);
+        const SpectralDataset d = convert(request);
+        if (!request.output.empty()) write_dataset(d, request.output, parse_name<DatasetFormat>(request.to, "to"));
+        return dataset_to_dict(d);
+      },
+      request_docstring<ConvertRequest>(
+          "A dataset converted from dataset CSV, CUReT, ALTA, instrument, manifest or USGS files, as `roadbrdf "
+          "convert` makes it.",
+          "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
+          .c_str());
 }
 
 }  // namespace roadbrdf::python

@@ -12,6 +12,8 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/fitting/params_table.h"
+#include "roadbrdf/io/calibrate_request.h"
+#include "roadbrdf/io/convert_request.h"
 #include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/model_export.h"
 #include "roadbrdf/io/simulate_request.h"
@@ -109,6 +111,8 @@ void bind_requests(py::module_& m) {
         if (command == "mix-calibrate") return rows<mixing::CrossSectionRequest>();
         if (command == "eval") return rows<EvalRequest>();
         if (command == "simulate") return rows<SimulateRequest>();
+        if (command == "calibrate") return rows<CalibrateRequest>();
+        if (command == "convert") return rows<ConvertRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

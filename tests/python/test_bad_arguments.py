@@ -217,7 +217,8 @@ def test_the_sweep_covers_every_public_function():
     elsewhere = {"InputError", "SpectralModel", "RTable", "FitResult", "ModelFit", "AlbedoResult", "Surface",
                  "InstrumentSpectrum", "models", "model_names", "model_aliases", "data_directory", "study",
                  "read_curet", "read_alta", "mix_calibrate", "read_instrument", "instrument_dataset", "read_manifest",
-                 "calibrate_manifest", "read_usgs", "usgs_dataset", "Result", "Diagnostic", "RoadbrdfWarning"}
+                 "calibrate_manifest", "read_usgs", "usgs_dataset", "Result", "Diagnostic", "RoadbrdfWarning",
+                 "calibrate", "convert"}
     public = {n for n in roadbrdf.__all__ if callable(getattr(roadbrdf, n))}
     assert public - covered - elsewhere == set()
     assert all(swept_parameters(getattr(roadbrdf, n), {}) for n in covered)

@@ -29,8 +29,8 @@ spectra::Spectrum read_panel_reflectance(const std::string& path) {
 std::optional<spectra::Spectrum> read_panel_brf(const std::string& path, std::optional<double> first_wavelength,
                                                 std::optional<double> step) {
   if (path.empty()) {
-    if (first_wavelength) throw FieldError("panel_brf_start", "needs the panel BRF file (panel_brf)");
-    if (step) throw FieldError("panel_brf_step", "needs the panel BRF file (panel_brf)");
+    if (first_wavelength) throw FieldError("panel_brf_start", "needs the panel BRF file (`panel_brf`)");
+    if (step) throw FieldError("panel_brf_step", "needs the panel BRF file (`panel_brf`)");
     return std::nullopt;
   }
   spectra::SpectrumReadOptions o = panel_read_options();
