@@ -12,6 +12,7 @@
 #include "roadbrdf/core/atomic_file.h"
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/fitting/params_table.h"
+#include "roadbrdf/io/check_request.h"
 #include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/model_export.h"
 #include "roadbrdf/io/simulate_request.h"
@@ -109,6 +110,7 @@ void bind_requests(py::module_& m) {
         if (command == "mix-calibrate") return rows<mixing::CrossSectionRequest>();
         if (command == "eval") return rows<EvalRequest>();
         if (command == "simulate") return rows<SimulateRequest>();
+        if (command == "check") return rows<CheckRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),
