@@ -202,6 +202,21 @@ def check(path: Union[PathLike, Dataset], **kwargs: Any) -> dict:
     return _roadbrdf.check_dataset(path, **kwargs)
 
 
+def resample(*args: Any, **kwargs: Any) -> Dataset:
+    """A dataset band-averaged onto new wavelength intervals, as ``roadbrdf resample`` makes it (one library
+    request, the same rules): ``wavelengths`` are the band edges [nm] (``"400:1000:10"`` or a list), each
+    band reported at its centre; the bands overlapping ``drop`` intervals, or with ``drop_noisy`` the noisy
+    bands of :func:`check`, are left out. Written to ``output`` (``format``) when given. The keywords are
+    the request's fields (listed below, the command line's options; ``None`` leaves a field at its
+    default); ``columns`` and ``set`` may also be mappings {field: value}.
+    """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    for key in ("columns", "set"):
+        if key in kwargs:
+            kwargs[key] = _items(kwargs[key], key)
+    return Dataset._from_dict(_roadbrdf.resample(*args, **kwargs))
+
+
 def _with_request_arguments(function, request):
     """Appends the keywords of the request's field table (the command line's options) to the docstring."""
     doc = request.__doc__ or ""
@@ -236,3 +251,4 @@ def simulate(*args: Any, **kwargs: Any) -> Dataset:
 _with_request_arguments(evaluate, _roadbrdf.eval)
 _with_request_arguments(simulate, _roadbrdf.simulate)
 _with_request_arguments(check, _roadbrdf.check_dataset)
+_with_request_arguments(resample, _roadbrdf.resample)

@@ -23,6 +23,7 @@
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/quality.h"
+#include "roadbrdf/io/resample_request.h"
 #include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/io/usgs.h"
 #include "roadbrdf/spectra/spectrum_file.h"
@@ -250,6 +251,21 @@ void bind_io(py::module_& m) {
       },
       request_docstring<CheckOptions>("The quality report of `roadbrdf check` of a dataset in memory.",
                                       "Returns the report as a dict (file None), its text under \"text\".")
+          .c_str());
+  // The request of `roadbrdf resample` (its field table, io/resample_request.cpp): the resampled dataset,
+  // also written to `output` when given.
+  m.def(
+      "resample",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<ResampleRequest>(args, kwargs);
+        const SpectralDataset d = resample(request, python_warning());
+        if (!request.output.empty())
+          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
+        return dataset_to_dict(d);
+      },
+      request_docstring<ResampleRequest>(
+          "A dataset band-averaged onto new wavelength intervals, as `roadbrdf resample` makes it.",
+          "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
           .c_str());
   m.def("write_dataset",
         [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,

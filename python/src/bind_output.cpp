@@ -15,6 +15,7 @@
 #include "roadbrdf/io/check_request.h"
 #include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/model_export.h"
+#include "roadbrdf/io/resample_request.h"
 #include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_request.h"
@@ -111,6 +112,7 @@ void bind_requests(py::module_& m) {
         if (command == "eval") return rows<EvalRequest>();
         if (command == "simulate") return rows<SimulateRequest>();
         if (command == "check") return rows<CheckRequest>();
+        if (command == "resample") return rows<ResampleRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),
