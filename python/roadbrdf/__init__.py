@@ -26,6 +26,7 @@ from .core import InputError, data_directory, road_to_zenith_azimuth
 from .result import Diagnostic, Result, RoadbrdfWarning
 from .model import Model, SpectralModel, model_aliases, model_names, models
 from .io import Dataset, check, read_alta, read_curet, read_dataset, write_dataset
+from .io import resample
 from .io import evaluate, simulate
 from .fitting import FitResult, ModelFit, fit, params, read_fit, spectral_model_from_fit
 from .photometry import RTable, read_rtable, rtable
@@ -55,5 +56,6 @@ __all__ = ["InputError", "Result", "Diagnostic", "RoadbrdfWarning", "Model", "Sp
            "luminaire", "lighting",
            "evaluate", "simulate",
            "calibrate", "convert"]
+__all__ += ["resample"]
 
 __version__ = _roadbrdf.__version__

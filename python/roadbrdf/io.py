@@ -178,26 +178,43 @@ def read_alta(path: PathLike, wavelength: float, assumed_output: str = "", exclu
                                                   assumed_output, exclude_grazing))
 
 
-def check(path: Union[PathLike, Dataset], average_duplicates: bool = False, delimiter: str = "auto",
-          decimal: str = "auto", quantity: str = "brdf", columns: Optional[Union[Mapping[str, str], Sequence[str]]] = None,
-          set: Optional[Union[Mapping[str, float], Sequence[str]]] = None) -> dict:
-    """The quality report of a dataset file, as ``roadbrdf check DATA.csv --json`` gives it (default
-    thresholds): ``geometries``, ``wavelengths`` (count, min_nm, max_nm), ``coverage`` (incidence and
-    viewing zenith angles, azimuth planes, forward/backward/perpendicular/in-plane counts),
+def check(path: Union[PathLike, Dataset], **kwargs: Any) -> dict:
+    """The quality report of a dataset file, as ``roadbrdf check DATA.csv --json`` gives it (one library
+    request, the same rules): ``geometries``, ``wavelengths`` (count, min_nm, max_nm), ``coverage``
+    (incidence and viewing zenith angles, azimuth planes, forward/backward/perpendicular/in-plane counts),
     ``negative_values``, ``missing_values``, ``reciprocity``, ``noise`` (noisy bands, SNR per wavelength),
     ``outliers``, ``specular_peaks_not_counted_as_outliers``, ``units``, ``file``, and ``text``: the report
     ``roadbrdf check`` prints. Missing values are counted, not an error. ``path`` may be a
-    :class:`Dataset` in memory (``file`` is then None; the reading options do not apply)."""
+    :class:`Dataset` in memory (``file`` is then None; the reading keywords do not apply to it and are
+    refused). The keywords are the request's fields (listed below, the command line's options; ``None``
+    leaves a field at its default); ``columns`` and ``set`` may also be mappings {field: value}.
+    """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    for key in ("columns", "set"):
+        if key in kwargs:
+            kwargs[key] = _items(kwargs[key], key)
     if isinstance(path, Dataset):
         d = path
         return _roadbrdf.check_dataset_object(
             np.ascontiguousarray(d.angles), np.ascontiguousarray(d.wavelengths), np.ascontiguousarray(d.brdf),
             None if d.sigma is None else np.ascontiguousarray(d.sigma), {str(k): str(v) for k, v in d.metadata.items()},
-            d.convention)
-    return _roadbrdf.check_dataset(as_text(path, "path"),
-                                   average_duplicates=as_bool(average_duplicates, "average_duplicates"),
-                                   delimiter=str(delimiter), decimal=str(decimal), quantity=as_text(quantity, "quantity"),
-                                   columns=_items(columns, "columns"), set=_items(set, "set"))
+            d.convention, **kwargs)
+    return _roadbrdf.check_dataset(path, **kwargs)
+
+
+def resample(*args: Any, **kwargs: Any) -> Dataset:
+    """A dataset band-averaged onto new wavelength intervals, as ``roadbrdf resample`` makes it (one library
+    request, the same rules): ``wavelengths`` are the band edges [nm] (``"400:1000:10"`` or a list), each
+    band reported at its centre; the bands overlapping ``drop`` intervals, or with ``drop_noisy`` the noisy
+    bands of :func:`check`, are left out. Written to ``output`` (``format``) when given. The keywords are
+    the request's fields (listed below, the command line's options; ``None`` leaves a field at its
+    default); ``columns`` and ``set`` may also be mappings {field: value}.
+    """
+    kwargs = {key: value for key, value in kwargs.items() if value is not None}
+    for key in ("columns", "set"):
+        if key in kwargs:
+            kwargs[key] = _items(kwargs[key], key)
+    return Dataset._from_dict(_roadbrdf.resample(*args, **kwargs))
 
 
 def _with_request_arguments(function, request):
@@ -246,3 +263,5 @@ def convert(*args: Any, **kwargs: Any) -> Dataset:
 
 
 _with_request_arguments(convert, _roadbrdf.convert)
+_with_request_arguments(check, _roadbrdf.check_dataset)
+_with_request_arguments(resample, _roadbrdf.resample)

@@ -15,6 +15,7 @@
 #include "roadbrdf/core/math.h"
 #include "roadbrdf/io/alta.h"
 #include "roadbrdf/io/calibrate_request.h"
+#include "roadbrdf/io/check_request.h"
 #include "roadbrdf/io/convert_request.h"
 #include "roadbrdf/io/curet.h"
 #include "roadbrdf/io/dataset_dialect.h"
@@ -24,6 +25,7 @@
 #include "roadbrdf/io/instrument.h"
 #include "roadbrdf/io/manifest.h"
 #include "roadbrdf/io/quality.h"
+#include "roadbrdf/io/resample_request.h"
 #include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/io/usgs.h"
 #include "roadbrdf/spectra/spectrum_file.h"
@@ -228,39 +230,50 @@ void bind_io(py::module_& m) {
           const SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
           return dataset_to_dict(combine_runs({{"dataset", d}}, average_duplicates, python_warning()));
         });
-  // The quality report of `roadbrdf check` (io/quality.h) with its default thresholds: the JSON of
-  // `check --json` as a dict, plus its text under "text".
+  // The request of `roadbrdf check` (its field table, io/check_request.cpp): the JSON of `check --json`
+  // as a dict, plus its text under "text".
   m.def(
       "check_dataset",
-      [](const std::string& path, const py::kwargs& kwargs) {
-        const auto fields = request_from_arguments<DatasetReadFields>(py::args(), kwargs);
-        DatasetReadOptions options = fields.options_for(path, {path});
-        options.allow_missing = true;  // counted in the report, as `check` does
-        options.warn = python_warning();
-        DatasetReadStats stats;
-        const SpectralDataset d = read_dataset(path, options, stats);
-        const QualityReport r = check_dataset(d, QualityOptions{}, stats);
-        nlohmann::json j = quality_report_json(d, r);
-        j["file"] = path;
-        j["text"] = quality_report_text(d, r);
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const CheckResult result = quality_check(request_from_arguments<CheckRequest>(args, kwargs), python_warning());
+        nlohmann::json j = result.to_json();
+        j["text"] = result.summary_text();
         return json_to_python(j);
       },
-      py::arg("path"),
-      request_docstring<DatasetReadFields>("The quality report of `roadbrdf check` of a dataset file.",
-                                           "Returns the report of `check --json` as a dict, its text under \"text\".")
+      request_docstring<CheckRequest>("The quality report of `roadbrdf check` of a dataset file.",
+                                      "Returns the report of `check --json` as a dict, its text under \"text\".")
           .c_str());
   // The same report of a dataset in memory (no reading statistics: the repeatability of averaged
-  // duplicates is that of a file's reading).
-  m.def("check_dataset_object",
-        [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
-           const std::map<std::string, std::string>& metadata, const std::string& convention) {
-          const SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
-          const QualityReport r = check_dataset(d, QualityOptions{});
-          nlohmann::json j = quality_report_json(d, r);
-          j["file"] = nullptr;
-          j["text"] = quality_report_text(d, r);
-          return json_to_python(j);
-        });
+  // duplicates is that of a file's reading); the options are the check's own rows.
+  m.def(
+      "check_dataset_object",
+      [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
+         const std::map<std::string, std::string>& metadata, const std::string& convention, const py::kwargs& kwargs) {
+        const auto options = request_from_arguments<CheckOptions>(py::args(), kwargs);
+        const SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
+        const CheckResult result = quality_check(d, options);
+        nlohmann::json j = result.to_json();
+        j["text"] = result.summary_text();
+        return json_to_python(j);
+      },
+      request_docstring<CheckOptions>("The quality report of `roadbrdf check` of a dataset in memory.",
+                                      "Returns the report as a dict (file None), its text under \"text\".")
+          .c_str());
+  // The request of `roadbrdf resample` (its field table, io/resample_request.cpp): the resampled dataset,
+  // also written to `output` when given.
+  m.def(
+      "resample",
+      [](const py::args& args, const py::kwargs& kwargs) {
+        const auto request = request_from_arguments<ResampleRequest>(args, kwargs);
+        const SpectralDataset d = resample(request, python_warning());
+        if (!request.output.empty())
+          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
+        return dataset_to_dict(d);
+      },
+      request_docstring<ResampleRequest>(
+          "A dataset band-averaged onto new wavelength intervals, as `roadbrdf resample` makes it.",
+          "Returns the dataset (a dict of roadbrdf.Dataset), also written to `output` when given.")
+          .c_str());
   m.def("write_dataset",
         [](const Array& angles, const Array& wavelengths, const Array& brdf, const py::object& sigma,
            const std::map<std::string, std::string>& metadata, const std::string& convention,

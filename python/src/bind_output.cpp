@@ -13,9 +13,11 @@
 #include "roadbrdf/fitting/fit_request.h"
 #include "roadbrdf/fitting/params_table.h"
 #include "roadbrdf/io/calibrate_request.h"
+#include "roadbrdf/io/check_request.h"
 #include "roadbrdf/io/convert_request.h"
 #include "roadbrdf/io/eval_request.h"
 #include "roadbrdf/io/model_export.h"
+#include "roadbrdf/io/resample_request.h"
 #include "roadbrdf/io/simulate_request.h"
 #include "roadbrdf/lighting/lighting_request.h"
 #include "roadbrdf/lighting/luminaire_request.h"
@@ -113,6 +115,8 @@ void bind_requests(py::module_& m) {
         if (command == "simulate") return rows<SimulateRequest>();
         if (command == "calibrate") return rows<CalibrateRequest>();
         if (command == "convert") return rows<ConvertRequest>();
+        if (command == "check") return rows<CheckRequest>();
+        if (command == "resample") return rows<ResampleRequest>();
         throw InputError("request_fields: no request table of '" + command + "'");
       },
       py::arg("command"),

@@ -62,7 +62,7 @@ TEST(CliDataLoss, OutputThatIsAnInputIsRefusedBeforeAnyWork) {
       {"fit " + data + " -m lambert -o " + f.path("alias.csv"), "--output", f.path("alias.csv"), "DATA", data},
       {"fit " + data + " -m lambert -o " + f.path("hard.csv"), "--output", f.path("hard.csv"), "DATA", data},
       {"convert " + data + " -o " + data, "--output", data, "INPUT", data},
-      {"resample " + data + " --wavelengths 500:700:100 -o " + data, "-o", data, "DATA", data},
+      {"resample " + data + " --wavelengths 500:700:100 -o " + data, "--output", data, "DATA", data},
       {"calibrate " + data + " --reference " + f.path("grid.csv") + " --panel-reflectance " + f.path("r.csv") + " -o " +
            f.path("grid.csv"),
        "--output", f.path("grid.csv"), "--reference", f.path("grid.csv")},

@@ -104,6 +104,8 @@ def base_calls(folder):
         "simulate": (roadbrdf.simulate, dict(model="lambert", parameters=["albedo=0.3"],
                                              grid=GRID,
                                              wavelengths="500", output=os.path.join(folder, "sim.csv"))),
+        "resample": (roadbrdf.resample, dict(data=data, wavelengths="500:600:100",
+                                             output=os.path.join(folder, "resampled.csv"))),
     }
 
 
@@ -212,6 +214,7 @@ def test_the_sweep_covers_every_public_function():
                "albedo", "mix", "flat_surface", "gaussian_slope_surface", "read_surface", "render", "render_albedo",
                "road_to_zenith_azimuth", "read_rtable", "spectral_model_from_fit", "surface", "luminaire", "lighting",
                "marking", "export", "evaluate", "simulate"}
+    covered |= {"resample"}
     # Types, functions without arguments, study (test_study_robustness.py), and the readers of third-party and
     # instrument files, mix_calibrate and Surface's methods (swept by test_bad_arguments_readers.py).
     elsewhere = {"InputError", "SpectralModel", "RTable", "FitResult", "ModelFit", "AlbedoResult", "Surface",

@@ -121,7 +121,7 @@ void check_noise(const SpectralDataset& d, const QualityOptions& o, QualityRepor
     signal[j] = median_of(buffer);
   }
   r.snr.assign(m, 0.0);
-  const long w = std::max(0, o.noise_window);
+  const long w = o.noise_window;  // >= 0 (QualityOptions::validate)
   std::vector<double> window;
   for (std::size_t j = 0; j < m; ++j) {
     window.clear();
@@ -217,21 +217,40 @@ double median_of(std::vector<double>& v) {
   return m;
 }
 
-QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
-  validate_dataset(d);
+void QualityOptions::validate() const {
   // Angles are bucketed as floor(angle / tolerance) in a long: below 1e-6 deg the buckets would not
   // fit, and no goniometer resolves that.
-  if (!(o.angle_tolerance_deg >= 1e-6 && o.angle_tolerance_deg <= 90.0)) {
-    throw InputError(fmt::format("angle tolerance must be in [1e-6, 90] deg, got {:g}", o.angle_tolerance_deg));
+  if (!(angle_tolerance_deg >= 1e-6 && angle_tolerance_deg <= 90.0)) {
+    throw FieldError("tolerance",
+                     fmt::format("the angle tolerance must be in [1e-6, 90] deg, got {:g}", angle_tolerance_deg));
   }
-  if (o.neighbours < 2) {
-    throw InputError(fmt::format("neighbours must be >= 2 (a prediction needs two neighbours), got {}", o.neighbours));
+  if (!(reciprocity_threshold >= 0.0)) {
+    throw FieldError("reciprocity_threshold", fmt::format("must be >= 0, got {:g}", reciprocity_threshold));
   }
-  if (!(o.specular_cone_deg >= 0.0 && o.specular_cone_deg <= 180.0)) {
-    throw InputError(fmt::format("specular window must be in [0, 180] deg, got {:g}", o.specular_cone_deg));
+  if (!(snr_threshold >= 0.0)) throw FieldError("snr_threshold", fmt::format("must be >= 0, got {:g}", snr_threshold));
+  if (noise_window < 0) throw FieldError("noise_window", fmt::format("must be >= 0, got {}", noise_window));
+  if (neighbours < 2) {
+    throw FieldError("neighbours",
+                     fmt::format("the number of neighbours must be >= 2 (a prediction needs two), got {}", neighbours));
   }
+  if (!(outlier_threshold >= 0.0)) {
+    throw FieldError("outlier_threshold", fmt::format("must be >= 0, got {:g}", outlier_threshold));
+  }
+  if (!(outlier_min_ratio > 0.0)) {
+    throw FieldError("outlier_min_ratio", fmt::format("must be > 0, got {:g}", outlier_min_ratio));
+  }
+  if (!(specular_cone_deg >= 0.0 && specular_cone_deg <= 180.0)) {
+    throw FieldError("specular_window",
+                     fmt::format("the specular window must be in [0, 180] deg, got {:g}", specular_cone_deg));
+  }
+  if (listed_outliers < 0) throw FieldError("listed_outliers", fmt::format("must be >= 0, got {}", listed_outliers));
+}
+
+QualityReport check_dataset(const SpectralDataset& d, const QualityOptions& o) {
+  validate_dataset(d);
+  o.validate();
   QualityReport r;
-  r.listed_outliers = o.listed_outliers;
+  r.listed_outliers = static_cast<std::size_t>(o.listed_outliers);
   r.specular_window_deg = o.specular_cone_deg;
   const std::size_t n = d.geometries.size(), m = d.wavelengths.size();
   r.geometry_count = n;

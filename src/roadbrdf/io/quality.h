@@ -63,8 +63,11 @@ struct QualityOptions {
   // predict the others. (At theta_i = 89 deg, theta_r = 64 deg in the forward plane is 25 deg away.)
   double specular_cone_deg = 10.0;
   // The summary text lists this many outliers (all of them in the JSON report).
-  std::size_t listed_outliers = 5;
+  int listed_outliers = 5;
   std::optional<spectra::Spectrum> panel_reflectance;  // validate a reference panel measured as a sample
+
+  // Throws FieldError naming the request field of io/check_request.h (`tolerance`, `neighbours`, ...).
+  void validate() const;
 };
 
 struct ReciprocityPair {
