@@ -5,7 +5,7 @@ or, for a fit file of ``fit --group-by``, against a group column at one waveleng
 per-incidence parameters: a line per model with error bars). The numbers are those of
 :func:`roadbrdf.params` (the fit file's), in ``fig.roadbrdf_data``:
 ``{parameter: {label: (x, value, stderr)}}`` and ``bounds`` = {parameter: (lower, upper)}. A parameter fixed
-in every fit has no panel unless named; the ± bands are clipped to the physical bounds.
+in every fit that has it has no panel unless named; the ± bands are clipped to the physical bounds.
 """
 
 from __future__ import annotations
@@ -39,10 +39,10 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
     dpi : float, optional
         Resolution of the raster parts when saving ``output``.
     """
-    table, units = _table(fit_file, models)
-    fixed, bounds = _fixed_and_bounds(fit_file, models)
-    # A parameter fixed in every fit shown (a composite's weights, say) is a constant, not a result: no panel
-    # unless asked for.
+    table, units, fits = _table(fit_file, models)
+    fixed, bounds = _fixed_and_bounds(fits)
+    # A parameter fixed in every fit shown that has it (a composite's weights, say) is a constant, not a
+    # result: no panel unless asked for.
     names = list(parameters) if parameters else [p for p in units if np.isfinite(table[p]).any() and p not in fixed]
     for p in names:
         if p not in units:
@@ -123,18 +123,12 @@ def run(a):
 
 def _table(fit_file, models):
     """The table of :func:`roadbrdf.params` (the same library call) as {column: array} (numbers as float, NaN
-    where missing) and the parameters' units, without building a DataFrame: the figure needs only the columns
-    (and importing pandas would cost a command as much time and memory as drawing a panel)."""
+    where missing; text as object arrays), the parameters' units and the fits shown (model, options, fixed,
+    bounds; the library reads them from the same parse), without building a DataFrame: the figure needs only
+    the columns (and importing pandas would cost a command as much time and memory as drawing a panel)."""
     from . import _roadbrdf
     t = _roadbrdf.params_table(os.fspath(fit_file), models=[str(m) for m in models or ()])
-    table = {}
-    for c in t["columns"]:
-        values = t["data"][c]
-        try:
-            table[c] = np.asarray(values, dtype=float)
-        except (TypeError, ValueError):  # text (the model's name)
-            table[c] = np.asarray(values, dtype=object)
-    return table, dict(t["units"])
+    return dict(t["data"]), dict(t["units"]), list(t["fits"])
 
 
 def _groups(table, keys):
@@ -153,22 +147,15 @@ def _groups(table, keys):
         yield key, mask
 
 
-def _fixed_and_bounds(fit_file, models):
-    """The parameters fixed in every fit of the file shown ({name}), and each (model, parameter)'s physical
-    bounds (lower, upper) from the model's metadata."""
-    from . import Model
-    from .core import read_json_file
-    fits = [f for f in read_json_file(fit_file).get("fits", [])
-            if isinstance(f, dict) and (not models or f.get("model") in models)]
-    fixed = None
+def _fixed_and_bounds(fits):
+    """The parameters fixed in every fit shown that has them ({name}; a composite's weights held at 1 in a file
+    that also holds other models), and each (model, parameter)'s physical bounds (lower, upper) from the
+    model's metadata, as the library gives them with the table."""
+    held, free = set(), set()
     bounds = {}
     for f in fits:
-        names = set(f.get("fixed") or [])
-        fixed = names if fixed is None else fixed & names
-        try:
-            description = Model(f["model"], f.get("options") or {}).parameters
-        except (KeyError, ValueError, TypeError):
-            continue
-        for p in description:
-            bounds[(f["model"], p["name"])] = (float(p["lower"]), float(p["upper"]))
-    return fixed or set(), bounds
+        fixed = set(f["fixed"])
+        for p, range_ in f["bounds"].items():
+            (held if p in fixed else free).add(p)
+            bounds[(f["model"], p)] = (float(range_[0]), float(range_[1]))
+    return held - free, bounds

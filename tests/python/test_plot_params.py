@@ -55,3 +55,15 @@ def test_command_and_errors(cli, grouped, tmp_path):
     assert r.returncode == 2 and "no parameter 'sigm'" in r.stderr and "did you mean 'sigma'" in r.stderr, r.stderr
     r = cli("plot", "params", grouped, "--against", "phi_i", "-o", png, check=False)
     assert r.returncode == 2 and "'phi_i' is not one of wavelength, theta_i" in r.stderr, r.stderr
+
+
+def test_a_parameter_fixed_in_every_fit_that_has_it_gets_no_panel(root, tmp_path):
+    """sigma held at 0.3 in the Oren-Nayar fit of a file that also holds a Lambertian fit (which has no sigma) is
+    a constant, not a result: no panel, as in a file of that fit alone."""
+    import roadbrdf
+    path = tmp_path / "two.fit.json"
+    roadbrdf.fit(root / DATA, ["oren-nayar", "lambert"], fixed={"sigma": 0.3}, wavelengths="510,610", output=path)
+    fig = params(path)
+    assert [a.get_ylabel() for a in fig.axes] == ["albedo [1]"]
+    assert set(fig.roadbrdf_data["albedo"]) == {"oren-nayar", "lambert"}
+    plt.close(fig)

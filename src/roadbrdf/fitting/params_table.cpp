@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/nearest_name.h"
 #include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
 
@@ -347,6 +349,35 @@ std::string render_sections(const ParamsTable& t, ParamsFormat format) {
   return out;
 }
 
+// A fit's model, options, fixed parameters and the physical range of its parameters (from the model the
+// registry builds with the file's options, as the fit file reader builds it).
+ParamsFit fit_of(const JsonNode& fit, const std::string& model, const std::vector<double>& group,
+                 const std::vector<std::string>& fixed, const std::vector<std::string>& parameter_names) {
+  ParamsFit f;
+  f.model = model;
+  f.group = group;
+  f.fixed = fixed;
+  if (const auto o = fit.find("options")) f.options = o->string_map();
+  std::unique_ptr<Model> built;
+  try {
+    built = make_model(model, f.options);
+  } catch (const FileError&) {
+    throw;
+  } catch (const InputError& e) {
+    fit.at("model").fail(e.what());
+  }
+  f.lower.assign(parameter_names.size(), kNaN);
+  f.upper.assign(parameter_names.size(), kNaN);
+  for (const ParameterInfo& p : built->description().parameters) {
+    const auto k = static_cast<std::size_t>(std::find(parameter_names.begin(), parameter_names.end(), p.name) -
+                                            parameter_names.begin());
+    if (k == parameter_names.size()) continue;  // a parameter the file does not list has no rows either
+    f.lower[k] = p.lower;
+    f.upper[k] = p.upper;
+  }
+  return f;
+}
+
 }  // namespace
 
 std::string ParamsTable::render(ParamsFormat format) const {
@@ -425,6 +456,7 @@ ParamsTable read_params_table(const ParamsRequest& request) {
     const std::size_t m = wavelengths.size();
     if (m == 0) fit.at("wavelengths").fail("no wavelengths");
     const std::vector<std::string> fixed = fit.at("fixed").strings();
+    t.fits.push_back(fit_of(fit, model, group, fixed, t.parameter_names));
     for (std::size_t w : answer_wavelengths(wavelengths, request.wavelengths, t.notes)) {
       ParamsRow r;
       r.model = model;
