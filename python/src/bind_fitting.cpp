@@ -291,7 +291,8 @@ void bind_fitting(py::module_& m) {
         for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
           out["units"][py::str(t.parameter_names[k])] = t.parameter_units[k];
         }
-        out["text"] = t.render(request.table_format());
+        // The text only when asked for (a table of a few thousand rows takes as long to render as to read).
+        if (kwargs.contains("format")) out["text"] = t.render(request.table_format());
         out["columns"] = t.csv_columns();
         out["data"] = params_columns(t);
         out["fits"] = params_fits(t);
@@ -300,7 +301,8 @@ void bind_fitting(py::module_& m) {
       request_docstring<ParamsRequest>(
           "The fitted parameters of a fit file, as `roadbrdf params` prints them.",
           "Returns a dict: columns, data (the CSV cells by column as NumPy arrays: float64, bool for `converged`, "
-          "object for text), text (in `format`), notes, units, and fits: per fit shown, its model, group {column: "
+          "object for text), text (in `format`, when `format` is given), notes, units, and fits: per fit shown, its "
+          "model, group {column: "
           "degrees}, options, fixed (names) and bounds {parameter: (lower, upper)} of the model's metadata.")
           .c_str());
 }

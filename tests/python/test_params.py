@@ -211,6 +211,8 @@ def test_params_table_gives_numpy_columns_and_each_fits_fixed_options_and_bounds
                  output=path)
     content = json.loads(path.read_text())
     t = _roadbrdf.params_table(str(path))
+    assert "text" not in t  # rendered only when a format is asked for
+    assert _roadbrdf.params_table(str(path), format="csv")["text"] == roadbrdf.params(path, format="csv")
     data = t["data"]
     assert all(isinstance(data[c], np.ndarray) for c in t["columns"])
     assert data["wavelength_nm"].dtype == np.float64 and data["converged"].dtype == np.bool_
