@@ -62,27 +62,28 @@ def check_output_folder(output) -> None:
         raise OutputFolderError(f"output folder '{folder}' does not exist")
 
 
-def save(fig, output, dpi=None):
+def save(fig, output, dpi=None, tight=True):
     """Save a figure as PNG, SVG or PDF (from the extension) atomically: a temporary file in the same folder,
     given the mode of the file it replaces (a new file: 0666 & ~umask, as any program's output), then renamed
     over it. A symbolic link is followed and kept. ``dpi``: resolution of the raster parts (default 150).
+    ``tight``: cropped to what is drawn (an extra layout pass); False for a figure laid out with fixed margins.
     Returns the path."""
     output = os.fspath(output)
     check_output_folder(output)
     root = fig.figure  # a SubFigure saves its whole figure
-    write_figure_atomic(root, output, dpi=dpi or DEFAULT_DPI, bbox_inches="tight")
+    write_figure_atomic(root, output, dpi=dpi or DEFAULT_DPI, bbox_inches="tight" if tight else None)
     return output
 
 
-def finish(fig, output, data=None, axes=(), dpi=None):
+def finish(fig, output, data=None, axes=(), dpi=None, tight=True):
     """Attach ``data`` as ``fig.roadbrdf_data`` (and to each axis drawn, for figures composed of several
-    calls), save when ``output`` is given, return the figure."""
+    calls), save when ``output`` is given (``tight``: see :func:`save`), return the figure."""
     if data is not None:
         fig.roadbrdf_data = data
         for a in axes:
             a.roadbrdf_data = data
     if output is not None:
-        save(fig, output, dpi)
+        save(fig, output, dpi, tight)
     return fig
 
 

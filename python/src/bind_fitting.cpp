@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "binding.h"
 #include "request_kwargs.h"
@@ -26,6 +27,70 @@ namespace roadbrdf::python {
 namespace {
 
 using Array = py::array_t<double>;
+
+// The columns of the library's CSV cells (ParamsTable::csv_cells) as NumPy arrays, {name: array} in the order
+// of csv_columns(): float64 numbers (NaN where there is none), bool flags and text as an object array. Each
+// column holds one kind of cell; a blank row's cells say which (also for a table without rows).
+py::dict params_columns(const ParamsTable& t) {
+  ParamsRow blank;
+  blank.group.assign(t.group_columns.size(), 0.0);
+  blank.values.assign(t.parameter_names.size(), 0.0);
+  blank.standard_errors.assign(t.parameter_names.size(), 0.0);
+  const std::vector<ParamsTable::Cell> kinds = t.csv_cells(blank);
+  const auto n = static_cast<py::ssize_t>(t.rows.size());
+  std::vector<py::array_t<double>> numbers(kinds.size());
+  std::vector<py::array_t<bool>> flags(kinds.size());
+  std::vector<py::list> texts(kinds.size());
+  for (std::size_t c = 0; c < kinds.size(); ++c) {
+    if (std::holds_alternative<double>(kinds[c])) numbers[c] = py::array_t<double>(n);
+    if (std::holds_alternative<bool>(kinds[c])) flags[c] = py::array_t<bool>(n);
+  }
+  for (py::ssize_t r = 0; r < n; ++r) {
+    const auto cells = t.csv_cells(t.rows[static_cast<std::size_t>(r)]);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (const auto* x = std::get_if<double>(&cells[c])) {
+        numbers[c].mutable_at(r) = *x;
+      } else if (const auto* b = std::get_if<bool>(&cells[c])) {
+        flags[c].mutable_at(r) = *b;
+      } else {
+        texts[c].append(std::get<std::string>(cells[c]));
+      }
+    }
+  }
+  const py::object as_array = py::module_::import("numpy").attr("array");
+  const std::vector<std::string> names = t.csv_columns();
+  py::dict data;
+  for (std::size_t c = 0; c < kinds.size(); ++c) {
+    if (std::holds_alternative<double>(kinds[c])) {
+      data[py::str(names[c])] = numbers[c];
+    } else if (std::holds_alternative<bool>(kinds[c])) {
+      data[py::str(names[c])] = flags[c];
+    } else {
+      data[py::str(names[c])] = as_array(texts[c], py::arg("dtype") = "object");
+    }
+  }
+  return data;
+}
+
+// Each fit of the table (ParamsTable::fits) as a dict: model, group {column: degrees}, options, fixed and
+// bounds {parameter: (lower, upper)} of the parameters the model has.
+py::list params_fits(const ParamsTable& t) {
+  py::list fits;
+  for (const ParamsFit& f : t.fits) {
+    py::dict fit, group, bounds;
+    fit["model"] = f.model;
+    for (std::size_t g = 0; g < t.group_columns.size(); ++g) group[py::str(t.group_columns[g])] = f.group[g];
+    fit["group"] = group;
+    fit["options"] = f.options;
+    fit["fixed"] = f.fixed;
+    for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
+      if (!std::isnan(f.lower[k])) bounds[py::str(t.parameter_names[k])] = py::make_tuple(f.lower[k], f.upper[k]);
+    }
+    fit["bounds"] = bounds;
+    fits.append(fit);
+  }
+  return fits;
+}
 
 const FitResult& fit_at(const FitSummary& s, std::size_t i) {
   if (i >= s.fits.size()) throw InputError("fit index " + std::to_string(i) + " out of range");
@@ -226,27 +291,19 @@ void bind_fitting(py::module_& m) {
         for (std::size_t k = 0; k < t.parameter_names.size(); ++k) {
           out["units"][py::str(t.parameter_names[k])] = t.parameter_units[k];
         }
-        out["text"] = t.render(request.table_format());
-        // Columns of csv_columns(), in its order.
-        py::list columns;
-        for (const auto& c : t.csv_columns()) columns.append(c);
-        out["columns"] = columns;
-        // The columns of the library's CSV cells (ParamsTable::csv_cells), as lists.
-        std::vector<py::list> columns_data(t.csv_columns().size());
-        for (const ParamsRow& r : t.rows) {
-          const auto cells = t.csv_cells(r);
-          for (std::size_t c = 0; c < cells.size(); ++c) {
-            std::visit([&](const auto& value) { columns_data[c].append(value); }, cells[c]);
-          }
-        }
-        py::dict data;
-        for (std::size_t c = 0; c < columns_data.size(); ++c) data[py::str(t.csv_columns()[c])] = columns_data[c];
-        out["data"] = data;
+        // The text only when asked for (a table of a few thousand rows takes as long to render as to read).
+        if (kwargs.contains("format")) out["text"] = t.render(request.table_format());
+        out["columns"] = t.csv_columns();
+        out["data"] = params_columns(t);
+        out["fits"] = params_fits(t);
         return out;
       },
       request_docstring<ParamsRequest>(
           "The fitted parameters of a fit file, as `roadbrdf params` prints them.",
-          "Returns a dict: columns, data (the CSV cells by column), text (in `format`), notes, units.")
+          "Returns a dict: columns, data (the CSV cells by column as NumPy arrays: float64, bool for `converged`, "
+          "object for text), text (in `format`, when `format` is given), notes, units, and fits: per fit shown, its "
+          "model, group {column: "
+          "degrees}, options, fixed (names) and bounds {parameter: (lower, upper)} of the model's metadata.")
           .c_str());
 }
 

@@ -199,3 +199,51 @@ def test_one_rule_chooses_the_fit_of_a_file_and_of_a_result(cli, root, grouped, 
     printed = r.stderr.strip().replace(str(grouped), "FILE").replace("--fit", "fit")
     assert message in printed, (message, printed)
     assert result.model_fit("oren-nayar,theta_i=40") is result.model_fit("oren-nayar", theta_i=40)
+
+
+def test_params_table_gives_numpy_columns_and_each_fits_fixed_options_and_bounds(root, tmp_path):
+    """The binding's columns are NumPy arrays (float, bool, text as objects), and each fit shown comes with what
+    the fit file says of it (model, group, options, fixed) and the physical range of its parameters, so that
+    no front end reads the file a second time."""
+    from roadbrdf import _roadbrdf
+    path = tmp_path / "fixed.fit.json"
+    roadbrdf.fit(root / DATA, ["oren-nayar", "lambert"], fixed={"sigma": 0.3}, wavelengths="510,610",
+                 output=path)
+    content = json.loads(path.read_text())
+    t = _roadbrdf.params_table(str(path))
+    assert "text" not in t  # rendered only when a format is asked for
+    assert _roadbrdf.params_table(str(path), format="csv")["text"] == roadbrdf.params(path, format="csv")
+    data = t["data"]
+    assert all(isinstance(data[c], np.ndarray) for c in t["columns"])
+    assert data["wavelength_nm"].dtype == np.float64 and data["converged"].dtype == np.bool_
+    assert data["model"].dtype == object and data["at_bounds"].dtype == object
+    rows = [(f["model"], w) for f in content["fits"] for w in f["wavelengths"]]
+    assert list(zip(data["model"], data["wavelength_nm"])) == rows
+    assert [f["model"] for f in t["fits"]] == [f["model"] for f in content["fits"]]
+    for shown, written in zip(t["fits"], content["fits"]):
+        assert shown["fixed"] == written["fixed"] and shown["options"] == written.get("options", {})
+        assert shown["group"] == {}
+        # An albedo is a reflectance: [0, 1] (energy conservation); sigma, the facet slope's standard deviation,
+        # an angle from 0 to a right angle at most.
+        assert shown["bounds"]["albedo"] == (0.0, 1.0)
+        if shown["model"] == "oren-nayar":
+            assert shown["fixed"] == ["sigma"]
+            low, high = shown["bounds"]["sigma"]
+            assert low == 0.0 and 0.0 < high <= np.pi / 2
+        else:
+            assert set(shown["bounds"]) == {"albedo"}
+    # The DataFrame of roadbrdf.params is made of the same arrays.
+    df = roadbrdf.params(path)
+    np.testing.assert_array_equal(df["albedo"].to_numpy(), data["albedo"])
+    assert df["converged"].dtype == bool and list(df["model"]) == [r[0] for r in rows]
+
+
+def test_params_refuses_a_fit_of_a_model_the_library_does_not_have(root, tmp_path):
+    path = tmp_path / "unknown.fit.json"
+    roadbrdf.fit(root / DATA, ["lambert"], wavelengths="510", output=path)
+    content = json.loads(path.read_text())
+    content["fits"][0]["model"] = "lambertt"
+    content["best"] = "lambertt"
+    path.write_text(json.dumps(content))
+    with pytest.raises(roadbrdf.InputError, match=r"unknown\.fit\.json: fits\[0\]\.model: unknown model 'lambertt'"):
+        roadbrdf.params(path)

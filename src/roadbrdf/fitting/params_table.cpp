@@ -6,12 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
 
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/input_file.h"
 #include "roadbrdf/core/json_input.h"
 #include "roadbrdf/core/nearest_name.h"
 #include "roadbrdf/fitting/fit.h"
+#include "roadbrdf/models/registry.h"
 
 namespace roadbrdf {
 
@@ -19,13 +22,46 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double number_or_nan(const JsonNode& node) { return node.is_null() ? kNaN : node.number(); }
-
-// The value of a per-wavelength array at index w (the array must have `m` elements).
-JsonNode at_wavelength(const JsonNode& fit, const std::string& key, std::size_t w, std::size_t m) {
+// A per-wavelength array of a fit (it must have `m` elements), read once for all its rows. The usual
+// element is read directly; any other goes through its node, whose error names the key path.
+JsonNode per_wavelength(const JsonNode& fit, const std::string& key, std::size_t m) {
   const JsonNode a = fit.at(key);
   if (a.size() != m) a.fail(fmt::format("expected {} values (one per wavelength), found {}", m, a.size()));
-  return a[w];
+  return a;
+}
+
+// Numbers, null read as NaN (no value: a fixed parameter's standard error, an undefined covariance).
+std::vector<double> numbers_or_nan(const JsonNode& fit, const std::string& key, std::size_t m) {
+  const JsonNode a = per_wavelength(fit, key, m);
+  std::vector<double> out(m, kNaN);
+  for (std::size_t w = 0; w < m; ++w) {
+    const Json& x = a.json()[w];
+    if (x.is_null()) continue;
+    const double v = x.is_number() ? x.get<double>() : kNaN;
+    out[w] = std::isfinite(v) ? v : a[w].number();
+  }
+  return out;
+}
+
+std::vector<bool> booleans(const JsonNode& fit, const std::string& key, std::size_t m) {
+  const JsonNode a = per_wavelength(fit, key, m);
+  std::vector<bool> out(m);
+  for (std::size_t w = 0; w < m; ++w) {
+    const Json& x = a.json()[w];
+    out[w] = x.is_boolean() ? x.get<bool>() : a[w].boolean();
+  }
+  return out;
+}
+
+// Lists of strings ("at_bounds": mostly empty).
+std::vector<std::vector<std::string>> string_lists(const JsonNode& fit, const std::string& key, std::size_t m) {
+  const JsonNode a = per_wavelength(fit, key, m);
+  std::vector<std::vector<std::string>> out(m);
+  for (std::size_t w = 0; w < m; ++w) {
+    const Json& x = a.json()[w];
+    if (!(x.is_array() && x.empty())) out[w] = a[w].strings();
+  }
+  return out;
 }
 
 // The indices of the fitted wavelengths answering the wanted ones (all when none are wanted): the
@@ -347,6 +383,35 @@ std::string render_sections(const ParamsTable& t, ParamsFormat format) {
   return out;
 }
 
+// A fit's model, options, fixed parameters and the physical range of its parameters (from the model the
+// registry builds with the file's options, as the fit file reader builds it).
+ParamsFit fit_of(const JsonNode& fit, const std::string& model, const std::vector<double>& group,
+                 const std::vector<std::string>& fixed, const std::vector<std::string>& parameter_names) {
+  ParamsFit f;
+  f.model = model;
+  f.group = group;
+  f.fixed = fixed;
+  if (const auto o = fit.find("options")) f.options = o->string_map();
+  std::unique_ptr<Model> built;
+  try {
+    built = make_model(model, f.options);
+  } catch (const FileError&) {
+    throw;
+  } catch (const InputError& e) {
+    fit.at("model").fail(e.what());
+  }
+  f.lower.assign(parameter_names.size(), kNaN);
+  f.upper.assign(parameter_names.size(), kNaN);
+  for (const ParameterInfo& p : built->description().parameters) {
+    const auto k = static_cast<std::size_t>(std::find(parameter_names.begin(), parameter_names.end(), p.name) -
+                                            parameter_names.begin());
+    if (k == parameter_names.size()) continue;  // a parameter the file does not list has no rows either
+    f.lower[k] = p.lower;
+    f.upper[k] = p.upper;
+  }
+  return f;
+}
+
 }  // namespace
 
 std::string ParamsTable::render(ParamsFormat format) const {
@@ -425,6 +490,23 @@ ParamsTable read_params_table(const ParamsRequest& request) {
     const std::size_t m = wavelengths.size();
     if (m == 0) fit.at("wavelengths").fail("no wavelengths");
     const std::vector<std::string> fixed = fit.at("fixed").strings();
+    t.fits.push_back(fit_of(fit, model, group, fixed, t.parameter_names));
+    // Each per-wavelength array read once (a fit of a few thousand wavelengths has as many rows).
+    const std::vector<std::string> order = fit.at("parameter_order").strings();
+    std::vector<std::size_t> column(order.size());
+    std::vector<std::vector<double>> values(order.size()), errors(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      column[i] = static_cast<std::size_t>(std::find(t.parameter_names.begin(), t.parameter_names.end(), order[i]) -
+                                           t.parameter_names.begin());
+      values[i] = numbers_or_nan(fit.at("parameters"), order[i], m);
+      errors[i] = numbers_or_nan(fit.at("stderr"), order[i], m);
+    }
+    const std::vector<double> rmse = numbers_or_nan(fit, "rmse", m);
+    const std::vector<double> relative_rmse = numbers_or_nan(fit, "relative_rmse", m);
+    const std::vector<double> max_relative_error = numbers_or_nan(fit, "max_relative_error", m);
+    const std::vector<double> aic = numbers_or_nan(fit, "aic", m), bic = numbers_or_nan(fit, "bic", m);
+    const std::vector<bool> converged = booleans(fit, "converged", m);
+    const std::vector<std::vector<std::string>> at_bounds = string_lists(fit, "at_bounds", m);
     for (std::size_t w : answer_wavelengths(wavelengths, request.wavelengths, t.notes)) {
       ParamsRow r;
       r.model = model;
@@ -433,21 +515,18 @@ ParamsTable read_params_table(const ParamsRequest& request) {
       r.values.assign(t.parameter_names.size(), kNaN);
       r.standard_errors.assign(t.parameter_names.size(), kNaN);
       r.fixed.assign(t.parameter_names.size(), false);
-      for (const auto& p : fit.at("parameter_order").strings()) {
-        const auto k = static_cast<std::size_t>(std::find(t.parameter_names.begin(), t.parameter_names.end(), p) -
-                                                t.parameter_names.begin());
-        r.values[k] = number_or_nan(at_wavelength(fit.at("parameters"), p, w, m));
-        r.standard_errors[k] = number_or_nan(at_wavelength(fit.at("stderr"), p, w, m));
-        r.fixed[k] = std::find(fixed.begin(), fixed.end(), p) != fixed.end();
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        r.values[column[i]] = values[i][w];
+        r.standard_errors[column[i]] = errors[i][w];
+        r.fixed[column[i]] = std::find(fixed.begin(), fixed.end(), order[i]) != fixed.end();
       }
-      r.rmse = number_or_nan(at_wavelength(fit, "rmse", w, m));
-      r.relative_rmse = number_or_nan(at_wavelength(fit, "relative_rmse", w, m));
-      r.max_relative_error = number_or_nan(at_wavelength(fit, "max_relative_error", w, m));
-      r.aic = number_or_nan(at_wavelength(fit, "aic", w, m));
-      r.bic = number_or_nan(at_wavelength(fit, "bic", w, m));
-      r.converged = at_wavelength(fit, "converged", w, m).boolean();
-      const std::vector<std::string> bounds = at_wavelength(fit, "at_bounds", w, m).strings();
-      for (const auto& b : bounds) {
+      r.rmse = rmse[w];
+      r.relative_rmse = relative_rmse[w];
+      r.max_relative_error = max_relative_error[w];
+      r.aic = aic[w];
+      r.bic = bic[w];
+      r.converged = converged[w];
+      for (const auto& b : at_bounds[w]) {
         r.at_bounds += (r.at_bounds.empty() ? "" : ";") + b;
         // A parameter on a bound of its physical range: the linearised covariance assumes a free minimum
         // and its standard error (b0 = 1 +- 53 on [0, 1]) describes nothing, so none is given.
@@ -459,16 +538,21 @@ ParamsTable read_params_table(const ParamsRequest& request) {
       t.rows.push_back(r);
     }
   }
-  // Rows in section order: stable, the sections in order of first appearance.
-  std::vector<std::string> order;
-  for (const ParamsRow& r : t.rows) {
-    const std::string h = section_heading(t, r);
-    if (std::find(order.begin(), order.end(), h) == order.end()) order.push_back(h);
+  // Rows in section order: stable, the sections in order of first appearance (each row's heading made
+  // once; without sections the rows stay as they are).
+  if (t.section_columns.empty()) return t;
+  std::map<std::string, std::size_t> section;             // heading -> its rank of first appearance
+  std::vector<std::pair<std::size_t, std::size_t>> rank;  // (section, row)
+  rank.reserve(t.rows.size());
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const auto k = section.try_emplace(section_heading(t, t.rows[i]), section.size()).first;
+    rank.emplace_back(k->second, i);
   }
-  std::stable_sort(t.rows.begin(), t.rows.end(), [&](const ParamsRow& a, const ParamsRow& b) {
-    return std::find(order.begin(), order.end(), section_heading(t, a)) <
-           std::find(order.begin(), order.end(), section_heading(t, b));
-  });
+  std::sort(rank.begin(), rank.end());
+  std::vector<ParamsRow> rows;
+  rows.reserve(t.rows.size());
+  for (const auto& [section, i] : rank) rows.push_back(std::move(t.rows[i]));
+  t.rows = std::move(rows);
   return t;
 }
 

@@ -8,6 +8,7 @@
 // ("600 nm: nearest band 610 nm"); two wavelengths answered by the same band give one row.
 #pragma once
 
+#include <map>
 #include <span>
 #include <string>
 #include <variant>
@@ -63,12 +64,25 @@ struct ParamsRow {
   std::string at_bounds;  // "name=lower;name=upper" or ""
 };
 
+// A fit of the table (in file order, the models asked for): what the file says about it beyond the rows, read
+// from the same parse, so that a front end never reads the fit file again.
+struct ParamsFit {
+  std::string model;
+  std::vector<double> group;                   // values [deg] of ParamsTable::group_columns
+  std::map<std::string, std::string> options;  // the model's options as the file gives them
+  std::vector<std::string> fixed;              // the parameters held fixed, as the file lists them
+  // The physical range of each parameter (ParameterInfo::lower/upper of the model built with `options`),
+  // indexed like ParamsTable::parameter_names; NaN for a parameter the model does not have.
+  std::vector<double> lower, upper;
+};
+
 struct ParamsTable {
   std::string source;                        // the fit file as named in messages
   std::vector<std::string> group_columns;    // the file's group_by columns (degrees)
   std::vector<std::string> parameter_names;  // every model's parameters, in order of first appearance
   std::vector<std::string> parameter_units;  // aligned with parameter_names
   std::vector<ParamsRow> rows;
+  std::vector<ParamsFit> fits;
   std::vector<std::string> notes;  // nearest-wavelength answers
   // The section columns (ParamsRequest::group_by) as display-column indices: 0 the model, 1..G the
   // group columns, G+1 the wavelength. The rows are in section order (first appearance).
@@ -87,8 +101,9 @@ struct ParamsTable {
   std::vector<Cell> csv_cells(const ParamsRow& row) const;
 };
 
-// Reads the fit file and builds the table. Throws FileError (with the JSON key path) / FieldError, and
-// InputError when `output` is the fit file.
+// Reads the fit file and builds the table. Throws FileError (with the JSON key path; a model or options
+// no model of the registry accepts fail at the fit's "model" key) / FieldError, and InputError when
+// `output` is the fit file.
 ParamsTable read_params_table(const ParamsRequest& request);
 
 // The table in the request's format, written atomically to `output` (standard output when "" or "-").
