@@ -87,11 +87,32 @@ inline void evaluate_sets(const Model& model, const Geometry* geometries, std::s
   }
 }
 
+// The model's own evaluator of fixed parameter sets (model.h, FixedSetEvaluator), or null if it has
+// none (the base evaluator only calls evaluate_batch). Hapke's reduces its H table to each set's albedo
+// once (a one-variable series per set), so an H costs 12 multiply-adds per set instead of a
+// two-variable table evaluation; its values equal evaluate_batch's to rounding (a few units in the
+// last place, hapke_h_table.h). That pays where nearly every geometry has a cosine of its own (the
+// mirror-polar rule: an H per geometry and set), not in the (mu, dphi) rule, whose batches share a
+// few cosines and are prepared once (evaluate_sets), nor where the series would be built for each of
+// many short integrals (white-sky's inner ones).
+inline std::unique_ptr<FixedSetEvaluator> own_fixed_sets(const Model& model, const double* params, std::size_t n_sets) {
+  if (n_sets == 0 || dynamic_cast<const SetBatchIntegrand*>(&model) != nullptr) return nullptr;
+  std::unique_ptr<FixedSetEvaluator> fixed = model.fixed_sets(params, n_sets);
+  const FixedSetEvaluator& own = *fixed;
+  if (typeid(own) == typeid(FixedSetEvaluator)) return nullptr;
+  return fixed;
+}
+
 // Evaluates batches of geometries for all parameter sets and accumulates weighted sums per target row.
+// With `fixed` (own_fixed_sets of the same model, parameters and sets), geometry by geometry through it.
 class Accumulator {
  public:
-  Accumulator(const Model& model, const double* params, std::size_t n_sets)
-      : model_(model), batch_(dynamic_cast<const SetBatchIntegrand*>(&model)), params_(params), n_sets_(n_sets) {}
+  Accumulator(const Model& model, const double* params, std::size_t n_sets, const FixedSetEvaluator* fixed = nullptr)
+      : model_(model),
+        batch_(dynamic_cast<const SetBatchIntegrand*>(&model)),
+        fixed_(fixed),
+        params_(params),
+        n_sets_(n_sets) {}
 
   // Queue one geometry: its values are added with weight w1 to acc1[row] and w2 to acc2[row] (acc2 may be null).
   void add(const Geometry& g, std::size_t row, double w1, double w2) {
@@ -112,6 +133,8 @@ class Accumulator {
     out_.resize(n * n_sets_);
     if (batch_ != nullptr) {
       batch_->evaluate_sets(geometries_.data(), n, params_, n_sets_, out_.data());
+    } else if (fixed_ != nullptr) {
+      for (std::size_t k = 0; k < n; ++k) fixed_->evaluate(geometries_[k], out_.data() + k * n_sets_);
     } else {
       evaluate_sets(model_, geometries_.data(), n, params_, n_sets_, out_.data(), column_);
     }
@@ -138,6 +161,7 @@ class Accumulator {
   static constexpr std::size_t kChunk = 48;
   const Model& model_;
   const SetBatchIntegrand* batch_;
+  const FixedSetEvaluator* fixed_;
   const double* params_;
   std::size_t n_sets_;
   std::vector<Geometry> geometries_;
@@ -180,7 +204,7 @@ struct Panel {
 class BlackSkyIntegrator {
  public:
   BlackSkyIntegrator(const Model& model, const double* params, std::size_t n_sets, double theta_s, double phi_s,
-                     bool isotropic, bool mirror_polar = false)
+                     bool isotropic, bool mirror_polar = false, const FixedSetEvaluator* fixed = nullptr)
       : model_(model),
         params_(params),
         n_sets_(n_sets),
@@ -188,7 +212,7 @@ class BlackSkyIntegrator {
         phi_s_(phi_s),
         isotropic_(isotropic),
         polar_(mirror_polar),
-        acc_(model, params, n_sets) {
+        acc_(model, params, n_sets, fixed) {
     if (!(theta_s >= 0.0 && theta_s < kPi / 2)) {
       throw InputError("sun zenith " + std::to_string(rad_to_deg(theta_s)) + " deg is outside [0, 90) deg");
     }

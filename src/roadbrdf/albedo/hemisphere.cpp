@@ -77,7 +77,8 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
     // its graded panels on the lobe. Both are run; where they disagree beyond their error estimates,
     // the larger value is kept for a non-negative BRDF (an unresolved peak of a positive integrand
     // can only be missed, never invented).
-    BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true);
+    const std::unique_ptr<FixedSetEvaluator> fixed = detail::own_fixed_sets(model, params, n_sets);
+    BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true, fixed.get());
     SpectralIntegral b = polar.run(settings);
     const bool non_negative = model.description().non_negative;
     SpectralIntegral out = a;
@@ -97,7 +98,8 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
   }
   QuadratureSettings second = settings;
   second.max_geometries = settings.max_geometries - std::min(settings.max_geometries, a.geometries);
-  BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true);
+  const std::unique_ptr<FixedSetEvaluator> fixed = detail::own_fixed_sets(model, params, n_sets);
+  BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true, fixed.get());
   SpectralIntegral b = polar.run(second);
   const std::size_t total = a.geometries + b.geometries;
   SpectralIntegral& best = (b.converged || b.max_error() < a.max_error()) ? b : a;
@@ -107,13 +109,17 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
 
 SpectralIntegral black_sky_mirror_polar(const Model& model, const double* params, std::size_t n_sets, double theta_s,
                                         double phi_s, const QuadratureSettings& settings) {
-  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true);
+  const std::unique_ptr<FixedSetEvaluator> fixed = detail::own_fixed_sets(model, params, n_sets);
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true,
+                                fixed.get());
   return integrator.run(settings);
 }
 
 SpectralIntegral black_sky_mirror_polar_fixed(const Model& model, const double* params, std::size_t n_sets,
                                               double theta_s, double phi_s, int s_panels, int psi_intervals) {
-  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true);
+  const std::unique_ptr<FixedSetEvaluator> fixed = detail::own_fixed_sets(model, params, n_sets);
+  BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, is_isotropic(model, params, n_sets), true,
+                                fixed.get());
   return integrator.run_fixed(std::max(1, s_panels), psi_intervals);
 }
 
