@@ -64,29 +64,19 @@ def read_instrument(path: PathLike, overlap: str = "upper") -> InstrumentSpectru
 def instrument_dataset(path: PathLike, quantity: str = "target", overlap: str = "upper",
                        **angles: float) -> Dataset:
     """A one-geometry :class:`roadbrdf.Dataset` from one instrument file (``roadbrdf convert FILE
-    --geometry ...``). Give the angles [deg] as ``theta_i=, phi_i=, theta_r=, phi_r=`` or
+    --geometry ...``, the same request). Give the angles [deg] as ``theta_i=, phi_i=, theta_r=, phi_r=`` or
     ``gamma=, alpha=, beta=, delta=``; ``quantity`` is ``"target"``, ``"reference"`` or
     ``"reflectance"``."""
-    from . import Dataset
+    from .io import convert
 
-    names = set(angles)
-    if names == set(_ZENITH):
-        convention, order = "zenith", _ZENITH
-    elif names == set(_ROAD):
-        convention, order = "road", _ROAD
-    else:
+    return convert(str(path), source="instrument", geometry=_geometry(angles), quantity=quantity, overlap=overlap)
+
+
+def _geometry(angles: dict[str, float]) -> str:
+    """The angles as the request's `geometry` field: "theta_i=D,phi_i=D,theta_r=D,phi_r=D"."""
+    if set(angles) not in (set(_ZENITH), set(_ROAD)):
         raise _roadbrdf.InputError("give the angles theta_i, phi_i, theta_r, phi_r or gamma, alpha, beta, delta [deg]")
-    values = [float(angles[n]) for n in order]
-    return Dataset._from_dict(_roadbrdf.instrument_dataset(str(path), values, convention, quantity, overlap))
-
-
-def _angles(angles: dict[str, float]) -> tuple[str, list[float]]:
-    names = set(angles)
-    if names == set(_ZENITH):
-        return "zenith", [float(angles[n]) for n in _ZENITH]
-    if names == set(_ROAD):
-        return "road", [float(angles[n]) for n in _ROAD]
-    raise _roadbrdf.InputError("give the angles theta_i, phi_i, theta_r, phi_r or gamma, alpha, beta, delta [deg]")
+    return ",".join(f"{name}={float(value)!r}" for name, value in angles.items())
 
 
 def read_usgs(path: PathLike, wavelengths: PathLike) -> dict[str, Any]:
@@ -99,20 +89,19 @@ def read_usgs(path: PathLike, wavelengths: PathLike) -> dict[str, Any]:
 
 def usgs_dataset(path: PathLike, wavelengths: PathLike, **angles: float) -> Dataset:
     """A one-geometry :class:`roadbrdf.Dataset` of BRDF = R/pi [sr^-1] from a splib07a spectrum
-    (``roadbrdf convert FILE --from usgs --usgs-wavelengths W.txt --geometry ...``); the angles [deg]
-    as in :func:`instrument_dataset`. The library does not record the lab geometry per file."""
-    from . import Dataset
+    (``roadbrdf convert FILE --from usgs --usgs-wavelengths W.txt --geometry ...``, the same request); the
+    angles [deg] as in :func:`instrument_dataset`. The library does not record the lab geometry per file."""
+    from .io import convert
 
-    convention, values = _angles(angles)
-    return Dataset._from_dict(_roadbrdf.usgs_dataset(str(path), str(wavelengths), values, convention))
+    return convert(str(path), source="usgs", usgs_wavelengths=str(wavelengths), geometry=_geometry(angles))
 
 
 def read_manifest(path: PathLike, quantity: str = "target", overlap: str = "upper") -> Dataset:
     """The sample rows of a run manifest as a :class:`roadbrdf.Dataset` of instrument signals
-    (``roadbrdf convert RUN.csv --from manifest --quantity ...``), in the files' units."""
-    from . import Dataset
+    (``roadbrdf convert RUN.csv --from manifest --quantity ...``, the same request), in the files' units."""
+    from .io import convert
 
-    return Dataset._from_dict(_roadbrdf.manifest_dataset(str(path), quantity, overlap))
+    return convert(str(path), source="manifest", quantity=quantity, overlap=overlap)
 
 
 def calibrate(*args: Any, **kwargs: Any) -> Dataset:

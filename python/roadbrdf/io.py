@@ -166,16 +166,18 @@ def write_dataset(dataset: Dataset, path: PathLike, format: str = "wide") -> Non
 
 def read_curet(abrdf_path: PathLike, table_path: PathLike, sample: int) -> Dataset:
     """One sample of the CUReT BRDF database (``abrdf.dat`` + ``table.txt``), grey, stored at a
-    nominal wavelength recorded in the metadata."""
-    return Dataset._from_dict(_roadbrdf.read_curet(as_text(abrdf_path, "abrdf_path"), as_text(table_path, "table_path"),
-                                                   as_int(sample, "sample")))
+    nominal wavelength recorded in the metadata (``roadbrdf convert abrdf.dat --from curet``, the same
+    request)."""
+    return convert(as_text(abrdf_path, "abrdf_path"), source="curet", curet_table=as_text(table_path, "table_path"),
+                   sample=as_int(sample, "sample"))
 
 
 def read_alta(path: PathLike, wavelength: float, assumed_output: str = "", exclude_grazing: bool = False) -> Dataset:
     """An ALTA text-format BRDF file (BRDF x cos theta_v output is divided by cos theta_v).
-    ``wavelength`` [nm] is required (ALTA files carry none)."""
-    return Dataset._from_dict(_roadbrdf.read_alta(as_text(path, "path"), as_float(wavelength, "wavelength"),
-                                                  assumed_output, exclude_grazing))
+    ``wavelength`` [nm] is required (ALTA files carry none). ``roadbrdf convert FILE --from alta``, the
+    same request (``assumed_output`` is its ``alta_output``)."""
+    return convert(as_text(path, "path"), source="alta", wavelength=as_float(wavelength, "wavelength"),
+                   alta_output=assumed_output, exclude_grazing=exclude_grazing)
 
 
 def check(path: Union[PathLike, Dataset], **kwargs: Any) -> dict:

@@ -106,20 +106,6 @@ void bind_instruments(py::module_& m) {
       },
       py::arg("path"), py::arg("overlap") = "upper");
   m.def(
-      "instrument_dataset",
-      [](const std::string& path, const std::vector<double>& angles, const std::string& convention,
-         const std::string& quantity, const std::string& overlap) {
-        if (angles.size() != 4) throw InputError("give four angles (degrees)");
-        const AngleConvention c = parse_name<AngleConvention>(convention, "convention");
-        const ManifestOptions o = manifest_options(overlap);
-        const InstrumentSpectrum s = read_instrument_file(path, o.read);
-        for (const auto& note : s.notes) o.warn(note);
-        return dataset_to_dict(instrument_dataset(s, geometry_from_angle_values(c, angles.data()), c,
-                                                  parse_name<InstrumentQuantity>(quantity, "quantity")));
-      },
-      py::arg("path"), py::arg("angles"), py::arg("convention"), py::arg("quantity") = "target",
-      py::arg("overlap") = "upper");
-  m.def(
       "read_usgs",
       [](const std::string& path, const std::string& wavelengths) {
         const UsgsSpectrum s = read_usgs_spectrum(path, wavelengths);
@@ -137,23 +123,6 @@ void bind_instruments(py::module_& m) {
         return out;
       },
       py::arg("path"), py::arg("wavelengths"));
-  m.def(
-      "usgs_dataset",
-      [](const std::string& path, const std::string& wavelengths, const std::vector<double>& angles,
-         const std::string& convention) {
-        if (angles.size() != 4) throw InputError("give four angles (degrees)");
-        const AngleConvention c = parse_name<AngleConvention>(convention, "convention");
-        return dataset_to_dict(
-            usgs_dataset(read_usgs_spectrum(path, wavelengths), geometry_from_angle_values(c, angles.data()), c));
-      },
-      py::arg("path"), py::arg("wavelengths"), py::arg("angles"), py::arg("convention"));
-  m.def(
-      "manifest_dataset",
-      [](const std::string& path, const std::string& quantity, const std::string& overlap) {
-        return dataset_to_dict(manifest_dataset(
-            read_manifest(path), parse_name<InstrumentQuantity>(quantity, "quantity"), manifest_options(overlap)));
-      },
-      py::arg("path"), py::arg("quantity") = "target", py::arg("overlap") = "upper");
   // The request of `roadbrdf calibrate` (its field table: io/calibrate_request.cpp), from radiance
   // datasets or a run manifest; roadbrdf.calibrate_manifest is the same request with `manifest` given.
   m.def(
@@ -282,25 +251,6 @@ void bind_io(py::module_& m) {
           d.comments = comments;
           write_dataset(d, path, parse_name<DatasetFormat>(format, "format"));
         });
-  m.def(
-      "read_curet",
-      [](const std::string& abrdf, const std::string& table, int sample) {
-        CuretReadOptions options;
-        options.warn = python_warning();
-        return dataset_to_dict(read_curet(abrdf, table, sample, options));
-      },
-      py::arg("abrdf_path"), py::arg("table_path"), py::arg("sample"));
-  m.def(
-      "read_alta",
-      [](const std::string& path, double wavelength, const std::string& assumed_output, bool exclude_grazing) {
-        AltaReadOptions options;
-        options.wavelength_nm = wavelength;
-        options.assumed_output = assumed_output;
-        options.exclude_grazing = exclude_grazing;
-        options.warn = python_warning();
-        return dataset_to_dict(read_alta(path, options));
-      },
-      py::arg("path"), py::arg("wavelength"), py::arg("assumed_output") = "", py::arg("exclude_grazing") = false);
   // The requests of `roadbrdf eval` and `roadbrdf simulate` (their field tables: io/eval_request.cpp,
   // io/simulate_request.cpp), positional model first.
   m.def(

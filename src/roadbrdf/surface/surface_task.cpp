@@ -23,7 +23,7 @@ SurfaceResult make_surface(const SurfaceRequest& request, const ProgressCallback
   if (request.kind() != SurfaceRequest::Kind::formulation) {
     result.field = validation_surface(request);
   } else {
-    if (!request.input.path.empty()) {
+    if (!request.input.in_memory()) {
       // Fit files are needed only to render: they may not exist yet (warned below), but they are never
       // written over.
       const std::vector<FileArgument> fits = formulation_input_files(read_formulation(request.input.path, false));
