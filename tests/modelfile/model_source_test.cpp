@@ -84,6 +84,15 @@ TEST(ModelSource, MisplacedFieldsAreRefusedByName) {
   EXPECT_EQ(refused_field([&] { resolve_model(fit, {}, {"form=full"}, ""); }), "options");
   EXPECT_EQ(refused_field([&] { resolve_model("lambert", {}, {}, "lambert"); }), "fit");
   EXPECT_EQ(refused_field([&] { resolve_model("lambert", {"albedo=x"}, {}, ""); }), "parameters");
+  // An unknown model name is the model's error (with the nearest name), an unknown option the options'.
+  EXPECT_EQ(refused_field([&] { resolve_model("lambertt", {}, {}, ""); }), "model");
+  EXPECT_EQ(refused_field([&] { resolve_model("oren-nayar+lambertt", {}, {}, ""); }), "model");
+  EXPECT_EQ(refused_field([&] { resolve_model("oren-nayar", {}, {"no_such_option=1"}, ""); }), "options");
+  try {
+    resolve_model("lambertt", {}, {}, "");
+  } catch (const FieldError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'lambert'?"), std::string::npos) << e.what();
+  }
   // A selection matching no fit is an error at the file's "fits" key.
   EXPECT_THROW(resolve_model(fit, {}, {}, "no-such-model"), FileError);
 }

@@ -26,6 +26,19 @@ bool is_model_name(const std::string& name) {
   return false;
 }
 
+// Every '+'-separated part of `name` is a single model or an alias: an error of make_model is then
+// about the options.
+bool every_part_is_a_model(const std::string& name) {
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = name.find('+', start);
+    const std::string part = name.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    if (part.empty() || part.find('+') != std::string::npos || !is_model_name(part)) return false;
+    if (end == std::string::npos) return true;
+    start = end + 1;
+  }
+}
+
 }  // namespace
 
 RequestFields<ModelSourceFields> ModelSourceFields::fields() {
@@ -72,7 +85,7 @@ SpectralModel spectral_model_with(const std::string& name, const std::map<std::s
   } catch (const FieldError&) {
     throw;
   } catch (const InputError& e) {
-    throw FieldError("options", e.what());
+    throw FieldError(every_part_is_a_model(name) ? "options" : "model", e.what());
   }
   std::vector<double> p;
   try {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "roadbrdf/core/error.h"
+#include "roadbrdf/core/nearest_name.h"
 #include "roadbrdf/models/composite.h"
 #include "roadbrdf/models/model_factory.h"
 
@@ -62,8 +63,11 @@ std::unique_ptr<Model> make_single(const std::string& name, const OptionSet& opt
   for (const AliasEntry& entry : alias_entries()) {
     if (entry.alias.name == name) return make_alias(entry, options);
   }
+  std::vector<std::string> known;
+  for (const ModelFactory& factory : factories()) known.emplace_back(factory.name);
+  for (const auto& a : alias_entries()) known.push_back(a.alias.name);
   std::ostringstream msg;
-  msg << "unknown model '" << name << "' (known:";
+  msg << "unknown model '" << name << "'" << did_you_mean(name, known) << " (known:";
   for (const ModelFactory& factory : factories()) msg << ' ' << factory.name;
   for (const auto& a : alias_entries()) msg << ' ' << a.alias.name;
   msg << "; combine with '+', e.g. oren-nayar+torrance-sparrow)";
