@@ -73,6 +73,24 @@ void Hapke::evaluate_fixed(const FixedSets& f, const Geometry& geometry, double*
   for (std::size_t s : f.by_operator) out[s] = (*this)(f.params.data() + s * f.n_params, q);
 }
 
+namespace {
+
+// Hapke::henyey_greenstein (the same expression, so the same value bit for bit) and its derivative in
+// xi from the same D and sqrt(D): with r = 1/(D sqrt D), dp/dxi = -[2 xi r + 3 p (cos g + xi) r sqrt D],
+// one division and no second square root (equal to henyey_greenstein_derivative to rounding).
+double henyey_greenstein_and_derivative(double xi, double cos_g, double& derivative) {
+  const double xi2 = xi * xi;
+  const double base = 1.0 + 2.0 * xi * cos_g + xi2;
+  const double root = std::sqrt(base);
+  const double base_root = base * root;
+  const double p = (1.0 - xi2) / base_root;
+  const double r = 1.0 / base_root;
+  derivative = -(2.0 * xi * r + 3.0 * p * (cos_g + xi) * (r * root));
+  return p;
+}
+
+}  // namespace
+
 // Value and analytic gradient of f = w s {[1 + B] p + H(mu0) H(mu) - 1}, s = 1/(4 pi (mu0 + mu)),
 // B = b0 h/(h + t), t = tan(g/2):
 //   df/dw  = s {...} + w s [H'(mu0) H(mu) + H(mu0) H'(mu)]        (H' = dH/dw, per distinct cosine)

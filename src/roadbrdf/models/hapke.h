@@ -305,20 +305,6 @@ struct Hapke {
     return -(2.0 * xi + 3.0 * (1.0 - xi * xi) * (cos_g + xi) / base) / (base * std::sqrt(base));
   }
 
-  // henyey_greenstein (the same expression, so the same value bit for bit) and its derivative in xi
-  // from the same D and sqrt(D): with r = 1/(D sqrt D), dp/dxi = -[2 xi r + 3 p (cos g + xi) r sqrt D],
-  // one division and no second square root (equal to henyey_greenstein_derivative to rounding).
-  static double henyey_greenstein_and_derivative(double xi, double cos_g, double& derivative) {
-    const double xi2 = xi * xi;
-    const double base = 1.0 + 2.0 * xi * cos_g + xi2;
-    const double root = std::sqrt(base);
-    const double base_root = base * root;
-    const double p = (1.0 - xi2) / base_root;
-    const double r = 1.0 / base_root;
-    derivative = -(2.0 * xi * r + 3.0 * p * (cos_g + xi) * (r * root));
-    return p;
-  }
-
   // Two-term Legendre phase function of the phase angle g (normalised, as P1 and P2 integrate to 0);
   // other numbers of terms: hapke::legendre_series (models/hapke_phase.h).
   template <typename T>
