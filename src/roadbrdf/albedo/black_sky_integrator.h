@@ -431,8 +431,8 @@ class BlackSkyIntegrator {
         std::fill(total.begin(), total.end(), 0.0);
         for (const Panel& p : panels) add_panel(p, 1.0);
       }
-      const std::size_t worst = static_cast<std::size_t>(std::max_element(total.begin(), total.end()) - total.begin());
-      if (total[worst] <= settings.tolerance) break;
+      const std::size_t worst = settings.worst_set(total.data(), n_sets_);
+      if (worst == n_sets_) break;
       if (acc_.count() >= settings.max_geometries) {
         converged = false;
         break;

@@ -13,9 +13,11 @@
 
 namespace roadbrdf::albedo {
 
-double SpectralIntegral::max_error() const {
+double SpectralIntegral::max_error() const { return max_error(error.size()); }
+
+double SpectralIntegral::max_error(std::size_t n) const {
   double e = 0.0;
-  for (double x : error) e = std::max(e, x);
+  for (std::size_t s = 0; s < std::min(n, error.size()); ++s) e = std::max(e, error[s]);
   return e;
 }
 
@@ -84,10 +86,11 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
     SpectralIntegral out = a;
     out.geometries = a.geometries + b.geometries;
     out.lobes_checked = b.converged;
+    const std::size_t steering = settings.steering(n_sets);
     for (std::size_t s = 0; s < n_sets; ++s) {
       const double gap = std::fabs(a.value[s] - b.value[s]);
       if (gap <= a.error[s] + b.error[s] + settings.tolerance) continue;
-      out.lobes_checked = false;
+      if (s < steering) out.lobes_checked = false;
       const bool take_b = b.converged && (non_negative ? b.value[s] > a.value[s] : b.error[s] < a.error[s]);
       if (take_b) {
         out.value[s] = b.value[s];
@@ -102,7 +105,8 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
   BlackSkyIntegrator polar(model, params, n_sets, theta_s, phi_s, isotropic, true, fixed.get());
   SpectralIntegral b = polar.run(second);
   const std::size_t total = a.geometries + b.geometries;
-  SpectralIntegral& best = (b.converged || b.max_error() < a.max_error()) ? b : a;
+  const std::size_t steering = settings.steering(n_sets);
+  SpectralIntegral& best = (b.converged || b.max_error(steering) < a.max_error(steering)) ? b : a;
   best.geometries = total;
   return std::move(best);
 }
@@ -161,11 +165,7 @@ SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params
     auto [coarse, unused] = mean_of(2);
     result.value = fine;
     result.error.assign(n_sets, 0.0);
-    double worst = 0.0;
-    for (std::size_t s = 0; s < n_sets; ++s) {
-      result.error[s] = std::fabs(fine[s] - coarse[s]) + inner_err[s];
-      worst = std::max(worst, result.error[s]);
-    }
+    for (std::size_t s = 0; s < n_sets; ++s) result.error[s] = std::fabs(fine[s] - coarse[s]) + inner_err[s];
     std::size_t geometries = 0;
     bool converged = true, lobes_checked = true;
     for (const auto& x : samples) {
@@ -176,7 +176,7 @@ SpectralIntegral black_sky_azimuth_mean(const Model& model, const double* params
     result.geometries = geometries;
     result.converged = converged;
     result.lobes_checked = lobes_checked;
-    if (worst <= settings.tolerance) break;
+    if (settings.worst_set(result.error.data(), n_sets) == n_sets) break;
     if (n >= 256 || geometries >= settings.max_geometries) {
       result.converged = false;
       break;

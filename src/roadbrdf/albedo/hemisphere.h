@@ -42,7 +42,9 @@
 //     reported if its budget runs out).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "roadbrdf/models/model.h"
@@ -57,6 +59,28 @@ struct QuadratureSettings {
   // rule resolves the integrand: the gradient of a black-sky integral whose value passed the check
   // (gradient_integrals.h).
   bool grazing_check = true;
+  // The first `steering_sets` parameter sets are held to `tolerance`, the others (followers) to
+  // `follower_factor` times it (infinity: they only follow, integrated on the nodes the first choose,
+  // their error estimates reported but not controlled; gradient_integrals.h integrates a gradient on
+  // the nodes of its value integral). Only the first decide between rules (black_sky()).
+  std::size_t steering_sets = std::numeric_limits<std::size_t>::max();
+  double follower_factor = std::numeric_limits<double>::infinity();
+  std::size_t steering(std::size_t n_sets) const { return std::min(n_sets, steering_sets); }
+  // The set whose summed error estimate total[s] exceeds its tolerance by the largest ratio, or n if
+  // none exceeds it.
+  std::size_t worst_set(const double* total, std::size_t n) const {
+    const std::size_t steer = steering(n);
+    std::size_t worst = n;
+    double largest = 1.0;
+    for (std::size_t s = 0; s < n; ++s) {
+      const double ratio = s < steer ? total[s] / tolerance : total[s] / (follower_factor * tolerance);
+      if (ratio > largest) {
+        largest = ratio;
+        worst = s;
+      }
+    }
+    return worst;
+  }
 };
 
 // One integral for n parameter sets (e.g. one per wavelength).
@@ -70,6 +94,8 @@ struct SpectralIntegral {
   // (no check made, a disagreement, the fallback, or another source of the integral).
   bool lobes_checked = false;
   double max_error() const;
+  // The largest error estimate of the first `n` sets.
+  double max_error(std::size_t n) const;
 };
 
 // Whether the model declares itself azimuthally isotropic at every parameter set (its metadata:

@@ -81,8 +81,8 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
         "fit): their standard uncertainties are null and were not computed",
         plan.undefined_sets, n_sets));
   }
-  const std::vector<double> g_white =
-      plan.with_nans(white_sky_gradient(model, sets.params.data(), n_sets, plan.scale, plan.settings).gradient);
+  const std::vector<double> g_white = plan.with_nans(
+      white_sky_gradient(model, sets.params.data(), n_sets, plan.scale, plan.settings, plan.nodes).gradient);
   progress.add();
 
   const bool with_broadband = broadband.formed && !broadband.black_means.empty();
@@ -96,7 +96,7 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
     settings.grazing_check = !albedos.black_lobes_checked[z];
     const std::vector<double> g_black =
         plan.with_nans(black_sky_gradient(model, sets.params.data(), n_sets, plan.scale, theta_s, azimuth.phi_s,
-                                          azimuth.mean, settings)
+                                          azimuth.mean, settings, plan.nodes)
                            .gradient);
     u_black.push_back(propagated(g_black));
     if (with_broadband) bb_black.push_back(broadband_of({&g_black}, {&broadband.black_means[z].first}));

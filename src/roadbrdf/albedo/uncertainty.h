@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "roadbrdf/albedo/gradient_integrals.h"
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/core/propagation.h"
 
@@ -24,16 +25,17 @@ namespace roadbrdf::albedo {
 // whose covariance is defined (no NaN entry), scale = u(p_k) for every parameter of positive variance
 // (a fixed parameter contributes nothing); a set with an undefined covariance (a parameter on its
 // bound, a singular fit) has an undefined u whatever its gradient, so nothing of it is integrated and
-// its gradient is NaN. Each scaled component u(p_k) dA/dp_k is integrated to the albedo's own
-// tolerance. By the quadrature's estimates the error of u is then at most P times that
-// (gradient_integrals.h); the estimates, those of the coarser rule, are conservative: on the bench's
-// 2151-band Hapke fit (bench/albedo_uncertainty_bench.sh) a tolerance 10 times tighter changes no u
-// by more than 2.5e-7 (0.02 %), against the tolerance 1e-5.
+// its gradient is NaN. The scaled components u(p_k) dA/dp_k are integrated on the nodes the albedo's
+// own integral converges on at its tolerance (GradientNodes::value_nodes, gradient_integrals.h): u
+// needs ~1 % only, and refining each component to the albedo's tolerance took two to four times the
+// geometries. On the bench's 2151-band Hapke fit (bench/report_bench.sh's data) no u differs by more
+// than 0.2 % from a reference with every component integrated to 1e-7 (docs/albedo.md, Uncertainty).
 struct GradientPlan {
   std::vector<double> scale;  // n_sets x P
   std::vector<bool> undefined;
   std::size_t undefined_sets = 0;
   QuadratureSettings settings;
+  GradientNodes nodes = GradientNodes::value_nodes;
   // `gradient` with NaN at the undefined sets.
   std::vector<double> with_nans(std::vector<double> gradient) const;
 };

@@ -57,11 +57,8 @@ SpectralIntegral integrate_cosine_weighted(std::size_t n_sets, const QuadratureS
     for (const auto& p : panels) {
       for (std::size_t s = 0; s < n_sets; ++s) total[s] += p.err[s];
     }
-    std::size_t worst = 0;
-    for (std::size_t s = 1; s < n_sets; ++s) {
-      if (total[s] > total[worst]) worst = s;
-    }
-    if (n_sets == 0 || total[worst] <= settings.tolerance) break;
+    const std::size_t worst = settings.worst_set(total.data(), n_sets);
+    if (worst == n_sets) break;
     if (geometries >= settings.max_geometries || panels.size() > 200) {
       converged = false;
       break;

@@ -73,12 +73,31 @@ void Hapke::evaluate_fixed(const FixedSets& f, const Geometry& geometry, double*
   for (std::size_t s : f.by_operator) out[s] = (*this)(f.params.data() + s * f.n_params, q);
 }
 
+namespace {
+
+// Hapke::henyey_greenstein (the same expression, so the same value bit for bit) and its derivative in
+// xi from the same D and sqrt(D): with r = 1/(D sqrt D), dp/dxi = -[2 xi r + 3 p (cos g + xi) r sqrt D],
+// one division and no second square root (equal to henyey_greenstein_derivative to rounding).
+double henyey_greenstein_and_derivative(double xi, double cos_g, double& derivative) {
+  const double xi2 = xi * xi;
+  const double base = 1.0 + 2.0 * xi * cos_g + xi2;
+  const double root = std::sqrt(base);
+  const double base_root = base * root;
+  const double p = (1.0 - xi2) / base_root;
+  const double r = 1.0 / base_root;
+  derivative = -(2.0 * xi * r + 3.0 * p * (cos_g + xi) * (r * root));
+  return p;
+}
+
+}  // namespace
+
 // Value and analytic gradient of f = w s {[1 + B] p + H(mu0) H(mu) - 1}, s = 1/(4 pi (mu0 + mu)),
 // B = b0 h/(h + t), t = tan(g/2):
 //   df/dw  = s {...} + w s [H'(mu0) H(mu) + H(mu0) H'(mu)]        (H' = dH/dw, per distinct cosine)
-//   df/db0 = w s p h/(h + t),   df/dh = w s p b0 t/(h + t)^2       (0 at g = pi, where B = 0)
+//   df/db0 = w s p h/(h + t),   df/dh = w s p b0 t/(h + t)^2       (0 at g = pi, where B = 0; one
+//            reciprocal of h + t for both, the value's B keeps operator()'s division)
 //   HG:       df/dxi = w s (1 + B) dp/dxi, dp/dxi = -[2 xi + 3 (1 - xi^2)(cos g + xi)/D] / D^1.5,
-//             D = 1 + 2 xi cos g + xi^2
+//             D = 1 + 2 xi cos g + xi^2 (from the value's D and sqrt D, henyey_greenstein_and_derivative)
 //   Legendre: df/db = w s (1 + B) cos g,   df/dc = w s (1 + B) (3 cos^2 g - 1)/2;
 //             N terms: df/da_n = w s (1 + B) P_n(cos g).
 //   hg2:      df/db = w s (1 + B) [-(1 + c)/2 HG'(-b) + (1 - c)/2 HG'(b)],
@@ -115,7 +134,11 @@ void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t
   for (std::size_t k = 0; k < n; ++k) {
     const Prepared& q = g[k];
     const double b = opposition(b0, h, q.tan_half_g);
-    const double phase = phase_function(p, q.cos_g);
+    // Henyey-Greenstein with a gradient: its value and derivative from one D and sqrt(D).
+    double hg_derivative = 0.0;
+    const bool hg_gradient = jacobian != nullptr && phase_ == Phase::kHenyeyGreenstein;
+    const double phase =
+        hg_gradient ? henyey_greenstein_and_derivative(p[kXi], q.cos_g, hg_derivative) : phase_function(p, q.cos_g);
     const double h0 = hv[s.index_i[k]], h1 = hv[s.index_r[k]];
     const double bracket = (1.0 + b) * phase + multiple_scattering(p, q.mu0, q.mu, h0, h1);
     values[k] = w * q.scale * bracket;
@@ -133,9 +156,11 @@ void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t
       d[kW] = q.scale * bracket + ws * (dh0 * h1 + h0 * dh1);
     }
     if (q.tan_half_g < std::numeric_limits<double>::infinity()) {
-      const double denominator = h + q.tan_half_g;
-      d[kB0] = ws * phase * h / denominator;
-      d[kH] = ws * phase * b0 * q.tan_half_g / (denominator * denominator);
+      // One reciprocal of h + tan(g/2) serves both derivatives.
+      const double inverse = 1.0 / (h + q.tan_half_g);
+      const double ws_phase_inverse = ws * phase * inverse;
+      d[kB0] = ws_phase_inverse * h;
+      d[kH] = ws_phase_inverse * b0 * q.tan_half_g * inverse;
     } else {
       d[kB0] = 0.0;
       d[kH] = 0.0;
@@ -160,7 +185,7 @@ void Hapke::evaluate_shared(const SharedTerms& s, const Prepared* g, std::size_t
         break;
       }
       case Phase::kHenyeyGreenstein:
-        d[kXi] = forward * henyey_greenstein_derivative(p[kXi], q.cos_g);
+        d[kXi] = forward * hg_derivative;
         break;
     }
     if (anisotropic_) {
