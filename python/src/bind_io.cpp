@@ -128,12 +128,7 @@ void bind_instruments(py::module_& m) {
   m.def(
       "calibrate",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<CalibrateRequest>(args, kwargs);
-        const SpectralDataset d = calibrate(request);
-        if (!request.output.empty()) {
-          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
-        }
-        return dataset_to_dict(d);
+        return dataset_to_dict(calibrate(request_from_arguments<CalibrateRequest>(args, kwargs)));
       },
       request_docstring<CalibrateRequest>(
           "The calibrated BRDF [sr^-1] against a reference panel, as `roadbrdf calibrate` computes it.",
@@ -233,11 +228,7 @@ void bind_io(py::module_& m) {
   m.def(
       "resample",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<ResampleRequest>(args, kwargs);
-        const SpectralDataset d = resample(request, python_warning());
-        if (!request.output.empty())
-          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
-        return dataset_to_dict(d);
+        return dataset_to_dict(resample(request_from_arguments<ResampleRequest>(args, kwargs), python_warning()));
       },
       request_docstring<ResampleRequest>(
           "A dataset band-averaged onto new wavelength intervals, as `roadbrdf resample` makes it.",
@@ -267,11 +258,7 @@ void bind_io(py::module_& m) {
   m.def(
       "simulate",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<SimulateRequest>(args, kwargs);
-        const SpectralDataset d = simulate(request);
-        if (!request.output.empty())
-          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
-        return dataset_to_dict(d);
+        return dataset_to_dict(simulate(request_from_arguments<SimulateRequest>(args, kwargs)));
       },
       request_docstring<SimulateRequest>(
           "A simulated measurement (virtual gonioreflectometer), as `roadbrdf simulate` makes it.",
@@ -282,10 +269,7 @@ void bind_io(py::module_& m) {
   m.def(
       "convert",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<ConvertRequest>(args, kwargs);
-        const SpectralDataset d = convert(request);
-        if (!request.output.empty()) write_dataset(d, request.output, parse_name<DatasetFormat>(request.to, "to"));
-        return dataset_to_dict(d);
+        return dataset_to_dict(convert(request_from_arguments<ConvertRequest>(args, kwargs)));
       },
       request_docstring<ConvertRequest>(
           "A dataset converted from dataset CSV, CUReT, ALTA, instrument, manifest or USGS files, as `roadbrdf "

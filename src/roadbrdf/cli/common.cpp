@@ -146,9 +146,7 @@ void refuse_fit_model_flag(CLI::App* command) {
   });
 }
 
-void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format,
-                          const std::string& format_field) {
-  write_dataset(data, path.empty() ? std::string("-") : path, parse_name<DatasetFormat>(format, format_field));
+void warn_missing_values(const SpectralDataset& data, const std::string& path) {
   if (const std::size_t missing = missing_value_count(data); missing > 0) {
     fmt::print(stderr,
                "roadbrdf: warning: {}: {} of {} BRDF values are missing (written as nan: not measured, never "

@@ -21,10 +21,15 @@ namespace roadbrdf::cli {
 std::map<std::string, double> parse_numeric_assignments(const std::vector<std::string>& items, const std::string& what);
 OptionSet parse_option_assignments(const std::vector<std::string>& items, const std::string& what);
 
-// Write a dataset to `path` (atomically), or to standard output when `path` is empty or "-";
-// `format` is a name of kDatasetFormatNames (io/dataset_io.h), read as the request field `format_field`.
-void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format,
-                          const std::string& format_field = "format");
+// The request of a command whose task writes a dataset to `output`: the command line's default output
+// is standard output ("-").
+template <typename Request>
+Request with_standard_output(Request request) {
+  if (request.output.empty()) request.output = "-";
+  return request;
+}
+// The warning of the BRDF values a written dataset is missing (`path` "" = standard output).
+void warn_missing_values(const SpectralDataset& data, const std::string& path);
 
 // Where a command's report (tables, notes) goes: standard error when its output file is standard
 // output ("-"), so that the two never mix; standard output otherwise.
