@@ -70,10 +70,6 @@ std::function<void(const std::string&)> python_warning() {
   return [](const std::string& message) { py::module_::import("roadbrdf.core").attr("warn_at_caller")(message); };
 }
 
-Array vector_array(const std::vector<double>& v) { return Array(static_cast<py::ssize_t>(v.size()), v.data()); }
-
-py::object optional_array(const std::vector<double>& v) { return v.empty() ? py::object(py::none()) : vector_array(v); }
-
 ManifestOptions manifest_options(const std::string& overlap) {
   ManifestOptions o;
   o.read.overlap = parse_name<OverlapRule>(overlap, "overlap");
@@ -90,37 +86,13 @@ void bind_instruments(py::module_& m) {
         const ManifestOptions o = manifest_options(overlap);
         const InstrumentSpectrum s = read_instrument_file(path, o.read);
         for (const auto& note : s.notes) o.warn(note);
-        py::dict out;
-        out["path"] = s.path;
-        out["format"] = name_of(s.format);
-        out["wavelengths"] = vector_array(s.wavelengths);
-        out["target"] = optional_array(s.target);
-        out["reference"] = optional_array(s.reference);
-        out["reflectance"] = optional_array(s.reflectance);
-        out["quantity"] = s.quantity;
-        out["units"] = s.units;
-        out["target_settings"] = s.target_settings;
-        out["reference_settings"] = s.reference_settings;
-        out["metadata"] = s.metadata;
-        return out;
+        return json_to_python(s.to_json());
       },
       py::arg("path"), py::arg("overlap") = "upper");
   m.def(
       "read_usgs",
       [](const std::string& path, const std::string& wavelengths) {
-        const UsgsSpectrum s = read_usgs_spectrum(path, wavelengths);
-        py::dict out;
-        out["path"] = s.path;
-        out["wavelength_path"] = s.wavelength_path;
-        out["record"] = s.record;
-        out["title"] = s.title;
-        out["wavelength_record"] = s.wavelength_record;
-        out["wavelength_title"] = s.wavelength_title;
-        out["wavelengths"] = vector_array(s.wavelengths);
-        out["reflectance"] = vector_array(s.reflectance);
-        out["channels"] = s.channels;
-        out["missing"] = s.missing;
-        return out;
+        return json_to_python(read_usgs_spectrum(path, wavelengths).to_json());
       },
       py::arg("path"), py::arg("wavelengths"));
   // The request of `roadbrdf calibrate` (its field table: io/calibrate_request.cpp), from radiance
