@@ -145,14 +145,7 @@ void bind_io(py::module_& m) {
       "read_dataset",
       [](const std::vector<std::string>& paths, bool allow_missing, const py::kwargs& kwargs) {
         const auto fields = request_from_arguments<DatasetReadFields>(py::args(), kwargs);
-        std::vector<DatasetRun> runs;
-        for (const std::string& path : paths) {
-          DatasetReadOptions options = fields.options_for(path, paths);
-          options.allow_missing = allow_missing;
-          options.warn = python_warning();
-          runs.push_back({path, read_dataset(path, options)});
-        }
-        return dataset_to_dict(combine_runs(runs, fields.average_duplicates, python_warning()));
+        return dataset_to_dict(read_dataset_runs(paths, fields, python_warning(), allow_missing));
       },
       py::arg("paths"), py::arg("allow_missing") = true,
       request_docstring<DatasetReadFields>("A dataset read from one file or several runs of one sample.",
