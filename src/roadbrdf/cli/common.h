@@ -1,4 +1,4 @@
-// Helpers shared by the sub-commands: NAME=VALUE parsing and model construction.
+// Helpers shared by the sub-commands: the dataset output, the spelling of request fields as flags, common flags.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -17,12 +17,7 @@
 
 namespace roadbrdf::cli {
 
-// "name=value" strings to a map; `what` names the flag in errors (e.g. "-p").
-std::map<std::string, double> parse_numeric_assignments(const std::vector<std::string>& items, const std::string& what);
-OptionSet parse_option_assignments(const std::vector<std::string>& items, const std::string& what);
-
-// The request of a command whose task writes a dataset to `output`: the command line's default output
-// is standard output ("-").
+// A dataset command's request, its `output` standard output ("-") by default.
 template <typename Request>
 Request with_standard_output(Request request) {
   if (request.output.empty()) request.output = "-";
@@ -35,11 +30,6 @@ void warn_missing_values(const SpectralDataset& data, const std::string& path);
 // output ("-"), so that the two never mix; standard output otherwise.
 std::FILE* report_stream(const std::string& output);
 
-// A finite number; `what` names the flag in errors. Throws InputError.
-double parse_number(const std::string& text, const std::string& what);
-
-// Names from repeatable, comma-separated options ("--group-by theta_i,phi_i" or given twice), spaces dropped.
-std::vector<std::string> split_commas(const std::vector<std::string>& items);
 // Lists of numbers ("D", "D1,D2,...", "A:B:STEP" and mixes) are parsed by parse_range_list
 // (core/range.h), the one grammar of every command and of Python.
 
