@@ -12,6 +12,8 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING, Any, Optional, Union
 
+import numpy as np
+
 from . import _roadbrdf
 
 if TYPE_CHECKING:
@@ -47,11 +49,16 @@ class InstrumentSpectrum:
     """
 
     def __init__(self, d: dict[str, Any]) -> None:
-        self.__dict__.update(d)
+        self.__dict__.update(_arrays(d, "wavelengths", "target", "reference", "reflectance"))
 
     def __repr__(self) -> str:
         return (f"roadbrdf.InstrumentSpectrum({self.path!r}: {self.format}, {self.wavelengths.size} channels "
                 f"{self.wavelengths[0]:g}-{self.wavelengths[-1]:g} nm, {self.quantity})")
+
+
+def _arrays(d: dict[str, Any], *keys: str) -> dict[str, Any]:
+    """The library's JSON lists of values as arrays (null values and missing signals stay None)."""
+    return dict(d, **{key: None if d[key] is None else np.asarray(d[key], dtype=float) for key in keys})
 
 
 def read_instrument(path: PathLike, overlap: str = "upper") -> InstrumentSpectrum:
@@ -84,7 +91,7 @@ def read_usgs(path: PathLike, wavelengths: PathLike) -> dict[str, Any]:
     a dict with ``record``, ``title``, ``wavelengths`` [nm] and ``reflectance`` [1] (missing
     channels, -1.23e+34, left out; ``missing`` counts them). Malformed files raise
     :class:`roadbrdf.InputError` naming the file, line and column."""
-    return _roadbrdf.read_usgs(str(path), str(wavelengths))
+    return _arrays(_roadbrdf.read_usgs(str(path), str(wavelengths)), "wavelengths", "reflectance")
 
 
 def usgs_dataset(path: PathLike, wavelengths: PathLike, **angles: float) -> Dataset:

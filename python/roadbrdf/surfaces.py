@@ -257,7 +257,8 @@ def render(surface: Union[Surface, PathLike], theta_i: ArrayLike, phi_i: ArrayLi
     r = _roadbrdf.render_surface(s._field, *flat, **_settings(settings))
     metadata = dict(r["metadata"])
     metadata.setdefault("units", "sr^-1")  # as the dataset readers set it
-    d = Dataset(np.stack(flat, axis=-1), r["wavelengths"], r["brdf"], r["sigma"], metadata, "zenith")
+    d = Dataset(np.stack(flat, axis=-1), np.asarray(r["wavelengths"], dtype=float), np.asarray(r["brdf"], dtype=float),
+                np.asarray(r["sigma"], dtype=float), metadata, "zenith")
     d.paths = np.asarray(r["paths"])
     d.converged = np.asarray(r["converged"], dtype=bool)
     return d

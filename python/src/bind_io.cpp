@@ -70,10 +70,6 @@ std::function<void(const std::string&)> python_warning() {
   return [](const std::string& message) { py::module_::import("roadbrdf.core").attr("warn_at_caller")(message); };
 }
 
-Array vector_array(const std::vector<double>& v) { return Array(static_cast<py::ssize_t>(v.size()), v.data()); }
-
-py::object optional_array(const std::vector<double>& v) { return v.empty() ? py::object(py::none()) : vector_array(v); }
-
 ManifestOptions manifest_options(const std::string& overlap) {
   ManifestOptions o;
   o.read.overlap = parse_name<OverlapRule>(overlap, "overlap");
@@ -90,37 +86,13 @@ void bind_instruments(py::module_& m) {
         const ManifestOptions o = manifest_options(overlap);
         const InstrumentSpectrum s = read_instrument_file(path, o.read);
         for (const auto& note : s.notes) o.warn(note);
-        py::dict out;
-        out["path"] = s.path;
-        out["format"] = name_of(s.format);
-        out["wavelengths"] = vector_array(s.wavelengths);
-        out["target"] = optional_array(s.target);
-        out["reference"] = optional_array(s.reference);
-        out["reflectance"] = optional_array(s.reflectance);
-        out["quantity"] = s.quantity;
-        out["units"] = s.units;
-        out["target_settings"] = s.target_settings;
-        out["reference_settings"] = s.reference_settings;
-        out["metadata"] = s.metadata;
-        return out;
+        return json_to_python(s.to_json());
       },
       py::arg("path"), py::arg("overlap") = "upper");
   m.def(
       "read_usgs",
       [](const std::string& path, const std::string& wavelengths) {
-        const UsgsSpectrum s = read_usgs_spectrum(path, wavelengths);
-        py::dict out;
-        out["path"] = s.path;
-        out["wavelength_path"] = s.wavelength_path;
-        out["record"] = s.record;
-        out["title"] = s.title;
-        out["wavelength_record"] = s.wavelength_record;
-        out["wavelength_title"] = s.wavelength_title;
-        out["wavelengths"] = vector_array(s.wavelengths);
-        out["reflectance"] = vector_array(s.reflectance);
-        out["channels"] = s.channels;
-        out["missing"] = s.missing;
-        return out;
+        return json_to_python(read_usgs_spectrum(path, wavelengths).to_json());
       },
       py::arg("path"), py::arg("wavelengths"));
   // The request of `roadbrdf calibrate` (its field table: io/calibrate_request.cpp), from radiance
@@ -128,12 +100,7 @@ void bind_instruments(py::module_& m) {
   m.def(
       "calibrate",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<CalibrateRequest>(args, kwargs);
-        const SpectralDataset d = calibrate(request);
-        if (!request.output.empty()) {
-          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
-        }
-        return dataset_to_dict(d);
+        return dataset_to_dict(calibrate(request_from_arguments<CalibrateRequest>(args, kwargs)));
       },
       request_docstring<CalibrateRequest>(
           "The calibrated BRDF [sr^-1] against a reference panel, as `roadbrdf calibrate` computes it.",
@@ -178,14 +145,7 @@ void bind_io(py::module_& m) {
       "read_dataset",
       [](const std::vector<std::string>& paths, bool allow_missing, const py::kwargs& kwargs) {
         const auto fields = request_from_arguments<DatasetReadFields>(py::args(), kwargs);
-        std::vector<DatasetRun> runs;
-        for (const std::string& path : paths) {
-          DatasetReadOptions options = fields.options_for(path, paths);
-          options.allow_missing = allow_missing;
-          options.warn = python_warning();
-          runs.push_back({path, read_dataset(path, options)});
-        }
-        return dataset_to_dict(combine_runs(runs, fields.average_duplicates, python_warning()));
+        return dataset_to_dict(read_dataset_runs(paths, fields, python_warning(), allow_missing));
       },
       py::arg("paths"), py::arg("allow_missing") = true,
       request_docstring<DatasetReadFields>("A dataset read from one file or several runs of one sample.",
@@ -233,11 +193,7 @@ void bind_io(py::module_& m) {
   m.def(
       "resample",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<ResampleRequest>(args, kwargs);
-        const SpectralDataset d = resample(request, python_warning());
-        if (!request.output.empty())
-          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
-        return dataset_to_dict(d);
+        return dataset_to_dict(resample(request_from_arguments<ResampleRequest>(args, kwargs), python_warning()));
       },
       request_docstring<ResampleRequest>(
           "A dataset band-averaged onto new wavelength intervals, as `roadbrdf resample` makes it.",
@@ -267,11 +223,7 @@ void bind_io(py::module_& m) {
   m.def(
       "simulate",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<SimulateRequest>(args, kwargs);
-        const SpectralDataset d = simulate(request);
-        if (!request.output.empty())
-          write_dataset(d, request.output, parse_name<DatasetFormat>(request.format, "format"));
-        return dataset_to_dict(d);
+        return dataset_to_dict(simulate(request_from_arguments<SimulateRequest>(args, kwargs)));
       },
       request_docstring<SimulateRequest>(
           "A simulated measurement (virtual gonioreflectometer), as `roadbrdf simulate` makes it.",
@@ -282,10 +234,7 @@ void bind_io(py::module_& m) {
   m.def(
       "convert",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const auto request = request_from_arguments<ConvertRequest>(args, kwargs);
-        const SpectralDataset d = convert(request);
-        if (!request.output.empty()) write_dataset(d, request.output, parse_name<DatasetFormat>(request.to, "to"));
-        return dataset_to_dict(d);
+        return dataset_to_dict(convert(request_from_arguments<ConvertRequest>(args, kwargs)));
       },
       request_docstring<ConvertRequest>(
           "A dataset converted from dataset CSV, CUReT, ALTA, instrument, manifest or USGS files, as `roadbrdf "

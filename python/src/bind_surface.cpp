@@ -56,34 +56,6 @@ py::array_t<T> grid_array(const Field& f, const std::vector<Source>& values) {
   return out;
 }
 
-py::dict material_dict(const surface::MaterialSpec& m) {
-  py::dict d;
-  d["name"] = m.name;
-  if (!m.model.empty()) {
-    d["model"] = m.model;
-    d["parameters"] = m.parameters;
-    d["options"] = m.options;
-  } else {
-    d["fit"] = m.fit_path.empty() ? m.fit : m.fit_path;
-    d["fit_model"] = m.fit_model;
-  }
-  return d;
-}
-
-py::dict statistics_dict(const surface::TextureStatistics& s) {
-  py::dict d;
-  d["mpd_mm"] = s.mpd_mm;
-  d["etd_mm"] = s.etd_mm;
-  d["rms_height_mm"] = s.rms_height_mm;
-  d["mean_height_mm"] = s.mean_height_mm;
-  d["min_height_mm"] = s.min_height_mm;
-  d["max_height_mm"] = s.max_height_mm;
-  d["surface_area_ratio"] = s.surface_area_ratio;
-  d["exposed_area_fraction"] = s.exposed_area_fraction;
-  d["exposed_true_area_fraction"] = s.exposed_true_area_fraction;
-  return d;
-}
-
 // The render request of a Python call (its field table, surface/render_request.h): the keywords of
 // the settings; the surface and the geometries are the call's own, so the fields naming the command's
 // files are refused but for those in `allowed`.
@@ -112,7 +84,7 @@ void bind_surface(py::module_& m) {
       .def_property_readonly("materials",
                              [](const Field& f) {
                                py::list out;
-                               for (const auto& spec : f.materials) out.append(material_dict(spec));
+                               for (const auto& spec : f.materials) out.append(json_to_python(spec.to_json()));
                                return out;
                              })
       .def("statistics",
@@ -123,7 +95,7 @@ void bind_surface(py::module_& m) {
                py::gil_scoped_release release;
                s = surface::texture_statistics(f);
              }
-             return statistics_dict(s);
+             return json_to_python(s.to_json());
            })
       .def("write",
            [](const Field& f, const std::string& path) {
@@ -154,22 +126,7 @@ void bind_surface(py::module_& m) {
           result = surface::make_surface(request);
         }
         issue_warnings(result.diagnostics);
-        py::object report = py::none();
-        if (result.sample) {
-          const surface::GeneratedSample& sample = *result.sample;
-          py::dict r;
-          r["classes"] = result.classes;
-          r["target_volume_fraction"] = sample.target_volume_fraction;
-          r["achieved_volume_fraction"] = sample.achieved_volume_fraction;
-          r["grain_count"] = sample.grain_count;
-          r["targets_reached"] = sample.targets_reached;
-          r["deposition"] = sample.deposition;
-          r["slab_thickness_mm"] = sample.slab_thickness_mm;
-          r["matrix_level_mm"] = sample.matrix_level_mm;
-          r["notes"] = sample.notes;
-          report = r;
-        }
-        return py::make_tuple(keep(std::move(result.field)), report);
+        return py::make_tuple(keep(std::move(result.field)), json_to_python(result.sample_report()));
       },
       request_docstring<surface::SurfaceRequest>(
           "A virtual road sample of a formulation, or a flat or Gaussian-slope surface of one material "
@@ -202,27 +159,7 @@ void bind_surface(py::module_& m) {
       result = surface::render_grid(f, "", geometries, AngleConvention::kZenithAzimuth, request);
     }
     issue_warnings(result.diagnostics);
-    const SpectralDataset& d = result.data;
-    const std::vector<surface::Estimate>& estimates = result.estimates;
-    const auto rows = static_cast<py::ssize_t>(d.geometry_count());
-    const auto columns = static_cast<py::ssize_t>(d.wavelength_count());
-    py::array_t<double> brdf({rows, columns}), sigma({rows, columns});
-    std::copy(d.brdf.begin(), d.brdf.end(), brdf.mutable_data());
-    std::copy(d.sigma.begin(), d.sigma.end(), sigma.mutable_data());
-    std::vector<long> paths;
-    std::vector<bool> converged;
-    for (const auto& e : estimates) {
-      paths.push_back(e.paths);
-      converged.push_back(e.converged);
-    }
-    py::dict out;
-    out["wavelengths"] = d.wavelengths;
-    out["brdf"] = brdf;
-    out["sigma"] = sigma;
-    out["metadata"] = d.metadata;
-    out["paths"] = paths;
-    out["converged"] = converged;
-    return out;
+    return json_to_python(result.to_json());
   });
 
   // `roadbrdf render SURFACE --albedo`.
@@ -235,18 +172,7 @@ void bind_surface(py::module_& m) {
       result = surface::render_surface_albedo(f, surface_name, request);
     }
     issue_warnings(result.diagnostics);
-    const surface::VirtualAlbedo& r = result.albedo;
-    py::dict out;
-    out["wavelengths"] = r.wavelengths;
-    out["sun_zenith"] = r.sun_zenith_deg;
-    out["black_sky"] = r.black_sky;
-    out["black_sky_error"] = r.black_sky_error;
-    out["white_sky"] = r.white_sky;
-    out["white_sky_error"] = r.white_sky_error;
-    out["white_sky_nodes"] = r.white_sky_nodes;
-    out["paths"] = r.paths;
-    out["converged"] = r.converged;
-    return out;
+    return json_to_python(result.albedo.to_json());
   });
 }
 

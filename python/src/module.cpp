@@ -116,15 +116,7 @@ PYBIND11_MODULE(_roadbrdf, m) {
       "model_aliases",
       [] {
         py::list out;
-        for (const auto& a : model_aliases()) {
-          py::dict d;
-          d["name"] = a.name;
-          d["model"] = a.model;
-          d["description"] = a.description;
-          d["citation"] = a.citation;
-          d["options"] = a.options;
-          out.append(d);
-        }
+        for (const auto& a : model_aliases()) out.append(python::json_to_python(alias_to_json(a)));
         return out;
       },
       "Other names of models with some options fixed (e.g. cook-torrance).");

@@ -71,6 +71,19 @@ TEST(UsgsReader, ValuesTitleAndRecords) {
   EXPECT_EQ(s.wavelength_path, "w.txt");
 }
 
+TEST(UsgsReader, JsonHoldsTheValuesOfTheFiles) {
+  const nlohmann::json j = parse_usgs_spectrum(kSpectrum, "s.txt", kWavelengths, "w.txt").to_json();
+  EXPECT_EQ(j.at("record"), 2257);
+  EXPECT_EQ(j.at("wavelength_record"), 23);
+  EXPECT_EQ(j.at("title"), "Calcite GDS304 75-150um      ASDFRb AREF");
+  EXPECT_EQ(j.at("wavelengths"), nlohmann::json({350.0, 351.0, 352.0, 353.0}));
+  EXPECT_EQ(j.at("reflectance").at(1), 7.9973865e-001);
+  EXPECT_EQ(j.at("channels"), 4);
+  EXPECT_EQ(j.at("missing"), 0);
+  EXPECT_EQ(j.at("path"), "s.txt");
+  EXPECT_EQ(j.at("wavelength_path"), "w.txt");
+}
+
 TEST(UsgsReader, WavelengthsAreRoundedToAThousandthOfANanometre) {
   // Beckman-like channels that are not whole nanometres: 0.21310002 um = 213.10002 nm -> 213.1,
   // 1.2345678 um = 1234.5678 nm -> 1234.568 (rounded half up at the fourth decimal).

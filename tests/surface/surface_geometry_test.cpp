@@ -97,6 +97,32 @@ TEST(SurfaceFile, RoundTrip) {
   std::filesystem::remove(path);
 }
 
+// The SURFACE file's material entries and statistics are the MaterialSpec and TextureStatistics JSON
+// (the file keeps the statistics of its format: no height extremes, a note), fit paths made relative.
+TEST(SurfaceFile, MaterialsAndStatisticsAsTheFileWritesThem) {
+  rs::HeightField f = rs::make_gaussian_slope_surface(lambert(0.8), 0.3, 32, 0.1, 7, 64);
+  rs::MaterialSpec fitted;
+  fitted.name = "mastic";
+  fitted.fit_path = (std::filesystem::path(temp_path("fits")) / "mastic.fit.json").string();
+  fitted.fit_model = "lambert";
+  f.materials.push_back(fitted);
+  const rs::TextureStatistics s = rs::texture_statistics(f);
+  const std::string path = temp_path("statistics.json");
+  rs::write_surface(f, path, &s);
+  std::ifstream in(path);
+  const nlohmann::json file = nlohmann::json::parse(in);
+  const nlohmann::json& written = file.at("statistics");
+  EXPECT_EQ(written.at("mpd_mm"), s.mpd_mm);
+  EXPECT_EQ(written.at("exposed_area_fraction"), nlohmann::json(s.exposed_area_fraction));
+  for (const char* key : {"mean_height_mm", "min_height_mm", "max_height_mm"}) EXPECT_FALSE(written.contains(key));
+  EXPECT_TRUE(written.contains("note"));
+  EXPECT_EQ(s.to_json().at("max_height_mm"), s.max_height_mm);
+  EXPECT_EQ(file.at("materials").at(0), f.materials[0].to_json());
+  EXPECT_EQ(file.at("materials").at(1).at("fit"), "surface_test_fits/mastic.fit.json");
+  EXPECT_EQ(fitted.to_json().at("fit"), fitted.fit_path);
+  std::filesystem::remove(path);
+}
+
 TEST(SurfaceFile, BadFilesAreErrors) {
   const std::string path = temp_path("bad.json");
   {

@@ -16,7 +16,8 @@ void register_calibrate_command(CLI::App& app) {
       "calibrate", "BRDF from sample and reference-panel radiances: f = (L_s - L_dark)/(L_ref - L_dark) x rho_ref/pi");
   add_request_options(command, request);
   command->callback([] {
-    run_request<CalibrateRequest>([] { write_dataset_output(calibrate(request), request.output, request.format); });
+    run_request<CalibrateRequest>(
+        [] { warn_missing_values(calibrate(with_standard_output(request)), request.output); });
   });
 }
 

@@ -16,7 +16,7 @@ void register_convert_command(CLI::App& app) {
                                      ".sed, .sig), manifest and USGS splib07a files");
   add_request_options(command, request);
   command->callback([] {
-    run_request<ConvertRequest>([] { write_dataset_output(convert(request), request.output, request.to, "to"); });
+    run_request<ConvertRequest>([] { warn_missing_values(convert(with_standard_output(request)), request.output); });
   });
 }
 

@@ -14,7 +14,7 @@ void register_resample_command(CLI::App& app) {
                                "Band-average a dataset onto new wavelength intervals (not point picks); drop bands");
   add_request_options(c, request);
   c->callback([] {
-    run_request<ResampleRequest>([] { write_dataset_output(resample(request), request.output, request.format); });
+    run_request<ResampleRequest>([] { warn_missing_values(resample(with_standard_output(request)), request.output); });
   });
 }
 

@@ -15,7 +15,7 @@ void register_simulate_command(CLI::App& app) {
   add_request_options(command, request);
   refuse_fit_model_flag(command);
   command->callback([] {
-    run_request<SimulateRequest>([] { write_dataset_output(simulate(request), request.output, request.format); });
+    run_request<SimulateRequest>([] { warn_missing_values(simulate(with_standard_output(request)), request.output); });
   });
 }
 

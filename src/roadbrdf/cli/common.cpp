@@ -20,65 +20,6 @@
 
 namespace roadbrdf::cli {
 
-namespace {
-std::pair<std::string, std::string> split_assignment(const std::string& item, const std::string& what) {
-  const auto eq = item.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    throw InputError(what + " expects NAME=VALUE, got '" + item + "'");
-  }
-  return {item.substr(0, eq), item.substr(eq + 1)};
-}
-}  // namespace
-
-std::map<std::string, double> parse_numeric_assignments(const std::vector<std::string>& items,
-                                                        const std::string& what) {
-  std::map<std::string, double> result;
-  for (const auto& item : items) {
-    auto [name, text] = split_assignment(item, what);
-    double value = 0.0;
-    if (!parse_finite_double(text, value)) {
-      throw InputError(what + " " + name + ": '" + text + "' is not a finite number");
-    }
-    if (result.count(name)) throw InputError(what + " " + name + " is given twice");
-    result[name] = value;
-  }
-  return result;
-}
-
-OptionSet parse_option_assignments(const std::vector<std::string>& items, const std::string& what) {
-  OptionSet result;
-  for (const auto& item : items) {
-    auto [name, value] = split_assignment(item, what);
-    if (result.count(name)) throw InputError(what + " " + name + " is given twice");
-    result[name] = value;
-  }
-  return result;
-}
-
-double parse_number(const std::string& text, const std::string& what) {
-  double v = 0.0;
-  if (!parse_finite_double(text, v)) {
-    throw InputError(what + ": '" + text + "' is not a finite number");
-  }
-  return v;
-}
-
-std::vector<std::string> split_commas(const std::vector<std::string>& items) {
-  std::vector<std::string> out;
-  for (const auto& item : items) {
-    std::string cur;
-    for (char c : item + ",") {
-      if (c == ',') {
-        if (!cur.empty()) out.push_back(cur);
-        cur.clear();
-      } else if (c != ' ') {
-        cur += c;
-      }
-    }
-  }
-  return out;
-}
-
 std::string plain_flag(const std::string& field) {
   if (field.empty() || field.front() == '-') return field;
   const auto dot = field.find('.');
@@ -146,9 +87,7 @@ void refuse_fit_model_flag(CLI::App* command) {
   });
 }
 
-void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format,
-                          const std::string& format_field) {
-  write_dataset(data, path.empty() ? std::string("-") : path, parse_name<DatasetFormat>(format, format_field));
+void warn_missing_values(const SpectralDataset& data, const std::string& path) {
   if (const std::size_t missing = missing_value_count(data); missing > 0) {
     fmt::print(stderr,
                "roadbrdf: warning: {}: {} of {} BRDF values are missing (written as nan: not measured, never "

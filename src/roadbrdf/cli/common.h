@@ -1,4 +1,4 @@
-// Helpers shared by the sub-commands: NAME=VALUE parsing and model construction.
+// Helpers shared by the sub-commands: the dataset output, the spelling of request fields as flags, common flags.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -17,24 +17,19 @@
 
 namespace roadbrdf::cli {
 
-// "name=value" strings to a map; `what` names the flag in errors (e.g. "-p").
-std::map<std::string, double> parse_numeric_assignments(const std::vector<std::string>& items, const std::string& what);
-OptionSet parse_option_assignments(const std::vector<std::string>& items, const std::string& what);
-
-// Write a dataset to `path` (atomically), or to standard output when `path` is empty or "-";
-// `format` is a name of kDatasetFormatNames (io/dataset_io.h), read as the request field `format_field`.
-void write_dataset_output(const SpectralDataset& data, const std::string& path, const std::string& format,
-                          const std::string& format_field = "format");
+// A dataset command's request, its `output` standard output ("-") by default.
+template <typename Request>
+Request with_standard_output(Request request) {
+  if (request.output.empty()) request.output = "-";
+  return request;
+}
+// The warning of the BRDF values a written dataset is missing (`path` "" = standard output).
+void warn_missing_values(const SpectralDataset& data, const std::string& path);
 
 // Where a command's report (tables, notes) goes: standard error when its output file is standard
 // output ("-"), so that the two never mix; standard output otherwise.
 std::FILE* report_stream(const std::string& output);
 
-// A finite number; `what` names the flag in errors. Throws InputError.
-double parse_number(const std::string& text, const std::string& what);
-
-// Names from repeatable, comma-separated options ("--group-by theta_i,phi_i" or given twice), spaces dropped.
-std::vector<std::string> split_commas(const std::vector<std::string>& items);
 // Lists of numbers ("D", "D1,D2,...", "A:B:STEP" and mixes) are parsed by parse_range_list
 // (core/range.h), the one grammar of every command and of Python.
 

@@ -51,11 +51,13 @@ RequestFields<CalibrateRequest> CalibrateRequest::fields() {
   return rows;
 }
 
-SpectralDataset calibrate(const CalibrateRequest& request) {
+namespace {
+
+SpectralDataset calibrated(const CalibrateRequest& request) {
   std::vector<FileArgument> inputs, outputs;
   file_arguments(request, CalibrateRequest::fields(), inputs, outputs);
   check_distinct_files(inputs, outputs);
-  // A bad format name is refused before any work; the caller writes the dataset in it.
+  // A bad format name is refused before any work.
   static_cast<void>(parse_name<DatasetFormat>(request.format, "format"));
   if (!request.manifest.empty()) {
     if (!request.sample.empty() || !request.reference.empty() || !request.dark.empty()) {
@@ -87,6 +89,14 @@ SpectralDataset calibrate(const CalibrateRequest& request) {
   out.metadata["sample_radiance"] = request.sample;
   out.metadata["reference_radiance"] = request.reference;
   if (!request.dark.empty()) out.metadata["dark"] = request.dark;
+  return out;
+}
+
+}  // namespace
+
+SpectralDataset calibrate(const CalibrateRequest& request) {
+  SpectralDataset out = calibrated(request);
+  write_dataset_output(out, request.output, request.format);
   return out;
 }
 

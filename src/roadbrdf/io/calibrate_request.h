@@ -31,8 +31,8 @@ struct CalibrateRequest : DatasetReadFields, InstrumentOptions {
 
 // The task of `roadbrdf calibrate`: the calibrated BRDF [sr^-1], after check_distinct_files over the
 // request's files (a manifest's listed files among the inputs). Either `sample` and `reference`
-// (with `dark`), or `manifest`. Writing is the caller's (write_dataset in `format`). Throws
-// FieldError / InputError / FileError.
+// (with `dark`), or `manifest`. Written to `output` in `format` when given (write_dataset_output).
+// Throws FieldError / InputError / FileError.
 SpectralDataset calibrate(const CalibrateRequest& request);
 
 }  // namespace roadbrdf

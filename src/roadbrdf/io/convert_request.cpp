@@ -193,7 +193,7 @@ SpectralDataset convert(const ConvertRequest& request) {
   if (request.inputs.empty()) throw FieldError("inputs", "give an input file");
   const std::string& input = request.inputs.front();
   const ConvertSource from = parse_name<ConvertSource>(request.source, "source");
-  // Bad output names are refused before any work; the caller writes the dataset in `to`.
+  // Bad output names are refused before any work.
   static_cast<void>(parse_name<DatasetFormat>(request.to, "to"));
   if (!request.alta_output.empty()) static_cast<void>(parse_name<AltaOutput>(request.alta_output, "alta_output"));
   std::optional<AngleConvention> convention;
@@ -237,6 +237,7 @@ SpectralDataset convert(const ConvertRequest& request) {
     d = read_dataset_runs(request.inputs, read);
   }
   if (convention) d.convention = *convention;
+  write_dataset_output(d, request.output, request.to, "to");
   return d;
 }
 

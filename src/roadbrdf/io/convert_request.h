@@ -59,7 +59,7 @@ struct ConvertRequest : DatasetReadFields, InstrumentOptions {
 
 // The task of `roadbrdf convert`: the dataset, after check_distinct_files over the request's files (a
 // manifest's listed files, the CUReT table next to the input and the USGS wavelength file among the
-// inputs). Writing is the caller's (write_dataset in `to`). Warnings (instrument notes, missing USGS
+// inputs); written to `output` in `to` when given (write_dataset_output). Warnings (instrument notes, missing USGS
 // channels) go to the front end's sink (core/diagnostics.h route_warning). Throws FieldError /
 // InputError / FileError.
 SpectralDataset convert(const ConvertRequest& request);

@@ -204,6 +204,11 @@ void write_dataset(const SpectralDataset& d, const std::string& path, DatasetFor
   file.commit();
 }
 
+void write_dataset_output(const SpectralDataset& dataset, const std::string& output, const std::string& format,
+                          const std::string& format_field) {
+  if (!output.empty()) write_dataset(dataset, output, parse_name<DatasetFormat>(format, format_field));
+}
+
 std::size_t missing_value_count(const SpectralDataset& d) {
   return static_cast<std::size_t>(std::count_if(d.brdf.begin(), d.brdf.end(), [](double v) { return std::isnan(v); }));
 }

@@ -166,6 +166,11 @@ void write_dataset(const SpectralDataset& dataset, const std::string& path,
                    DatasetFormat format = DatasetFormat::kWide);
 // Same to a stream (e.g. standard output).
 void write_dataset(const SpectralDataset& dataset, std::ostream& out, DatasetFormat format = DatasetFormat::kWide);
+// The output of a task that makes a dataset (calibrate, resample, simulate, convert): written to its
+// request's `output` when one is given ("-" = standard output; "" = not written), in the format named
+// by `format` (a name of kDatasetFormatNames, read as the request field `format_field`).
+void write_dataset_output(const SpectralDataset& dataset, const std::string& output, const std::string& format,
+                          const std::string& format_field = "format");
 
 // The four angles (degrees) of a geometry in a convention, in the column order of that convention.
 void angle_values_of_geometry(const Geometry& g, AngleConvention convention, double out[4]);

@@ -323,10 +323,11 @@ SpectralDataset combine_runs(const std::vector<DatasetRun>& runs, bool average_d
 }
 
 SpectralDataset read_dataset_runs(const std::vector<std::string>& paths, const DatasetReadFields& fields,
-                                  const std::function<void(const std::string&)>& warn) {
+                                  const std::function<void(const std::string&)>& warn, bool allow_missing) {
   if (paths.size() == 1) {
     DatasetReadOptions options = fields.options_for(paths.front(), paths);
     options.warn = warn;
+    options.allow_missing = allow_missing;
     return read_dataset(paths.front(), options);
   }
   std::vector<DatasetRun> runs;
@@ -334,6 +335,7 @@ SpectralDataset read_dataset_runs(const std::vector<std::string>& paths, const D
   for (const std::string& path : paths) {
     DatasetReadOptions options = fields.options_for(path, paths);
     options.warn = warn;
+    options.allow_missing = allow_missing;
     runs.push_back({path, read_dataset(path, options)});
   }
   return combine_runs(runs, fields.average_duplicates, warn);

@@ -55,8 +55,9 @@ SpectralDataset combine_runs(const std::vector<DatasetRun>& runs, bool average_d
                              const std::function<void(const std::string&)>& warn,
                              Repeatability* repeatability = nullptr);
 
-// Read each file with its options (DatasetReadFields::options_for) and combine them (combine_runs).
+// Read each file with its options (DatasetReadFields::options_for; `allow_missing` as in
+// DatasetReadOptions) and combine them (combine_runs).
 SpectralDataset read_dataset_runs(const std::vector<std::string>& paths, const DatasetReadFields& fields,
-                                  const std::function<void(const std::string&)>& warn = {});
+                                  const std::function<void(const std::string&)>& warn = {}, bool allow_missing = true);
 
 }  // namespace roadbrdf

@@ -104,4 +104,19 @@ SpectralDataset instrument_dataset(const InstrumentSpectrum& s, const Geometry& 
   return d;
 }
 
+nlohmann::json InstrumentSpectrum::to_json() const {
+  const auto signal = [](const std::vector<double>& v) { return v.empty() ? nlohmann::json() : nlohmann::json(v); };
+  return {{"path", path},
+          {"format", name_of(format)},
+          {"wavelengths", wavelengths},
+          {"target", signal(target)},
+          {"reference", signal(reference)},
+          {"reflectance", signal(reflectance)},
+          {"quantity", quantity},
+          {"units", units},
+          {"target_settings", target_settings},
+          {"reference_settings", reference_settings},
+          {"metadata", metadata}};
+}
+
 }  // namespace roadbrdf

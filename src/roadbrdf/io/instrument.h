@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <string_view>
@@ -71,6 +72,10 @@ struct InstrumentSpectrum {
   std::map<std::string, std::string> reference_settings;  // of the stored reference (may be empty: unknown)
   std::map<std::string, std::string> metadata;            // header values, keys prefixed by the format ("asd.", ...)
   std::vector<std::string> notes;                         // things worth a warning (overlap dropped, inconsistencies)
+
+  // Keys: path, format, wavelengths, target, reference, reflectance (null when absent), quantity, units,
+  // target_settings, reference_settings, metadata.
+  nlohmann::json to_json() const;
 };
 
 // By the file's first bytes ("as6".."as8" -> ASD; "/*** Spectra Vista" -> SIG; a "Version:" ...

@@ -70,6 +70,7 @@ SpectralDataset resample(const ResampleRequest& request, const std::function<voi
   }
   SpectralDataset out = resample_dataset(d, bands, drop);
   if (!noisy_text.empty()) out.metadata["noisy_bands_nm"] = noisy_text;
+  write_dataset_output(out, request.output, request.format);
   return out;
 }
 

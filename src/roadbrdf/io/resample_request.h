@@ -31,7 +31,7 @@ struct ResampleRequest : DatasetReadFields {
 
 // The task of `roadbrdf resample`: the resampled dataset (the noisy bands left out listed in its metadata
 // "noisy_bands_nm"), after check_distinct_files over the request's files; reading warnings go to `warn`
-// (default: the front end's sink). Writing is the caller's (write_dataset, in `format` to `output`).
+// (default: the front end's sink). Written to `output` in `format` when given (write_dataset_output).
 // Throws FieldError / InputError / FileError.
 SpectralDataset resample(const ResampleRequest& request, const std::function<void(const std::string&)>& warn = {});
 

@@ -73,7 +73,7 @@ SpectralDataset simulate(const SimulateRequest& request) {
   for (const auto& [name, file] : spectra_files) spectrum_inputs.push_back({"`spectral`", file});
   check_request_files(request, spectrum_inputs);
   if (request.digits < 0 || request.digits > 17) throw FieldError("digits", "must be in [0, 17]");
-  // A bad format name is refused before any work; the caller writes the dataset in it.
+  // A bad format name is refused before any work.
   static_cast<void>(parse_name<DatasetFormat>(request.format, "format"));
   const NoiseModel noise = parse_noise_model(request.noise);
   const SpectralModel model = request.resolve().model;
@@ -104,6 +104,7 @@ SpectralDataset simulate(const SimulateRequest& request) {
   SpectralDataset d = simulate_dataset(in);
   d.metadata["grid"] = request.grid;
   for (const auto& [key, value] : metadata) d.metadata[key] = value;
+  write_dataset_output(d, request.output, request.format);
   return d;
 }
 

@@ -30,8 +30,8 @@ struct SimulateRequest : ModelSourceFields {
 };
 
 // The task of `roadbrdf simulate`: the simulated dataset, after check_distinct_files over the
-// request's files (the spectra of `spectral` among the inputs). Writing is the caller's
-// (write_dataset). Throws FieldError / InputError / FileError.
+// request's files (the spectra of `spectral` among the inputs); written to `output` in `format` when
+// given (write_dataset_output). Throws FieldError / InputError / FileError.
 SpectralDataset simulate(const SimulateRequest& request);
 
 }  // namespace roadbrdf

@@ -150,4 +150,17 @@ SpectralDataset usgs_dataset(const UsgsSpectrum& s, const Geometry& geometry, An
   return d;
 }
 
+nlohmann::json UsgsSpectrum::to_json() const {
+  return {{"path", path},
+          {"wavelength_path", wavelength_path},
+          {"record", record},
+          {"title", title},
+          {"wavelength_record", wavelength_record},
+          {"wavelength_title", wavelength_title},
+          {"wavelengths", wavelengths},
+          {"reflectance", reflectance},
+          {"channels", channels},
+          {"missing", missing}};
+}
+
 }  // namespace roadbrdf

@@ -14,6 +14,7 @@
 // assumed).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +38,9 @@ struct UsgsSpectrum {
   std::vector<double> reflectance;  // [1], same length
   std::size_t channels = 0;         // channels in the files (including missing ones)
   std::size_t missing = 0;          // channels dropped (missing in the spectrum or the wavelength file)
+
+  // Keys: the members' names.
+  nlohmann::json to_json() const;
 };
 
 // Parse a spectrum and its wavelength file held in memory (`spectrum_name`, `wavelength_name` are

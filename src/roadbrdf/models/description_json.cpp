@@ -2,6 +2,14 @@
 
 namespace roadbrdf {
 
+nlohmann::json alias_to_json(const ModelAlias& a) {
+  return {{"name", a.name},
+          {"model", a.model},
+          {"description", a.description},
+          {"citation", a.citation},
+          {"options", a.options}};
+}
+
 nlohmann::json description_to_json(const ModelDescription& d) {
   nlohmann::json j;
   j["name"] = d.name;

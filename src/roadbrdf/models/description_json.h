@@ -15,6 +15,9 @@ namespace roadbrdf {
 // spectral, linear}], options [{name, description, values, default}], option_values {name: value}.
 nlohmann::json description_to_json(const ModelDescription& description);
 
+// A model alias (ModelAlias). Keys: name, model, description, citation, options {name: value}.
+nlohmann::json alias_to_json(const ModelAlias& alias);
+
 // "yes", "no" or "where `nu` = `nv`" (for the help texts and docs/models.md).
 std::string isotropy_summary(const ModelDescription& description);
 

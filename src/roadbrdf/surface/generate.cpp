@@ -412,4 +412,15 @@ HeightField make_gaussian_slope_surface(const MaterialSpec& material, double sig
   return f;
 }
 
+nlohmann::json GeneratedSample::to_json() const {
+  return {{"target_volume_fraction", target_volume_fraction},
+          {"achieved_volume_fraction", achieved_volume_fraction},
+          {"grain_count", grain_count},
+          {"targets_reached", targets_reached},
+          {"deposition", deposition},
+          {"slab_thickness_mm", slab_thickness_mm},
+          {"matrix_level_mm", matrix_level_mm},
+          {"notes", notes}};
+}
+
 }  // namespace roadbrdf::surface

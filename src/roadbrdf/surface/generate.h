@@ -94,6 +94,11 @@ struct GeneratedSample {
   double mastic_fraction = 0.0;            // achieved exposed (projected) area fraction of the mastic
   double mastic_fraction_tolerance = 0.0;  // with settings.mastic_fraction: max(0.001, 1 / cells); else 0
   std::vector<std::string> notes;          // jamming etc.
+
+  // The packing report (not the field or the grains). Keys: target_volume_fraction,
+  // achieved_volume_fraction, grain_count, targets_reached, deposition, slab_thickness_mm,
+  // matrix_level_mm, notes.
+  nlohmann::json to_json() const;
 };
 
 // Throws FieldError naming the SurfaceRequest field (surface_request.h): cell_mm, size_mm (at least

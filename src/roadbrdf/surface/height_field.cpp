@@ -217,6 +217,23 @@ HeightField read_surface(const std::string& path) {
   return f;
 }
 
+json MaterialSpec::to_json() const {
+  if (!model.empty()) return {{"name", name}, {"model", model}, {"parameters", parameters}, {"options", options}};
+  return {{"name", name}, {"fit", fit_path.empty() ? fit : fit_path}, {"fit_model", fit_model}};
+}
+
+json TextureStatistics::to_json() const {
+  return {{"mpd_mm", mpd_mm},
+          {"etd_mm", etd_mm},
+          {"rms_height_mm", rms_height_mm},
+          {"mean_height_mm", mean_height_mm},
+          {"min_height_mm", min_height_mm},
+          {"max_height_mm", max_height_mm},
+          {"surface_area_ratio", surface_area_ratio},
+          {"exposed_area_fraction", exposed_area_fraction},
+          {"exposed_true_area_fraction", exposed_true_area_fraction}};
+}
+
 void write_surface(const HeightField& f, const std::string& path, const TextureStatistics* statistics) {
   validate(f);
   json j;
@@ -230,27 +247,14 @@ void write_surface(const HeightField& f, const std::string& path, const TextureS
   j["periodic"] = true;
   json mats = json::array();
   for (const auto& m : f.materials) {
-    json e;
-    e["name"] = m.name;
-    if (!m.model.empty()) {
-      e["model"] = m.model;
-      e["parameters"] = m.parameters;
-      e["options"] = m.options;
-    } else {
-      e["fit"] = relative_to(m.fit_path.empty() ? m.fit : m.fit_path, path);
-      e["fit_model"] = m.fit_model;
-    }
+    json e = m.to_json();
+    if (e.contains("fit")) e["fit"] = relative_to(e["fit"].get<std::string>(), path);
     mats.push_back(e);
   }
   j["materials"] = mats;
   if (statistics) {
-    json s;
-    s["mpd_mm"] = statistics->mpd_mm;
-    s["etd_mm"] = statistics->etd_mm;
-    s["rms_height_mm"] = statistics->rms_height_mm;
-    s["surface_area_ratio"] = statistics->surface_area_ratio;
-    s["exposed_area_fraction"] = statistics->exposed_area_fraction;
-    s["exposed_true_area_fraction"] = statistics->exposed_true_area_fraction;
+    json s = statistics->to_json();
+    for (const char* key : {"mean_height_mm", "min_height_mm", "max_height_mm"}) s.erase(key);
     s["note"] =
         "informative: MPD over every row and column, baseline = sample period (ISO 13473-1 uses 100 mm); "
         "ETD = 0.2 + 0.8 MPD [mm]; area fractions: projected (horizontal) and true facet area";

@@ -32,6 +32,7 @@
 
 #include <cstdint>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,10 @@ struct MaterialSpec {
   std::string model;                           // model name when no fit file
   std::map<std::string, double> parameters;    // model parameters (defaults for the rest)
   std::map<std::string, std::string> options;  // model options
+
+  // Keys: name, and model, parameters, options, or fit (the resolved path, else as written) and
+  // fit_model; the SURFACE file's entry.
+  nlohmann::json to_json() const;
 };
 
 struct HeightField {
@@ -97,6 +102,9 @@ struct TextureStatistics {
   // Fraction of the true (tilted facet) area of each material.
   std::vector<double> exposed_true_area_fraction;
   double surface_area_ratio = 1.0;  // true area / projected area
+
+  // Keys: the members' names.
+  nlohmann::json to_json() const;
 };
 TextureStatistics texture_statistics(const HeightField& field);
 

@@ -107,4 +107,20 @@ RenderAlbedoResult render_surface_albedo(const HeightField& field, const std::st
   return result;
 }
 
+nlohmann::json RenderResult::to_json() const {
+  const std::size_t m = data.wavelength_count();
+  nlohmann::json brdf = nlohmann::json::array(), sigma = nlohmann::json::array(), paths = nlohmann::json::array(),
+                 converged = nlohmann::json::array();
+  for (std::size_t k = 0; k < data.geometry_count(); ++k) {
+    brdf.push_back(std::vector<double>(data.brdf.begin() + k * m, data.brdf.begin() + (k + 1) * m));
+    sigma.push_back(std::vector<double>(data.sigma.begin() + k * m, data.sigma.begin() + (k + 1) * m));
+  }
+  for (const Estimate& e : estimates) {
+    paths.push_back(e.paths);
+    converged.push_back(e.converged);
+  }
+  return {{"wavelengths", data.wavelengths}, {"brdf", brdf},   {"sigma", sigma},
+          {"metadata", data.metadata},       {"paths", paths}, {"converged", converged}};
+}
+
 }  // namespace roadbrdf::surface

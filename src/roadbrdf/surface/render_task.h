@@ -27,6 +27,9 @@ struct RenderResult {
   Diagnostics diagnostics;          // a warning per geometry that missed `target_error`, and their count
   std::string summary;              // paths, the worst relative errors' median/90th percentile/max
   const std::string& summary_text() const { return summary; }
+  // Keys: wavelengths, brdf and sigma ([geometry][wavelength], sr^-1), metadata, and per geometry
+  // paths and converged.
+  nlohmann::json to_json() const;
 };
 
 struct RenderAlbedoResult {

@@ -89,4 +89,11 @@ std::string SurfaceResult::summary_text() const {
   return out;
 }
 
+nlohmann::json SurfaceResult::sample_report() const {
+  if (!sample) return nullptr;
+  nlohmann::json report = sample->to_json();
+  report["classes"] = classes;
+  return report;
+}
+
 }  // namespace roadbrdf::surface

@@ -28,6 +28,9 @@ struct SurfaceResult {
   Diagnostics diagnostics;
   std::vector<std::string> written;  // the files written, in order (`output`, then `preview`)
 
+  // The generator's report of a formulation's sample (GeneratedSample::to_json) with its material
+  // `classes`; null for a validation surface.
+  nlohmann::json sample_report() const;
   // The command's report: the sample's description and mastic level, the texture statistics per
   // material, the files written.
   std::string summary_text() const;

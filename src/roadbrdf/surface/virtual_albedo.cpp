@@ -93,4 +93,16 @@ void write_virtual_albedo(const std::string& path, const VirtualAlbedo& albedo, 
   file.commit();
 }
 
+nlohmann::json VirtualAlbedo::to_json() const {
+  return {{"wavelengths", wavelengths},
+          {"sun_zenith", sun_zenith_deg},
+          {"black_sky", black_sky},
+          {"black_sky_error", black_sky_error},
+          {"white_sky", white_sky},
+          {"white_sky_error", white_sky_error},
+          {"white_sky_nodes", white_sky_nodes},
+          {"paths", paths},
+          {"converged", converged}};
+}
+
 }  // namespace roadbrdf::surface

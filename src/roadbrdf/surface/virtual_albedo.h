@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct VirtualAlbedo {
   int white_sky_nodes = 0;                           // Gauss-Legendre nodes in mu (0: not computed)
   long paths = 0;                                    // total paths
   std::vector<bool> converged;                       // per black-sky angle (adaptive runs), then per node
+
+  // Keys: wavelengths, sun_zenith (the black-sky angles [deg]), black_sky, black_sky_error
+  // ([angle][wavelength]), white_sky, white_sky_error, white_sky_nodes, paths, converged.
+  nlohmann::json to_json() const;
 };
 
 // Black-sky albedo at the given sun zenith angles [deg, 0 <= theta < 90] and, if white_sky_nodes > 0,
