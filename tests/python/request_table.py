@@ -3,6 +3,9 @@ every row is an option of the command and a keyword of the Python function, and 
 with the same message by both, each spelling the field its own way."""
 import re
 
+import pytest
+
+import roadbrdf
 from roadbrdf import _roadbrdf
 
 
@@ -43,3 +46,11 @@ def check_refused_alike(command, row, cli_result, python_error):
     assert spelt_as_fields(command, from_cli, True) == spelt_as_fields(command, from_python, False)
     if from_python.startswith(row["name"] + ": ") or from_python.startswith(row["name"] + "."):
         assert from_cli.startswith(row["long_flag"]), from_cli
+
+
+def check_bad_value_refused_alike(cli, command, function, row, cli_args, args=(), kwargs=None):
+    """`roadbrdf COMMAND CLI_ARGS` and `function(*args, **kwargs)` refuse the row's bad value with one message."""
+    result = cli(command, *cli_args, check=False)
+    with pytest.raises(roadbrdf.InputError) as error:
+        function(*args, **(kwargs or {}))
+    check_refused_alike(command, row, result, error.value)

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from request_table import check_every_row_is_shown, check_refused_alike, fields
+from request_table import check_bad_value_refused_alike, check_every_row_is_shown, check_refused_alike, fields
 
 import roadbrdf
 from roadbrdf import _roadbrdf
@@ -90,10 +90,7 @@ def test_a_bad_value_is_refused_alike(cli, tmp_path, instruments, row):
     out = tmp_path / "out.csv"
     if "-o" not in flags:
         flags = [*flags, "-o", out]
-    result = cli("calibrate", *flags, check=False)
-    with pytest.raises(roadbrdf.InputError) as error:
-        roadbrdf.calibrate(*positional, **keywords)
-    check_refused_alike("calibrate", row, result, error.value)
+    check_bad_value_refused_alike(cli, "calibrate", roadbrdf.calibrate, row, flags, positional, keywords)
     assert not out.exists()
 
 

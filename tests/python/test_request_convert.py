@@ -8,7 +8,7 @@ import os
 
 import numpy as np
 import pytest
-from request_table import check_every_row_is_shown, check_refused_alike, fields
+from request_table import check_bad_value_refused_alike, check_every_row_is_shown, check_refused_alike, fields
 
 import roadbrdf
 
@@ -77,10 +77,7 @@ def test_a_bad_value_is_refused_alike(cli, tmp_path, instruments, row):
     out = tmp_path / "out.csv"
     if "-o" not in flags:
         flags = [*flags, "-o", out]
-    result = cli("convert", *flags, check=False)
-    with pytest.raises(roadbrdf.InputError) as error:
-        roadbrdf.convert(*positional, **keywords)
-    check_refused_alike("convert", row, result, error.value)
+    check_bad_value_refused_alike(cli, "convert", roadbrdf.convert, row, flags, positional, keywords)
     assert not out.exists()
 
 

@@ -7,7 +7,7 @@ import json
 import math
 
 import pytest
-from request_table import check_every_row_is_shown, check_refused_alike, fields
+from request_table import check_bad_value_refused_alike, check_every_row_is_shown, fields
 
 import roadbrdf
 
@@ -60,10 +60,7 @@ def test_a_bad_value_is_refused_alike(cli, tmp_path, row):
     bad = _bad_values(tmp_path)
     assert row["name"] in bad, f"the table's field {row['name']} needs a bad value in this test"
     cli_args, model, kwargs = bad[row["name"]]
-    result = cli("eval", *cli_args, check=False)
-    with pytest.raises(roadbrdf.InputError) as error:
-        roadbrdf.evaluate(model, **kwargs)
-    check_refused_alike("eval", row, result, error.value)
+    check_bad_value_refused_alike(cli, "eval", roadbrdf.evaluate, row, cli_args, [model], kwargs)
 
 
 def test_an_error_naming_parameters_prints_the_parameter_flag(cli):

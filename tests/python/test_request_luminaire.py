@@ -5,7 +5,7 @@ the table itself, so a new field without a bad value here fails."""
 import pathlib
 
 import pytest
-from request_table import check_every_row_is_shown, check_refused_alike, fields
+from request_table import check_bad_value_refused_alike, check_every_row_is_shown, fields
 
 import roadbrdf
 
@@ -27,10 +27,7 @@ def test_a_bad_value_is_refused_alike(cli, tmp_path, row):
     bad = _bad_values(tmp_path)
     assert row["name"] in bad, f"the table's field {row['name']} needs a bad value in this test"
     cli_args, args, kwargs = bad[row["name"]]
-    result = cli("luminaire", *cli_args, check=False)
-    with pytest.raises(roadbrdf.InputError) as error:
-        roadbrdf.luminaire(*args, **kwargs)
-    check_refused_alike("luminaire", row, result, error.value)
+    check_bad_value_refused_alike(cli, "luminaire", roadbrdf.luminaire, row, cli_args, args, kwargs)
 
 
 def test_an_unknown_keyword_names_the_nearest(tmp_path):
