@@ -95,6 +95,7 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
     handles = {}
     for axis, p in zip(axes, names):
         data[p] = {}
+        on_bound = []
         for (key, rows), label in zip(fit_rows, labels):
             x = table["wavelength_nm" if against == "wavelength" else against + "_deg"][rows]
             y = table[p][rows]
@@ -117,6 +118,15 @@ def params(fit_file, parameters=None, models=None, against="wavelength", wavelen
                 line = axis.errorbar(x, y, yerr=np.vstack([np.maximum(y - below, 0.0), np.maximum(above - y, 0.0)]),
                                      color=colours[label], marker="o", capsize=3, label=label)
             handles.setdefault(label, line)
+            # On a bound the standard error is undefined (no band there): the panel says where it sits.
+            sides = [item.partition("=")[2] for cell in table["at_bounds"][rows] if isinstance(cell, str)
+                     for item in cell.split(";") if item.partition("=")[0] == p] if "at_bounds" in table else []
+            for side in sorted(set(sides)):
+                where = "wavelengths" if against == "wavelength" else "points"
+                who = f"{label}: " if len(labels) > 1 else ""
+                on_bound.append(f"{who}at its {side} bound at {sides.count(side)} of {x.size} {where}")
+        if on_bound:
+            axis.text(0.02, 0.03, "\n".join(on_bound), transform=axis.transAxes, fontsize="small", va="bottom")
         axis.set_ylabel(f"{p} [{units[p]}]")
         axis.grid(True, alpha=0.3)
         if data[p] and not own:

@@ -130,3 +130,17 @@ def test_own_figure_one_x_range_labelled_under_each_column_one_key_and_nothing_c
     expected = fig.get_size_inches() * 150  # 150 dpi, as laid out
     assert abs(width - expected[0]) <= 1 and abs(height - expected[1]) <= 1
     plt.close("all")
+
+
+def test_a_parameter_on_its_bound_is_said_so_in_its_panel(cli, tmp_path):
+    # A Lambertian sample brighter than albedo 1 can be (BRDF 0.5 sr^-1 = albedo pi/2) at two of three
+    # wavelengths: the fit stops on the albedo's upper bound there, where no standard error exists.
+    data = tmp_path / "bright.csv"
+    rows = [f"{ti},0,{tr},180,{0.3 / np.pi:.6g},0.5,0.5" for ti in (0, 20, 40) for tr in (10, 30, 50)]
+    data.write_text("theta_i,phi_i,theta_r,phi_r,500,600,700\n" + "\n".join(rows) + "\n")
+    fit = tmp_path / "bright.fit.json"
+    cli("fit", data, "--model", "lambert", "-o", fit)
+    fig = params(fit)
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert texts == ["at its upper bound at 2 of 3 wavelengths"], texts
+    plt.close(fig)
