@@ -66,6 +66,13 @@ py::dict dataset_to_dict(const SpectralDataset& d) {
   return out;
 }
 
+// The report of `check --json` as a dict, with the command's text under "text".
+py::object check_report(const CheckResult& result) {
+  nlohmann::json j = result.to_json();
+  j["text"] = result.summary_text();
+  return json_to_python(j);
+}
+
 std::function<void(const std::string&)> python_warning() {
   return [](const std::string& message) { py::module_::import("roadbrdf.core").attr("warn_at_caller")(message); };
 }
@@ -164,10 +171,7 @@ void bind_io(py::module_& m) {
   m.def(
       "check_dataset",
       [](const py::args& args, const py::kwargs& kwargs) {
-        const CheckResult result = quality_check(request_from_arguments<CheckRequest>(args, kwargs), python_warning());
-        nlohmann::json j = result.to_json();
-        j["text"] = result.summary_text();
-        return json_to_python(j);
+        return check_report(quality_check(request_from_arguments<CheckRequest>(args, kwargs), python_warning()));
       },
       request_docstring<CheckRequest>("The quality report of `roadbrdf check` of a dataset file.",
                                       "Returns the report of `check --json` as a dict, its text under \"text\".")
@@ -180,10 +184,7 @@ void bind_io(py::module_& m) {
          const std::map<std::string, std::string>& metadata, const std::string& convention, const py::kwargs& kwargs) {
         const auto options = request_from_arguments<CheckOptions>(py::args(), kwargs);
         const SpectralDataset d = dataset_from_arrays(angles, wavelengths, brdf, sigma, metadata, convention);
-        const CheckResult result = quality_check(d, options);
-        nlohmann::json j = result.to_json();
-        j["text"] = result.summary_text();
-        return json_to_python(j);
+        return check_report(quality_check(d, options));
       },
       request_docstring<CheckOptions>("The quality report of `roadbrdf check` of a dataset in memory.",
                                       "Returns the report as a dict (file None), its text under \"text\".")
