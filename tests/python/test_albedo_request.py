@@ -29,6 +29,7 @@ BAD = {
     "illuminant": ("Z", "Z"),
     "tolerance": (0.0, "0"),
     "uncertainty": None,
+    "threads": (-1, "-1"),
 }
 
 

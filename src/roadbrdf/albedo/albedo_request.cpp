@@ -43,6 +43,7 @@ const RequestField<R> kFields[] = {
     // A switch that is on by default: the command line's flag turns it off (request_options.h).
     {"uncertainty", "--no-uncertainty", "",
      "Standard uncertainties from a fit's parameter covariance; off: values only", &R::uncertainty},
+    {"threads", "--threads", "", "Threads (default: all cores; the results do not depend on it)", &R::threads},
 };
 
 }  // namespace

@@ -1,7 +1,10 @@
 #include "roadbrdf/albedo/report.h"
 
 #include <fmt/core.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -66,6 +69,9 @@ void AlbedoRequest::validate() const {
   if (!diffuse_fraction.empty() && !atmosphere.empty()) {
     throw FieldError("diffuse_fraction", "excludes atmosphere: give one of the two");
   }
+  if (threads < 0 || threads > 1024) {
+    throw FieldError("threads", fmt::format("{} is outside [0, 1024] (0 = all cores)", threads));
+  }
   if (sun_zenith_deg.empty()) throw FieldError("sun_zenith", "no sun zenith given");
   if (sun_azimuth_deg && !std::isfinite(*sun_azimuth_deg)) throw FieldError("sun_azimuth", "expected a finite number");
   if (!wavelengths.empty()) check_range_values(wavelengths, "wavelengths", wavelength_rules());
@@ -98,8 +104,12 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
         "values equal them");
   }
   ProgressCounter progress(a.progress, zeniths.size() + 1);
-  const detail::Hemispherical albedos =
-      detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, integrals, progress);
+  // The integral stages run their integrals in parallel in this arena (report_stages.h).
+  // More threads than the machine runs at once would only make TBB warn.
+  const int all_cores = tbb::info::default_concurrency();
+  tbb::task_arena arena(a.threads > 0 ? std::min(a.threads, all_cores) : all_cores);
+  const detail::Hemispherical albedos = arena.execute(
+      [&] { return detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, integrals, progress); });
   if (!isotropic) {
     notes.emplace_back(azimuth.mean ? "anisotropic model: black-sky averaged over the sun azimuth"
                                     : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",
@@ -118,8 +128,8 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
                                  sets.wavelengths.front(), sets.wavelengths.back(), 100.0 * (1.0 - broadband.outside)));
   }
   const nlohmann::json luminous = detail::luminous_albedos(sets, a, albedos, notes);
-  const nlohmann::json uncertainty =
-      detail::albedo_uncertainty(sm, sets, a, azimuth, albedos, sky, broadband, progress, notes);
+  const nlohmann::json uncertainty = arena.execute(
+      [&] { return detail::albedo_uncertainty(sm, sets, a, azimuth, albedos, sky, broadband, progress, notes); });
   progress.finish();
 
   // Non-physical values, and how much of the result the model extrapolates beyond the fit's data

@@ -41,6 +41,9 @@ struct AlbedoRequest {
   double tolerance = 1e-5;          // absolute quadrature tolerance per value (and per standard uncertainty)
   // Standard uncertainties from a fit's parameter covariance (albedo/uncertainty.h); false: values only.
   bool uncertainty = true;
+  // Threads for the integrals (one task per sun zenith and for the white-sky one, and the white-sky
+  // outer nodes); 0: all cores. The results do not depend on it.
+  int threads = 0;
   // Integrals done: one black-sky integral per sun zenith (all wavelengths at once), then the
   // white-sky one.
   ProgressCallback progress;

@@ -1,5 +1,9 @@
 // compute_albedo's first stages (report_stages.h): the parameter sets, the hemispherical integrals,
 // and the sky (diffuse fraction and blue-sky).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include <cmath>
 #include <utility>
 
@@ -74,19 +78,33 @@ Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& set
                                     const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
                                     const QuadratureSettings& settings, const HemisphericalIntegrals& integrals,
                                     ProgressCounter& progress) {
+  // The integrals are independent: one task each (task 0 the white-sky one, the longest, so that it
+  // starts first), in the caller's arena (compute_albedo: AlbedoRequest::threads). Each integral is
+  // deterministic, so the results do not depend on the number of threads.
+  const std::size_t n_zeniths = zeniths_deg.size();
+  std::vector<SpectralIntegral> black(n_zeniths);
   Hemispherical h;
-  for (double zenith : zeniths_deg) {
-    SpectralIntegral r = integrals.black_sky(model, sets.params.data(), sets.n_sets, zenith * kDegree, azimuth.phi_s,
-                                             azimuth.mean, settings);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n_zeniths + 1, 1),
+      [&](const tbb::blocked_range<std::size_t>& tasks) {
+        for (std::size_t t = tasks.begin(); t != tasks.end(); ++t) {
+          if (t == 0) {
+            h.white = integrals.white_sky(model, sets.params.data(), sets.n_sets, settings);
+          } else {
+            black[t - 1] = integrals.black_sky(model, sets.params.data(), sets.n_sets, zeniths_deg[t - 1] * kDegree,
+                                               azimuth.phi_s, azimuth.mean, settings);
+          }
+          progress.add();
+        }
+      },
+      tbb::simple_partitioner());
+  h.converged = h.white.converged;
+  for (SpectralIntegral& r : black) {
     h.converged = h.converged && r.converged;
     h.black_lobes_checked.push_back(r.lobes_checked);
     h.black.push_back(std::move(r.value));
     h.black_error.push_back(std::move(r.error));
-    progress.add();
   }
-  h.white = integrals.white_sky(model, sets.params.data(), sets.n_sets, settings);
-  h.converged = h.converged && h.white.converged;
-  progress.add();
   return h;
 }
 

@@ -2,6 +2,9 @@
 // the fit's parameter covariance, per wavelength and broadband (albedo/uncertainty.h explains the
 // linearised propagation and why it is preferred to sampling here).
 #include <fmt/core.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <cmath>
 
@@ -81,23 +84,36 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
         "fit): their standard uncertainties are null and were not computed",
         plan.undefined_sets, n_sets));
   }
-  const std::vector<double> g_white = plan.with_nans(
-      white_sky_gradient(model, sets.params.data(), n_sets, plan.scale, plan.settings, plan.nodes).gradient);
-  progress.add();
+  // The gradient integrals, one task each as the values' (report_sky.cpp hemispherical_albedos).
+  std::vector<std::vector<double>> gradients(zeniths.size() + 1);  // [0]: white-sky, [1 + z]: black-sky
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, gradients.size(), 1),
+      [&](const tbb::blocked_range<std::size_t>& tasks) {
+        for (std::size_t t = tasks.begin(); t != tasks.end(); ++t) {
+          if (t == 0) {
+            gradients[t] = plan.with_nans(
+                white_sky_gradient(model, sets.params.data(), n_sets, plan.scale, plan.settings, plan.nodes).gradient);
+          } else {
+            // The value's grazing cross-check found no lobe between the (mu, dphi) rule's nodes: its
+            // derivatives have none either (gradient_integrals.h), so theirs is not repeated.
+            QuadratureSettings settings = plan.settings;
+            settings.grazing_check = !albedos.black_lobes_checked[t - 1];
+            gradients[t] = plan.with_nans(black_sky_gradient(model, sets.params.data(), n_sets, plan.scale,
+                                                             zeniths[t - 1] * kDegree, azimuth.phi_s, azimuth.mean,
+                                                             settings, plan.nodes)
+                                              .gradient);
+          }
+          progress.add();
+        }
+      },
+      tbb::simple_partitioner());
+  const std::vector<double>& g_white = gradients[0];
 
   const bool with_broadband = broadband.formed && !broadband.black_means.empty();
   std::vector<std::vector<double>> u_black, u_blue;
   nlohmann::json bb_black = nlohmann::json::array(), bb_blue = nlohmann::json::array();
   for (std::size_t z = 0; z < zeniths.size(); ++z) {
-    const double theta_s = zeniths[z] * kDegree;
-    // The value's grazing cross-check found no lobe between the (mu, dphi) rule's nodes: its
-    // derivatives have none either (gradient_integrals.h), so theirs is not repeated.
-    QuadratureSettings settings = plan.settings;
-    settings.grazing_check = !albedos.black_lobes_checked[z];
-    const std::vector<double> g_black =
-        plan.with_nans(black_sky_gradient(model, sets.params.data(), n_sets, plan.scale, theta_s, azimuth.phi_s,
-                                          azimuth.mean, settings, plan.nodes)
-                           .gradient);
+    const std::vector<double>& g_black = gradients[1 + z];
     u_black.push_back(propagated(g_black));
     if (with_broadband) bb_black.push_back(broadband_of({&g_black}, {&broadband.black_means[z].first}));
     if (!sky.diffuse.empty()) {
@@ -110,7 +126,6 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
                                            : broadband_of({&g_black, &g_white}, {&m.first, &m.second}));
       }
     }
-    progress.add();
   }
 
   nlohmann::json u = {{"method",

@@ -1,5 +1,8 @@
 // White-sky (bi-hemispherical) albedo: outer Gauss-Kronrod panels in mu_i over black-sky inner
 // integrals (see hemisphere.h for the rule and its accuracy).
+#include <tbb/parallel_for.h>
+
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -31,19 +34,25 @@ SpectralIntegral integrate_cosine_weighted(std::size_t n_sets, const QuadratureS
     OuterPanel p{a, b, std::vector<double>(n_sets, 0.0), std::vector<double>(n_sets, 0.0)};
     std::vector<double> qg(n_sets, 0.0), inner_err(n_sets, 0.0);
     const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-    for (int j = 0; j < 15; ++j) {
+    // The 15 inner integrals are independent: computed in parallel (each deterministic), summed in
+    // node order, so the result does not depend on the number of threads.
+    std::array<SpectralIntegral, 15> f;
+    tbb::parallel_for(0, 15, [&](int j) {
       const double mu = mid + half * r.x[j];
       // Inner tolerance tol / (4 mu): the inner errors then add at most (tol/2) (b - a) to the outer
       // estimate (sum_j w_j 2 mu_j tol/(4 mu_j) = tol/2 (b - a)), and grazing nodes, whose black-sky
       // integrals of specular lobes are the costliest, get the loosest tolerance.
-      const SpectralIntegral f = inner(mu, std::min(0.05, settings.tolerance / (4.0 * mu)));
-      geometries += f.geometries;
-      converged = converged && f.converged;
+      f[j] = inner(mu, std::min(0.05, settings.tolerance / (4.0 * mu)));
+    });
+    for (int j = 0; j < 15; ++j) {
+      const double mu = mid + half * r.x[j];
+      geometries += f[j].geometries;
+      converged = converged && f[j].converged;
       const double wk = half * r.wk[j] * 2.0 * mu, wg = half * r.wg[j] * 2.0 * mu;
       for (std::size_t s = 0; s < n_sets; ++s) {
-        p.q[s] += wk * f.value[s];
-        qg[s] += wg * f.value[s];
-        inner_err[s] += wk * f.error[s];
+        p.q[s] += wk * f[j].value[s];
+        qg[s] += wg * f[j].value[s];
+        inner_err[s] += wk * f[j].error[s];
       }
     }
     for (std::size_t s = 0; s < n_sets; ++s) p.err[s] = std::fabs(p.q[s] - qg[s]) + inner_err[s];
