@@ -31,7 +31,9 @@ def model_aliases() -> List[dict]:
 
 def models() -> List[dict]:
     """Metadata of every model: a list of dicts with ``name``, ``summary``, ``citation``,
-    ``reciprocal``, ``energy_conserving``, ``non_negative``, ``has_delta``, ``isotropic``,
+    ``reciprocal``, ``energy_conserving``, ``non_negative``, ``has_delta``, ``mirror_lobe`` (whether the BRDF
+    may have a lobe about the mirror direction that the albedo quadrature cross-checks at grazing sun),
+    ``isotropic``,
     ``isotropic_when_equal`` (pairs of parameter names), ``grazing_zero`` (where the value at exactly
     90 deg is 0 because the BRDF diverges there; "" when it is the limit everywhere), ``reduces_to``
     (pairs [simpler model, parameter values]), ``parameters``

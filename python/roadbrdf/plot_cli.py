@@ -13,6 +13,7 @@ import sys
 import numpy as np
 
 from . import Model, read_fit
+from .plot_albedo import FIGURE_TOLERANCE
 from .plot_common import DEFAULT_DPI, OutputFolderError, check_output_folder, is_model_file
 
 __all__ = ["main", "run"]
@@ -194,6 +195,9 @@ def _parser():
     p.add_argument("--sun-zenith", default="0:80:10", help="fit file: sun zenith angles [deg] (default 0:80:10)")
     p.add_argument("--wavelengths", help="fit file: wavelengths [nm] (default: the fit's)")
     p.add_argument("--fit", metavar="NAME", help="which fit of FIT.json or method of MIX.json (default: the best)")
+    p.add_argument("--tolerance", type=float, default=FIGURE_TOLERANCE,
+                   help="fit file: absolute quadrature tolerance of the albedo drawn (default "
+                   f"{FIGURE_TOLERANCE:g}, a tenth of a pixel; `roadbrdf albedo` computes to 1e-5)")
     p.add_argument("--label", action="append", help="legend name of each input (repeatable; default: file names)")
     p.add_argument("--uncertainty", choices=["correlated", "independent"], default="correlated",
                    help="solar-weighted bars: the bound for errors correlated across wavelengths (default) or "
@@ -251,7 +255,8 @@ def _draw(a):
         plot.fit_quality(a.data, a.fit_file, a.fit, a.wavelength, **out)
     elif a.kind == "albedo":
         plot.albedo(a.result if len(a.result) > 1 else a.result[0], labels=a.label, atmospheres=a.atmosphere,
-                    sun_zenith=a.sun_zenith, wavelengths=a.wavelengths, fit=a.fit, uncertainty=a.uncertainty, **out)
+                    sun_zenith=a.sun_zenith, wavelengths=a.wavelengths, fit=a.fit, uncertainty=a.uncertainty,
+                    tolerance=a.tolerance, **out)
     elif a.kind == "rtable":
         table = a.table
         if is_model_file(table) or not os.path.exists(table):

@@ -332,17 +332,23 @@ TEST(Albedo, KelemenBlackSkyIsOneAtGrazingSunWithWhiteMatte) {
 }
 
 TEST(Albedo, GrazingCrossCheckSaysWhetherTheFirstRuleWasConfirmed) {
-  // Below 70 deg no cross-check is made; at 80 deg a Lambertian surface (value 0.5, nothing to miss)
-  // passes it; a check turned off is not reported as passed.
-  auto m = make_model("lambert");
-  const std::vector<double> p = params_of(*m, {{"albedo", 0.5}});
+  // Below 70 deg no cross-check is made; at 80 deg a broad specular lobe (nothing to miss) passes it; a
+  // check turned off is not reported as passed, nor one skipped because the model declares no lobe about
+  // the mirror direction (Lambert: ModelDescription::mirror_lobe, mirror_lobe_test.cpp).
+  auto m = make_model("torrance-sparrow");
+  const std::vector<double> p = params_of(*m, {{"ks", 0.5}, {"roughness", 0.3}});
+  ASSERT_TRUE(m->description().mirror_lobe);
   EXPECT_FALSE(black_sky(*m, p.data(), 1, 30.0 * kDegree).lobes_checked);
-  const SpectralIntegral grazing = black_sky(*m, p.data(), 1, 80.0 * kDegree);
-  EXPECT_TRUE(grazing.lobes_checked);
-  EXPECT_NEAR(grazing.value[0], 0.5, 1e-5);
+  EXPECT_TRUE(black_sky(*m, p.data(), 1, 80.0 * kDegree).lobes_checked);
   QuadratureSettings unchecked;
   unchecked.grazing_check = false;
   EXPECT_FALSE(black_sky(*m, p.data(), 1, 80.0 * kDegree, 0.0, unchecked).lobes_checked);
+  auto lambert = make_model("lambert");
+  const std::vector<double> q = {0.5};
+  ASSERT_FALSE(lambert->description().mirror_lobe);
+  const SpectralIntegral grazing = black_sky(*lambert, q.data(), 1, 80.0 * kDegree);
+  EXPECT_FALSE(grazing.lobes_checked);
+  EXPECT_NEAR(grazing.value[0], 0.5, 1e-5);
 }
 
 // The same model seen only through evaluate_batch: no preparation and no fixed-set evaluator of its

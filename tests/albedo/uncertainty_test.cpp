@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "roadbrdf/albedo/hemisphere.h"
@@ -200,6 +201,31 @@ TEST(AlbedoReport, ResultsDoNotDependOnTheNumberOfThreads) {
   EXPECT_EQ(one.dump(), all.dump());
   request.threads = -1;
   EXPECT_THROW(albedo::compute_albedo(sm, request), FieldError);
+}
+
+TEST(AlbedoReport, ProgressCountsTheIntegralsOfEachPass) {
+  // A model with a mirror lobe (Torrance-Sparrow) has its black-sky value at 80 deg cross-checked with
+  // the mirror-polar rule, so that integral's gradient is integrated in a second pass, counted when it
+  // becomes known; the other two (30 deg, white-sky) are integrated with their gradients in one pass.
+  const std::shared_ptr<const Model> model = make_model("lambert+torrance-sparrow");
+  ASSERT_TRUE(model->description().mirror_lobe);
+  const std::vector<double> p = parameters_from_assignments(
+      model->description(),
+      {{"lambert.albedo", 0.3}, {"torrance-sparrow.ks", 0.2}, {"torrance-sparrow.roughness", 0.3}});
+  SpectralModel sm(model, {550.0}, p);
+  const std::size_t P = model->parameter_count();
+  std::vector<double> covariance(P * P, 0.0);
+  for (std::size_t k = 0; k < P; ++k) covariance[k * P + k] = 1e-6;
+  sm.set_parameter_covariance(covariance);
+  albedo::AlbedoRequest request;
+  request.sun_zenith_deg = {30.0, 80.0};
+  request.tolerance = 1e-4;
+  request.threads = 1;  // every report made (core/progress.h)
+  std::vector<std::pair<std::size_t, std::size_t>> progress;
+  request.progress = [&](std::size_t done, std::size_t total) { progress.emplace_back(done, total); };
+  const nlohmann::json j = albedo::compute_albedo(sm, request);
+  EXPECT_EQ(progress, (std::vector<std::pair<std::size_t, std::size_t>>{{1, 3}, {2, 3}, {3, 3}, {4, 4}, {4, 4}}));
+  EXPECT_TRUE(j.at("uncertainty").at("black_sky")[1][0].is_number());
 }
 
 }  // namespace

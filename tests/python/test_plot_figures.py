@@ -16,7 +16,7 @@ import pytest
 
 import roadbrdf
 from roadbrdf import plot as rplot
-from roadbrdf import plot_params, plot_study
+from roadbrdf import plot_albedo, plot_params, plot_study
 
 WAVELENGTHS = [500.0, 590.0, 700.0]
 RHO = [0.2, 0.3, 0.4]
@@ -383,6 +383,30 @@ def test_albedo_error_bars_are_the_uncertainties_of_the_result(cli, root, tmp_pa
     fig = rplot.albedo(roadbrdf.albedo(roadbrdf.Model("lambert"), {"albedo": 0.3}, sun_zenith=[0, 40]))
     c, = fig.roadbrdf_data["zenith_panel"].values()
     assert c["black_sky_u"] is None and not fig.axes[0].containers
+
+
+def test_albedo_computed_by_the_figure_is_to_its_tolerance(cli, root, tmp_path):
+    """From a fit file the figure computes the albedo to FIGURE_TOLERANCE (1e-4, a tenth of a pixel) unless
+    told otherwise, the same values as `roadbrdf albedo` within it; an albedo result is read, not recomputed,
+    even when it mentions a fit file's format in a note."""
+    fit = tmp_path / "on.fit.json"
+    cli("fit", root / "data" / "examples" / "single" / "lazard.csv", "--model", "oren-nayar", "--wavelengths",
+        "400:700:50", "-o", fit)
+    reference = json.loads(cli("albedo", fit, "--sun-zenith", "0,40,80", "--json").stdout)
+    assert reference["tolerance"] == 1e-5
+    for tolerance in (None, 1e-6):
+        kwargs = {} if tolerance is None else {"tolerance": tolerance}
+        data = rplot.albedo(fit, sun_zenith="0,40,80", **kwargs).roadbrdf_data
+        assert data["tolerance"] == (tolerance or plot_albedo.FIGURE_TOLERANCE) == (tolerance or 1e-4)
+        for key in ("black_sky", "white_sky"):
+            np.testing.assert_allclose(data[key], reference[key], rtol=0, atol=(tolerance or 1e-4) + 1e-5)
+    out = tmp_path / "a.png"
+    cli("plot", "albedo", fit, "--sun-zenith", "0,40", "--tolerance", "1e-3", "-o", out)
+    assert png_width(out) > 300
+    reference["notes"].append('a note quoting "format": "roadbrdf-fit"')  # escaped inside a JSON string
+    result = tmp_path / "r.json"
+    result.write_text(json.dumps(reference))
+    assert rplot.albedo(result).roadbrdf_data["tolerance"] == 1e-5
 
 
 def test_albedo_command_with_atmospheres(cli, tmp_path):

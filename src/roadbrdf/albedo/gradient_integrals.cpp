@@ -188,7 +188,16 @@ GradientIntegral unscaled(const Components& c, const SpectralIntegral& r, std::s
   GradientIntegral g;
   g.gradient.assign(n_sets * P, 0.0);
   for (std::size_t i = 0; i < c.size(); ++i) {
-    if (c.index[i] < P) g.gradient[c.set[i] * P + c.index[i]] = r.value[i] / c.scale[i];
+    if (c.index[i] < P) {
+      g.gradient[c.set[i] * P + c.index[i]] = r.value[i] / c.scale[i];
+    } else {  // a value component (components_of: the first n_sets, in set order)
+      g.values.value.push_back(r.value[i]);
+      g.values.error.push_back(r.error[i]);
+    }
+  }
+  if (!g.values.value.empty()) {
+    g.values.converged = r.converged;
+    g.values.geometries = r.geometries;
   }
   g.converged = r.converged;
   g.geometries = r.geometries;

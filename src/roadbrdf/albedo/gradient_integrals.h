@@ -60,6 +60,9 @@ struct GradientIntegral {
   std::vector<double> gradient;  // n_sets x P: dA_s / dp_k
   bool converged = true;
   std::size_t geometries = 0;  // distinct geometries evaluated (each for every component)
+  // GradientNodes::value_nodes: the integral of the values themselves, which steered the nodes (value,
+  // error estimate and convergence per set; the albedo in the same pass as its gradient). Empty otherwise.
+  SpectralIntegral values;
 };
 
 // The nodes a gradient integral is evaluated on (see above).

@@ -62,6 +62,12 @@ bool is_isotropic(const Model& model, const double* params, std::size_t n_sets) 
 // Sun zenith from which black_sky() cross-checks the (mu, dphi) rule with the mirror-polar rule.
 constexpr double kGrazingCheck = 70.0 * kDegree;
 
+bool grazing_check_applies(const Model& model, double theta_s, const QuadratureSettings& settings) {
+  // A model without a lobe about the mirror direction (ModelDescription::mirror_lobe, checked by
+  // tests/albedo/mirror_lobe_test.cpp) has nothing the check could find.
+  return settings.grazing_check && model.description().mirror_lobe && theta_s >= kGrazingCheck;
+}
+
 SpectralIntegral black_sky(const Model& model, const double* params, std::size_t n_sets, double theta_s, double phi_s,
                            const QuadratureSettings& settings) {
   const bool isotropic = is_isotropic(model, params, n_sets);
@@ -71,7 +77,7 @@ SpectralIntegral black_sky(const Model& model, const double* params, std::size_t
   first.max_geometries = std::max<std::size_t>(1, settings.max_geometries / 4);
   BlackSkyIntegrator integrator(model, params, n_sets, theta_s, phi_s, isotropic);
   SpectralIntegral a = integrator.run(first);
-  if (a.converged && (theta_s < kGrazingCheck || !settings.grazing_check)) return a;
+  if (a.converged && !grazing_check_applies(model, theta_s, settings)) return a;
   if (a.converged) {
     // Towards grazing incidence a specular lobe of width alpha is only ~2 alpha cos(theta_s) wide in
     // azimuth: the (mu, dphi) rule's first nodes can all miss it, and then every error estimate is

@@ -24,6 +24,9 @@
 //     or its azimuth count doubled. Both estimates are those of the coarser rule, so the
 //     reported error bounds the returned (finer) value conservatively for smooth integrands.
 //   - Ideal specular (delta) parts are added analytically: Model::delta_reflectance(p, cos theta_s).
+//   - Grazing sun (from 70 deg): the converged (mu, dphi) rule is cross-checked with the mirror-polar
+//     rule below, unless the model declares no lobe about the mirror direction
+//     (ModelDescription::mirror_lobe; tests/albedo/mirror_lobe_test.cpp checks the claim).
 //   - Sharp lobes: if this (mu, dphi) rule has not converged within max_geometries / 4, black_sky()
 //     integrates again in polar coordinates (rho, psi) about the mirror direction (see
 //     black_sky_mirror_polar) and returns the result with the smaller error estimate. (With the shared
@@ -91,7 +94,8 @@ struct SpectralIntegral {
   std::size_t geometries = 0;  // distinct BRDF geometries evaluated (each for all parameter sets)
   // black_sky() at grazing incidence (QuadratureSettings::grazing_check): the mirror-polar rule ran and
   // agreed with the converged (mu, dphi) rule at every set, so no lobe was missed. False otherwise
-  // (no check made, a disagreement, the fallback, or another source of the integral).
+  // (no check made, none needed for a model without a mirror lobe, a disagreement, the fallback, or
+  // another source of the integral).
   bool lobes_checked = false;
   double max_error() const;
   // The largest error estimate of the first `n` sets.
@@ -101,6 +105,11 @@ struct SpectralIntegral {
 // Whether the model declares itself azimuthally isotropic at every parameter set (its metadata:
 // ModelDescription::isotropic, isotropic_when_equal). `params`: n_sets x parameter_count(), row-major.
 bool is_isotropic(const Model& model, const double* params, std::size_t n_sets);
+
+// Whether black_sky() cross-checks its (mu, dphi) rule with the mirror-polar rule at sun zenith
+// theta_s [rad]: from 70 deg, for a model that may have a lobe about the mirror direction
+// (ModelDescription::mirror_lobe), unless `settings` turn the check off.
+bool grazing_check_applies(const Model& model, double theta_s, const QuadratureSettings& settings);
 
 // Black-sky albedo at sun zenith theta_s and azimuth phi_s [rad] (phi_s matters only for anisotropic
 // models). theta_s must be in [0, pi/2).

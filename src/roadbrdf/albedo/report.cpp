@@ -103,13 +103,16 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
         "non-spectral model (one parameter set, no fit file): values are for its constant parameters; the broadband "
         "values equal them");
   }
+  const detail::UncertaintyPlan uncertainty_plan = detail::uncertainty_plan(sm, sets, a);
+  const GradientPlan* gradients = uncertainty_plan.gradients ? &*uncertainty_plan.gradients : nullptr;
   ProgressCounter progress(a.progress, zeniths.size() + 1);
   // The integral stages run their integrals in parallel in this arena (report_stages.h).
   // More threads than the machine runs at once would only make TBB warn.
   const int all_cores = tbb::info::default_concurrency();
   tbb::task_arena arena(a.threads > 0 ? std::min(a.threads, all_cores) : all_cores);
-  const detail::Hemispherical albedos = arena.execute(
-      [&] { return detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, integrals, progress); });
+  const detail::Hemispherical albedos = arena.execute([&] {
+    return detail::hemispherical_albedos(model, sets, zeniths, azimuth, settings, integrals, gradients, progress);
+  });
   if (!isotropic) {
     notes.emplace_back(azimuth.mean ? "anisotropic model: black-sky averaged over the sun azimuth"
                                     : fmt::format("anisotropic model: black-sky at sun azimuth {} deg",
@@ -128,8 +131,9 @@ nlohmann::json compute_albedo(const SpectralModel& sm, const AlbedoRequest& a,
                                  sets.wavelengths.front(), sets.wavelengths.back(), 100.0 * (1.0 - broadband.outside)));
   }
   const nlohmann::json luminous = detail::luminous_albedos(sets, a, albedos, notes);
-  const nlohmann::json uncertainty = arena.execute(
-      [&] { return detail::albedo_uncertainty(sm, sets, a, azimuth, albedos, sky, broadband, progress, notes); });
+  const nlohmann::json uncertainty = arena.execute([&] {
+    return detail::albedo_uncertainty(sm, sets, a, uncertainty_plan, azimuth, albedos, sky, broadband, progress, notes);
+  });
   progress.finish();
 
   // Non-physical values, and how much of the result the model extrapolates beyond the fit's data

@@ -5,8 +5,10 @@
 #include <tbb/partitioner.h>
 
 #include <cmath>
+#include <typeinfo>
 #include <utility>
 
+#include "roadbrdf/albedo/gradient_integrals.h"
 #include "roadbrdf/albedo/report_stages.h"
 #include "roadbrdf/core/error.h"
 #include "roadbrdf/core/math.h"
@@ -77,33 +79,56 @@ SpectralIntegral black_sky_at(const Model& model, const std::vector<double>& par
 Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& sets,
                                     const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
                                     const QuadratureSettings& settings, const HemisphericalIntegrals& integrals,
-                                    ProgressCounter& progress) {
-  // The integrals are independent: one task each (task 0 the white-sky one, the longest, so that it
+                                    const GradientPlan* plan, ProgressCounter& progress) {
+  const std::size_t n_zeniths = zeniths_deg.size();
+  // Value and gradient in one pass where the quadrature is this module's and no grazing cross-check
+  // runs (report_stages.h).
+  const bool own_quadrature = typeid(integrals) == typeid(HemisphericalIntegrals);
+  auto in_one_pass = [&](std::size_t z) {
+    return plan != nullptr && own_quadrature &&
+           (z == n_zeniths || !grazing_check_applies(model, zeniths_deg[z] * kDegree, settings));
+  };
+  std::vector<SpectralIntegral> values(n_zeniths + 1);  // [z], the white-sky one last
+  std::vector<std::vector<double>> gradients(n_zeniths + 1);
+  // The integrals are independent: one task each (the white-sky one, the longest, first so that it
   // starts first), in the caller's arena (compute_albedo: AlbedoRequest::threads). Each integral is
   // deterministic, so the results do not depend on the number of threads.
-  const std::size_t n_zeniths = zeniths_deg.size();
-  std::vector<SpectralIntegral> black(n_zeniths);
-  Hemispherical h;
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, n_zeniths + 1, 1),
       [&](const tbb::blocked_range<std::size_t>& tasks) {
         for (std::size_t t = tasks.begin(); t != tasks.end(); ++t) {
-          if (t == 0) {
-            h.white = integrals.white_sky(model, sets.params.data(), sets.n_sets, settings);
+          const std::size_t z = t == 0 ? n_zeniths : t - 1;
+          const bool white = z == n_zeniths;
+          const double theta_s = white ? 0.0 : zeniths_deg[z] * kDegree;
+          if (in_one_pass(z)) {
+            GradientIntegral g =
+                white ? white_sky_gradient(model, sets.params.data(), sets.n_sets, plan->scale, plan->settings,
+                                           GradientNodes::value_nodes)
+                      : black_sky_gradient(model, sets.params.data(), sets.n_sets, plan->scale, theta_s, azimuth.phi_s,
+                                           azimuth.mean, plan->settings, GradientNodes::value_nodes);
+            values[z] = std::move(g.values);
+            gradients[z] = plan->with_nans(std::move(g.gradient));
+          } else if (white) {
+            values[z] = integrals.white_sky(model, sets.params.data(), sets.n_sets, settings);
           } else {
-            black[t - 1] = integrals.black_sky(model, sets.params.data(), sets.n_sets, zeniths_deg[t - 1] * kDegree,
-                                               azimuth.phi_s, azimuth.mean, settings);
+            values[z] = integrals.black_sky(model, sets.params.data(), sets.n_sets, theta_s, azimuth.phi_s,
+                                            azimuth.mean, settings);
           }
           progress.add();
         }
       },
       tbb::simple_partitioner());
+  Hemispherical h;
+  h.white = std::move(values[n_zeniths]);
+  h.white_gradient = std::move(gradients[n_zeniths]);
   h.converged = h.white.converged;
-  for (SpectralIntegral& r : black) {
+  for (std::size_t z = 0; z < n_zeniths; ++z) {
+    SpectralIntegral& r = values[z];
     h.converged = h.converged && r.converged;
     h.black_lobes_checked.push_back(r.lobes_checked);
     h.black.push_back(std::move(r.value));
     h.black_error.push_back(std::move(r.error));
+    h.black_gradient.push_back(std::move(gradients[z]));
   }
   return h;
 }

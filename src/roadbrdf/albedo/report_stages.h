@@ -12,6 +12,7 @@
 #include "roadbrdf/albedo/hemisphere.h"
 #include "roadbrdf/albedo/report.h"
 #include "roadbrdf/albedo/solar.h"
+#include "roadbrdf/albedo/uncertainty.h"
 
 namespace roadbrdf::albedo::detail {
 
@@ -34,17 +35,39 @@ struct SunAzimuth {
 SpectralIntegral black_sky_at(const Model& model, const std::vector<double>& params, std::size_t n_sets, double theta_s,
                               const SunAzimuth& azimuth, const QuadratureSettings& settings);
 
+// Which standard uncertainties the request gets (albedo/uncertainty.h), decided before the integrals so
+// that an integral and its parameter gradient can be integrated in one pass: `gradients` is empty where
+// none are computed (no covariance, values only requested, requested wavelengths); `notes` say why, or at
+// how many wavelengths the covariance is undefined (albedo_uncertainty adds them to the document's).
+struct UncertaintyPlan {
+  std::optional<GradientPlan> gradients;
+  std::vector<std::string> notes;
+};
+UncertaintyPlan uncertainty_plan(const SpectralModel& model, const ParameterSets& sets, const AlbedoRequest& request);
+
 // Black-sky per sun zenith and white-sky, each for every parameter set.
 struct Hemispherical {
   std::vector<std::vector<double>> black, black_error;  // [zenith][set]
   std::vector<bool> black_lobes_checked;                // [zenith]: SpectralIntegral::lobes_checked
   SpectralIntegral white;
   bool converged = true;
+  // With a plan of gradients: those integrated in the same pass as their values (n_sets x P, NaN at
+  // the sets whose covariance is undefined), empty where the uncertainty stage integrates them itself
+  // (see hemispherical_albedos).
+  std::vector<std::vector<double>> black_gradient;  // [zenith]
+  std::vector<double> white_gradient;
 };
+// With `plan` (null: values only), each integral the quadrature of hemisphere.h computes without a
+// grazing cross-check (grazing_check_applies) is integrated with its gradient in one pass: the values
+// steer the nodes and the gradient follows (gradient_integrals.h, GradientNodes::value_nodes), so the
+// model is evaluated once per node, value and gradient together. The values are then those of that
+// pass, which may refine beyond the value's own nodes for the gradient's sake: they differ from a
+// values-only request by less than their error estimates. Integrals from other `integrals` (a linear
+// mixture's) and cross-checked ones keep two passes.
 Hemispherical hemispherical_albedos(const Model& model, const ParameterSets& sets,
                                     const std::vector<double>& zeniths_deg, const SunAzimuth& azimuth,
                                     const QuadratureSettings& settings, const HemisphericalIntegrals& integrals,
-                                    ProgressCounter& progress);
+                                    const GradientPlan* plan, ProgressCounter& progress);
 
 // The sky: diffuse fraction D per sun zenith and set (a constant, a table or SPECTRL2), SPECTRL2's
 // spectra per zenith, and blue-sky = (1 - D) black + D white (report eq. 2.19). All empty without a
@@ -77,11 +100,12 @@ nlohmann::json luminous_albedos(const ParameterSets& sets, const AlbedoRequest& 
                                 std::vector<std::string>& notes);
 
 // Standard uncertainties from the fit's parameter covariance (albedo/uncertainty.h), JSON "uncertainty";
-// null (with a note) where they are not defined. `albedos` says at which zeniths the values passed the
-// grazing cross-check (their gradients then skip it, gradient_integrals.h).
+// null where `plan` has no gradients (its notes say why). The gradients `albedos` does not hold are
+// integrated here; `albedos` says at which zeniths the values passed the grazing cross-check (their
+// gradients then skip it, gradient_integrals.h).
 nlohmann::json albedo_uncertainty(const SpectralModel& model, const ParameterSets& sets, const AlbedoRequest& request,
-                                  const SunAzimuth& azimuth, const Hemispherical& albedos, const Sky& sky,
-                                  const Broadband& broadband, ProgressCounter& progress,
+                                  const UncertaintyPlan& plan, const SunAzimuth& azimuth, const Hemispherical& albedos,
+                                  const Sky& sky, const Broadband& broadband, ProgressCounter& progress,
                                   std::vector<std::string>& notes);
 
 }  // namespace roadbrdf::albedo::detail

@@ -50,22 +50,38 @@ std::vector<double> blue_sky_gradient(const std::vector<double>& g_black, const 
 
 }  // namespace
 
-nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& sets, const AlbedoRequest& a,
-                                  const SunAzimuth& azimuth, const Hemispherical& albedos, const Sky& sky,
-                                  const Broadband& broadband, ProgressCounter& progress,
-                                  std::vector<std::string>& notes) {
+UncertaintyPlan uncertainty_plan(const SpectralModel& sm, const ParameterSets& sets, const AlbedoRequest& a) {
+  UncertaintyPlan plan;
   const std::vector<double>& covariance = sm.parameter_covariance();
-  if (covariance.empty()) return nullptr;
+  if (covariance.empty()) return plan;
   if (!a.uncertainty) {
-    notes.emplace_back("standard uncertainties not computed: values only were requested");
-    return nullptr;
+    plan.notes.emplace_back("standard uncertainties not computed: values only were requested");
+    return plan;
   }
   // At the fit's own wavelengths only: an interpolated parameter set has no covariance of its own.
   if (!sets.spectral || !a.wavelengths.empty()) {
-    notes.emplace_back(
+    plan.notes.emplace_back(
         "standard uncertainties are given at the fit's own wavelengths only, not at requested wavelengths");
-    return nullptr;
+    return plan;
   }
+  plan.gradients = gradient_plan(covariance, sets.n_sets, sm.model().parameter_count(), a.tolerance);
+  if (plan.gradients->undefined_sets > 0) {
+    plan.notes.push_back(fmt::format(
+        "the parameter covariance is undefined at {} of {} wavelengths (a parameter on its bound, or a singular "
+        "fit): their standard uncertainties are null and were not computed",
+        plan.gradients->undefined_sets, sets.n_sets));
+  }
+  return plan;
+}
+
+nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& sets, const AlbedoRequest& a,
+                                  const UncertaintyPlan& uncertainty_plan, const SunAzimuth& azimuth,
+                                  const Hemispherical& albedos, const Sky& sky, const Broadband& broadband,
+                                  ProgressCounter& progress, std::vector<std::string>& notes) {
+  notes.insert(notes.end(), uncertainty_plan.notes.begin(), uncertainty_plan.notes.end());
+  if (!uncertainty_plan.gradients) return nullptr;
+  const GradientPlan& plan = *uncertainty_plan.gradients;
+  const std::vector<double>& covariance = sm.parameter_covariance();
   const Model& model = sm.model();
   const std::size_t n_params = model.parameter_count();
   const std::size_t n_sets = sets.n_sets;
@@ -75,21 +91,20 @@ nlohmann::json albedo_uncertainty(const SpectralModel& sm, const ParameterSets& 
     return broadband_json(broadband_uncertainty(gradients, coefficients, covariance, n_sets, n_params));
   };
 
+  // The gradients not integrated with their values (hemispherical_albedos), one task each as the
+  // values' ([0]: white-sky, [1 + z]: black-sky).
   const std::vector<double>& zeniths = a.sun_zenith_deg;
-  progress.add_total(zeniths.size() + 1);
-  const GradientPlan plan = gradient_plan(covariance, n_sets, n_params, a.tolerance);
-  if (plan.undefined_sets > 0) {
-    notes.push_back(fmt::format(
-        "the parameter covariance is undefined at {} of {} wavelengths (a parameter on its bound, or a singular "
-        "fit): their standard uncertainties are null and were not computed",
-        plan.undefined_sets, n_sets));
-  }
-  // The gradient integrals, one task each as the values' (report_sky.cpp hemispherical_albedos).
-  std::vector<std::vector<double>> gradients(zeniths.size() + 1);  // [0]: white-sky, [1 + z]: black-sky
+  std::vector<std::vector<double>> gradients(zeniths.size() + 1);
+  gradients[0] = albedos.white_gradient;
+  for (std::size_t z = 0; z < zeniths.size(); ++z) gradients[1 + z] = albedos.black_gradient[z];
+  std::size_t left = 0;
+  for (const auto& g : gradients) left += g.empty() ? 1 : 0;
+  progress.add_total(left);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, gradients.size(), 1),
       [&](const tbb::blocked_range<std::size_t>& tasks) {
         for (std::size_t t = tasks.begin(); t != tasks.end(); ++t) {
+          if (!gradients[t].empty()) continue;
           if (t == 0) {
             gradients[t] = plan.with_nans(
                 white_sky_gradient(model, sets.params.data(), n_sets, plan.scale, plan.settings, plan.nodes).gradient);

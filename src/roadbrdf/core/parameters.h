@@ -57,6 +57,14 @@ struct ModelDescription {
   bool energy_conserving = true;
   bool non_negative = true;  // f >= 0 for every geometry and every parameter set inside the bounds
   bool has_delta = false;    // has an ideal specular part, handled separately from the smooth BRDF
+  // Whether the BRDF may have a lobe about the mirror direction narrow enough for the first nodes of
+  // the black-sky (mu, dphi) rule to miss at grazing incidence (a microfacet or Phong specular lobe
+  // of small roughness). black_sky() cross-checks that rule with the mirror-polar rule from a sun
+  // zenith of 70 deg (albedo/hemisphere.h) unless a model declares false: a diffuse model, or one whose
+  // narrowest feature at any parameter within its bounds is broad enough; tests/albedo/mirror_lobe_test.cpp
+  // checks the claim at every corner of the parameter box and at 70-89.9 deg. Composites and
+  // mixtures: true if any component's is.
+  bool mirror_lobe = true;
   // The value at exactly grazing directions (theta_i or theta_r = 90 deg, Geometry::grazing_i/_r): the
   // limit of the BRDF as the direction approaches the horizon with the other one held fixed, wherever
   // that limit is finite. Where it is not (the BRDF diverges like 1/cos or tan of a zenith angle), the

@@ -264,7 +264,10 @@ FitFileEntry entry_of(const JsonNode& root, const std::string& selection) {
 }  // namespace
 
 FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name, const std::string& selection) {
-  const Json document = parse_json_text(json_text, name);
+  return fit_file_entry(parse_json_text(json_text, name), name, selection);
+}
+
+FitFileEntry fit_file_entry(const Json& document, const std::string& name, const std::string& selection) {
   return entry_of(fit_file_root(document, name), selection);
 }
 

@@ -55,6 +55,9 @@ InputLimits fit_file_limits();
 SpectralModel parse_fit_file(const std::string& json_text, const std::string& name, const std::string& selection = "");
 FitFileEntry parse_fit_file_entry(const std::string& json_text, const std::string& name,
                                   const std::string& selection = "");
+// The same from the parsed document (model_source.h read_model_file parses a file once to tell a fit
+// file from a MIX.json).
+FitFileEntry fit_file_entry(const Json& document, const std::string& name, const std::string& selection = "");
 
 // The parameter covariance per wavelength (SpectralModel::parameter_covariance) of a fit object of a
 // fit file, or of a method of a MIX.json (the same keys), from its "stderr" {name: [per wavelength]}

@@ -17,10 +17,13 @@ namespace roadbrdf {
 using mixing::MixtureKind;
 using mixing::MixtureModel;
 
+bool is_mix_document(const Json& j) {
+  return j.is_object() && j.contains("format") && j.at("format") == "roadbrdf-mix";
+}
+
 bool is_mix_file(const std::string& path) {
   try {
-    const Json j = parse_json_text(read_text_file(path, fit_file_limits()), path);
-    return j.is_object() && j.contains("format") && j.at("format") == "roadbrdf-mix";
+    return is_mix_document(parse_json_text(read_text_file(path, fit_file_limits()), path));
   } catch (const InputError&) {
     return false;  // not JSON at all: read_spectral_model_file reports it as a fit file
   }
@@ -47,8 +50,11 @@ SpectralModel read_mix_file(const std::string& path, const std::string& method) 
 }
 
 MixFileEntry read_mix_file_entry(const std::string& path, const std::string& method) {
-  const Json document = parse_json_file(path);
-  const JsonNode root(document, input_display_name(path));
+  return mix_file_entry(parse_json_file(path), input_display_name(path), method);
+}
+
+MixFileEntry mix_file_entry(const Json& document, const std::string& name, const std::string& method) {
+  const JsonNode root(document, name);
   if (!root.is_object() || root.string_or("format", "") != "roadbrdf-mix") {
     throw FileError(root.file(), 0, 0, "not a roadbrdf mix file (format key)");
   }

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "roadbrdf/core/json_input.h"
 #include "roadbrdf/models/spectral_model.h"
 
 namespace roadbrdf {
@@ -21,7 +22,11 @@ struct MixFileEntry {
 SpectralModel read_mix_file(const std::string& path, const std::string& method = "");
 MixFileEntry read_mix_file_entry(const std::string& path, const std::string& method = "");
 
-// True when a JSON file is a MIX.json ("format": "roadbrdf-mix").
+// The same from the parsed document, `name` standing for the file in error messages.
+MixFileEntry mix_file_entry(const Json& document, const std::string& name, const std::string& method = "");
+
+// True when a JSON document is a MIX.json ("format": "roadbrdf-mix"), or a JSON file is one.
+bool is_mix_document(const Json& document);
 bool is_mix_file(const std::string& path);
 
 }  // namespace roadbrdf

@@ -15,6 +15,7 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
   d.reciprocal = true;
   d.energy_conserving = false;  // the weights are free; sum_k w_k <= 1 is not enforced
   d.has_delta = false;
+  d.mirror_lobe = false;  // unless a component has one
   for (std::size_t k = 0; k < components.size(); ++k) {
     const ModelDescription& c = components[k]->description();
     name += (k ? "+" : "") + c.name;
@@ -22,6 +23,7 @@ ModelDescription CompositeModel::make_description(const std::vector<std::unique_
     d.reciprocal = d.reciprocal && c.reciprocal;
     d.non_negative = d.non_negative && c.non_negative;
     d.has_delta = d.has_delta || c.has_delta;
+    d.mirror_lobe = d.mirror_lobe || c.mirror_lobe;
     if (!c.grazing_zero.empty()) {
       d.grazing_zero += (d.grazing_zero.empty() ? "" : "; ") + prefixes[k] + ": " + c.grazing_zero;
     }

@@ -19,6 +19,7 @@ nlohmann::json description_to_json(const ModelDescription& d) {
   j["energy_conserving"] = d.energy_conserving;
   j["non_negative"] = d.non_negative;
   j["has_delta"] = d.has_delta;
+  j["mirror_lobe"] = d.mirror_lobe;
   j["grazing_zero"] = d.grazing_zero;
   j["reduces_to"] = nlohmann::json::array();
   for (const auto& [simpler, values] : d.reduces_to) j["reduces_to"].push_back({simpler, values});

@@ -249,6 +249,9 @@ struct Hapke {
     d.reciprocal = true;
     d.energy_conserving = false;  // SHOE term, IMSA, approximate H (see the header comment)
     d.non_negative = true;
+    // The forward lobe of the phase function (xi, hg2_b towards 1) points below the horizon; its part
+    // above it near grazing sun is resolved by the (mu, dphi) rule (mirror_lobe_test, every phase option).
+    d.mirror_lobe = false;
     d.grazing_zero = "where both directions are grazing (f diverges like 1/(cos theta_i + cos theta_r))";
     if (options.at("roughness") == "hapke1984") {
       d.grazing_zero =

@@ -23,6 +23,7 @@ struct Lambert {
     d.parameters = {
         {"albedo", "1", "diffuse (hemispherical) albedo rho", 0.5, 0.0, 1.0, true, true},
     };
+    d.mirror_lobe = false;
     return d;
   }
   explicit Lambert(const OptionSet&) {}

@@ -42,6 +42,7 @@ ModelDescription MixtureModel::make_description(MixtureKind kind,
                             0.0, 0.0, 100.0, false, false});
   }
   bool reciprocal = true, non_negative = kind != MixtureKind::kHapke;
+  d.mirror_lobe = false;  // unless an end-member has one (the mixing itself adds none)
   for (std::size_t k = 0; k < K; ++k) {
     const ModelDescription& c = components[k]->description();
     for (const ParameterInfo& p : c.parameters) {
@@ -53,6 +54,7 @@ ModelDescription MixtureModel::make_description(MixtureKind kind,
     reciprocal = reciprocal && c.reciprocal;
     non_negative = non_negative && c.non_negative;
     d.has_delta = d.has_delta || c.has_delta;
+    d.mirror_lobe = d.mirror_lobe || c.mirror_lobe;
     combine_isotropy(d, c, names[k]);
   }
   // Grazing directions: the mixing adds no divergence (the shadowed kind's S = exp(-s (tan theta_i +

@@ -55,6 +55,7 @@ struct OrenNayar {
     // towards grazing sun (full form: from theta_i ~ 55 deg at sigma = 0.1, 1.014 at 89 deg; 1.044 at
     // sigma = 0.3, 89 deg; qualitative form: 1.0075 at sigma = 0.1, 89 deg). Checked in oren_nayar_test.
     d.energy_conserving = false;
+    d.mirror_lobe = false;  // no specular term (facets are Lambertian)
     d.reduces_to = {{"lambert", "sigma = 0 (C1 = 1, C2 = C3 = 0, no interreflection)"}};
     d.grazing_zero = full ? "where both directions are grazing, unless cos(dphi) = -1 (tan(beta) and tan((alpha + "
                             "beta)/2) diverge; eqs. 30, 37)"

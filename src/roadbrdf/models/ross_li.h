@@ -70,6 +70,7 @@ struct RossLi {
     d.reciprocal = true;
     d.energy_conserving = false;
     d.non_negative = false;  // K_geo -> -infinity towards grazing angles (see the header comment)
+    d.mirror_lobe = false;   // volume and geometric kernels: smooth, the hot spot is at backscatter
     d.grazing_zero = "at any grazing direction (K_geo diverges like sec theta, K_vol like 1/(cos ts + cos tv))";
     return d;
   }

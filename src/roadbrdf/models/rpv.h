@@ -75,6 +75,7 @@ struct RahmanPintyVerstraete {
         "at any grazing direction when k != 1 (for k < 1 the BRDF diverges like cos^(k-1) theta; for k > 1 0 is the "
         "limit)";
     d.non_negative = true;
+    d.mirror_lobe = false;  // F(g)'s forward lobe points below the horizon (mirror_lobe_test, Theta = 0.95)
     return d;
   }
   explicit RahmanPintyVerstraete(const OptionSet&) {}
