@@ -34,6 +34,7 @@
 #include "roadbrdf/io/usgs.h"
 #include "roadbrdf/mixing/calibration.h"
 #include "roadbrdf/mixing/mix_file.h"
+#include "roadbrdf/modelfile/model_source.h"
 #include "roadbrdf/photometry/rtable_io.h"
 #include "roadbrdf/spectra/spectrum_file.h"
 #include "roadbrdf/surface/height_field.h"
@@ -129,10 +130,12 @@ inline int formulation_one_input(const std::uint8_t* data, std::size_t size) {
   return refusing([&] { parse_formulation(std::string(bytes(data, size)), "fuzz.json", false); });
 }
 
-// A fit file read as a model (the best fit, then one group's) and as a parameter table.
+// A fit file read as a model (the best fit, then one group's; and through the resolver of fit files and
+// MIX.json, which parses once and dispatches on "format") and as a parameter table.
 inline int fit_file_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("fit.json", bytes(data, size));
   refusing([&] { read_fit_file(file.path()); });
+  refusing([&] { read_model_file(file.path()); });
   refusing([&] { read_fit_file(file.path(), "lambert,theta_i=40"); });
   ParamsRequest request;
   request.fit_file = file.path();
@@ -149,6 +152,7 @@ inline int selection_one_input(const std::uint8_t* data, std::size_t size) {
 
 inline int mix_file_one_input(const std::uint8_t* data, std::size_t size) {
   const ScratchFile file("mix.json", bytes(data, size));
+  refusing([&] { read_model_file(file.path(), "areal"); });
   return refusing([&] { read_mix_file(file.path()); });
 }
 
