@@ -69,9 +69,7 @@ void AlbedoRequest::validate() const {
   if (!diffuse_fraction.empty() && !atmosphere.empty()) {
     throw FieldError("diffuse_fraction", "excludes atmosphere: give one of the two");
   }
-  if (threads < 0 || threads > 1024) {
-    throw FieldError("threads", fmt::format("{} is outside [0, 1024] (0 = all cores)", threads));
-  }
+  check_thread_count(threads);
   if (sun_zenith_deg.empty()) throw FieldError("sun_zenith", "no sun zenith given");
   if (sun_azimuth_deg && !std::isfinite(*sun_azimuth_deg)) throw FieldError("sun_azimuth", "expected a finite number");
   if (!wavelengths.empty()) check_range_values(wavelengths, "wavelengths", wavelength_rules());

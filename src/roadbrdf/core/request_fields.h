@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "roadbrdf/core/atomic_file.h"
+#include "roadbrdf/core/error.h"
 
 namespace roadbrdf {
 
@@ -129,6 +130,14 @@ std::vector<RequestField<Request>> fields_of_base() {
     rows.push_back({f.name, f.flag, f.unit, f.help, member, f.file, f.required, f.comma_separated});
   }
   return rows;
+}
+
+// The `threads` field of a request that runs in parallel (albedo, render): [0, 1024], 0 = all cores.
+// Throws FieldError("threads").
+inline void check_thread_count(int threads) {
+  if (threads < 0 || threads > 1024) {
+    throw FieldError("threads", std::to_string(threads) + " is outside [0, 1024] (0 = all cores)");
+  }
 }
 
 // Items of a comma-separated list of names ("theta_i, phi_i"): split at commas, blanks removed,

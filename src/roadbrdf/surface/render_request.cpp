@@ -86,8 +86,7 @@ RenderSettings render_settings(const RenderRequest& r) {
     throw FieldError("acceptance_deg", fmt::format("{} is outside [0, 45] deg", r.acceptance_deg));
   }
   s.sampling = parse_name<Sampling>(r.sampling, "sampling");
-  if (r.threads < 0 || r.threads > 1024)
-    throw FieldError("threads", fmt::format("{} is outside [0, 1024] (0 = all cores)", r.threads));
+  check_thread_count(r.threads);
   if (r.max_bounces < 0 || r.max_bounces > 1000) {
     throw FieldError("max_bounces", fmt::format("{} is outside [0, 1000] (0 = unlimited)", r.max_bounces));
   }
